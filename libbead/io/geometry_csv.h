@@ -1,0 +1,27 @@
+// Geometry results CSV of shared/spec/data-formats.md: the spec columns
+// profile,t_s,encoder,area_mm2,width_mm,height_mm,area_corrected_mm2,valid
+// first, then ours: center_x_mm, reference_rms_mm, reference_points,
+// threshold_mm, dropped_points, status. Values of an invalid profile are
+// empty; its row stays, with valid=0 and the status saying why.
+// area_corrected_mm2 is empty until an occlusion model provides it.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "libbead/profile/bead_geometry.h"
+
+namespace bead {
+
+struct GeometryRow {
+  int64_t profile = 0;
+  double t_s = 0.0;
+  int64_t encoder = 0;
+  BeadGeometry geometry;
+  double area_corrected_mm2 = BeadGeometry::kNaN;
+};
+
+void WriteGeometryCsv(const std::string& path, const std::vector<GeometryRow>& rows);
+
+}  // namespace bead

@@ -1,0 +1,161 @@
+#include "libbead/io/profiles_csv.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "libbead/core/error.h"
+#include "libbead/io/atomic_file.h"
+#include "libbead/io/csv_reader.h"
+
+namespace bead {
+namespace {
+
+constexpr float kNaNf = std::numeric_limits<float>::quiet_NaN();
+
+// Collects profiles of varying length, then pads them into a block.
+class BlockBuilder {
+ public:
+  // Adds the point of the row `csv` reads, whose profile columns start at `c`.
+  void AddRow(const CsvReader& csv, std::size_t c) {
+    const int64_t id = csv.Int64(c, "profile");
+    const double t = csv.Double(c + 1, "t_s");
+    const int64_t enc = csv.Int64(c + 2, "encoder");
+    if (profiles_.empty() || id != current_id_) {
+      if (seen_.count(id)) csv.Fail("rows of profile " + std::to_string(id) + " are not together");
+      seen_.insert({id, true});
+      current_id_ = id;
+      profiles_.push_back({t, enc, {}, {}});
+    } else if (t != profiles_.back().t || enc != profiles_.back().encoder) {
+      csv.Fail("profile " + std::to_string(id) + " changes its t_s or encoder between rows");
+    }
+    auto& p = profiles_.back();
+    p.x.push_back(csv.Empty(c + 3) ? kNaNf : static_cast<float>(csv.Double(c + 3, "x_mm")));
+    p.z.push_back(csv.Empty(c + 4) ? kNaNf : static_cast<float>(csv.Double(c + 4, "z_mm")));
+  }
+
+  bool empty() const { return profiles_.empty(); }
+
+  ProfileBlock Build(const std::string& file, const std::string& where) {
+    ProfileBlock b;
+    for (const auto& p : profiles_) b.points = std::max(b.points, p.x.size());
+    b.shared_x = std::all_of(profiles_.begin(), profiles_.end(), [&](const Profile& p) {
+      return p.x.size() == b.points && std::equal(p.x.begin(), p.x.end(), profiles_[0].x.begin(), [](float u, float v) {
+               return u == v || (std::isnan(u) && std::isnan(v));
+             });
+    });
+    if (b.shared_x && !profiles_.empty()) b.x_mm = profiles_[0].x;
+    for (const auto& p : profiles_) {
+      b.t_s.push_back(p.t);
+      b.encoder.push_back(p.encoder);
+      if (!b.shared_x) {
+        b.x_mm.insert(b.x_mm.end(), p.x.begin(), p.x.end());
+        b.x_mm.resize(b.x_mm.size() + (b.points - p.x.size()), kNaNf);
+      }
+      b.z_mm.insert(b.z_mm.end(), p.z.begin(), p.z.end());
+      b.z_mm.resize(b.z_mm.size() + (b.points - p.z.size()), kNaNf);
+    }
+    ValidateProfileBlock(b, file, where);
+    return b;
+  }
+
+ private:
+  struct Profile {
+    double t;
+    int64_t encoder;
+    std::vector<float> x, z;
+  };
+  std::vector<Profile> profiles_;
+  std::map<int64_t, bool> seen_;
+  int64_t current_id_ = 0;
+};
+
+const std::vector<std::string> kProfileColumns = {"profile", "t_s", "encoder", "x_mm", "z_mm"};
+
+}  // namespace
+
+ProfileBlock ReadProfilesCsv(const std::string& path) {
+  CsvReader csv(path);
+  csv.Header(kProfileColumns, "profiles CSV");
+  BlockBuilder builder;
+  while (csv.Next()) builder.AddRow(csv, 0);
+  if (builder.empty()) throw Error(Located(path, "", "holds no profile rows"));
+  return builder.Build(path, "profiles");
+}
+
+void WriteProfilesCsv(const std::string& path, const ProfileBlock& b) {
+  AtomicFile out(path);
+  auto& s = out.stream();
+  s << "profile,t_s,encoder,x_mm,z_mm\n";
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    const ProfileView v = b.view(i);
+    for (std::size_t k = 0; k < b.points; ++k)
+      s << i << ',' << CsvNumber(v.t_s) << ',' << v.encoder << ',' << CsvNumber(v.x_mm[k]) << ','
+        << CsvNumber(v.z_mm[k]) << '\n';
+  }
+  out.Commit();
+}
+
+AcquisitionLog ReadLogCsv(const std::string& path) {
+  CsvReader csv(path);
+  const auto header = csv.Header({"t_s", "encoder", "screw_rpm"}, "acquisition log CSV");
+  const bool commands = header.size() >= 5 && header[3] == "extruder_cmd_v" && header[4] == "wheel_cmd_v";
+  AcquisitionLog log;
+  while (csv.Next()) {
+    log.t_s.push_back(csv.Double(0, "t_s"));
+    log.encoder.push_back(csv.Int64(1, "encoder"));
+    log.screw_rpm.push_back(csv.Double(2, "screw_rpm"));
+    if (commands) {
+      log.extruder_cmd_v.push_back(csv.Double(3, "extruder_cmd_v"));
+      log.wheel_cmd_v.push_back(csv.Double(4, "wheel_cmd_v"));
+    }
+  }
+  if (log.size() == 0) throw Error(Located(path, "", "holds no log rows"));
+  ValidateLog(log, path, "log");
+  return log;
+}
+
+void WriteLogCsv(const std::string& path, const AcquisitionLog& log) {
+  const bool commands = !log.extruder_cmd_v.empty() && !log.wheel_cmd_v.empty();
+  AtomicFile out(path);
+  auto& s = out.stream();
+  s << "t_s,encoder,screw_rpm" << (commands ? ",extruder_cmd_v,wheel_cmd_v" : "") << '\n';
+  for (std::size_t i = 0; i < log.size(); ++i) {
+    s << CsvNumber(log.t_s[i]) << ',' << log.encoder[i] << ',' << CsvNumber(log.screw_rpm[i]);
+    if (commands) s << ',' << CsvNumber(log.extruder_cmd_v[i]) << ',' << CsvNumber(log.wheel_cmd_v[i]);
+    s << '\n';
+  }
+  out.Commit();
+}
+
+PinScanArchive ReadPinScansCsv(const std::string& path) {
+  CsvReader csv(path);
+  std::vector<std::string> columns = {"scan", "start_encoder"};
+  columns.insert(columns.end(), kProfileColumns.begin(), kProfileColumns.end());
+  csv.Header(columns, "pin-scan CSV");
+  PinScanArchive pins;
+  std::vector<BlockBuilder> builders;
+  std::map<int64_t, std::size_t> index;
+  int64_t last_scan = -1;
+  while (csv.Next()) {
+    const int64_t scan = csv.Int64(0, "scan");
+    const int64_t start = csv.Int64(1, "start_encoder");
+    if (scan != last_scan) {
+      if (index.count(scan)) csv.Fail("rows of scan " + std::to_string(scan) + " are not together");
+      index[scan] = builders.size();
+      builders.emplace_back();
+      pins.scans.push_back({start, {}});
+      last_scan = scan;
+    } else if (start != pins.scans.back().start_encoder) {
+      csv.Fail("scan " + std::to_string(scan) + " changes its start_encoder between rows");
+    }
+    builders.back().AddRow(csv, 2);
+  }
+  if (builders.empty()) throw Error(Located(path, "", "holds no pin-scan rows"));
+  for (std::size_t k = 0; k < builders.size(); ++k)
+    pins.scans[k].profiles = builders[k].Build(path, "scan " + std::to_string(k));
+  return pins;
+}
+
+}  // namespace bead

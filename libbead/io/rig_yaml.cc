@@ -1,0 +1,174 @@
+#include "libbead/io/rig_yaml.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "libbead/core/error.h"
+#include "libbead/io/atomic_file.h"
+
+namespace bead {
+namespace {
+
+class RigParser {
+ public:
+  explicit RigParser(std::string file) : file_(std::move(file)) {}
+
+  [[noreturn]] void Fail(const YAML::Node& node, const std::string& key, const std::string& what) const {
+    std::string place = key;
+    if (node.IsDefined() && node.Mark().line >= 0) place = "line " + std::to_string(node.Mark().line + 1) + ": " + key;
+    throw Error(Located(file_, place, what));
+  }
+
+  YAML::Node Child(const YAML::Node& parent, const std::string& parent_key, const std::string& key,
+                   bool required = true) const {
+    const std::string full = parent_key.empty() ? key : parent_key + "." + key;
+    if (!parent.IsMap()) Fail(parent, parent_key, "must be a mapping with key '" + key + "'");
+    YAML::Node child = parent[key];
+    if (!child.IsDefined() || child.IsNull()) {
+      if (required) Fail(parent, full, "missing key (see shared/spec/data-formats.md, rig file)");
+      return YAML::Node(YAML::NodeType::Undefined);
+    }
+    return child;
+  }
+
+  double Number(const YAML::Node& node, const std::string& key) const {
+    if (!node.IsScalar()) Fail(node, key, "must be a number");
+    try {
+      const double v = node.as<double>();
+      if (!std::isfinite(v)) Fail(node, key, "must be a finite number, got '" + node.Scalar() + "'");
+      return v;
+    } catch (const YAML::Exception&) {
+      Fail(node, key, "must be a number, got '" + node.Scalar() + "'");
+    }
+  }
+
+  long Integer(const YAML::Node& node, const std::string& key) const {
+    const double v = Number(node, key);
+    if (v != std::floor(v)) Fail(node, key, "must be a whole number, got '" + node.Scalar() + "'");
+    return static_cast<long>(v);
+  }
+
+  std::pair<double, double> Pair(const YAML::Node& node, const std::string& key) const {
+    if (!node.IsSequence() || node.size() != 2) Fail(node, key, "must be a pair [a, b]");
+    return {Number(node[0], key + "[0]"), Number(node[1], key + "[1]")};
+  }
+
+  Rig Parse(const YAML::Node& root) const {
+    if (!root.IsMap()) Fail(root, "", "a rig file must be a YAML mapping (name, encoder, wheel, offset, sensor)");
+    Rig rig;
+    if (YAML::Node name = root["name"]; name.IsDefined() && name.IsScalar()) rig.name = name.Scalar();
+
+    const YAML::Node enc = Child(root, "", "encoder");
+    const YAML::Node cpr = Child(enc, "encoder", "counts_per_rev");
+    rig.encoder.counts_per_rev = Number(cpr, "encoder.counts_per_rev");
+    if (!(rig.encoder.counts_per_rev > 0)) Fail(cpr, "encoder.counts_per_rev", "must be positive");
+    const YAML::Node bits = Child(enc, "encoder", "bits");
+    const long b = Integer(bits, "encoder.bits");
+    if (b < 0 || b > 64 || (b > 0 && b < 8))
+      Fail(bits, "encoder.bits", "must be 0 (never wraps) or a counter width from 8 to 64, got " + std::to_string(b));
+    rig.encoder.bits = static_cast<int>(b);
+    const YAML::Node dir = Child(enc, "encoder", "direction");
+    const long d = Integer(dir, "encoder.direction");
+    if (d != 1 && d != -1) Fail(dir, "encoder.direction", "must be 1 or -1, got " + std::to_string(d));
+    rig.encoder.direction = static_cast<int>(d);
+
+    const YAML::Node wheel = Child(root, "", "wheel");
+    const YAML::Node diam = Child(wheel, "wheel", "diameter_mm");
+    rig.wheel_diameter_mm = Number(diam, "wheel.diameter_mm");
+    if (!(rig.wheel_diameter_mm > 0)) Fail(diam, "wheel.diameter_mm", "must be positive");
+
+    const YAML::Node offset = Child(root, "", "offset");
+    rig.offset_counts = Number(Child(offset, "offset", "counts"), "offset.counts");
+
+    const YAML::Node sensor = Child(root, "", "sensor");
+    const YAML::Node areas = Child(sensor, "sensor", "reference_areas_mm");
+    if (!areas.IsSequence() || areas.size() != 2)
+      Fail(areas, "sensor.reference_areas_mm", "must hold exactly two x ranges, [[x0, x1], [x2, x3]]");
+    ReferenceArea ra[2];
+    for (int i = 0; i < 2; ++i) {
+      const std::string key = "sensor.reference_areas_mm[" + std::to_string(i) + "]";
+      const auto [lo, hi] = Pair(areas[i], key);
+      if (!(hi > lo)) Fail(areas[i], key, "is empty: the second x must be larger than the first");
+      ra[i] = ReferenceArea{lo, hi};
+    }
+    if (ra[0].x_min_mm > ra[1].x_min_mm) std::swap(ra[0], ra[1]);
+    if (ra[0].x_max_mm >= ra[1].x_min_mm)
+      Fail(areas, "sensor.reference_areas_mm",
+           "the two reference areas overlap: the bead must lie in a gap between them");
+    rig.reference_left = ra[0];
+    rig.reference_right = ra[1];
+    if (YAML::Node origin = Child(sensor, "sensor", "laser_origin_mm", false); origin.IsDefined()) {
+      const auto [x, z] = Pair(origin, "sensor.laser_origin_mm");
+      rig.laser_origin = LaserOrigin{x, z};
+    }
+    return rig;
+  }
+
+ private:
+  std::string file_;
+};
+
+}  // namespace
+
+RigFile ParseRig(const std::string& text, const std::string& name) {
+  RigFile out;
+  try {
+    out.document = YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    throw Error(Located(name, "line " + std::to_string(e.mark.line + 1), "not valid YAML: " + e.msg));
+  }
+  out.rig = RigParser(name).Parse(out.document);
+  return out;
+}
+
+RigFile ReadRigFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw Error(Located(path, "", "cannot open rig file"));
+  std::stringstream text;
+  text << in.rdbuf();
+  return ParseRig(text.str(), path);
+}
+
+RigFile MakeRigFile(const Rig& rig) {
+  RigFile out;
+  out.rig = rig;
+  out.document = YAML::Node(YAML::NodeType::Map);
+  return out;
+}
+
+void WriteRigFile(const std::string& path, const RigFile& file) {
+  YAML::Node doc = YAML::Clone(file.document);
+  const Rig& rig = file.rig;
+  if (!rig.name.empty()) doc["name"] = rig.name;
+  doc["encoder"]["counts_per_rev"] = rig.encoder.counts_per_rev;
+  doc["encoder"]["bits"] = rig.encoder.bits;
+  doc["encoder"]["direction"] = rig.encoder.direction;
+  doc["wheel"]["diameter_mm"] = rig.wheel_diameter_mm;
+  doc["offset"]["counts"] = rig.offset_counts;
+  YAML::Node areas(YAML::NodeType::Sequence);
+  for (const ReferenceArea& a : {rig.reference_left, rig.reference_right}) {
+    YAML::Node pair(YAML::NodeType::Sequence);
+    pair.SetStyle(YAML::EmitterStyle::Flow);
+    pair.push_back(a.x_min_mm);
+    pair.push_back(a.x_max_mm);
+    areas.push_back(pair);
+  }
+  areas.SetStyle(YAML::EmitterStyle::Flow);
+  doc["sensor"]["reference_areas_mm"] = areas;
+  if (rig.laser_origin) {
+    YAML::Node origin(YAML::NodeType::Sequence);
+    origin.SetStyle(YAML::EmitterStyle::Flow);
+    origin.push_back(rig.laser_origin->x_mm);
+    origin.push_back(rig.laser_origin->z_mm);
+    doc["sensor"]["laser_origin_mm"] = origin;
+  }
+  YAML::Emitter emitter;
+  emitter.SetDoublePrecision(10);
+  emitter << doc;
+  AtomicFile out(path);
+  out.stream() << emitter.c_str() << "\n";
+  out.Commit();
+}
+
+}  // namespace bead

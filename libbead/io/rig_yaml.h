@@ -1,0 +1,30 @@
+// Rig file (YAML) of shared/spec/data-formats.md. The reader names the
+// file, the line and the key of anything missing or wrong. Keys the spec
+// does not list are kept in `document`, so rewriting a rig file (a new
+// offset from calibration) loses nothing the user had.
+#pragma once
+
+#include <yaml-cpp/yaml.h>
+
+#include <string>
+
+#include "libbead/core/rig.h"
+
+namespace bead {
+
+struct RigFile {
+  Rig rig;
+  YAML::Node document;  // the whole file as read
+};
+
+RigFile ReadRigFile(const std::string& path);
+inline Rig ReadRig(const std::string& path) { return ReadRigFile(path).rig; }
+// Parses YAML text; `name` is used in errors in place of a file name.
+RigFile ParseRig(const std::string& text, const std::string& name);
+
+// Writes `file.document` with the spec keys set from `file.rig`, atomically.
+void WriteRigFile(const std::string& path, const RigFile& file);
+// A fresh document for a rig (no keys of its own).
+RigFile MakeRigFile(const Rig& rig);
+
+}  // namespace bead

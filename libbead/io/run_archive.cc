@@ -1,0 +1,201 @@
+#include "libbead/io/run_archive.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+#include "libbead/core/error.h"
+#include "libbead/io/atomic_file.h"
+#include "libbead/io/hdf5_file.h"
+
+namespace bead {
+namespace {
+
+std::string Join(const std::string& group, const std::string& name) {
+  return group == "/" ? "/" + name : group + "/" + name;
+}
+
+void CheckTime(const std::vector<double>& t, const std::string& file, const std::string& dataset) {
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    if (!std::isfinite(t[i]))
+      throw Error(Located(file, dataset + "[" + std::to_string(i) + "]", "time is not finite"));
+    if (i > 0 && !(t[i] > t[i - 1]))
+      throw Error(Located(file, dataset + "[" + std::to_string(i) + "]",
+                          "time does not increase (" + std::to_string(t[i - 1]) + " then " +
+                              std::to_string(t[i]) + " s)"));
+  }
+}
+
+void CheckLength(std::size_t got, std::size_t want, const std::string& file, const std::string& dataset,
+                 const std::string& other) {
+  if (got != want)
+    throw Error(Located(file, dataset,
+                        "length mismatch: " + std::to_string(got) + " values, but " + other + " has " +
+                            std::to_string(want)));
+}
+
+// Reads <group>/t_s, encoder, x_mm, z_mm.
+ProfileBlock ReadBlock(const h5::File& f, const std::string& group) {
+  ProfileBlock b;
+  const std::string t_name = Join(group, "t_s"), e_name = Join(group, "encoder");
+  const std::string x_name = Join(group, "x_mm"), z_name = Join(group, "z_mm");
+  b.t_s = f.ReadDouble(t_name, {1}).data;
+  b.encoder = f.ReadInt64(e_name, {1}).data;
+  auto x = f.ReadFloat(x_name, {1, 2});
+  auto z = f.ReadFloat(z_name, {2});
+  const std::size_t n = b.t_s.size();
+  CheckLength(b.encoder.size(), n, f.name(), e_name, t_name);
+  if (z.dims[0] != n)
+    throw Error(Located(f.name(), z_name,
+                        "wrong shape: " + std::to_string(z.dims[0]) + " rows, but " + t_name + " has " +
+                            std::to_string(n) + " profiles"));
+  b.points = z.dims[1];
+  b.shared_x = x.dims.size() == 1;
+  if (b.shared_x && x.dims[0] != b.points)
+    throw Error(Located(f.name(), x_name,
+                        "wrong shape: " + std::to_string(x.dims[0]) + " points, but " + z_name + " has " +
+                            std::to_string(b.points) + " per profile"));
+  if (!b.shared_x && (x.dims[0] != n || x.dims[1] != b.points))
+    throw Error(Located(f.name(), x_name, "wrong shape: must be [N, P] like " + z_name + " or [P]"));
+  b.x_mm = std::move(x.data);
+  b.z_mm = std::move(z.data);
+  ValidateProfileBlock(b, f.name(), group);
+  return b;
+}
+
+void WriteBlock(h5::File& f, const std::string& group, const ProfileBlock& b) {
+  const hsize_t n = b.size(), p = b.points;
+  f.Write(Join(group, "t_s"), b.t_s, {n});
+  f.Write(Join(group, "encoder"), b.encoder, {n});
+  if (b.shared_x)
+    f.Write(Join(group, "x_mm"), b.x_mm, {p});
+  else
+    f.Write(Join(group, "x_mm"), b.x_mm, {n, p});
+  f.Write(Join(group, "z_mm"), b.z_mm, {n, p});
+}
+
+}  // namespace
+
+ProfileView ProfileBlock::view(std::size_t i) const {
+  ProfileView v;
+  v.x_mm = shared_x ? std::span<const float>(x_mm.data(), points)
+                    : std::span<const float>(x_mm.data() + i * points, points);
+  v.z_mm = std::span<const float>(z_mm.data() + i * points, points);
+  v.t_s = t_s[i];
+  v.encoder = encoder[i];
+  return v;
+}
+
+void ValidateProfileBlock(const ProfileBlock& b, const std::string& file, const std::string& where) {
+  const std::string t_name = Join(where, "t_s");
+  CheckLength(b.encoder.size(), b.size(), file, Join(where, "encoder"), t_name);
+  CheckLength(b.z_mm.size(), b.size() * b.points, file, Join(where, "z_mm"), "N x P");
+  CheckLength(b.x_mm.size(), b.shared_x ? b.points : b.size() * b.points, file, Join(where, "x_mm"),
+              b.shared_x ? "P" : "N x P");
+  CheckTime(b.t_s, file, t_name);
+  for (std::size_t i = 0; i < b.x_mm.size(); ++i)
+    if (std::isinf(b.x_mm[i]))
+      throw Error(Located(file, Join(where, "x_mm") + " element " + std::to_string(i),
+                          "infinite coordinate (an unmeasured point must be NaN)"));
+  for (std::size_t i = 0; i < b.z_mm.size(); ++i)
+    if (std::isinf(b.z_mm[i]))
+      throw Error(Located(file,
+                          Join(where, "z_mm") + "[" + std::to_string(i / std::max<std::size_t>(b.points, 1)) +
+                              ", " + std::to_string(i % std::max<std::size_t>(b.points, 1)) + "]",
+                          "infinite height (an unmeasured point must be NaN)"));
+}
+
+void ValidateLog(const AcquisitionLog& log, const std::string& file, const std::string& where) {
+  const std::string t_name = Join(where, "t_s");
+  CheckLength(log.encoder.size(), log.size(), file, Join(where, "encoder"), t_name);
+  CheckLength(log.screw_rpm.size(), log.size(), file, Join(where, "screw_rpm"), t_name);
+  if (!log.extruder_cmd_v.empty())
+    CheckLength(log.extruder_cmd_v.size(), log.size(), file, Join(where, "extruder_cmd_v"), t_name);
+  if (!log.wheel_cmd_v.empty())
+    CheckLength(log.wheel_cmd_v.size(), log.size(), file, Join(where, "wheel_cmd_v"), t_name);
+  CheckTime(log.t_s, file, t_name);
+}
+
+RunArchive ReadRunArchive(const std::string& path) {
+  const h5::File f = h5::File::OpenRead(path);
+  RunArchive run;
+  run.profiles = ReadBlock(f, "/profiles");
+  if (f.Exists("/log")) {
+    AcquisitionLog log;
+    log.t_s = f.ReadDouble("/log/t_s", {1}).data;
+    log.encoder = f.ReadInt64("/log/encoder", {1}).data;
+    log.screw_rpm = f.ReadDouble("/log/screw_rpm", {1}).data;
+    if (f.Exists("/log/extruder_cmd_v")) log.extruder_cmd_v = f.ReadDouble("/log/extruder_cmd_v", {1}).data;
+    if (f.Exists("/log/wheel_cmd_v")) log.wheel_cmd_v = f.ReadDouble("/log/wheel_cmd_v", {1}).data;
+    ValidateLog(log, path, "/log");
+    run.log = std::move(log);
+  }
+  run.attributes = f.ReadStringAttributes("/");
+  return run;
+}
+
+void WriteRunArchive(const std::string& path, const RunArchive& run) {
+  ValidateProfileBlock(run.profiles, path, "/profiles");
+  if (run.log) ValidateLog(*run.log, path, "/log");
+  AtomicFile out(path);
+  {
+    h5::File f = h5::File::Create(out.temp_path(), path);
+    WriteBlock(f, "/profiles", run.profiles);
+    if (run.log) {
+      const hsize_t m = run.log->size();
+      f.Write("/log/t_s", run.log->t_s, {m});
+      f.Write("/log/encoder", run.log->encoder, {m});
+      f.Write("/log/screw_rpm", run.log->screw_rpm, {m});
+      if (!run.log->extruder_cmd_v.empty()) f.Write("/log/extruder_cmd_v", run.log->extruder_cmd_v, {m});
+      if (!run.log->wheel_cmd_v.empty()) f.Write("/log/wheel_cmd_v", run.log->wheel_cmd_v, {m});
+    }
+    for (const auto& [key, value] : run.attributes) f.WriteStringAttribute("/", key, value);
+    f.Flush();
+  }
+  out.Commit();
+}
+
+PinScanArchive ReadPinScanArchive(const std::string& path) {
+  const h5::File f = h5::File::OpenRead(path);
+  if (!f.Exists("/scans")) throw Error(Located(path, "/scans", "missing group (is this a run archive?)"));
+  PinScanArchive pins;
+  const std::vector<std::string> names = f.Members("/scans");
+  std::vector<std::pair<long, std::string>> numbered;
+  for (const std::string& name : names) {
+    char* end = nullptr;
+    const long k = std::strtol(name.c_str(), &end, 10);
+    if (name.empty() || *end != '\0' || k < 0)
+      throw Error(Located(path, "/scans/" + name, "scan groups must be named 0, 1, 2, ..."));
+    numbered.emplace_back(k, name);
+  }
+  std::sort(numbered.begin(), numbered.end());
+  if (numbered.empty()) throw Error(Located(path, "/scans", "holds no scans"));
+  for (const auto& [k, name] : numbered) {
+    const std::string group = "/scans/" + name;
+    PinScan scan;
+    scan.start_encoder = f.ReadInt64Attribute(group, "start_encoder");
+    scan.profiles = ReadBlock(f, group + "/profiles");
+    pins.scans.push_back(std::move(scan));
+  }
+  pins.attributes = f.ReadStringAttributes("/");
+  return pins;
+}
+
+void WritePinScanArchive(const std::string& path, const PinScanArchive& pins) {
+  AtomicFile out(path);
+  {
+    h5::File f = h5::File::Create(out.temp_path(), path);
+    for (std::size_t k = 0; k < pins.scans.size(); ++k) {
+      const std::string group = "/scans/" + std::to_string(k);
+      ValidateProfileBlock(pins.scans[k].profiles, path, group + "/profiles");
+      f.CreateGroup(group);
+      f.WriteInt64Attribute(group, "start_encoder", pins.scans[k].start_encoder);
+      WriteBlock(f, group + "/profiles", pins.scans[k].profiles);
+    }
+    for (const auto& [key, value] : pins.attributes) f.WriteStringAttribute("/", key, value);
+    f.Flush();
+  }
+  out.Commit();
+}
+
+}  // namespace bead

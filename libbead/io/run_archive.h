@@ -1,0 +1,66 @@
+// Run and pin-scan archives (HDF5), as shared/spec/data-formats.md defines
+// them. Readers check every dataset's presence, type, shape and lengths,
+// and that time is finite and increasing; they throw bead::Error naming
+// the file and dataset. Writers write atomically.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "libbead/profile/profile.h"
+
+namespace bead {
+
+// N profiles of P points each (profiles with fewer points pad with NaN).
+struct ProfileBlock {
+  std::vector<double> t_s;       // [N]
+  std::vector<int64_t> encoder;  // [N]
+  std::vector<float> x_mm;       // [P] when shared_x, else [N * P]
+  std::vector<float> z_mm;       // [N * P]
+  std::size_t points = 0;        // P
+  bool shared_x = true;
+
+  std::size_t size() const { return t_s.size(); }
+  ProfileView view(std::size_t i) const;
+};
+
+struct AcquisitionLog {
+  std::vector<double> t_s;
+  std::vector<int64_t> encoder;
+  std::vector<double> screw_rpm;
+  std::vector<double> extruder_cmd_v;  // empty when absent
+  std::vector<double> wheel_cmd_v;     // empty when absent
+  std::size_t size() const { return t_s.size(); }
+};
+
+struct RunArchive {
+  ProfileBlock profiles;
+  std::optional<AcquisitionLog> log;
+  std::map<std::string, std::string> attributes;  // root string attributes
+};
+
+struct PinScan {
+  int64_t start_encoder = 0;  // counter read with the pin under the nozzle centre
+  ProfileBlock profiles;
+};
+
+struct PinScanArchive {
+  std::vector<PinScan> scans;
+  std::map<std::string, std::string> attributes;
+};
+
+RunArchive ReadRunArchive(const std::string& path);
+void WriteRunArchive(const std::string& path, const RunArchive& run);
+PinScanArchive ReadPinScanArchive(const std::string& path);
+void WritePinScanArchive(const std::string& path, const PinScanArchive& pins);
+
+// Checks a block's internal consistency (lengths, finite increasing time,
+// no infinite coordinates); `file` and `where` name it in the error.
+void ValidateProfileBlock(const ProfileBlock& block, const std::string& file, const std::string& where);
+void ValidateLog(const AcquisitionLog& log, const std::string& file, const std::string& where);
+
+}  // namespace bead

@@ -1,0 +1,196 @@
+#include "libbead/profile/bead_geometry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+
+#include "libbead/profile/median.h"
+
+namespace bead {
+namespace {
+
+// Fills w.order with the indices of the valid points, in increasing x.
+void OrderValidPoints(const ProfileView& view, ProfileWorkspace& w) {
+  w.order.clear();
+  bool increasing = true, decreasing = true;
+  float last = 0.0f;
+  for (std::size_t i = 0; i < view.x_mm.size(); ++i) {
+    const float x = view.x_mm[i];
+    if (!std::isfinite(x) || !std::isfinite(view.z_mm[i])) continue;
+    if (!w.order.empty()) {
+      increasing = increasing && x >= last;
+      decreasing = decreasing && x <= last;
+    }
+    last = x;
+    w.order.push_back(static_cast<int32_t>(i));
+  }
+  if (increasing) return;
+  if (decreasing) {
+    std::reverse(w.order.begin(), w.order.end());
+    return;
+  }
+  std::stable_sort(w.order.begin(), w.order.end(),
+                   [&](int32_t a, int32_t b) { return view.x_mm[a] < view.x_mm[b]; });
+}
+
+// Height and along-line position of every ordered point, then drops spikes:
+// points standing more than spike_mm off the median of themselves and
+// their two neighbours. Leaves the kept points in w.x, w.s, w.h, w.order.
+void HeightsWithoutSpikes(const ProfileView& view, const ReferenceLine& line, double spike_mm,
+                          ProfileWorkspace& w) {
+  const double a = line.intercept_mm, b = line.slope;
+  const double inv_norm = 1.0 / std::sqrt(1.0 + b * b);
+  const std::size_t n = w.order.size();
+  w.x.resize(n);
+  w.s.resize(n);
+  w.h.resize(n);
+  w.keep.assign(n, 1);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double x = view.x_mm[w.order[k]];
+    const double z = view.z_mm[w.order[k]];
+    w.x[k] = x;
+    w.h[k] = (z - a - b * x) * inv_norm;
+    w.s[k] = (x + b * (z - a)) * inv_norm;
+  }
+  for (std::size_t k = 1; k + 1 < n; ++k) {
+    const double med = Median3(w.h[k - 1], w.h[k], w.h[k + 1]);
+    if (std::abs(w.h[k] - med) > spike_mm) w.keep[k] = 0;
+  }
+  std::size_t m = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!w.keep[k]) continue;
+    w.order[m] = w.order[k];
+    w.x[m] = w.x[k];
+    w.s[m] = w.s[k];
+    w.h[m] = w.h[k];
+    ++m;
+  }
+  w.order.resize(m);
+  w.x.resize(m);
+  w.s.resize(m);
+  w.h.resize(m);
+}
+
+struct Run {
+  std::size_t first = 0, last = 0;  // inclusive, indices into w.s / w.h
+  double integral = -1.0;
+};
+
+bool InReference(double x, const ReferenceArea& left, const ReferenceArea& right) {
+  return left.Contains(x) || right.Contains(x);
+}
+
+// The run of consecutive points above `threshold` (gaps up to max_gap) with
+// the largest integral, among runs holding a point outside both areas.
+Run LargestRun(const ProfileWorkspace& w, double threshold, double max_gap, const ReferenceArea& left,
+               const ReferenceArea& right) {
+  Run best, current;
+  bool open = false, outside = false;
+  const std::size_t n = w.h.size();
+  auto close = [&]() {
+    if (open && outside && current.integral > best.integral) best = current;
+    open = false;
+  };
+  for (std::size_t k = 0; k < n; ++k) {
+    const bool above = w.h[k] > threshold;
+    if (open && (!above || w.s[k] - w.s[k - 1] > max_gap)) close();
+    if (!above) continue;
+    if (!open) {
+      open = true;
+      outside = false;
+      current = Run{k, k, 0.0};
+    } else {
+      current.integral += 0.5 * (w.h[k] + w.h[k - 1]) * (w.s[k] - w.s[k - 1]);
+      current.last = k;
+    }
+    outside = outside || !InReference(w.x[k], left, right);
+  }
+  close();
+  return best;
+}
+
+// Where the segment from (s_out, h_out) to (s_in, h_in) crosses h = 0,
+// clamped to the segment.
+double EdgeCrossing(double s_out, double h_out, double s_in, double h_in) {
+  if (!(h_in > h_out)) return s_out;
+  const double t = std::clamp(-h_out / (h_in - h_out), 0.0, 1.0);
+  return s_out + t * (s_in - s_out);
+}
+
+}  // namespace
+
+const char* StatusName(ProfileStatus status) {
+  switch (status) {
+    case ProfileStatus::kValid: return "valid";
+    case ProfileStatus::kTooFewPoints: return "too_few_points";
+    case ProfileStatus::kNoReference: return "no_reference";
+    case ProfileStatus::kNoBead: return "no_bead";
+    case ProfileStatus::kBeadEdgeNotSeen: return "bead_edge_not_seen";
+    case ProfileStatus::kBeadInReferenceArea: return "bead_in_reference_area";
+  }
+  return "unknown";
+}
+
+BeadGeometry MeasureBead(const ProfileView& view, const ReferenceLine& line, const ReferenceArea& left,
+                         const ReferenceArea& right, const BeadOptions& options, ProfileWorkspace& w) {
+  BeadGeometry g;
+  g.reference = line;
+  OrderValidPoints(view, w);
+  if (w.order.size() < static_cast<std::size_t>(std::max(options.min_profile_points, 3))) {
+    g.status = ProfileStatus::kTooFewPoints;
+    return g;
+  }
+  if (!line.ok) {
+    g.status = ProfileStatus::kNoReference;
+    return g;
+  }
+  HeightsWithoutSpikes(view, line, options.spike_mm, w);
+  g.threshold_mm = std::max(options.min_threshold_mm, options.threshold_sigmas * line.residual_rms_mm);
+
+  const Run run = LargestRun(w, g.threshold_mm, options.max_gap_mm, left, right);
+  const std::size_t count = run.integral < 0.0 ? 0 : run.last - run.first + 1;
+  if (count < static_cast<std::size_t>(std::max(options.min_bead_points, 2))) {
+    g.status = ProfileStatus::kNoBead;
+    return g;
+  }
+  g.bead_points = static_cast<int>(count);
+  const std::size_t n = w.h.size();
+  const bool left_seen = run.first > 0 && w.s[run.first] - w.s[run.first - 1] <= options.max_gap_mm;
+  const bool right_seen = run.last + 1 < n && w.s[run.last + 1] - w.s[run.last] <= options.max_gap_mm;
+  if (!left_seen || !right_seen) {
+    g.status = ProfileStatus::kBeadEdgeNotSeen;
+    return g;
+  }
+  const std::size_t lo = run.first - 1, hi = run.last + 1;
+  for (std::size_t k = run.first; k <= run.last; ++k) {
+    if (InReference(w.x[k], left, right)) {
+      g.status = ProfileStatus::kBeadInReferenceArea;
+      return g;
+    }
+  }
+
+  double area = 0.0, moment = 0.0, height = -1.0;
+  for (std::size_t k = lo; k < hi; ++k) {
+    const double piece = 0.5 * (w.h[k] + w.h[k + 1]) * (w.s[k + 1] - w.s[k]);
+    area += piece;
+    moment += piece * 0.5 * (w.s[k] + w.s[k + 1]);
+  }
+  for (std::size_t k = run.first; k <= run.last; ++k)
+    height = std::max(height, Median3(w.h[k - 1], w.h[k], w.h[k + 1]));
+
+  const double inv_norm = 1.0 / std::sqrt(1.0 + line.slope * line.slope);
+  const double s_left = EdgeCrossing(w.s[lo], w.h[lo], w.s[run.first], w.h[run.first]);
+  const double s_right = EdgeCrossing(w.s[hi], w.h[hi], w.s[run.last], w.h[run.last]);
+  g.area_mm2 = area;
+  g.width_mm = s_right - s_left;
+  g.height_mm = height;
+  // A point at along-line position s lies at x = s / sqrt(1 + slope^2).
+  g.center_x_mm = (area > 0.0 ? moment / area : 0.5 * (s_left + s_right)) * inv_norm;
+  g.left_edge_x_mm = s_left * inv_norm;
+  g.right_edge_x_mm = s_right * inv_norm;
+  g.dropped_points = std::abs(w.order[hi] - w.order[lo]) - 1 - static_cast<int>(count);
+  g.status = ProfileStatus::kValid;
+  return g;
+}
+
+}  // namespace bead

@@ -1,0 +1,84 @@
+// Bead geometry of one profile, measured against its reference line.
+//
+// Definitions (all along and perpendicular to the reference line, so a
+// sensor roll does not change them):
+//  - height h of a point: its perpendicular distance above the line;
+//  - the bead: the connected run of points with h above the detection
+//    threshold, max(min_threshold_mm, threshold_sigmas * reference RMS),
+//    whose integral is largest; single-point spikes are dropped first and
+//    dropouts up to max_gap_mm long inside it are bridged;
+//  - area: the trapezoid integral of h along the line over the bead and
+//    its two bracketing points outside it (the polygon area between the
+//    measured envelope and the line, exact for a polygonal envelope);
+//  - edges: where the segment from the outer bracketing point to the first
+//    bead point crosses h = 0 (clamped to that segment): sub-sample, not
+//    snapped to a point; width = distance between the two edges;
+//  - height: the largest median of three neighbouring heights in the bead
+//    (a robust maximum: one stray point cannot set it);
+//  - centre: x of the area centroid, projected onto the reference line.
+// A profile that cannot be measured gets a status other than kValid and
+// NaN values; it is never dropped.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+
+#include "libbead/core/rig.h"
+#include "libbead/profile/profile.h"
+#include "libbead/profile/reference_line.h"
+#include "libbead/profile/workspace.h"
+
+namespace bead {
+
+struct BeadOptions {
+  // Detection threshold: the larger of this height, mm ...
+  double min_threshold_mm = 0.05;
+  // ... and this many reference-line residual RMS.
+  double threshold_sigmas = 6.0;
+  // A point whose height differs by more than this from the median of
+  // itself and its two neighbours is a spike (reflection) and is dropped.
+  double spike_mm = 0.5;
+  // Gaps between valid points up to this long are bridged inside a bead;
+  // a longer gap ends it.
+  double max_gap_mm = 1.0;
+  // Fewest points above threshold that make a bead.
+  int min_bead_points = 3;
+  // Fewest valid points a profile needs at all.
+  int min_profile_points = 10;
+};
+
+enum class ProfileStatus : uint8_t {
+  kValid = 0,
+  kTooFewPoints,         // fewer valid points than min_profile_points
+  kNoReference,          // a reference area holds too few valid points
+  kNoBead,               // nothing stands above the threshold
+  kBeadEdgeNotSeen,      // the bead runs off the profile or into a long dropout
+  kBeadInReferenceArea,  // the bead reaches into a reference area
+};
+
+// Short snake_case name of a status, for CSV and logs.
+const char* StatusName(ProfileStatus status);
+
+struct BeadGeometry {
+  static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  ProfileStatus status = ProfileStatus::kTooFewPoints;
+  double area_mm2 = kNaN;
+  double width_mm = kNaN;
+  double height_mm = kNaN;
+  double center_x_mm = kNaN;
+  double left_edge_x_mm = kNaN;
+  double right_edge_x_mm = kNaN;
+  double threshold_mm = kNaN;  // detection threshold used
+  int bead_points = 0;         // valid points above threshold in the bead
+  int dropped_points = 0;      // NaN or spike points inside the bead's span
+  ReferenceLine reference;
+
+  bool valid() const { return status == ProfileStatus::kValid; }
+};
+
+// Measures the bead of `view` against `line` (which must be ok).
+// Workspace buffers must hold view.size() points; nothing is allocated.
+BeadGeometry MeasureBead(const ProfileView& view, const ReferenceLine& line, const ReferenceArea& left,
+                         const ReferenceArea& right, const BeadOptions& options, ProfileWorkspace& workspace);
+
+}  // namespace bead

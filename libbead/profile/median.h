@@ -1,0 +1,20 @@
+// Medians of small buffers, in place (the buffer is reordered).
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+
+namespace bead {
+
+inline double MedianInPlace(double* values, std::size_t n) {
+  double* mid = values + n / 2;
+  std::nth_element(values, mid, values + n);
+  if (n % 2 == 1) return *mid;
+  return 0.5 * (*mid + *std::max_element(values, mid));
+}
+
+inline double Median3(double a, double b, double c) {
+  return std::max(std::min(a, b), std::min(std::max(a, b), c));
+}
+
+}  // namespace bead

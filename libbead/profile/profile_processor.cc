@@ -1,0 +1,22 @@
+#include "libbead/profile/profile_processor.h"
+
+namespace bead {
+
+ProfileProcessor::ProfileProcessor(const ReferenceArea& left, const ReferenceArea& right,
+                                   const ProfileOptions& options, std::size_t max_points)
+    : left_(left), right_(right), options_(options), workspace_(max_points) {}
+
+const BeadGeometry& ProfileProcessor::Process(const ProfileView& view) {
+  if (view.x_mm.size() > workspace_.capacity()) workspace_.Reserve(view.x_mm.size());
+  const ReferenceLine line = FitReferenceLine(view, left_, right_, options_.reference, workspace_);
+  result_ = MeasureBead(view, line, left_, right_, options_.bead, workspace_);
+  return result_;
+}
+
+BeadGeometry MeasureProfile(const ProfileView& view, const ReferenceArea& left, const ReferenceArea& right,
+                            const ProfileOptions& options) {
+  ProfileProcessor processor(left, right, options, view.x_mm.size());
+  return processor.Process(view);
+}
+
+}  // namespace bead

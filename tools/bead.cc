@@ -1,0 +1,36 @@
+// bead: the libbead command line. Thin: each subcommand parses its options
+// and calls the library. Every error is printed as one line naming the file
+// and place, and exits with status 1; usage errors exit with status 2.
+#include <cstdio>
+#include <exception>
+#include <map>
+
+#include "libbead/core/error.h"
+#include "tools/commands.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"bead: bead cross-sections and volumetric flow from laser line profiles (libbead)"};
+  app.footer(
+      "Units: mm, s, mm^2, mm^3/s, RPM, V. File formats: shared/spec/data-formats.md.\n"
+      "Example:\n"
+      "  bead measure --rig testdata/sample/rig.yaml testdata/sample/run.h5 -o geometry.csv\n"
+      "Run 'bead SUBCOMMAND --help' for each subcommand's inputs and outputs.");
+  app.require_subcommand(1);
+  std::map<std::string, bead::tools::Run> runs;
+  runs["measure"] = bead::tools::AddMeasure(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  try {
+    for (const auto* sub : app.get_subcommands()) return runs.at(sub->get_name())();
+  } catch (const bead::Error& e) {
+    std::fprintf(stderr, "bead: error: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bead: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

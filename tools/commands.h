@@ -1,0 +1,15 @@
+// The `bead` subcommands. Each Add* registers its options on the app and
+// returns the function that runs it. Subcommands are thin: they parse,
+// call the library, and print.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace bead::tools {
+
+using Run = std::function<int()>;
+
+Run AddMeasure(CLI::App& app);
+
+}  // namespace bead::tools
