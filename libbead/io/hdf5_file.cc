@@ -179,6 +179,7 @@ std::map<std::string, std::string> File::ReadStringAttributes(const std::string&
       char* value = nullptr;
       Handle mem(H5Tcopy(H5T_C_S1), H5Tclose);
       H5Tset_size(mem.get(), H5T_VARIABLE);
+      H5Tset_cset(mem.get(), H5Tget_cset(type.get()));  // HDF5 does not convert ASCII <-> UTF-8
       if (H5Aread(attr.get(), mem.get(), &value) >= 0 && value) {
         out[name] = value;
         H5free_memory(value);
@@ -188,6 +189,7 @@ std::map<std::string, std::string> File::ReadStringAttributes(const std::string&
       std::string value(size, '\0');
       Handle mem(H5Tcopy(H5T_C_S1), H5Tclose);
       H5Tset_size(mem.get(), size);
+      H5Tset_cset(mem.get(), H5Tget_cset(type.get()));
       if (H5Aread(attr.get(), mem.get(), value.data()) >= 0) {
         value.resize(std::min(value.find('\0'), value.size()));
         out[name] = value;

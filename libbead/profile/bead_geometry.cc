@@ -35,7 +35,7 @@ void OrderValidPoints(const ProfileView& view, ProfileWorkspace& w) {
 
 // Height and along-line position of every ordered point, then drops spikes:
 // points standing more than spike_mm off the median of themselves and
-// their two neighbours. Leaves the kept points in w.x, w.s, w.h, w.order.
+// their four nearest neighbours. Leaves the kept points in w.x, w.s, w.h, w.order.
 void HeightsWithoutSpikes(const ProfileView& view, const ReferenceLine& line, double spike_mm,
                           ProfileWorkspace& w) {
   const double a = line.intercept_mm, b = line.slope;
@@ -52,8 +52,10 @@ void HeightsWithoutSpikes(const ProfileView& view, const ReferenceLine& line, do
     w.h[k] = (z - a - b * x) * inv_norm;
     w.s[k] = (x + b * (z - a)) * inv_norm;
   }
+  // Median of five, so two adjacent spikes are caught too; three at the ends.
   for (std::size_t k = 1; k + 1 < n; ++k) {
-    const double med = Median3(w.h[k - 1], w.h[k], w.h[k + 1]);
+    const double med = (k >= 2 && k + 2 < n) ? Median5(w.h[k - 2], w.h[k - 1], w.h[k + 1], w.h[k + 2], w.h[k])
+                                             : Median3(w.h[k - 1], w.h[k], w.h[k + 1]);
     if (std::abs(w.h[k] - med) > spike_mm) w.keep[k] = 0;
   }
   std::size_t m = 0;
@@ -154,14 +156,20 @@ BeadGeometry MeasureBead(const ProfileView& view, const ReferenceLine& line, con
     return g;
   }
   g.bead_points = static_cast<int>(count);
+  // The bead's feet: from the run outward while the height stays above the
+  // noise floor; the point beyond is the bare surface that brackets the edge.
+  const double floor_mm = std::max(options.edge_floor_sigmas * line.residual_rms_mm, options.min_edge_floor_mm);
   const std::size_t n = w.h.size();
-  const bool left_seen = run.first > 0 && w.s[run.first] - w.s[run.first - 1] <= options.max_gap_mm;
-  const bool right_seen = run.last + 1 < n && w.s[run.last + 1] - w.s[run.last] <= options.max_gap_mm;
-  if (!left_seen || !right_seen) {
+  std::size_t lo = run.first, hi = run.last;
+  auto joined = [&](std::size_t a, std::size_t b) { return w.s[b] - w.s[a] <= options.max_gap_mm; };
+  while (lo > 0 && joined(lo - 1, lo) && w.h[lo - 1] > floor_mm) --lo;
+  while (hi + 1 < n && joined(hi, hi + 1) && w.h[hi + 1] > floor_mm) ++hi;
+  if (lo == 0 || !joined(lo - 1, lo) || hi + 1 >= n || !joined(hi, hi + 1)) {
     g.status = ProfileStatus::kBeadEdgeNotSeen;
     return g;
   }
-  const std::size_t lo = run.first - 1, hi = run.last + 1;
+  --lo;
+  ++hi;
   for (std::size_t k = run.first; k <= run.last; ++k) {
     if (InReference(w.x[k], left, right)) {
       g.status = ProfileStatus::kBeadInReferenceArea;
@@ -179,8 +187,8 @@ BeadGeometry MeasureBead(const ProfileView& view, const ReferenceLine& line, con
     height = std::max(height, Median3(w.h[k - 1], w.h[k], w.h[k + 1]));
 
   const double inv_norm = 1.0 / std::sqrt(1.0 + line.slope * line.slope);
-  const double s_left = EdgeCrossing(w.s[lo], w.h[lo], w.s[run.first], w.h[run.first]);
-  const double s_right = EdgeCrossing(w.s[hi], w.h[hi], w.s[run.last], w.h[run.last]);
+  const double s_left = EdgeCrossing(w.s[lo], w.h[lo], w.s[lo + 1], w.h[lo + 1]);
+  const double s_right = EdgeCrossing(w.s[hi], w.h[hi], w.s[hi - 1], w.h[hi - 1]);
   g.area_mm2 = area;
   g.width_mm = s_right - s_left;
   g.height_mm = height;
@@ -188,7 +196,7 @@ BeadGeometry MeasureBead(const ProfileView& view, const ReferenceLine& line, con
   g.center_x_mm = (area > 0.0 ? moment / area : 0.5 * (s_left + s_right)) * inv_norm;
   g.left_edge_x_mm = s_left * inv_norm;
   g.right_edge_x_mm = s_right * inv_norm;
-  g.dropped_points = std::abs(w.order[hi] - w.order[lo]) - 1 - static_cast<int>(count);
+  g.dropped_points = std::abs(w.order[hi] - w.order[lo]) - 1 - static_cast<int>(hi - lo - 1);
   g.status = ProfileStatus::kValid;
   return g;
 }

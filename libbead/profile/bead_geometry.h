@@ -5,13 +5,17 @@
 //  - height h of a point: its perpendicular distance above the line;
 //  - the bead: the connected run of points with h above the detection
 //    threshold, max(min_threshold_mm, threshold_sigmas * reference RMS),
-//    whose integral is largest; single-point spikes are dropped first and
+//    whose integral is largest; spikes (one or two points wide) are dropped first and
 //    dropouts up to max_gap_mm long inside it are bridged;
-//  - area: the trapezoid integral of h along the line over the bead and
-//    its two bracketing points outside it (the polygon area between the
-//    measured envelope and the line, exact for a polygonal envelope);
-//  - edges: where the segment from the outer bracketing point to the first
-//    bead point crosses h = 0 (clamped to that segment): sub-sample, not
+//  - feet: from the bead outward, the points still above the noise floor
+//    max(min_edge_floor_mm, edge_floor_sigmas * reference RMS) belong to
+//    it (a gently sloped side dips below the detection threshold before it
+//    meets the surface); the first point beyond is bare surface;
+//  - area: the trapezoid integral of h along the line from that bare point
+//    on one side to the other (the polygon area between the measured
+//    envelope and the line, exact for a polygonal envelope);
+//  - edges: where the segment from the bare point to the outermost foot
+//    point crosses h = 0 (clamped to that segment): sub-sample, not
 //    snapped to a point; width = distance between the two edges;
 //  - height: the largest median of three neighbouring heights in the bead
 //    (a robust maximum: one stray point cannot set it);
@@ -36,11 +40,16 @@ struct BeadOptions {
   // ... and this many reference-line residual RMS.
   double threshold_sigmas = 6.0;
   // A point whose height differs by more than this from the median of
-  // itself and its two neighbours is a spike (reflection) and is dropped.
+  // itself and its four nearest neighbours is a spike (reflection) and is
+  // dropped; up to two adjacent spikes are caught.
   double spike_mm = 0.5;
   // Gaps between valid points up to this long are bridged inside a bead;
   // a longer gap ends it.
   double max_gap_mm = 1.0;
+  // The feet end where the height falls to the larger of this, mm ...
+  double min_edge_floor_mm = 0.001;
+  // ... and this many reference-line residual RMS.
+  double edge_floor_sigmas = 2.0;
   // Fewest points above threshold that make a bead.
   int min_bead_points = 3;
   // Fewest valid points a profile needs at all.
@@ -70,7 +79,7 @@ struct BeadGeometry {
   double right_edge_x_mm = kNaN;
   double threshold_mm = kNaN;  // detection threshold used
   int bead_points = 0;         // valid points above threshold in the bead
-  int dropped_points = 0;      // NaN or spike points inside the bead's span
+  int dropped_points = 0;      // NaN or spike points between the bead's edges
   ReferenceLine reference;
 
   bool valid() const { return status == ProfileStatus::kValid; }

@@ -18,3 +18,15 @@ inline double Median3(double a, double b, double c) {
 }
 
 }  // namespace bead
+
+namespace bead {
+
+// Median of five: the median of e and the two middle candidates of the
+// pairs (a, b) and (c, d).
+inline double Median5(double a, double b, double c, double d, double e) {
+  const double lo = std::max(std::min(a, b), std::min(c, d));
+  const double hi = std::min(std::max(a, b), std::max(c, d));
+  return Median3(lo, hi, e);
+}
+
+}  // namespace bead

@@ -1,0 +1,101 @@
+#include "libbead/io/rig_yaml.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "libbead/core/error.h"
+#include "tests/support/temp_dir.h"
+
+namespace bead {
+namespace {
+
+const char* kSpecExample = R"(name: bcs-blue-gantry          # free text
+encoder:
+  counts_per_rev: 20480
+  bits: 32
+  direction: 1
+wheel:
+  diameter_mm: 254.762
+offset:
+  counts: 3071.5
+sensor:
+  reference_areas_mm: [[-24.0, -12.0], [12.0, 24.0]]
+  laser_origin_mm: [0.0, 95.0]
+operator: kept-but-ignored
+)";
+
+TEST(RigYaml, ReadsTheSpecExample) {
+  const Rig rig = ParseRig(kSpecExample, "rig.yaml").rig;
+  EXPECT_EQ(rig.name, "bcs-blue-gantry");
+  EXPECT_EQ(rig.encoder.counts_per_rev, 20480);
+  EXPECT_EQ(rig.encoder.bits, 32);
+  EXPECT_EQ(rig.encoder.direction, 1);
+  EXPECT_DOUBLE_EQ(rig.wheel_diameter_mm, 254.762);
+  EXPECT_DOUBLE_EQ(rig.offset_counts, 3071.5);
+  EXPECT_DOUBLE_EQ(rig.reference_left.x_min_mm, -24.0);
+  EXPECT_DOUBLE_EQ(rig.reference_right.x_max_mm, 24.0);
+  ASSERT_TRUE(rig.laser_origin.has_value());
+  EXPECT_DOUBLE_EQ(rig.laser_origin->z_mm, 95.0);
+  // One count of a 254.762 mm wheel with 20480 counts per turn.
+  EXPECT_NEAR(rig.MmPerCount(), M_PI * 254.762 / 20480, 1e-15);
+}
+
+// Each broken rig names the key and the line, and what to do.
+TEST(RigYaml, ErrorsNameTheKeyAndLine) {
+  struct Case {
+    std::string from, to, expect;
+  };
+  const std::vector<Case> cases = {
+      {"  counts_per_rev: 20480\n", "", "encoder.counts_per_rev: missing key"},
+      {"20480", "-5", "encoder.counts_per_rev: must be positive"},
+      {"bits: 32", "bits: 3", "line 4: encoder.bits"},
+      {"direction: 1", "direction: 2", "encoder.direction: must be 1 or -1"},
+      {"254.762", "abc", "line 7: wheel.diameter_mm: must be a number, got 'abc'"},
+      {"counts: 3071.5", "counts: .nan", "offset.counts: must be a finite number"},
+      {"[12.0, 24.0]", "[-13.0, 24.0]", "the two reference areas overlap"},
+      {"[-24.0, -12.0]", "[-12.0, -24.0]", "reference_areas_mm[0]: is empty"},
+      {"[[-24.0, -12.0], [12.0, 24.0]]", "[[-24.0, -12.0]]", "must hold exactly two x ranges"},
+      {"[0.0, 95.0]", "[0.0]", "laser_origin_mm: must be a pair"},
+      {"wheel:\n", "wheel: [\n", "not valid YAML"},
+  };
+  for (const Case& c : cases) {
+    std::string text = kSpecExample;
+    const auto pos = text.find(c.from);
+    ASSERT_NE(pos, std::string::npos) << c.from;
+    text.replace(pos, c.from.size(), c.to);
+    try {
+      ParseRig(text, "my-rig.yaml");
+      ADD_FAILURE() << "accepted: " << c.expect;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("my-rig.yaml: "), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(c.expect), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_THROW(ParseRig("", "empty.yaml"), Error);
+  EXPECT_THROW(ParseRig("- a\n- b\n", "list.yaml"), Error);
+  EXPECT_THROW(ReadRigFile("/nonexistent/rig.yaml"), Error);
+}
+
+// Rewriting a rig with a new offset keeps every key the user had.
+TEST(RigYaml, RewriteKeepsUnknownKeysAndIsAtomic) {
+  test::TempDir dir;
+  const std::string path = dir / "rig.yaml";
+  test::WriteText(path, kSpecExample);
+  RigFile file = ReadRigFile(path);
+  file.rig.offset_counts = 3080.25;
+  WriteRigFile(path, file);
+  const RigFile again = ReadRigFile(path);
+  EXPECT_DOUBLE_EQ(again.rig.offset_counts, 3080.25);
+  EXPECT_EQ(again.document["operator"].as<std::string>(), "kept-but-ignored");
+  EXPECT_DOUBLE_EQ(again.rig.wheel_diameter_mm, 254.762);
+  // Nothing but the rig is left in the folder (no temporary files).
+  int entries = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path())) entries += entry.is_regular_file();
+  EXPECT_EQ(entries, 1);
+  // A write into a missing folder fails with a message, leaving nothing.
+  EXPECT_THROW(WriteRigFile(dir / "missing/rig.yaml", file), Error);
+}
+
+}  // namespace
+}  // namespace bead
