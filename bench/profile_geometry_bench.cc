@@ -1,0 +1,123 @@
+// Full per-profile geometry (robust reference line, heights, bead, area,
+// width, height) on profiles of 640 and 2048 points with realistic noise:
+// 10 um height noise, 1 % dropouts, 0.5 % reflection spikes, a 1 degree
+// roll and wheel runout from profile to profile.
+//
+// Baseline, in the same run: the same computation written as a NumPy user
+// would (bench/numpy_profile_geometry.py, Debian's python3-numpy), on the
+// same profiles, written to a temporary file. The ratio is printed last.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "libbead/profile/profile_processor.h"
+#include "libbead/sim/sensor_model.h"
+
+namespace {
+
+const bead::ReferenceArea kLeft{-24.0, -12.0}, kRight{12.0, 24.0};
+constexpr int kProfiles = 1024;
+
+struct Profiles {
+  int points = 0;
+  std::vector<float> x;  // shared grid
+  std::vector<float> z;  // kProfiles x points
+};
+
+const Profiles& MakeProfiles(int points) {
+  static std::map<int, std::unique_ptr<Profiles>> cache;
+  auto& slot = cache[points];
+  if (slot) return *slot;
+  slot = std::make_unique<Profiles>();
+  Profiles& p = *slot;
+  p.points = points;
+  for (int i = 0; i < points; ++i) p.x.push_back(static_cast<float>(-25.0 + 50.0 * i / (points - 1)));
+  p.z.resize(static_cast<std::size_t>(kProfiles) * points);
+  std::mt19937_64 rng(42);
+  bead::sim::SensorNoise noise{0.01, 0.0, 0.01, 0.005, 2.0};
+  for (int k = 0; k < kProfiles; ++k) {
+    const auto outline = bead::sim::ParabolaOutline(9.0 + 0.5 * std::sin(0.1 * k), 3.0, 0.3 * std::cos(0.05 * k), 401);
+    const bead::sim::SensorPose pose{1.0 * M_PI / 180, 0.0, 60.0 + 0.2 * std::sin(0.02 * k)};
+    std::span<float> z(p.z.data() + static_cast<std::size_t>(k) * points, points);
+    bead::sim::RenderProfile(outline, pose, p.x, z);
+    bead::sim::AddSensorNoise(z, noise, rng);
+  }
+  return p;
+}
+
+void BM_ProfileGeometry(benchmark::State& state) {
+  const Profiles& p = MakeProfiles(static_cast<int>(state.range(0)));
+  bead::ProfileProcessor processor(kLeft, kRight, {}, p.points);
+  std::size_t k = 0;
+  double sum = 0.0;
+  for (auto _ : state) {
+    const bead::ProfileView view{p.x, std::span<const float>(p.z.data() + k * p.points, p.points), 0.0, 0};
+    const bead::BeadGeometry& g = processor.Process(view);
+    sum += g.area_mm2;
+    k = (k + 1) % kProfiles;
+  }
+  benchmark::DoNotOptimize(sum);
+  state.SetItemsProcessed(state.iterations());
+  state.counters["profiles_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_ProfileGeometry)->Arg(640)->Arg(2048);
+
+// Runs the NumPy baseline on the same profiles; returns its profiles/s.
+double NumpyProfilesPerSecond(int points) {
+  const Profiles& p = MakeProfiles(points);
+  const auto dir = std::filesystem::temp_directory_path();
+  const std::string data = (dir / ("libbead-bench-" + std::to_string(points) + ".f32")).string();
+  {
+    std::ofstream out(data, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(p.x.data()), static_cast<std::streamsize>(p.x.size() * sizeof(float)));
+    out.write(reinterpret_cast<const char*>(p.z.data()), static_cast<std::streamsize>(p.z.size() * sizeof(float)));
+  }
+  const std::string cmd = "/usr/bin/python3 " + std::string(BEAD_BENCH_DIR) + "/numpy_profile_geometry.py " + data +
+                          " " + std::to_string(kProfiles) + " " + std::to_string(points);
+  double rate = NAN;
+  if (FILE* pipe = popen(cmd.c_str(), "r")) {
+    if (std::fscanf(pipe, "%lf", &rate) != 1) rate = NAN;
+    pclose(pipe);
+  }
+  std::remove(data.c_str());
+  return rate;
+}
+
+class RateReporter : public benchmark::ConsoleReporter {
+ public:
+  void ReportRuns(const std::vector<Run>& runs) override {
+    ConsoleReporter::ReportRuns(runs);
+    for (const Run& r : runs) {
+      const auto it = r.counters.find("profiles_per_s");
+      if (it != r.counters.end()) rates[r.benchmark_name()] = it->second.value;
+    }
+  }
+  std::map<std::string, double> rates;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  RateReporter reporter;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+  std::printf("\nBaseline: the same geometry in NumPy (bench/numpy_profile_geometry.py), same profiles, one core.\n");
+  std::printf("%-8s %16s %16s %10s\n", "points", "libbead prof/s", "NumPy prof/s", "ratio");
+  for (int points : {640, 2048}) {
+    const auto it = reporter.rates.find("BM_ProfileGeometry/" + std::to_string(points));
+    if (it == reporter.rates.end()) continue;
+    const double numpy = NumpyProfilesPerSecond(points);
+    std::printf("%-8d %16.0f %16.0f %9.1fx\n", points, it->second, numpy, it->second / numpy);
+  }
+  std::printf("Target: >= 1e6 profiles/s at 640 points on one core.\n");
+  benchmark::Shutdown();
+  return 0;
+}
