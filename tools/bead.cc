@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   std::map<std::string, bead::tools::Run> runs;
   runs["measure"] = bead::tools::AddMeasure(app);
+  runs["simulate"] = bead::tools::AddSimulate(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

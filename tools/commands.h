@@ -11,5 +11,6 @@ namespace bead::tools {
 using Run = std::function<int()>;
 
 Run AddMeasure(CLI::App& app);
+Run AddSimulate(CLI::App& app);
 
 }  // namespace bead::tools

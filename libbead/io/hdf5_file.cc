@@ -116,11 +116,18 @@ Array<int64_t> File::ReadInt64(const std::string& dataset, std::initializer_list
 }
 
 void File::CreateGroup(const std::string& group) {
-  if (Exists(group)) return;
-  Handle lcpl(H5Pcreate(H5P_LINK_CREATE), H5Pclose);
-  H5Pset_create_intermediate_group(lcpl.get(), 1);
-  Handle g(H5Gcreate2(id(), group.c_str(), lcpl.get(), H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
-  if (!g.valid()) throw Error(Located(name_, group, "cannot create group"));
+  // One level at a time, without modification times, so that the same
+  // content gives the same bytes (simulated samples regenerate bit for bit).
+  std::size_t pos = 0;
+  while (pos != std::string::npos) {
+    pos = group.find('/', pos + 1);
+    const std::string part = group.substr(0, pos);
+    if (part.empty() || part == "/" || Exists(part)) continue;
+    Handle gcpl(H5Pcreate(H5P_GROUP_CREATE), H5Pclose);
+    H5Pset_obj_track_times(gcpl.get(), 0);
+    Handle g(H5Gcreate2(id(), part.c_str(), H5P_DEFAULT, gcpl.get(), H5P_DEFAULT), H5Gclose);
+    if (!g.valid()) throw Error(Located(name_, part, "cannot create group"));
+  }
 }
 
 template <typename T>
@@ -131,6 +138,8 @@ void File::WriteImpl(const std::string& dataset, const std::vector<T>& data, con
   if (total != data.size()) throw Error(Located(name_, dataset, "internal: data size does not match shape"));
   Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose);
   Handle dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
+  H5Pset_obj_track_times(dcpl.get(), 0);
+  if (const auto slash = dataset.rfind('/'); slash != std::string::npos && slash > 0) CreateGroup(dataset.substr(0, slash));
   if (total >= 4096 && !dims.empty() && dims[0] > 0) {
     // Chunks of whole rows, about 256 KiB, compressed.
     std::vector<hsize_t> chunk = dims;

@@ -6,10 +6,11 @@
 // Frames: the sensor frame has x along the laser line and z toward the
 // sensor. sensor_from_wheel rotates by the roll and then shifts:
 //   x = cos(roll) s - sin(roll) h + x_offset,  z = sin(roll) s + cos(roll) h + z_offset.
-// Rays run along -z of the sensor frame (a telecentric model), one per
-// entry of the x grid.
+// Rays either run along -z of the sensor frame (telecentric, one per entry
+// of an x grid), or fan out from the laser origin toward (x_target, 0).
 #pragma once
 
+#include <optional>
 #include <random>
 #include <span>
 
@@ -35,6 +36,22 @@ struct SensorNoise {
 // the outline or else the wheel surface.
 void RenderProfile(const Outline& outline, const SensorPose& pose, std::span<const float> x_grid,
                    std::span<float> z_out);
+
+// The laser fan's origin in the sensor frame.
+struct Fan {
+  double x_mm = 0.0;
+  double z_mm = 95.0;
+};
+
+// Fan rays from `fan` toward (x_target[j], 0); each reports the first
+// surface it meets, (x_out[j], z_out[j]) in the sensor frame.
+void RenderProfileFan(const Outline& outline, const SensorPose& pose, const Fan& fan, std::span<const float> x_target,
+                      std::span<float> x_out, std::span<float> z_out);
+
+// Exact area between what the rays see first and the wheel surface: the
+// bead plus the shadows the sensor cannot tell from it (what a noiseless
+// sensor with infinitely many rays would integrate). No fan: parallel rays.
+double VisibleArea(const Outline& outline, const SensorPose& pose, const std::optional<Fan>& fan);
 
 void AddSensorNoise(std::span<float> z, const SensorNoise& noise, std::mt19937_64& rng);
 

@@ -1,0 +1,286 @@
+// YAML reading of SimConfig. Layout (every key optional):
+//   seed, duration_s, dt_s, log_rate_hz,
+//   rig: {name, counts_per_rev, bits, direction, diameter_mm, offset_counts,
+//         reference_areas_mm, laser_origin_mm},
+//   extruder: {command: {kind, base_v, levels_v, durations_s, amplitude_v, bit_time_s, start_s, stop_s},
+//              voltage_to_rpm: {num, den, delay_s}, rpm_to_flow: {num, den, delay_s},
+//              rpm_noise, flow_noise_frac},
+//   wheel: {mode, surface_speed_mm_s, target_area_mm2, gain_rpm_per_v, tau_s, delay_s, cmd_levels_v, cmd_durations_s},
+//   encoder: {start_count, missed_read_prob},
+//   bead: {shape, aspect, bottom_radius_frac, top_radius_frac, exponent, center_lift_frac,
+//          center_wander_mm, center_wander_period_s, outline_vertices},
+//   sensor: {rate_hz, points, x_min_mm, x_max_mm, fan, z_sigma_mm, z_quantum_mm, dropout_prob,
+//            spike_prob, spike_mm, dropped_profile_prob, roll_deg, runout_mm},
+//   pins: {scans, placement_sigma_mm, diameter_mm, height_mm, scan_speed_mm_s, scan_half_length_mm},
+//   effects: {eccentricity_mm, shrink_frac, shrink_tau_s, rig_offset_error_counts, sensor_latency_s}
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "libbead/core/error.h"
+#include "libbead/sim/sim_config.h"
+
+namespace bead::sim {
+namespace {
+
+class Reader {
+ public:
+  explicit Reader(std::string file) : file_(std::move(file)) {}
+
+  [[noreturn]] void Fail(const YAML::Node& n, const std::string& key, const std::string& what) const {
+    const std::string place = n.IsDefined() ? "line " + std::to_string(n.Mark().line + 1) + ": " + key : key;
+    throw Error(Located(file_, place, what));
+  }
+
+  // Section `key` of `parent`, checking its keys are among `known`.
+  YAML::Node Section(const YAML::Node& parent, const std::string& key, std::set<std::string> known) const {
+    YAML::Node s = parent[key];
+    if (!s.IsDefined() || s.IsNull()) return YAML::Node(YAML::NodeType::Undefined);
+    if (!s.IsMap()) Fail(s, key, "must be a mapping");
+    for (const auto& kv : s) {
+      const std::string k = kv.first.as<std::string>();
+      if (!known.count(k)) Fail(kv.first, key + "." + k, "unknown key (misspelt?)");
+    }
+    return s;
+  }
+
+  void Get(const YAML::Node& sec, const std::string& path, const std::string& key, double& out, double lo = -INFINITY,
+           double hi = INFINITY) const {
+    if (!sec.IsDefined()) return;
+    const YAML::Node n = sec[key];
+    if (!n.IsDefined() || n.IsNull()) return;
+    double v = 0;
+    try {
+      v = n.as<double>();
+    } catch (const YAML::Exception&) {
+      Fail(n, path + key, "must be a number");
+    }
+    if (!std::isfinite(v) || v < lo || v > hi) {
+      std::ostringstream msg;
+      msg << "must be a finite number in [" << lo << ", " << hi << "], got " << n.Scalar();
+      Fail(n, path + key, msg.str());
+    }
+    out = v;
+  }
+
+  template <typename Int>
+  void GetInt(const YAML::Node& sec, const std::string& path, const std::string& key, Int& out, double lo, double hi) const {
+    double v = static_cast<double>(out);
+    Get(sec, path, key, v, lo, hi);
+    if (v != std::floor(v)) Fail(sec[key], path + key, "must be a whole number");
+    out = static_cast<Int>(v);
+  }
+
+  void GetBool(const YAML::Node& sec, const std::string& path, const std::string& key, bool& out) const {
+    if (!sec.IsDefined() || !sec[key].IsDefined()) return;
+    try {
+      out = sec[key].as<bool>();
+    } catch (const YAML::Exception&) {
+      Fail(sec[key], path + key, "must be true or false");
+    }
+  }
+
+  void GetList(const YAML::Node& sec, const std::string& path, const std::string& key, std::vector<double>& out) const {
+    if (!sec.IsDefined() || !sec[key].IsDefined()) return;
+    const YAML::Node n = sec[key];
+    if (!n.IsSequence() || n.size() == 0) Fail(n, path + key, "must be a non-empty list of numbers");
+    out.clear();
+    for (const auto& e : n) {
+      try {
+        out.push_back(e.as<double>());
+      } catch (const YAML::Exception&) {
+        Fail(e, path + key, "must be a list of numbers");
+      }
+      if (!std::isfinite(out.back())) Fail(e, path + key, "must hold finite numbers");
+    }
+  }
+
+  template <typename E>
+  void GetEnum(const YAML::Node& sec, const std::string& path, const std::string& key, E& out,
+               const std::vector<std::pair<std::string, E>>& names) const {
+    if (!sec.IsDefined() || !sec[key].IsDefined()) return;
+    const std::string v = sec[key].as<std::string>();
+    std::string all;
+    for (const auto& [name, value] : names) {
+      if (name == v) {
+        out = value;
+        return;
+      }
+      all += (all.empty() ? "" : ", ") + name;
+    }
+    Fail(sec[key], path + key, "is '" + v + "', expected one of: " + all);
+  }
+
+  void GetTf(const YAML::Node& sec, const std::string& path, const std::string& key, model::TransferFunction& tf) const {
+    const YAML::Node n = Section(sec, key, {"num", "den", "delay_s"});
+    if (!n.IsDefined()) return;
+    GetList(n, path + key + ".", "num", tf.num);
+    GetList(n, path + key + ".", "den", tf.den);
+    Get(n, path + key + ".", "delay_s", tf.delay_s, 0.0, 60.0);
+    try {
+      tf.Validate();
+    } catch (const Error& e) {
+      Fail(n, path + key, e.what());
+    }
+  }
+
+ private:
+  std::string file_;
+};
+
+void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
+  if (!root.IsMap()) r.Fail(root, "", "a simulation config must be a YAML mapping");
+  const std::set<std::string> top = {"seed", "duration_s", "dt_s", "log_rate_hz", "rig", "extruder", "wheel",
+                                     "encoder", "bead", "sensor", "pins", "effects"};
+  for (const auto& kv : root)
+    if (!top.count(kv.first.as<std::string>())) r.Fail(kv.first, kv.first.as<std::string>(), "unknown key (misspelt?)");
+  r.GetInt(root, "", "seed", c.seed, 0, 9.0e15);
+  r.Get(root, "", "duration_s", c.duration_s, 0.1, 36000);
+  r.Get(root, "", "dt_s", c.dt_s, 1e-5, 0.01);
+  r.Get(root, "", "log_rate_hz", c.log_rate_hz, 1, 100000);
+
+  const YAML::Node rig = r.Section(root, "rig", {"name", "counts_per_rev", "bits", "direction", "diameter_mm",
+                                                  "offset_counts", "reference_areas_mm", "laser_origin_mm"});
+  if (rig.IsDefined()) {
+    if (rig["name"].IsDefined()) c.rig.name = rig["name"].as<std::string>();
+    r.Get(rig, "rig.", "counts_per_rev", c.rig.encoder.counts_per_rev, 1, 1e9);
+    r.GetInt(rig, "rig.", "bits", c.rig.encoder.bits, 0, 64);
+    r.GetInt(rig, "rig.", "direction", c.rig.encoder.direction, -1, 1);
+    if (c.rig.encoder.direction == 0) r.Fail(rig["direction"], "rig.direction", "must be 1 or -1");
+    r.Get(rig, "rig.", "diameter_mm", c.rig.wheel_diameter_mm, 1, 1e5);
+    r.Get(rig, "rig.", "offset_counts", c.rig.offset_counts, 0, 1e9);
+    std::vector<double> areas;
+    if (rig["reference_areas_mm"].IsDefined()) {
+      const YAML::Node a = rig["reference_areas_mm"];
+      if (!a.IsSequence() || a.size() != 2 || a[0].size() != 2 || a[1].size() != 2)
+        r.Fail(a, "rig.reference_areas_mm", "must be [[x0, x1], [x2, x3]]");
+      c.rig.reference_left = {a[0][0].as<double>(), a[0][1].as<double>()};
+      c.rig.reference_right = {a[1][0].as<double>(), a[1][1].as<double>()};
+    }
+    if (rig["laser_origin_mm"].IsDefined()) {
+      std::vector<double> o;
+      r.GetList(rig, "rig.", "laser_origin_mm", o);
+      if (o.size() != 2) r.Fail(rig["laser_origin_mm"], "rig.laser_origin_mm", "must be [x, z]");
+      c.rig.laser_origin = LaserOrigin{o[0], o[1]};
+    }
+  }
+
+  const YAML::Node ex = r.Section(root, "extruder", {"command", "voltage_to_rpm", "rpm_to_flow", "rpm_noise", "flow_noise_frac"});
+  if (ex.IsDefined()) {
+    const YAML::Node cmd = r.Section(ex, "command", {"kind", "base_v", "levels_v", "durations_s", "amplitude_v",
+                                                     "bit_time_s", "start_s", "stop_s"});
+    auto& k = c.extruder.command;
+    using K = CommandConfig::Kind;
+    r.GetEnum<K>(cmd, "extruder.command.", "kind", k.kind,
+                 {{"constant", K::kConstant}, {"steps", K::kSteps}, {"prbs", K::kPrbs}, {"gaussian", K::kGaussian}});
+    r.Get(cmd, "extruder.command.", "base_v", k.base_v, -10, 10);
+    r.GetList(cmd, "extruder.command.", "levels_v", k.levels_v);
+    r.GetList(cmd, "extruder.command.", "durations_s", k.durations_s);
+    if (k.levels_v.size() != k.durations_s.size())
+      r.Fail(cmd, "extruder.command", "levels_v and durations_s must have the same length");
+    r.Get(cmd, "extruder.command.", "amplitude_v", k.amplitude_v, 0, 10);
+    r.Get(cmd, "extruder.command.", "bit_time_s", k.bit_time_s, 1e-3, 1e4);
+    r.Get(cmd, "extruder.command.", "start_s", k.start_s, 0, 1e5);
+    r.Get(cmd, "extruder.command.", "stop_s", k.stop_s, -1, 1e5);
+    r.GetTf(ex, "extruder.", "voltage_to_rpm", c.extruder.voltage_to_rpm);
+    r.GetTf(ex, "extruder.", "rpm_to_flow", c.extruder.rpm_to_flow);
+    r.Get(ex, "extruder.", "rpm_noise", c.extruder.rpm_noise, 0, 1e3);
+    r.Get(ex, "extruder.", "flow_noise_frac", c.extruder.flow_noise_frac, 0, 1);
+  }
+
+  const YAML::Node wh = r.Section(root, "wheel", {"mode", "surface_speed_mm_s", "target_area_mm2", "gain_rpm_per_v",
+                                                  "tau_s", "delay_s", "cmd_levels_v", "cmd_durations_s"});
+  using M = WheelConfig::Mode;
+  r.GetEnum<M>(wh, "wheel.", "mode", c.wheel.mode,
+               {{"constant", M::kConstant}, {"commanded", M::kCommanded}, {"feedforward", M::kFeedForward}});
+  r.Get(wh, "wheel.", "surface_speed_mm_s", c.wheel.surface_speed_mm_s, 1, 1e4);
+  r.Get(wh, "wheel.", "target_area_mm2", c.wheel.target_area_mm2, 0.01, 1e4);
+  r.Get(wh, "wheel.", "gain_rpm_per_v", c.wheel.gain_rpm_per_v, 1e-3, 1e4);
+  r.Get(wh, "wheel.", "tau_s", c.wheel.tau_s, 1e-4, 100);
+  r.Get(wh, "wheel.", "delay_s", c.wheel.delay_s, 0, 10);
+  r.GetList(wh, "wheel.", "cmd_levels_v", c.wheel.cmd_levels_v);
+  r.GetList(wh, "wheel.", "cmd_durations_s", c.wheel.cmd_durations_s);
+
+  const YAML::Node en = r.Section(root, "encoder", {"start_count", "missed_read_prob"});
+  r.GetInt(en, "encoder.", "start_count", c.encoder.start_count, 0, 9.0e15);
+  r.Get(en, "encoder.", "missed_read_prob", c.encoder.missed_read_prob, 0, 0.5);
+
+  const YAML::Node bd = r.Section(root, "bead", {"shape", "aspect", "bottom_radius_frac", "top_radius_frac", "exponent",
+                                                 "center_lift_frac", "center_wander_mm", "center_wander_period_s",
+                                                 "outline_vertices"});
+  using S = BeadConfig::Shape;
+  r.GetEnum<S>(bd, "bead.", "shape", c.bead.shape,
+               {{"rounded_rectangle", S::kRoundedRectangle}, {"superellipse", S::kSuperellipse}, {"parabola", S::kParabola}});
+  r.Get(bd, "bead.", "aspect", c.bead.aspect, 0.2, 20);
+  r.Get(bd, "bead.", "bottom_radius_frac", c.bead.bottom_radius_frac, 0, 0.5);
+  r.Get(bd, "bead.", "top_radius_frac", c.bead.top_radius_frac, 0, 0.5);
+  r.Get(bd, "bead.", "exponent", c.bead.exponent, 1.2, 20);
+  r.Get(bd, "bead.", "center_lift_frac", c.bead.center_lift_frac, 0, 0.95);
+  r.Get(bd, "bead.", "center_wander_mm", c.bead.center_wander_mm, 0, 20);
+  r.Get(bd, "bead.", "center_wander_period_s", c.bead.center_wander_period_s, 0.01, 1e5);
+  r.GetInt(bd, "bead.", "outline_vertices", c.bead.outline_vertices, 8, 10000);
+
+  const YAML::Node se = r.Section(root, "sensor", {"rate_hz", "points", "x_min_mm", "x_max_mm", "fan", "z_sigma_mm",
+                                                   "z_quantum_mm", "dropout_prob", "spike_prob", "spike_mm",
+                                                   "dropped_profile_prob", "roll_deg", "runout_mm"});
+  auto& s = c.sensor;
+  r.Get(se, "sensor.", "rate_hz", s.rate_hz, 1, 100000);
+  r.GetInt(se, "sensor.", "points", s.points, 16, 100000);
+  r.Get(se, "sensor.", "x_min_mm", s.x_min_mm, -1e4, 1e4);
+  r.Get(se, "sensor.", "x_max_mm", s.x_max_mm, -1e4, 1e4);
+  if (!(s.x_max_mm > s.x_min_mm)) r.Fail(se, "sensor", "x_max_mm must exceed x_min_mm");
+  r.GetBool(se, "sensor.", "fan", s.fan);
+  r.Get(se, "sensor.", "z_sigma_mm", s.z_sigma_mm, 0, 10);
+  r.Get(se, "sensor.", "z_quantum_mm", s.z_quantum_mm, 0, 10);
+  r.Get(se, "sensor.", "dropout_prob", s.dropout_prob, 0, 1);
+  r.Get(se, "sensor.", "spike_prob", s.spike_prob, 0, 1);
+  r.Get(se, "sensor.", "spike_mm", s.spike_mm, 0, 100);
+  r.Get(se, "sensor.", "dropped_profile_prob", s.dropped_profile_prob, 0, 1);
+  r.Get(se, "sensor.", "roll_deg", s.roll_deg, -45, 45);
+  r.Get(se, "sensor.", "runout_mm", s.runout_mm, 0, 10);
+
+  const YAML::Node pi = r.Section(root, "pins", {"scans", "placement_sigma_mm", "diameter_mm", "height_mm",
+                                                 "scan_speed_mm_s", "scan_half_length_mm"});
+  r.GetInt(pi, "pins.", "scans", c.pins.scans, 0, 1000);
+  r.Get(pi, "pins.", "placement_sigma_mm", c.pins.placement_sigma_mm, 0, 100);
+  r.Get(pi, "pins.", "diameter_mm", c.pins.diameter_mm, 0.1, 100);
+  r.Get(pi, "pins.", "height_mm", c.pins.height_mm, 0.1, 100);
+  r.Get(pi, "pins.", "scan_speed_mm_s", c.pins.scan_speed_mm_s, 0.01, 1e4);
+  r.Get(pi, "pins.", "scan_half_length_mm", c.pins.scan_half_length_mm, 0.5, 1e3);
+
+  const YAML::Node ef = r.Section(root, "effects", {"eccentricity_mm", "shrink_frac", "shrink_tau_s",
+                                                    "rig_offset_error_counts", "sensor_latency_s"});
+  r.Get(ef, "effects.", "eccentricity_mm", c.effects.eccentricity_mm, 0, 50);
+  r.Get(ef, "effects.", "shrink_frac", c.effects.shrink_frac, 0, 0.9);
+  r.Get(ef, "effects.", "shrink_tau_s", c.effects.shrink_tau_s, 1e-3, 1e4);
+  r.Get(ef, "effects.", "rig_offset_error_counts", c.effects.rig_offset_error_counts, -1e9, 1e9);
+  r.Get(ef, "effects.", "sensor_latency_s", c.effects.sensor_latency_s, -10, 10);
+}
+
+}  // namespace
+
+SimConfig ParseSimConfig(const std::string& text, const std::string& name) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    throw Error(Located(name, "line " + std::to_string(e.mark.line + 1), "not valid YAML: " + e.msg));
+  }
+  SimConfig c;
+  if (root.IsNull()) return c;
+  Parse(root, Reader(name), c);
+  return c;
+}
+
+SimConfig ReadSimConfig(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw Error(Located(path, "", "cannot open simulation config"));
+  std::stringstream text;
+  text << in.rdbuf();
+  return ParseSimConfig(text.str(), path);
+}
+
+}  // namespace bead::sim
