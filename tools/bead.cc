@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   std::map<std::string, bead::tools::Run> runs;
   runs["measure"] = bead::tools::AddMeasure(app);
   runs["simulate"] = bead::tools::AddSimulate(app);
+  runs["flow"] = bead::tools::AddFlow(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

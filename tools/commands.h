@@ -12,5 +12,6 @@ using Run = std::function<int()>;
 
 Run AddMeasure(CLI::App& app);
 Run AddSimulate(CLI::App& app);
+Run AddFlow(CLI::App& app);
 
 }  // namespace bead::tools

@@ -1,0 +1,49 @@
+#include "libbead/flow/extrusion_time.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace bead {
+
+ExtrusionTimeFinder::ExtrusionTimeFinder(const std::vector<double>& log_t_s, const std::vector<double>& log_counts)
+    : t_(log_t_s), p_(log_counts) {}
+
+double ExtrusionTimeFinder::PositionAt(double t) const {
+  if (t_.empty()) return std::nan("");
+  if (t <= t_.front()) return p_.front();
+  if (t >= t_.back()) return p_.back();
+  const auto it = std::upper_bound(t_.begin(), t_.end(), t);
+  const std::size_t j = static_cast<std::size_t>(it - t_.begin());
+  const double f = (t - t_[j - 1]) / (t_[j] - t_[j - 1]);
+  return p_[j - 1] + f * (p_[j] - p_[j - 1]);
+}
+
+double ExtrusionTimeFinder::Find(double t_measured, double target) const {
+  const std::size_t n = t_.size();
+  if (n == 0) return std::nan("");
+  // Start from the segment holding t_measured, with the position there.
+  std::size_t j = static_cast<std::size_t>(std::upper_bound(t_.begin(), t_.end(), t_measured) - t_.begin());
+  if (j == 0) return std::nan("");
+  double hi_t = std::min(t_measured, t_.back());
+  double hi_p = PositionAt(hi_t);
+  if (hi_p == target) return hi_t;
+  // Walk back segment by segment: [t_[k], hi_t] with positions [p_[k], hi_p].
+  for (std::size_t k = std::min(j, n) - 1;; --k) {
+    const double lo_t = t_[k], lo_p = p_[k];
+    if ((lo_p - target) * (hi_p - target) <= 0.0 && lo_p != hi_p) {
+      // The latest crossing in this segment is found from its upper end.
+      const double f = (hi_p - target) / (hi_p - lo_p);
+      return hi_t - f * (hi_t - lo_t);
+    }
+    if (lo_p == target) {
+      // Standing at the target: the wheel left it at the end of the stop.
+      return lo_t;
+    }
+    if (k == 0) break;
+    hi_t = lo_t;
+    hi_p = lo_p;
+  }
+  return std::nan("");
+}
+
+}  // namespace bead

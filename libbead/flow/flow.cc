@@ -1,0 +1,116 @@
+#include "libbead/flow/flow.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "libbead/core/error.h"
+#include "libbead/flow/extrusion_time.h"
+#include "libbead/series/encoder.h"
+#include "libbead/series/hampel.h"
+#include "libbead/series/savgol.h"
+
+namespace bead {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double MedianStep(const std::vector<double>& t) {
+  std::vector<double> d;
+  for (std::size_t i = 1; i < t.size(); ++i) d.push_back(t[i] - t[i - 1]);
+  std::nth_element(d.begin(), d.begin() + static_cast<long>(d.size() / 2), d.end());
+  return d[d.size() / 2];
+}
+
+int OddAtLeast(double samples, int minimum) {
+  int w = std::max(minimum, static_cast<int>(std::lround(samples)));
+  return w % 2 ? w : w + 1;
+}
+
+double Interp(const std::vector<double>& t, const std::vector<double>& y, double x) {
+  if (std::isnan(x) || t.empty()) return kNaN;
+  if (x <= t.front()) return y.front();
+  if (x >= t.back()) return y.back();
+  const std::size_t j = static_cast<std::size_t>(std::upper_bound(t.begin(), t.end(), x) - t.begin());
+  const double f = (x - t[j - 1]) / (t[j] - t[j - 1]);
+  return y[j - 1] + f * (y[j] - y[j - 1]);
+}
+
+}  // namespace
+
+std::vector<double> SurfaceSpeed(const Rig& rig, const std::vector<double>& t, const std::vector<double>& counts,
+                                 const FlowOptions& o, int* outliers) {
+  if (t.size() < 3) throw Error("surface speed: the log needs at least 3 samples");
+  const double dt = MedianStep(t);
+  SavgolOptions sg;
+  sg.window = std::min(OddAtLeast(o.speed_window_s / dt, o.speed_order + 2),
+                       static_cast<int>(t.size()) % 2 ? static_cast<int>(t.size()) : static_cast<int>(t.size()) - 1);
+  sg.order = std::min(o.speed_order, sg.window - 1);
+  sg.deriv = 1;
+  sg.delta = dt;
+  std::vector<double> v = SavgolFilter(counts, sg);
+  const HampelResult h = Hampel(v, std::max(1, static_cast<int>(std::lround(o.speed_hampel_s / dt))), o.hampel_nsigma);
+  if (outliers) *outliers = h.outliers;
+  const double mm_per_count = rig.MmPerCount();
+  std::vector<double> out(h.y.size());
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = h.y[i] * mm_per_count;
+  return out;
+}
+
+FlowResult ComputeFlow(const Rig& rig, const ProfileBlock& profiles, const std::vector<BeadGeometry>& geometry,
+                       const AcquisitionLog& log, const FlowOptions& o, const std::vector<double>& corrected) {
+  if (geometry.size() != profiles.size()) throw Error("flow: one geometry per profile is needed");
+  if (log.size() < 3) throw Error("flow: the run has no acquisition log (/log), so no wheel speed");
+  FlowResult r;
+  const EncoderTrack track = UnwrapEncoder(log.encoder, rig.encoder, log.t_s);
+  r.encoder_repairs = track.missed_reads + track.glitches;
+  const std::vector<double> speed = SurfaceSpeed(rig, log.t_s, track.counts, o, &r.speed_outliers);
+  const ExtrusionTimeFinder finder(log.t_s, track.counts);
+
+  const std::size_t n = profiles.size();
+  std::vector<double> area(n), area_c(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const BeadGeometry& g = geometry[k];
+    // No bead on a good reference is a measurement: zero area.
+    const double a = g.valid() ? g.area_mm2 : (g.status == ProfileStatus::kNoBead ? 0.0 : kNaN);
+    area[k] = a;
+    area_c[k] = corrected.size() == n && g.valid() ? corrected[k] : a;
+  }
+  const HampelResult ha = Hampel(area, o.area_hampel_half, o.hampel_nsigma);
+  const HampelResult hc = Hampel(area_c, o.area_hampel_half, o.hampel_nsigma);
+  r.area_outliers = ha.outliers;
+  std::vector<double> a_f = ha.y, c_f = hc.y;
+  if (o.area_smooth_window > 1) {
+    SavgolOptions sg;
+    sg.window = o.area_smooth_window;
+    sg.order = o.area_smooth_order;
+    a_f = SavgolFilterGaps(a_f, sg, o.max_fill);
+    c_f = SavgolFilterGaps(c_f, sg, o.max_fill);
+  }
+
+  r.samples.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    FlowSample& s = r.samples[k];
+    s.profile = static_cast<int64_t>(k);
+    const double t_k = profiles.t_s[k];
+    const double p_k = UnwrapNear(profiles.encoder[k], rig.encoder, finder.PositionAt(t_k));
+    const double target = p_k - rig.offset_counts;
+    s.t_s = finder.Find(t_k, target);
+    s.encoder = RawFromCounts(target, rig.encoder);
+    s.surface_speed_mm_s = Interp(log.t_s, speed, s.t_s);
+    s.area_mm2 = a_f[k];
+    s.area_corrected_mm2 = c_f[k];
+    s.flow_mm3_s = s.surface_speed_mm_s * s.area_corrected_mm2;
+    s.screw_rpm = Interp(log.t_s, log.screw_rpm, s.t_s);
+    s.valid = std::isfinite(s.t_s) && std::isfinite(s.flow_mm3_s);
+  }
+  // Volume: trapezoids over extrusion time between valid samples, gaps bridged.
+  const FlowSample* last = nullptr;
+  for (const FlowSample& s : r.samples) {
+    if (!s.valid) continue;
+    if (last && s.t_s > last->t_s) r.total_volume_mm3 += 0.5 * (s.flow_mm3_s + last->flow_mm3_s) * (s.t_s - last->t_s);
+    last = &s;
+  }
+  return r;
+}
+
+}  // namespace bead

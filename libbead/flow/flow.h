@@ -1,0 +1,64 @@
+// Volumetric flow in extrusion time (thesis 3.1.3, eq. 20: Q = v * A).
+//
+// For each profile: its unwrapped wheel position; the extrusion time t_e
+// (extrusion_time.h); the surface speed v(t_e) from the log's encoder
+// (unwrapped and repaired, Savitzky-Golay derivative of position, then a
+// Hampel filter on the speed); the area A (Hampel on the series, optional
+// Savitzky-Golay smoothing; a profile with no bead is area 0, one that
+// could not be measured is a gap); the screw RPM at t_e from the log; and
+// Q = v * A, with the corrected area where the occlusion stage gives one.
+// The run's volume is the trapezoid integral of Q over extrusion time,
+// bridging gaps linearly.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "libbead/core/rig.h"
+#include "libbead/io/run_archive.h"
+#include "libbead/profile/bead_geometry.h"
+
+namespace bead {
+
+struct FlowOptions {
+  double speed_window_s = 0.1;   // Savitzky-Golay window for the wheel speed ...
+  int speed_order = 2;           // ... and its order
+  double speed_hampel_s = 0.05;  // Hampel half window on the speed
+  int area_hampel_half = 5;      // Hampel half window on the area, profiles
+  double hampel_nsigma = 3.0;
+  int area_smooth_window = 0;    // odd: Savitzky-Golay smoothing of the area (0: none)
+  int area_smooth_order = 2;
+  int max_fill = 10;             // gaps up to this many profiles are bridged
+};
+
+struct FlowSample {
+  int64_t profile = 0;
+  double t_s = 0.0;             // extrusion time (NaN: laid before the log began)
+  int64_t encoder = 0;          // raw counter at extrusion time
+  double surface_speed_mm_s = 0.0;
+  double area_mm2 = 0.0;        // NaN: not measured
+  double area_corrected_mm2 = 0.0;
+  double flow_mm3_s = 0.0;
+  double screw_rpm = 0.0;
+  bool valid = false;
+};
+
+struct FlowResult {
+  std::vector<FlowSample> samples;  // one per profile, in profile order
+  double total_volume_mm3 = 0.0;
+  int area_outliers = 0;
+  int speed_outliers = 0;
+  int encoder_repairs = 0;
+};
+
+// `corrected` (optional, same length as geometry): occlusion-corrected areas.
+FlowResult ComputeFlow(const Rig& rig, const ProfileBlock& profiles, const std::vector<BeadGeometry>& geometry,
+                       const AcquisitionLog& log, const FlowOptions& options = {},
+                       const std::vector<double>& corrected = {});
+
+// Surface speed (mm/s) at each log sample.
+std::vector<double> SurfaceSpeed(const Rig& rig, const std::vector<double>& t_s, const std::vector<double>& counts,
+                                 const FlowOptions& options, int* outliers = nullptr);
+
+}  // namespace bead

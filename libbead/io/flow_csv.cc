@@ -1,0 +1,24 @@
+#include "libbead/io/flow_csv.h"
+
+#include "libbead/io/atomic_file.h"
+#include <cmath>
+
+#include "libbead/io/csv_reader.h"
+
+namespace bead {
+
+void WriteFlowCsv(const std::string& path, const FlowResult& flow) {
+  AtomicFile out(path);
+  auto& s = out.stream();
+  s << "t_s,encoder,surface_speed_mm_s,area_mm2,area_corrected_mm2,flow_mm3_s,screw_rpm,profile,valid\n";
+  for (const FlowSample& f : flow.samples) {
+    const bool known = std::isfinite(f.t_s);
+    s << CsvNumber(f.t_s) << ',' << (known ? std::to_string(f.encoder) : "") << ','
+      << CsvNumber(f.surface_speed_mm_s) << ',' << CsvNumber(f.area_mm2) << ',' << CsvNumber(f.area_corrected_mm2)
+      << ',' << CsvNumber(f.flow_mm3_s) << ',' << CsvNumber(f.screw_rpm) << ',' << f.profile << ','
+      << (f.valid ? 1 : 0) << '\n';
+  }
+  out.Commit();
+}
+
+}  // namespace bead

@@ -1,0 +1,104 @@
+#include "libbead/series/encoder.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace bead {
+namespace {
+
+// Signed step between two raw reads, modulo the counter width.
+int64_t Step(int64_t from, int64_t to, int bits) {
+  int64_t d = to - from;
+  if (bits > 0 && bits < 64) {
+    const int64_t modulus = int64_t{1} << bits;
+    d %= modulus;
+    if (d >= modulus / 2) d -= modulus;
+    if (d < -modulus / 2) d += modulus;
+  }
+  return d;
+}
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+}  // namespace
+
+EncoderTrack UnwrapEncoder(const std::vector<int64_t>& raw, const EncoderSpec& spec, const std::vector<double>& t_s,
+                           const EncoderOptions& options) {
+  EncoderTrack track;
+  const std::size_t n = raw.size();
+  track.counts.resize(n);
+  track.repaired.assign(n, 0);
+  if (n == 0) return track;
+  double pos = spec.direction * static_cast<double>(raw[0]);
+  track.counts[0] = pos;
+  for (std::size_t i = 1; i < n; ++i) {
+    pos += spec.direction * static_cast<double>(Step(raw[i - 1], raw[i], spec.bits));
+    track.counts[i] = pos;
+  }
+  auto time = [&](std::size_t i) { return t_s.size() == n ? t_s[i] : static_cast<double>(i); };
+  auto predicted = [&](std::size_t i) {
+    const double f = (time(i) - time(i - 1)) / (time(i + 1) - time(i - 1));
+    return track.counts[i - 1] + f * (track.counts[i + 1] - track.counts[i - 1]);
+  };
+  if (n < 3) return track;
+  // Glitch threshold from the second differences' robust spread.
+  std::vector<double> second;
+  for (std::size_t i = 1; i + 1 < n; ++i) second.push_back(std::abs(track.counts[i] - predicted(i)));
+  const double sigma = 1.4826 * Median(second);
+  const double glitch = std::max(options.min_glitch_counts, 8.0 * sigma);
+  for (std::size_t i = 1; i + 1 < n; ++i) {
+    const double before = track.counts[i] - track.counts[i - 1];
+    const double after = track.counts[i + 1] - track.counts[i];
+    // A repeated read between two reads that move the same way.
+    if (raw[i] == raw[i - 1] && after != 0.0) {
+      const double prev_step = i >= 2 ? track.counts[i - 1] - track.counts[i - 2] : after;
+      if (prev_step != 0.0 && (prev_step > 0) == (after > 0)) {
+        track.counts[i] = predicted(i);
+        track.repaired[i] = 1;
+        ++track.missed_reads;
+        continue;
+      }
+    }
+    // A glitch: a step out (+g) and straight back (-g).
+    if (std::abs(track.counts[i] - predicted(i)) > glitch && std::abs(before + after) < 0.5 * std::abs(before)) {
+      track.counts[i] = predicted(i);
+      track.repaired[i] = 1;
+      ++track.glitches;
+    }
+  }
+  return track;
+}
+
+double UnwrapNear(int64_t raw, const EncoderSpec& spec, double near_counts) {
+  const double base = spec.direction * static_cast<double>(raw);
+  if (spec.bits <= 0 || spec.bits >= 64) return base;
+  const double modulus = std::ldexp(1.0, spec.bits);
+  return base + modulus * std::round((near_counts - base) / modulus);
+}
+
+int64_t RawFromCounts(double counts, const EncoderSpec& spec) {
+  int64_t raw = static_cast<int64_t>(std::llround(counts * spec.direction));
+  if (spec.bits > 0 && spec.bits < 64) {
+    const int64_t modulus = int64_t{1} << spec.bits;
+    raw %= modulus;
+    if (raw < 0) raw += modulus;
+  }
+  return raw;
+}
+
+double EncoderUnwrapper::Push(int64_t raw) {
+  if (!started_) {
+    started_ = true;
+    position_ = spec_.direction * static_cast<double>(raw);
+  } else {
+    position_ += spec_.direction * static_cast<double>(Step(last_raw_, raw, spec_.bits));
+  }
+  last_raw_ = raw;
+  return position_;
+}
+
+}  // namespace bead

@@ -1,0 +1,57 @@
+// Wheel encoder: raw counter -> continuous position in counts, growing as
+// the surface moves from the nozzle to the laser.
+//  - wrap: the counter wraps modulo 2^bits; each step is taken as the
+//    signed difference modulo 2^bits (the wheel never turns half the
+//    counter range between two reads);
+//  - direction: -1 flips the sign so positions grow nozzle -> laser;
+//  - missed reads: a repeated value while both neighbours move the same
+//    way is a read the acquisition missed; it is replaced by interpolation
+//    in time;
+//  - glitches: a single value off the line through its neighbours by more
+//    than max(min_glitch_counts, 8 robust sigmas of the second difference)
+//    is replaced the same way.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "libbead/core/rig.h"
+
+namespace bead {
+
+struct EncoderTrack {
+  std::vector<double> counts;     // unwrapped, repaired position
+  std::vector<uint8_t> repaired;  // 1: missed read or glitch, replaced
+  int missed_reads = 0;
+  int glitches = 0;
+};
+
+struct EncoderOptions {
+  double min_glitch_counts = 50.0;
+};
+
+// `t_s` (same length) places the interpolation in time; empty: even steps.
+EncoderTrack UnwrapEncoder(const std::vector<int64_t>& raw, const EncoderSpec& spec, const std::vector<double>& t_s = {},
+                           const EncoderOptions& options = {});
+
+// The unwrapped value of `raw` nearest to `near_counts` (positions of
+// another series of the same counter, e.g. the profiles against the log).
+double UnwrapNear(int64_t raw, const EncoderSpec& spec, double near_counts);
+
+// The raw counter that reads a given unwrapped position.
+int64_t RawFromCounts(double counts, const EncoderSpec& spec);
+
+// Streaming: one raw value at a time, no look-ahead (no repair).
+class EncoderUnwrapper {
+ public:
+  explicit EncoderUnwrapper(const EncoderSpec& spec) : spec_(spec) {}
+  double Push(int64_t raw);
+
+ private:
+  EncoderSpec spec_;
+  bool started_ = false;
+  int64_t last_raw_ = 0;
+  double position_ = 0.0;
+};
+
+}  // namespace bead
