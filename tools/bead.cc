@@ -13,13 +13,17 @@ int main(int argc, char** argv) {
   app.footer(
       "Units: mm, s, mm^2, mm^3/s, RPM, V. File formats: shared/spec/data-formats.md.\n"
       "Example:\n"
-      "  bead measure --rig testdata/sample/rig.yaml testdata/sample/run.h5 -o geometry.csv\n"
+      "  bead simulate testdata/configs/sample.yaml -o /tmp/run\n"
+      "  bead measure --rig /tmp/run/rig.yaml /tmp/run/run.h5 -o geometry.csv\n"
+      "  bead calibrate offset --rig /tmp/run/rig.yaml /tmp/run/pins.h5\n"
+      "  bead flow --rig /tmp/run/rig.yaml /tmp/run/run.h5 -o flow.csv\n"
       "Run 'bead SUBCOMMAND --help' for each subcommand's inputs and outputs.");
   app.require_subcommand(1);
   std::map<std::string, bead::tools::Run> runs;
   runs["measure"] = bead::tools::AddMeasure(app);
   runs["simulate"] = bead::tools::AddSimulate(app);
   runs["flow"] = bead::tools::AddFlow(app);
+  runs["calibrate"] = bead::tools::AddCalibrate(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

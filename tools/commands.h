@@ -13,5 +13,6 @@ using Run = std::function<int()>;
 Run AddMeasure(CLI::App& app);
 Run AddSimulate(CLI::App& app);
 Run AddFlow(CLI::App& app);
+Run AddCalibrate(CLI::App& app);
 
 }  // namespace bead::tools

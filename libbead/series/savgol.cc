@@ -99,10 +99,9 @@ std::vector<double> SavgolFilterGaps(const std::vector<double>& x, const SavgolO
     // A piece: from a finite sample up to the next gap longer than max_fill.
     while (i < n && std::isnan(x[i])) ++i;
     if (i >= n) break;
-    std::size_t end = i;
-    std::vector<double> piece;
-    std::size_t last_finite = i;
-    for (std::size_t j = i; j < n; ++j) {
+    std::vector<double> piece = {x[i]};
+    std::size_t last_finite = i, end = i + 1;
+    for (std::size_t j = i + 1; j < n; ++j) {
       if (!std::isnan(x[j])) {
         const std::size_t gap = j - last_finite - 1;
         if (gap > static_cast<std::size_t>(max_fill)) break;
