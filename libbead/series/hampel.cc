@@ -16,30 +16,38 @@ double Median(std::vector<double>& v) {
 
 }  // namespace
 
-HampelResult Hampel(const std::vector<double>& x, int k, double nsigma) {
+double HampelAt(const double* x, std::size_t n, std::size_t i, int k, double nsigma, bool* outlier,
+                std::vector<double>& window) {
   // MATLAB's scale: the MAD of a normal distribution times this is its sigma.
   constexpr double kMadScale = 1.4826022185;
+  *outlier = false;
+  if (std::isnan(x[i])) return x[i];
+  const std::size_t lo = i >= static_cast<std::size_t>(k) ? i - static_cast<std::size_t>(k) : 0;
+  const std::size_t hi = std::min(n - 1, i + static_cast<std::size_t>(k));
+  window.clear();
+  for (std::size_t j = lo; j <= hi; ++j)
+    if (!std::isnan(x[j])) window.push_back(x[j]);
+  const double m = Median(window);
+  for (double& v : window) v = std::abs(v - m);
+  const double sigma = kMadScale * Median(window);
+  if (std::abs(x[i] - m) > nsigma * sigma) {
+    *outlier = true;
+    return m;
+  }
+  return x[i];
+}
+
+HampelResult Hampel(const std::vector<double>& x, int k, double nsigma) {
   HampelResult r;
   const std::size_t n = x.size();
   r.y = x;
   r.outlier.assign(n, 0);
-  std::vector<double> window, dev;
+  std::vector<double> scratch;
   for (std::size_t i = 0; i < n; ++i) {
-    if (std::isnan(x[i])) continue;
-    const std::size_t lo = i >= static_cast<std::size_t>(k) ? i - static_cast<std::size_t>(k) : 0;
-    const std::size_t hi = std::min(n - 1, i + static_cast<std::size_t>(k));
-    window.clear();
-    for (std::size_t j = lo; j <= hi; ++j)
-      if (!std::isnan(x[j])) window.push_back(x[j]);
-    const double m = Median(window);
-    dev.clear();
-    for (double v : window) dev.push_back(std::abs(v - m));
-    const double sigma = kMadScale * Median(dev);
-    if (std::abs(x[i] - m) > nsigma * sigma) {
-      r.y[i] = m;
-      r.outlier[i] = 1;
-      ++r.outliers;
-    }
+    bool out = false;
+    r.y[i] = HampelAt(x.data(), n, i, k, nsigma, &out, scratch);
+    r.outlier[i] = out;
+    r.outliers += out;
   }
   return r;
 }

@@ -5,6 +5,7 @@
 // Extension for gaps: NaN samples are left out of every window and stay NaN.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -17,5 +18,11 @@ struct HampelResult {
 };
 
 HampelResult Hampel(const std::vector<double>& x, int half_window, double nsigma);
+
+// One sample: the Hampel decision for x[i] of x[0..n), returning the value
+// to use (x[i] or the window median) and whether it was an outlier. The
+// batch filter and the streaming flow both call this.
+double HampelAt(const double* x, std::size_t n, std::size_t i, int half_window, double nsigma, bool* outlier,
+                std::vector<double>& scratch);
 
 }  // namespace bead

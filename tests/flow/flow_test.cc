@@ -1,5 +1,7 @@
 // Flow in extrusion time against the digital twin's truth.
 #include "libbead/flow/flow.h"
+#include "libbead/flow/streaming_flow.h"
+#include "libbead/profile/profile_processor.h"
 
 #include <gtest/gtest.h>
 
@@ -115,6 +117,63 @@ TEST(Flow, AlignmentExactToQuantisationOnNoiselessRun) {
     ++checked;
   }
   EXPECT_GT(checked, 800);
+}
+
+}  // namespace
+}  // namespace bead
+
+namespace bead {
+namespace {
+
+// On-line and off-line agree: feeding the log and the profiles as a rig
+// would (interleaved in time) gives the batch's flow samples, bit for bit
+// up to rounding, away from the run's last windows; the delay is bounded.
+TEST(StreamingFlow, MatchesBatchWithBoundedDelay) {
+  sim::SimConfig c = NoUndercut();
+  c.duration_s = 6;
+  const Measured m = SimulateAndMeasure(c);
+  const ProfileBlock& b = m.run.run.profiles;
+  const AcquisitionLog& log = *m.run.run.log;
+  const Rig& rig = m.run.rig_file;
+  ProfileProcessor processor(rig.reference_left, rig.reference_right);
+  StreamingFlow stream(rig, {}, c.log_rate_hz);
+  std::vector<FlowSample> out;
+  double worst_delay = 0;
+  std::size_t li = 0;
+  for (std::size_t k = 0; k < b.size(); ++k) {
+    while (li < log.size() && log.t_s[li] <= b.t_s[k]) {
+      stream.PushLog(log.t_s[li], log.encoder[li], log.screw_rpm[li]);
+      ++li;
+    }
+    stream.PushProfile(b.t_s[k], b.encoder[k], processor.Process(b.view(k)));
+    FlowSample s;
+    while (stream.Pop(s)) {
+      worst_delay = std::max(worst_delay, b.t_s[k] - b.t_s[static_cast<std::size_t>(s.profile)]);
+      out.push_back(s);
+    }
+  }
+  for (; li < log.size(); ++li) stream.PushLog(log.t_s[li], log.encoder[li], log.screw_rpm[li]);
+  stream.Finish();
+  for (FlowSample s; stream.Pop(s);) out.push_back(s);
+  ASSERT_EQ(out.size(), b.size());
+  const FlowOptions o;
+  // The bound: the speed's windows, or the area's, plus a log sample and a profile.
+  const double bound = std::max(o.speed_window_s / 2 + o.speed_hampel_s, o.area_hampel_half / c.sensor.rate_hz) +
+                       1.0 / c.log_rate_hz + 1.0 / c.sensor.rate_hz;
+  EXPECT_LE(worst_delay, bound);
+  const double end = b.t_s.back() - 0.5;  // the batch's end-of-run edge fits differ, by design
+  int compared = 0;
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    const FlowSample& s = out[k];
+    const FlowSample& t = m.flow.samples[k];
+    ASSERT_EQ(s.profile, t.profile);
+    if (!t.valid || t.t_s > end) continue;
+    EXPECT_NEAR(s.t_s, t.t_s, 1e-12) << k;
+    EXPECT_NEAR(s.flow_mm3_s, t.flow_mm3_s, 1e-9 * std::abs(t.flow_mm3_s) + 1e-9) << k;
+    EXPECT_NEAR(s.area_mm2, t.area_mm2, 1e-12) << k;
+    ++compared;
+  }
+  EXPECT_GT(compared, 700);
 }
 
 }  // namespace
