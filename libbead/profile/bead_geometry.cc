@@ -9,30 +9,6 @@
 namespace bead {
 namespace {
 
-// Fills w.order with the indices of the valid points, in increasing x.
-void OrderValidPoints(const ProfileView& view, ProfileWorkspace& w) {
-  w.order.clear();
-  bool increasing = true, decreasing = true;
-  float last = 0.0f;
-  for (std::size_t i = 0; i < view.x_mm.size(); ++i) {
-    const float x = view.x_mm[i];
-    if (!std::isfinite(x) || !std::isfinite(view.z_mm[i])) continue;
-    if (!w.order.empty()) {
-      increasing = increasing && x >= last;
-      decreasing = decreasing && x <= last;
-    }
-    last = x;
-    w.order.push_back(static_cast<int32_t>(i));
-  }
-  if (increasing) return;
-  if (decreasing) {
-    std::reverse(w.order.begin(), w.order.end());
-    return;
-  }
-  std::stable_sort(w.order.begin(), w.order.end(),
-                   [&](int32_t a, int32_t b) { return view.x_mm[a] < view.x_mm[b]; });
-}
-
 // Height and along-line position of every ordered point, then drops spikes:
 // points standing more than spike_mm off the median of themselves and
 // their four nearest neighbours. Leaves the kept points in w.x, w.s, w.h, w.order.
@@ -53,11 +29,20 @@ void HeightsWithoutSpikes(const ProfileView& view, const ReferenceLine& line, do
     w.s[k] = (x + b * (z - a)) * inv_norm;
   }
   // Median of five, so two adjacent spikes are caught too; three at the ends.
+  // Only where a neighbour jumps by more than spike_mm: otherwise three of
+  // the five (the point and both neighbours) lie within spike_mm of the
+  // point, so their median does too, and the point is kept.
+  bool any = false;
   for (std::size_t k = 1; k + 1 < n; ++k) {
+    if (std::abs(w.h[k] - w.h[k - 1]) <= spike_mm && std::abs(w.h[k] - w.h[k + 1]) <= spike_mm) continue;
     const double med = (k >= 2 && k + 2 < n) ? Median5(w.h[k - 2], w.h[k - 1], w.h[k + 1], w.h[k + 2], w.h[k])
                                              : Median3(w.h[k - 1], w.h[k], w.h[k + 1]);
-    if (std::abs(w.h[k] - med) > spike_mm) w.keep[k] = 0;
+    if (std::abs(w.h[k] - med) > spike_mm) {
+      w.keep[k] = 0;
+      any = true;
+    }
   }
+  if (!any) return;
   std::size_t m = 0;
   for (std::size_t k = 0; k < n; ++k) {
     if (!w.keep[k]) continue;
@@ -137,7 +122,6 @@ BeadGeometry MeasureBead(const ProfileView& view, const ReferenceLine& line, con
                          const ReferenceArea& right, const BeadOptions& options, ProfileWorkspace& w) {
   BeadGeometry g;
   g.reference = line;
-  OrderValidPoints(view, w);
   if (w.order.size() < static_cast<std::size_t>(std::max(options.min_profile_points, 3))) {
     g.status = ProfileStatus::kTooFewPoints;
     return g;

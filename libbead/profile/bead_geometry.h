@@ -85,8 +85,9 @@ struct BeadGeometry {
   bool valid() const { return status == ProfileStatus::kValid; }
 };
 
-// Measures the bead of `view` against `line` (which must be ok).
-// Workspace buffers must hold view.size() points; nothing is allocated.
+// Measures the bead of `view` against `line`. The workspace must hold the
+// gathered points of this view (GatherPoints, or FitReferenceLine which
+// calls it); nothing is allocated.
 BeadGeometry MeasureBead(const ProfileView& view, const ReferenceLine& line, const ReferenceArea& left,
                          const ReferenceArea& right, const BeadOptions& options, ProfileWorkspace& workspace);
 

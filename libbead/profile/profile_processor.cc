@@ -1,5 +1,7 @@
 #include "libbead/profile/profile_processor.h"
 
+#include "libbead/profile/gather.h"
+
 namespace bead {
 
 ProfileProcessor::ProfileProcessor(const ReferenceArea& left, const ReferenceArea& right,
@@ -8,7 +10,8 @@ ProfileProcessor::ProfileProcessor(const ReferenceArea& left, const ReferenceAre
 
 const BeadGeometry& ProfileProcessor::Process(const ProfileView& view) {
   if (view.x_mm.size() > workspace_.capacity()) workspace_.Reserve(view.x_mm.size());
-  const ReferenceLine line = FitReferenceLine(view, left_, right_, options_.reference, workspace_);
+  GatherPoints(view, left_, right_, workspace_);
+  const ReferenceLine line = FitGatheredReferenceLine(options_.reference, workspace_);
   result_ = MeasureBead(view, line, left_, right_, options_.bead, workspace_);
   return result_;
 }

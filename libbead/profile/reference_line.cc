@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstddef>
 
+#include "libbead/profile/gather.h"
 #include "libbead/profile/median.h"
 
 namespace bead {
@@ -77,23 +78,11 @@ double ReferenceLine::HeightAt(double x_mm, double z_mm) const {
 ReferenceLine FitReferenceLine(const ProfileView& view, const ReferenceArea& left,
                                const ReferenceArea& right, const ReferenceLineOptions& options,
                                ProfileWorkspace& w) {
-  w.left_x.clear();
-  w.left_z.clear();
-  w.right_x.clear();
-  w.right_z.clear();
-  const std::size_t n = view.x_mm.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const double x = view.x_mm[i];
-    const double z = view.z_mm[i];
-    if (!std::isfinite(x) || !std::isfinite(z)) continue;
-    if (left.Contains(x)) {
-      w.left_x.push_back(x);
-      w.left_z.push_back(z);
-    } else if (right.Contains(x)) {
-      w.right_x.push_back(x);
-      w.right_z.push_back(z);
-    }
-  }
+  GatherPoints(view, left, right, w);
+  return FitGatheredReferenceLine(options, w);
+}
+
+ReferenceLine FitGatheredReferenceLine(const ReferenceLineOptions& options, ProfileWorkspace& w) {
   ReferenceLine line;
   line.points_available = static_cast<int>(w.left_x.size() + w.right_x.size());
   const auto min_points = static_cast<std::size_t>(options.min_points_per_area);

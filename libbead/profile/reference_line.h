@@ -46,10 +46,14 @@ struct ReferenceLine {
   double HeightAt(double x_mm, double z_mm) const;
 };
 
-// Fits the line; workspace buffers must hold view.size() points.
+// Fits the line; workspace buffers must hold view.size() points. Leaves
+// the gathered points (gather.h) in the workspace for MeasureBead.
 // On failure (an area with too few valid points) returns ok = false.
 ReferenceLine FitReferenceLine(const ProfileView& view, const ReferenceArea& left,
                                const ReferenceArea& right, const ReferenceLineOptions& options,
                                ProfileWorkspace& workspace);
+
+// The same on points GatherPoints already put in the workspace.
+ReferenceLine FitGatheredReferenceLine(const ReferenceLineOptions& options, ProfileWorkspace& workspace);
 
 }  // namespace bead
