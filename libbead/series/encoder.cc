@@ -73,6 +73,10 @@ EncoderTrack UnwrapEncoder(const std::vector<int64_t>& raw, const EncoderSpec& s
   return track;
 }
 
+double CountsToAngleRad(double counts, const EncoderSpec& spec) { return 2.0 * M_PI * counts / spec.counts_per_rev; }
+
+double CountsToMm(double counts, const Rig& rig) { return counts * rig.MmPerCount(); }
+
 double UnwrapNear(int64_t raw, const EncoderSpec& spec, double near_counts) {
   const double base = spec.direction * static_cast<double>(raw);
   if (spec.bits <= 0 || spec.bits >= 64) return base;

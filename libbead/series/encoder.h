@@ -34,6 +34,11 @@ struct EncoderOptions {
 EncoderTrack UnwrapEncoder(const std::vector<int64_t>& raw, const EncoderSpec& spec, const std::vector<double>& t_s = {},
                            const EncoderOptions& options = {});
 
+// Unwrapped counts to wheel angle (rad) and to surface travel (mm, the
+// rig's wheel diameter).
+double CountsToAngleRad(double counts, const EncoderSpec& spec);
+double CountsToMm(double counts, const Rig& rig);
+
 // The unwrapped value of `raw` nearest to `near_counts` (positions of
 // another series of the same counter, e.g. the profiles against the log).
 double UnwrapNear(int64_t raw, const EncoderSpec& spec, double near_counts);

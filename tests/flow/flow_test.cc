@@ -9,6 +9,8 @@
 
 #include "libbead/profile/measure_block.h"
 #include "libbead/sim/rig_simulator.h"
+#include "libbead/sim/sim_writer.h"
+#include "tests/support/temp_dir.h"
 
 namespace bead {
 namespace {
@@ -174,6 +176,38 @@ TEST(StreamingFlow, MatchesBatchWithBoundedDelay) {
     ++compared;
   }
   EXPECT_GT(compared, 700);
+}
+
+}  // namespace
+}  // namespace bead
+
+namespace bead {
+namespace {
+
+// The command: the spec's columns first, the total volume printed, and a
+// clear error for an archive without its acquisition log.
+TEST(FlowCommand, WritesTheSpecCsvAndSaysWhatIsMissing) {
+  test::TempDir dir;
+  sim::SimConfig c = NoUndercut();
+  c.duration_s = 2;
+  sim::SimulatedRun run = sim::Simulate(c);
+  sim::WriteSimulatedRun(dir / "run", run);
+  const std::string cli = BEAD_CLI;
+  const std::string cmd = cli + " flow --rig " + (dir / "run/rig.yaml") + " " + (dir / "run/run.h5") + " -o " +
+                          (dir / "flow.csv") + " > " + (dir / "out.txt");
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  const std::string csv = test::ReadText(dir / "flow.csv");
+  EXPECT_EQ(csv.rfind("t_s,encoder,surface_speed_mm_s,area_mm2,area_corrected_mm2,flow_mm3_s,screw_rpm,", 0), 0u);
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), static_cast<long>(run.run.profiles.size()) + 1);
+  EXPECT_NE(test::ReadText(dir / "out.txt").find("total volume: "), std::string::npos);
+  run.run.log.reset();
+  WriteRunArchive(dir / "nolog.h5", run.run);
+  const std::string bad = cli + " flow --rig " + (dir / "run/rig.yaml") + " " + (dir / "nolog.h5") + " -o " +
+                          (dir / "x.csv") + " 2> " + (dir / "err.txt");
+  EXPECT_NE(std::system(bad.c_str()), 0);
+  EXPECT_NE(test::ReadText(dir / "err.txt").find("nolog.h5: /log: missing: the flow needs the acquisition log"),
+            std::string::npos)
+      << test::ReadText(dir / "err.txt");
 }
 
 }  // namespace

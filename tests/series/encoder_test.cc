@@ -49,6 +49,15 @@ TEST(Encoder, RepairsMissedReadsAndGlitches) {
   EXPECT_NEAR(track.counts[499], truth[499], 1e-9);
 }
 
+// One revolution is 2 pi and one circumference, pi D.
+TEST(Encoder, CountsToAngleAndSurface) {
+  Rig rig;
+  rig.encoder = {20480, 32, 1};
+  rig.wheel_diameter_mm = 254.762;
+  EXPECT_NEAR(CountsToAngleRad(20480, rig.encoder), 2 * M_PI, 1e-12);
+  EXPECT_NEAR(CountsToMm(20480, rig), M_PI * 254.762, 1e-9);
+}
+
 TEST(Encoder, UnwrapNearAndRawRoundTrip) {
   const EncoderSpec spec{4096, 16, 1};
   EXPECT_DOUBLE_EQ(UnwrapNear(10, spec, 65536.0 * 3 + 5), 65536.0 * 3 + 10);

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <numeric>
 
 #include "libbead/core/error.h"
@@ -208,6 +209,27 @@ TEST(BundledSample, RegeneratesBitForBitFromItsConfig) {
   for (const char* f : {"run.h5", "pins.h5", "rig.yaml", "truth.h5"})
     EXPECT_TRUE(test::ReadText(dir / (std::string("sample/") + f)) == test::ReadText(source + "/testdata/sample/" + f))
         << f << " differs: regenerate with bead simulate testdata/configs/sample.yaml -o testdata/sample";
+}
+
+}  // namespace
+}  // namespace bead::sim
+
+namespace bead::sim {
+namespace {
+
+// Every config in testdata/configs parses and simulates (shortened to 2 s).
+TEST(BundledConfigs, AllParseAndRun) {
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(BEAD_SOURCE_DIR) + "/testdata/configs")) {
+    if (entry.path().extension() != ".yaml") continue;
+    SimConfig c = ReadSimConfig(entry.path().string());
+    c.duration_s = std::min(c.duration_s, 2.0);
+    const SimulatedRun run = Simulate(c);
+    EXPECT_GT(run.run.profiles.size(), 300u) << entry.path();
+    EXPECT_GT(run.truth.total_volume_mm3, 0.0) << entry.path();
+    ++count;
+  }
+  EXPECT_GE(count, 6);
 }
 
 }  // namespace
