@@ -16,17 +16,16 @@ void HeightsWithoutSpikes(const ProfileView& view, const ReferenceLine& line, do
                           ProfileWorkspace& w) {
   const double a = line.intercept_mm, b = line.slope;
   const double inv_norm = 1.0 / std::sqrt(1.0 + b * b);
-  const std::size_t n = w.order.size();
-  w.x.resize(n);
-  w.s.resize(n);
-  w.h.resize(n);
-  w.keep.assign(n, 1);
+  const std::size_t n = w.n_valid;
+  double* xs = w.x.data();
+  double* ss = w.s.data();
+  double* hs = w.h.data();
   for (std::size_t k = 0; k < n; ++k) {
     const double x = view.x_mm[w.order[k]];
     const double z = view.z_mm[w.order[k]];
-    w.x[k] = x;
-    w.h[k] = (z - a - b * x) * inv_norm;
-    w.s[k] = (x + b * (z - a)) * inv_norm;
+    xs[k] = x;
+    hs[k] = (z - a - b * x) * inv_norm;
+    ss[k] = (x + b * (z - a)) * inv_norm;
   }
   // Median of five, so two adjacent spikes are caught too; three at the ends.
   // Only where a neighbour jumps by more than spike_mm: otherwise three of
@@ -34,10 +33,11 @@ void HeightsWithoutSpikes(const ProfileView& view, const ReferenceLine& line, do
   // point, so their median does too, and the point is kept.
   bool any = false;
   for (std::size_t k = 1; k + 1 < n; ++k) {
-    if (std::abs(w.h[k] - w.h[k - 1]) <= spike_mm && std::abs(w.h[k] - w.h[k + 1]) <= spike_mm) continue;
-    const double med = (k >= 2 && k + 2 < n) ? Median5(w.h[k - 2], w.h[k - 1], w.h[k + 1], w.h[k + 2], w.h[k])
-                                             : Median3(w.h[k - 1], w.h[k], w.h[k + 1]);
-    if (std::abs(w.h[k] - med) > spike_mm) {
+    if (std::abs(hs[k] - hs[k - 1]) <= spike_mm && std::abs(hs[k] - hs[k + 1]) <= spike_mm) continue;
+    const double med = (k >= 2 && k + 2 < n) ? Median5(hs[k - 2], hs[k - 1], hs[k + 1], hs[k + 2], hs[k])
+                                             : Median3(hs[k - 1], hs[k], hs[k + 1]);
+    if (std::abs(hs[k] - med) > spike_mm) {
+      if (!any) std::fill(w.keep.begin(), w.keep.begin() + static_cast<long>(n), uint8_t{1});
       w.keep[k] = 0;
       any = true;
     }
@@ -47,15 +47,12 @@ void HeightsWithoutSpikes(const ProfileView& view, const ReferenceLine& line, do
   for (std::size_t k = 0; k < n; ++k) {
     if (!w.keep[k]) continue;
     w.order[m] = w.order[k];
-    w.x[m] = w.x[k];
-    w.s[m] = w.s[k];
-    w.h[m] = w.h[k];
+    xs[m] = xs[k];
+    ss[m] = ss[k];
+    hs[m] = hs[k];
     ++m;
   }
-  w.order.resize(m);
-  w.x.resize(m);
-  w.s.resize(m);
-  w.h.resize(m);
+  w.n_valid = m;
 }
 
 struct Run {
@@ -73,7 +70,7 @@ Run LargestRun(const ProfileWorkspace& w, double threshold, double max_gap, cons
                const ReferenceArea& right) {
   Run best, current;
   bool open = false, outside = false;
-  const std::size_t n = w.h.size();
+  const std::size_t n = w.n_valid;
   auto close = [&]() {
     if (open && outside && current.integral > best.integral) best = current;
     open = false;
@@ -122,7 +119,7 @@ BeadGeometry MeasureBead(const ProfileView& view, const ReferenceLine& line, con
                          const ReferenceArea& right, const BeadOptions& options, ProfileWorkspace& w) {
   BeadGeometry g;
   g.reference = line;
-  if (w.order.size() < static_cast<std::size_t>(std::max(options.min_profile_points, 3))) {
+  if (w.n_valid < static_cast<std::size_t>(std::max(options.min_profile_points, 3))) {
     g.status = ProfileStatus::kTooFewPoints;
     return g;
   }
@@ -143,7 +140,7 @@ BeadGeometry MeasureBead(const ProfileView& view, const ReferenceLine& line, con
   // The bead's feet: from the run outward while the height stays above the
   // noise floor; the point beyond is the bare surface that brackets the edge.
   const double floor_mm = std::max(options.edge_floor_sigmas * line.residual_rms_mm, options.min_edge_floor_mm);
-  const std::size_t n = w.h.size();
+  const std::size_t n = w.n_valid;
   std::size_t lo = run.first, hi = run.last;
   auto joined = [&](std::size_t a, std::size_t b) { return w.s[b] - w.s[a] <= options.max_gap_mm; };
   while (lo > 0 && joined(lo - 1, lo) && w.h[lo - 1] > floor_mm) --lo;

@@ -7,39 +7,41 @@ namespace bead {
 
 void GatherPoints(const ProfileView& view, const ReferenceArea& left, const ReferenceArea& right,
                   ProfileWorkspace& w) {
-  w.left_x.clear();
-  w.left_z.clear();
-  w.right_x.clear();
-  w.right_z.clear();
-  w.order.clear();
+  const std::size_t n = view.x_mm.size();
+  if (n > w.capacity()) w.Reserve(n);
+  int32_t* order = w.order.data();
+  double *lx = w.left_x.data(), *lz = w.left_z.data(), *rx = w.right_x.data(), *rz = w.right_z.data();
+  std::size_t nv = 0, nl = 0, nr = 0;
+  const float* xs = view.x_mm.data();
+  const float* zs = view.z_mm.data();
   bool increasing = true, decreasing = true;
   float last = 0.0f;
-  const std::size_t n = view.x_mm.size();
   for (std::size_t i = 0; i < n; ++i) {
-    const float x = view.x_mm[i];
-    const float z = view.z_mm[i];
-    if (!std::isfinite(x) || !std::isfinite(z)) continue;
-    if (!w.order.empty()) {
-      increasing = increasing && x >= last;
-      decreasing = decreasing && x <= last;
-    }
+    const float x = xs[i];
+    const float z = zs[i];
+    // x - x and z - z are NaN for NaN and infinities: one test for both.
+    if (!((x - x) == 0.0f && (z - z) == 0.0f)) continue;
+    increasing &= nv == 0 || x >= last;
+    decreasing &= nv == 0 || x <= last;
     last = x;
-    w.order.push_back(static_cast<int32_t>(i));
+    order[nv++] = static_cast<int32_t>(i);
     if (left.Contains(x)) {
-      w.left_x.push_back(x);
-      w.left_z.push_back(z);
+      lx[nl] = x;
+      lz[nl++] = z;
     } else if (right.Contains(x)) {
-      w.right_x.push_back(x);
-      w.right_z.push_back(z);
+      rx[nr] = x;
+      rz[nr++] = z;
     }
   }
+  w.n_valid = nv;
+  w.n_left = nl;
+  w.n_right = nr;
   if (increasing) return;
   if (decreasing) {
-    std::reverse(w.order.begin(), w.order.end());
+    std::reverse(order, order + nv);
     return;
   }
-  std::stable_sort(w.order.begin(), w.order.end(),
-                   [&](int32_t a, int32_t b) { return view.x_mm[a] < view.x_mm[b]; });
+  std::stable_sort(order, order + nv, [&](int32_t a, int32_t b) { return xs[a] < xs[b]; });
 }
 
 }  // namespace bead

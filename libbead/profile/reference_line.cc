@@ -17,10 +17,10 @@ std::size_t StrideFor(std::size_t n, int max_samples) {
   return n <= m ? 1 : (n + m - 1) / m;
 }
 
-// Median of every `stride`-th value, via `scratch`.
-double StridedMedian(const std::vector<double>& values, std::size_t stride, std::vector<double>& scratch) {
+// Median of every `stride`-th of the first n values, via `scratch`.
+double StridedMedian(const std::vector<double>& values, std::size_t n, std::size_t stride, std::vector<double>& scratch) {
   scratch.clear();
-  for (std::size_t i = stride / 2; i < values.size(); i += stride) scratch.push_back(values[i]);
+  for (std::size_t i = stride / 2; i < n; i += stride) scratch.push_back(values[i]);
   return MedianInPlace(scratch.data(), scratch.size());
 }
 
@@ -37,9 +37,9 @@ double InlierBand(const AreaPoints& p, std::vector<double>& scratch, double a, d
                   const ReferenceLineOptions& options) {
   const ProfileWorkspace& w = p.w;
   scratch.clear();
-  for (std::size_t i = p.stride_l / 2; i < w.left_x.size(); i += p.stride_l)
+  for (std::size_t i = p.stride_l / 2; i < w.n_left; i += p.stride_l)
     scratch.push_back(std::abs(w.left_z[i] - a - b * w.left_x[i]));
-  for (std::size_t i = p.stride_r / 2; i < w.right_x.size(); i += p.stride_r)
+  for (std::size_t i = p.stride_r / 2; i < w.n_right; i += p.stride_r)
     scratch.push_back(std::abs(w.right_z[i] - a - b * w.right_x[i]));
   const double sigma_v = std::max(kMadToSigma * MedianInPlace(scratch.data(), scratch.size()),
                                   options.min_sigma_mm * std::sqrt(1.0 + b * b));
@@ -49,10 +49,10 @@ double InlierBand(const AreaPoints& p, std::vector<double>& scratch, double a, d
 // Least-squares sums of the inliers, shifted by (x0, z0) for conditioning.
 struct Sums {
   double n = 0, sx = 0, sz = 0, sxx = 0, sxz = 0, rr = 0;
-  int Add(const std::vector<double>& xs, const std::vector<double>& zs, double a, double b, double band,
-          double x0, double z0) {
+  int Add(const std::vector<double>& xs, const std::vector<double>& zs, std::size_t count, double a, double b,
+          double band, double x0, double z0) {
     int used = 0;
-    for (std::size_t i = 0; i < xs.size(); ++i) {
+    for (std::size_t i = 0; i < count; ++i) {
       const double r = zs[i] - a - b * xs[i];
       if (std::abs(r) > band) continue;
       const double dx = xs[i] - x0;
@@ -84,17 +84,17 @@ ReferenceLine FitReferenceLine(const ProfileView& view, const ReferenceArea& lef
 
 ReferenceLine FitGatheredReferenceLine(const ReferenceLineOptions& options, ProfileWorkspace& w) {
   ReferenceLine line;
-  line.points_available = static_cast<int>(w.left_x.size() + w.right_x.size());
+  line.points_available = static_cast<int>(w.n_left + w.n_right);
   const auto min_points = static_cast<std::size_t>(options.min_points_per_area);
-  if (w.left_x.size() < min_points || w.right_x.size() < min_points) return line;
+  if (w.n_left < min_points || w.n_right < min_points) return line;
 
   // Robust start: the line through each area's (median x, median z).
-  const AreaPoints points{w, StrideFor(w.left_x.size(), options.max_median_samples),
-                          StrideFor(w.right_x.size(), options.max_median_samples)};
-  const double xl = StridedMedian(w.left_x, points.stride_l, w.scratch);
-  const double zl = StridedMedian(w.left_z, points.stride_l, w.scratch);
-  const double xr = StridedMedian(w.right_x, points.stride_r, w.scratch);
-  const double zr = StridedMedian(w.right_z, points.stride_r, w.scratch);
+  const AreaPoints points{w, StrideFor(w.n_left, options.max_median_samples),
+                          StrideFor(w.n_right, options.max_median_samples)};
+  const double xl = StridedMedian(w.left_x, w.n_left, points.stride_l, w.scratch);
+  const double zl = StridedMedian(w.left_z, w.n_left, points.stride_l, w.scratch);
+  const double xr = StridedMedian(w.right_x, w.n_right, points.stride_r, w.scratch);
+  const double zr = StridedMedian(w.right_z, w.n_right, points.stride_r, w.scratch);
   double b = (zr - zl) / (xr - xl);
   double a = zl - b * xl;
 
@@ -102,8 +102,8 @@ ReferenceLine FitGatheredReferenceLine(const ReferenceLineOptions& options, Prof
   for (int iter = 0; iter <= options.iterations; ++iter) {
     const double band = InlierBand(points, w.scratch, a, b, options);
     Sums sums;
-    const int used_l = sums.Add(w.left_x, w.left_z, a, b, band, xl, zl);
-    const int used_r = sums.Add(w.right_x, w.right_z, a, b, band, xl, zl);
+    const int used_l = sums.Add(w.left_x, w.left_z, w.n_left, a, b, band, xl, zl);
+    const int used_r = sums.Add(w.right_x, w.right_z, w.n_right, a, b, band, xl, zl);
     if (used_l < options.min_points_per_area || used_r < options.min_points_per_area) return line;
     if (iter == options.iterations) {
       line.ok = true;

@@ -3,9 +3,10 @@
 namespace bead {
 
 void ProfileWorkspace::Reserve(std::size_t points) {
-  for (auto* v : {&left_x, &left_z, &right_x, &right_z, &scratch, &x, &s, &h}) v->reserve(points);
-  order.reserve(points);
-  keep.reserve(points);
+  for (auto* v : {&left_x, &left_z, &right_x, &right_z, &x, &s, &h}) v->resize(points);
+  scratch.reserve(points);
+  order.resize(points);
+  keep.resize(points);
 }
 
 }  // namespace bead
