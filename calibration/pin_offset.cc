@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "calibration/student_t.h"
+#include "libbead/profile/median.h"
 #include "libbead/series/encoder.h"
 
 namespace bead::calibration {
@@ -27,14 +28,6 @@ struct ChordResidual {
   }
   double c, w, k;
 };
-
-double Median(std::vector<double> v) {
-  const std::size_t n = v.size();
-  std::nth_element(v.begin(), v.begin() + static_cast<long>(n / 2), v.end());
-  const double hi = v[n / 2];
-  if (n % 2) return hi;
-  return 0.5 * (hi + *std::max_element(v.begin(), v.begin() + static_cast<long>(n / 2)));
-}
 
 // Counts travelled since the start read, for each profile: the first step
 // is taken modulo the counter forward (the wheel turns toward the laser),
@@ -158,10 +151,12 @@ OffsetCalibration CalibrateOffset(const Rig& rig, const PinScanArchive& pins, co
     cal.reason = "need at least 2 scans with a fitted pin, have " + std::to_string(centers.size());
     return cal;
   }
-  const double med = Median(centers);
+  std::vector<double> sorted = centers;
+  const double med = MedianInPlace(sorted.data(), sorted.size());
   std::vector<double> dev;
   for (double x : centers) dev.push_back(std::abs(x - med));
-  const double robust_sigma = std::max(1.4826 * Median(dev), 3.0 * Median(ses));
+  const double robust_sigma =
+      std::max(1.4826 * MedianInPlace(dev.data(), dev.size()), 3.0 * MedianInPlace(ses.data(), ses.size()));
   double sum = 0.0;
   std::vector<double> kept;
   for (PinScanFit& s : cal.scans) {

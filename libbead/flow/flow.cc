@@ -7,6 +7,7 @@
 #include "libbead/flow/extrusion_time.h"
 #include "libbead/series/encoder.h"
 #include "libbead/series/hampel.h"
+#include "libbead/series/interpolate.h"
 #include "libbead/series/savgol.h"
 
 namespace bead {
@@ -21,28 +22,19 @@ double MedianStep(const std::vector<double>& t) {
   return d[d.size() / 2];
 }
 
-int OddAtLeast(double samples, int minimum) {
-  int w = std::max(minimum, static_cast<int>(std::lround(samples)));
+}  // namespace
+
+int SpeedWindowSamples(const FlowOptions& o, double dt) {
+  int w = std::max(o.speed_order + 2, static_cast<int>(std::lround(o.speed_window_s / dt)));
   return w % 2 ? w : w + 1;
 }
-
-double Interp(const std::vector<double>& t, const std::vector<double>& y, double x) {
-  if (std::isnan(x) || t.empty()) return kNaN;
-  if (x <= t.front()) return y.front();
-  if (x >= t.back()) return y.back();
-  const std::size_t j = static_cast<std::size_t>(std::upper_bound(t.begin(), t.end(), x) - t.begin());
-  const double f = (x - t[j - 1]) / (t[j] - t[j - 1]);
-  return y[j - 1] + f * (y[j] - y[j - 1]);
-}
-
-}  // namespace
 
 std::vector<double> SurfaceSpeed(const Rig& rig, const std::vector<double>& t, const std::vector<double>& counts,
                                  const FlowOptions& o, int* outliers) {
   if (t.size() < 3) throw Error("surface speed: the log needs at least 3 samples");
   const double dt = MedianStep(t);
   SavgolOptions sg;
-  sg.window = std::min(OddAtLeast(o.speed_window_s / dt, o.speed_order + 2),
+  sg.window = std::min(SpeedWindowSamples(o, dt),
                        static_cast<int>(t.size()) % 2 ? static_cast<int>(t.size()) : static_cast<int>(t.size()) - 1);
   sg.order = std::min(o.speed_order, sg.window - 1);
   sg.deriv = 1;
@@ -96,11 +88,11 @@ FlowResult ComputeFlow(const Rig& rig, const ProfileBlock& profiles, const std::
     const double target = p_k - rig.offset_counts;
     s.t_s = finder.Find(t_k, target);
     s.encoder = RawFromCounts(target, rig.encoder);
-    s.surface_speed_mm_s = Interp(log.t_s, speed, s.t_s);
+    s.surface_speed_mm_s = InterpolateLinear(log.t_s.data(), speed.data(), speed.size(), s.t_s);
     s.area_mm2 = a_f[k];
     s.area_corrected_mm2 = c_f[k];
     s.flow_mm3_s = s.surface_speed_mm_s * s.area_corrected_mm2;
-    s.screw_rpm = Interp(log.t_s, log.screw_rpm, s.t_s);
+    s.screw_rpm = InterpolateLinear(log.t_s.data(), log.screw_rpm.data(), log.size(), s.t_s);
     s.valid = std::isfinite(s.t_s) && std::isfinite(s.flow_mm3_s);
   }
   // Volume: trapezoids over extrusion time between valid samples, gaps bridged.

@@ -57,6 +57,9 @@ FlowResult ComputeFlow(const Rig& rig, const ProfileBlock& profiles, const std::
                        const AcquisitionLog& log, const FlowOptions& options = {},
                        const std::vector<double>& corrected = {});
 
+// The Savitzky-Golay window of the speed, in samples of spacing dt (odd).
+int SpeedWindowSamples(const FlowOptions& options, double dt);
+
 // Surface speed (mm/s) at each log sample.
 std::vector<double> SurfaceSpeed(const Rig& rig, const std::vector<double>& t_s, const std::vector<double>& counts,
                                  const FlowOptions& options, int* outliers = nullptr);

@@ -5,6 +5,7 @@
 
 #include "libbead/flow/extrusion_time.h"
 #include "libbead/series/hampel.h"
+#include "libbead/series/interpolate.h"
 #include "libbead/series/savgol.h"
 
 namespace bead {
@@ -12,24 +13,11 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-int OddAtLeast(double samples, int minimum) {
-  int w = std::max(minimum, static_cast<int>(std::lround(samples)));
-  return w % 2 ? w : w + 1;
-}
-
-double Interp(const std::vector<double>& t, const std::vector<double>& y, std::size_t n, double x) {
-  if (std::isnan(x) || n == 0) return kNaN;
-  if (x <= t.front()) return y.front();
-  if (x >= t[n - 1]) return y[n - 1];
-  const std::size_t j = static_cast<std::size_t>(std::upper_bound(t.begin(), t.begin() + static_cast<long>(n), x) - t.begin());
-  return y[j - 1] + (x - t[j - 1]) / (t[j] - t[j - 1]) * (y[j] - y[j - 1]);
-}
-
 }  // namespace
 
 StreamingFlow::StreamingFlow(const Rig& rig, const FlowOptions& options, double log_rate_hz)
     : rig_(rig), options_(options), dt_(1.0 / log_rate_hz), unwrapper_(rig.encoder) {
-  const int window = OddAtLeast(options.speed_window_s / dt_, options.speed_order + 2);
+  const int window = SpeedWindowSamples(options, dt_);
   sg_half_ = window / 2;
   sg_weights_ = SavgolWeights(window, std::min(options.speed_order, window - 1), 1, dt_, sg_half_);
   hampel_half_ = std::max(1, static_cast<int>(std::lround(options.speed_hampel_s / dt_)));
@@ -54,20 +42,13 @@ void StreamingFlow::PushProfile(double t_s, int64_t raw, const BeadGeometry& g, 
 
 void StreamingFlow::ProcessLog() {
   const std::size_t n = t_.size();
-  // Missed reads, one sample late (the batch's rule; glitches at the fixed threshold).
+  // Missed reads and glitches, one sample late (the batch's rule at the fixed threshold).
   while (repaired_upto_ + 1 < n) {
     const std::size_t i = repaired_upto_;
-    if (i >= 1) {
-      const double before = counts_[i] - counts_[i - 1], after = counts_[i + 1] - counts_[i];
-      const double f = (t_[i] - t_[i - 1]) / (t_[i + 1] - t_[i - 1]);
-      const double predicted = counts_[i - 1] + f * (counts_[i + 1] - counts_[i - 1]);
-      const double prev_step = i >= 2 ? counts_[i - 1] - counts_[i - 2] : after;
-      if (raw_[i] == raw_[i - 1] && after != 0.0 && prev_step != 0.0 && (prev_step > 0) == (after > 0))
-        counts_[i] = predicted;
-      else if (std::abs(counts_[i] - predicted) > EncoderOptions{}.min_glitch_counts &&
-               std::abs(before + after) < 0.5 * std::abs(before))
-        counts_[i] = predicted;
-    }
+    double value = 0.0;
+    if (i >= 1 && RepairEncoderSample(counts_.data(), raw_.data(), t_.data(), i, EncoderOptions{}.min_glitch_counts,
+                                      &value) != EncoderRepair::kNone)
+      counts_[i] = value;
     ++repaired_upto_;
   }
   // Speed by the Savitzky-Golay derivative once its window is final.
@@ -123,12 +104,12 @@ void StreamingFlow::ProcessProfiles() {
     s.profile = p.index;
     s.t_s = t_e;
     s.encoder = RawFromCounts(target, rig_.encoder);
-    s.surface_speed_mm_s = Interp(t_, speed_, speed_upto_, t_e);
+    s.surface_speed_mm_s = InterpolateLinear(t_.data(), speed_.data(), speed_upto_, t_e);
     s.area_mm2 = HampelAt(area_window_.data(), have, j, options_.area_hampel_half, options_.hampel_nsigma, &out, scratch);
     s.area_corrected_mm2 =
         HampelAt(area_c_window_.data(), have, j, options_.area_hampel_half, options_.hampel_nsigma, &out, scratch);
     s.flow_mm3_s = s.surface_speed_mm_s * s.area_corrected_mm2;
-    s.screw_rpm = Interp(t_, rpm_, repaired_upto_, t_e);
+    s.screw_rpm = InterpolateLinear(t_.data(), rpm_.data(), repaired_upto_, t_e);
     s.valid = std::isfinite(s.t_s) && std::isfinite(s.flow_mm3_s);
     ready_.push_back(s);
     profiles_.pop_front();

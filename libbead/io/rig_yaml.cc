@@ -1,11 +1,10 @@
 #include "libbead/io/rig_yaml.h"
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include "libbead/core/error.h"
 #include "libbead/io/atomic_file.h"
+#include "libbead/io/yaml_text.h"
 
 namespace bead {
 namespace {
@@ -113,22 +112,12 @@ class RigParser {
 
 RigFile ParseRig(const std::string& text, const std::string& name) {
   RigFile out;
-  try {
-    out.document = YAML::Load(text);
-  } catch (const YAML::ParserException& e) {
-    throw Error(Located(name, "line " + std::to_string(e.mark.line + 1), "not valid YAML: " + e.msg));
-  }
+  out.document = ParseYamlText(text, name);
   out.rig = RigParser(name).Parse(out.document);
   return out;
 }
 
-RigFile ReadRigFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(Located(path, "", "cannot open rig file"));
-  std::stringstream text;
-  text << in.rdbuf();
-  return ParseRig(text.str(), path);
-}
+RigFile ReadRigFile(const std::string& path) { return ParseRig(ReadTextFile(path, "rig file"), path); }
 
 RigFile MakeRigFile(const Rig& rig) {
   RigFile out;

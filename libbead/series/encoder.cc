@@ -1,5 +1,7 @@
 #include "libbead/series/encoder.h"
 
+#include "libbead/profile/median.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -18,13 +20,22 @@ int64_t Step(int64_t from, int64_t to, int bits) {
   return d;
 }
 
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
-  return v[v.size() / 2];
-}
-
 }  // namespace
+
+EncoderRepair RepairEncoderSample(const double* c, const int64_t* raw, const double* t, std::size_t i,
+                                  double glitch_counts, double* repaired) {
+  const double before = c[i] - c[i - 1], after = c[i + 1] - c[i];
+  const double f = (t[i] - t[i - 1]) / (t[i + 1] - t[i - 1]);
+  *repaired = c[i - 1] + f * (c[i + 1] - c[i - 1]);
+  // A repeated read between two reads that move the same way.
+  const double prev_step = i >= 2 ? c[i - 1] - c[i - 2] : after;
+  if (raw[i] == raw[i - 1] && after != 0.0 && prev_step != 0.0 && (prev_step > 0) == (after > 0))
+    return EncoderRepair::kMissedRead;
+  // A glitch: a step out (+g) and straight back (-g).
+  if (std::abs(c[i] - *repaired) > glitch_counts && std::abs(before + after) < 0.5 * std::abs(before))
+    return EncoderRepair::kGlitch;
+  return EncoderRepair::kNone;
+}
 
 EncoderTrack UnwrapEncoder(const std::vector<int64_t>& raw, const EncoderSpec& spec, const std::vector<double>& t_s,
                            const EncoderOptions& options) {
@@ -48,27 +59,21 @@ EncoderTrack UnwrapEncoder(const std::vector<int64_t>& raw, const EncoderSpec& s
   // Glitch threshold from the second differences' robust spread.
   std::vector<double> second;
   for (std::size_t i = 1; i + 1 < n; ++i) second.push_back(std::abs(track.counts[i] - predicted(i)));
-  const double sigma = 1.4826 * Median(second);
+  const double sigma = second.empty() ? 0.0 : 1.4826 * MedianInPlace(second.data(), second.size());
   const double glitch = std::max(options.min_glitch_counts, 8.0 * sigma);
+  std::vector<double> even;
+  if (t_s.size() != n) {
+    even.resize(n);
+    for (std::size_t i = 0; i < n; ++i) even[i] = static_cast<double>(i);
+  }
+  const double* t = t_s.size() == n ? t_s.data() : even.data();
   for (std::size_t i = 1; i + 1 < n; ++i) {
-    const double before = track.counts[i] - track.counts[i - 1];
-    const double after = track.counts[i + 1] - track.counts[i];
-    // A repeated read between two reads that move the same way.
-    if (raw[i] == raw[i - 1] && after != 0.0) {
-      const double prev_step = i >= 2 ? track.counts[i - 1] - track.counts[i - 2] : after;
-      if (prev_step != 0.0 && (prev_step > 0) == (after > 0)) {
-        track.counts[i] = predicted(i);
-        track.repaired[i] = 1;
-        ++track.missed_reads;
-        continue;
-      }
-    }
-    // A glitch: a step out (+g) and straight back (-g).
-    if (std::abs(track.counts[i] - predicted(i)) > glitch && std::abs(before + after) < 0.5 * std::abs(before)) {
-      track.counts[i] = predicted(i);
-      track.repaired[i] = 1;
-      ++track.glitches;
-    }
+    double value = 0.0;
+    const EncoderRepair kind = RepairEncoderSample(track.counts.data(), raw.data(), t, i, glitch, &value);
+    if (kind == EncoderRepair::kNone) continue;
+    track.counts[i] = value;
+    track.repaired[i] = 1;
+    ++(kind == EncoderRepair::kMissedRead ? track.missed_reads : track.glitches);
   }
   return track;
 }

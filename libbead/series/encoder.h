@@ -12,6 +12,7 @@
 //    is replaced the same way.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -29,6 +30,14 @@ struct EncoderTrack {
 struct EncoderOptions {
   double min_glitch_counts = 50.0;
 };
+
+// The repair rule for sample i (0 < i < n - 1) of unwrapped `counts`: a
+// missed read or a glitch returns kMissedRead / kGlitch and sets
+// `*repaired` to the value interpolated in time; otherwise kNone. Batch and
+// streaming paths both use it.
+enum class EncoderRepair { kNone, kMissedRead, kGlitch };
+EncoderRepair RepairEncoderSample(const double* counts, const int64_t* raw, const double* t_s, std::size_t i,
+                                  double glitch_counts, double* repaired);
 
 // `t_s` (same length) places the interpolation in time; empty: even steps.
 EncoderTrack UnwrapEncoder(const std::vector<int64_t>& raw, const EncoderSpec& spec, const std::vector<double>& t_s = {},

@@ -1,20 +1,11 @@
 #include "libbead/series/hampel.h"
 
+#include "libbead/profile/median.h"
+
 #include <algorithm>
 #include <cmath>
 
 namespace bead {
-namespace {
-
-double Median(std::vector<double>& v) {
-  const std::size_t n = v.size();
-  std::nth_element(v.begin(), v.begin() + static_cast<long>(n / 2), v.end());
-  const double hi = v[n / 2];
-  if (n % 2) return hi;
-  return 0.5 * (hi + *std::max_element(v.begin(), v.begin() + static_cast<long>(n / 2)));
-}
-
-}  // namespace
 
 double HampelAt(const double* x, std::size_t n, std::size_t i, int k, double nsigma, bool* outlier,
                 std::vector<double>& window) {
@@ -27,9 +18,9 @@ double HampelAt(const double* x, std::size_t n, std::size_t i, int k, double nsi
   window.clear();
   for (std::size_t j = lo; j <= hi; ++j)
     if (!std::isnan(x[j])) window.push_back(x[j]);
-  const double m = Median(window);
+  const double m = MedianInPlace(window.data(), window.size());
   for (double& v : window) v = std::abs(v - m);
-  const double sigma = kMadScale * Median(window);
+  const double sigma = kMadScale * MedianInPlace(window.data(), window.size());
   if (std::abs(x[i] - m) > nsigma * sigma) {
     *outlier = true;
     return m;

@@ -16,11 +16,11 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
-#include <fstream>
 #include <set>
 #include <sstream>
 
 #include "libbead/core/error.h"
+#include "libbead/io/yaml_text.h"
 #include "libbead/sim/sim_config.h"
 
 namespace bead::sim {
@@ -263,12 +263,7 @@ void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
 }  // namespace
 
 SimConfig ParseSimConfig(const std::string& text, const std::string& name) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::ParserException& e) {
-    throw Error(Located(name, "line " + std::to_string(e.mark.line + 1), "not valid YAML: " + e.msg));
-  }
+  const YAML::Node root = ParseYamlText(text, name);
   SimConfig c;
   if (root.IsNull()) return c;
   Parse(root, Reader(name), c);
@@ -276,11 +271,7 @@ SimConfig ParseSimConfig(const std::string& text, const std::string& name) {
 }
 
 SimConfig ReadSimConfig(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(Located(path, "", "cannot open simulation config"));
-  std::stringstream text;
-  text << in.rdbuf();
-  return ParseSimConfig(text.str(), path);
+  return ParseSimConfig(ReadTextFile(path, "simulation config"), path);
 }
 
 }  // namespace bead::sim
