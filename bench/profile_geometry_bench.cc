@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "libbead/occlusion/occlusion_pool.h"
 #include "libbead/profile/profile_processor.h"
 #include "libbead/sim/sensor_model.h"
 
@@ -70,6 +71,52 @@ void BM_ProfileGeometry(benchmark::State& state) {
 }
 BENCHMARK(BM_ProfileGeometry)->Arg(640)->Arg(2048);
 
+// The same geometry plus the occlusion correction with a pooled shape
+// (issue 5: at most 2x the uncorrected geometry). The pool is fitted once,
+// outside the timing; BM_PoolOcclusion times that one-off fit.
+const bead::occlusion::PooledOcclusion& Pool(const Profiles& p) {
+  static bead::occlusion::PooledOcclusion pool;
+  if (pool.ok) return pool;
+  bead::ProfileProcessor processor(kLeft, kRight, {}, p.points);
+  std::vector<bead::BeadGeometry> geometry;
+  auto view = [&](std::size_t k) {
+    return bead::ProfileView{p.x, std::span<const float>(p.z.data() + k * p.points, p.points), 0.0, 0};
+  };
+  for (std::size_t k = 0; k < kProfiles; ++k) geometry.push_back(processor.Process(view(k)));
+  pool = bead::occlusion::PoolOcclusion(kProfiles, view, geometry, {});
+  return pool;
+}
+
+void BM_ProfileGeometryPooledCorrection(benchmark::State& state) {
+  const Profiles& p = MakeProfiles(static_cast<int>(state.range(0)));
+  const auto& pool = Pool(p);
+  bead::ProfileProcessor processor(kLeft, kRight, {}, p.points);
+  std::size_t k = 0;
+  double sum = 0.0;
+  for (auto _ : state) {
+    const bead::ProfileView view{p.x, std::span<const float>(p.z.data() + k * p.points, p.points), 0.0, 0};
+    const bead::BeadGeometry& g = processor.Process(view);
+    sum += bead::occlusion::ApplyPooled(pool, g).area_mm2;
+    k = (k + 1) % kProfiles;
+  }
+  benchmark::DoNotOptimize(sum);
+  state.SetItemsProcessed(state.iterations());
+  state.counters["profiles_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_ProfileGeometryPooledCorrection)->Arg(640);
+
+void BM_PoolOcclusion(benchmark::State& state) {
+  const Profiles& p = MakeProfiles(640);
+  bead::ProfileProcessor processor(kLeft, kRight, {}, p.points);
+  std::vector<bead::BeadGeometry> geometry;
+  auto view = [&](std::size_t k) {
+    return bead::ProfileView{p.x, std::span<const float>(p.z.data() + k * p.points, p.points), 0.0, 0};
+  };
+  for (std::size_t k = 0; k < kProfiles; ++k) geometry.push_back(processor.Process(view(k)));
+  for (auto _ : state) benchmark::DoNotOptimize(bead::occlusion::PoolOcclusion(kProfiles, view, geometry, {}).bias_fraction);
+}
+BENCHMARK(BM_PoolOcclusion)->Unit(benchmark::kMillisecond)->Iterations(3);
+
 // Runs the NumPy baseline on the same profiles; returns its profiles/s.
 double NumpyProfilesPerSecond(int points) {
   const Profiles& p = MakeProfiles(points);
@@ -118,6 +165,11 @@ int main(int argc, char** argv) {
     std::printf("%-8d %16.0f %16.0f %9.1fx\n", points, it->second, numpy, it->second / numpy);
   }
   std::printf("Target: >= 1e6 profiles/s at 640 points on one core.\n");
+  const auto plain = reporter.rates.find("BM_ProfileGeometry/640");
+  const auto corrected = reporter.rates.find("BM_ProfileGeometryPooledCorrection/640");
+  if (plain != reporter.rates.end() && corrected != reporter.rates.end())
+    std::printf("\nOcclusion, pooled shape: %.0f profiles/s against %.0f uncorrected: cost ratio %.2fx (target <= 2x).\n",
+                corrected->second, plain->second, plain->second / corrected->second);
   benchmark::Shutdown();
   return 0;
 }

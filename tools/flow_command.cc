@@ -8,6 +8,7 @@
 #include "libbead/profile/measure_block.h"
 #include "tools/commands.h"
 #include "tools/load_profiles.h"
+#include "tools/occlusion_step.h"
 
 namespace bead::tools {
 
@@ -16,6 +17,7 @@ Run AddFlow(CLI::App& app) {
     std::string rig, run, output;
     FlowOptions flow;
     ProfileOptions profile;
+    std::string occlusion = "pooled";
   };
   auto args = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand("flow", "Volumetric flow Q = v * A in extrusion time (thesis eq. 20)");
@@ -34,6 +36,7 @@ Run AddFlow(CLI::App& app) {
       ->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_option("--area-smooth", args->flow.area_smooth_window, "Odd Savitzky-Golay window on the area, profiles (0: none)")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
+  AddOcclusionOption(cmd, args->occlusion);
   return [args]() {
     if (args->rig.empty() && args->run.empty()) {
       const std::string sample = std::string(BEAD_SOURCE_DIR) + "/testdata/sample";
@@ -52,14 +55,16 @@ Run AddFlow(CLI::App& app) {
     const std::vector<BeadGeometry> geometry = MeasureProfiles(
         block.size(), [&](std::size_t i) { return block.view(i); }, rig.reference_left, rig.reference_right,
         args->profile);
-    const FlowResult flow = ComputeFlow(rig, block, geometry, *run.log, args->flow);
+    const OcclusionColumns occ = RunOcclusion(args->occlusion, rig, block, geometry);
+    const FlowResult flow = ComputeFlow(rig, block, geometry, *run.log, args->flow, occ.corrected);
     WriteFlowCsv(args->output, flow);
     std::size_t valid = 0;
     for (const auto& s : flow.samples) valid += s.valid;
     std::printf("%s: %zu profiles, %zu with flow; %d area outliers, %d speed outliers, %d encoder reads repaired\n",
                 args->run.c_str(), flow.samples.size(), valid, flow.area_outliers, flow.speed_outliers,
                 flow.encoder_repairs);
-    std::printf("total volume: %.1f mm^3 (uncorrected area: no occlusion model yet)\n", flow.total_volume_mm3);
+    std::printf("total volume: %.1f mm^3 (%s area)\n", flow.total_volume_mm3,
+                args->occlusion == "none" ? "measured" : "occlusion-corrected");
     std::printf("wrote %s\n", args->output.c_str());
     return 0;
   };

@@ -7,6 +7,7 @@
 #include "libbead/profile/measure_block.h"
 #include "tools/commands.h"
 #include "tools/load_profiles.h"
+#include "tools/occlusion_step.h"
 
 namespace bead::tools {
 
@@ -15,6 +16,7 @@ Run AddMeasure(CLI::App& app) {
     std::string rig, run, output;
     ProfileOptions options;
     unsigned threads = 0;
+    std::string occlusion = "pooled";
   };
   auto args = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand("measure", "Bead area, width and height of every profile of a run");
@@ -23,7 +25,10 @@ Run AddMeasure(CLI::App& app) {
       "     as shared/spec/data-formats.md defines them.\n"
       "Out: geometry CSV, one row per profile in order: profile,t_s,encoder,area_mm2,\n"
       "     width_mm,height_mm,area_corrected_mm2,valid, then center_x_mm, reference_rms_mm,\n"
-      "     reference_points, threshold_mm, dropped_points, status (why a row is invalid).\n"
+      "     reference_points, threshold_mm, dropped_points, status (why a row is invalid),\n"
+      "     area_sigma_mm2, occlusion_bias_mm2, area_corrected_sigma_mm2.\n"
+      "     area_corrected_mm2 = area_mm2 - occlusion_bias_mm2: what the sensor could not see\n"
+      "     under the bead's widest point and in the fan's shadow (see --occlusion).\n"
       "Example:\n"
       "  bead measure --rig testdata/sample/rig.yaml testdata/sample/run.h5 -o geometry.csv");
   cmd->add_option("--rig", args->rig, "Rig file (YAML)")->required()->check(CLI::ExistingFile);
@@ -40,6 +45,7 @@ Run AddMeasure(CLI::App& app) {
   cmd->add_option("--max-gap-mm", o.bead.max_gap_mm, "Longest dropout bridged inside a bead, mm")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
   cmd->add_option("--threads", args->threads, "Worker threads (0: all cores)")->capture_default_str();
+  AddOcclusionOption(cmd, args->occlusion);
 
   return [args]() {
     const Rig rig = ReadRig(args->rig);
@@ -59,11 +65,13 @@ Run AddMeasure(CLI::App& app) {
     if (tty) std::fprintf(stderr, "\n");
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
+    const OcclusionColumns occ = RunOcclusion(args->occlusion, rig, block, geometry);
     std::vector<GeometryRow> rows(geometry.size());
     std::size_t valid = 0;
     std::vector<std::size_t> by_status(8, 0);
     for (std::size_t i = 0; i < geometry.size(); ++i) {
-      rows[i] = GeometryRow{static_cast<int64_t>(i), block.t_s[i], block.encoder[i], geometry[i]};
+      rows[i] = GeometryRow{static_cast<int64_t>(i), block.t_s[i],        block.encoder[i],
+                            geometry[i],              occ.corrected[i], occ.bias[i], occ.sigma[i]};
       valid += geometry[i].valid();
       ++by_status[static_cast<std::size_t>(geometry[i].status)];
     }

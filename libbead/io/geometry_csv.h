@@ -1,9 +1,10 @@
 // Geometry results CSV of shared/spec/data-formats.md: the spec columns
 // profile,t_s,encoder,area_mm2,width_mm,height_mm,area_corrected_mm2,valid
 // first, then ours: center_x_mm, reference_rms_mm, reference_points,
-// threshold_mm, dropped_points, status. Values of an invalid profile are
-// empty; its row stays, with valid=0 and the status saying why.
-// area_corrected_mm2 is empty until an occlusion model provides it.
+// threshold_mm, dropped_points, status, area_sigma_mm2, occlusion_bias_mm2,
+// area_corrected_sigma_mm2. Values of an invalid profile are empty; its
+// row stays, with valid=0 and the status saying why. The occlusion columns
+// are empty when no occlusion model was run.
 #pragma once
 
 #include <cstdint>
@@ -20,6 +21,8 @@ struct GeometryRow {
   int64_t encoder = 0;
   BeadGeometry geometry;
   double area_corrected_mm2 = BeadGeometry::kNaN;
+  double occlusion_bias_mm2 = BeadGeometry::kNaN;
+  double area_corrected_sigma_mm2 = BeadGeometry::kNaN;
 };
 
 void WriteGeometryCsv(const std::string& path, const std::vector<GeometryRow>& rows);

@@ -158,11 +158,13 @@ BeadGeometry MeasureBead(const ProfileView& view, const ReferenceLine& line, con
     }
   }
 
-  double area = 0.0, moment = 0.0, height = -1.0;
+  double area = 0.0, moment = 0.0, height = -1.0, ds2 = 0.0;
   for (std::size_t k = lo; k < hi; ++k) {
-    const double piece = 0.5 * (w.h[k] + w.h[k + 1]) * (w.s[k + 1] - w.s[k]);
+    const double ds = w.s[k + 1] - w.s[k];
+    const double piece = 0.5 * (w.h[k] + w.h[k + 1]) * ds;
     area += piece;
     moment += piece * 0.5 * (w.s[k] + w.s[k + 1]);
+    ds2 += ds * ds;
   }
   for (std::size_t k = run.first; k <= run.last; ++k)
     height = std::max(height, Median3(w.h[k - 1], w.h[k], w.h[k + 1]));
@@ -171,6 +173,11 @@ BeadGeometry MeasureBead(const ProfileView& view, const ReferenceLine& line, con
   const double s_left = EdgeCrossing(w.s[lo], w.h[lo], w.s[lo + 1], w.h[lo + 1]);
   const double s_right = EdgeCrossing(w.s[hi], w.h[hi], w.s[hi - 1], w.h[hi - 1]);
   g.area_mm2 = area;
+  const double rms = line.residual_rms_mm;
+  const double edge_l = w.h[lo + 1] * (w.s[lo + 1] - w.s[lo]), edge_r = w.h[hi - 1] * (w.s[hi] - w.s[hi - 1]);
+  const double width = w.s[hi] - w.s[lo];
+  g.area_sigma_mm2 = std::sqrt((edge_l * edge_l + edge_r * edge_r) / 12.0 + rms * rms * ds2 +
+                               rms * rms * width * width / std::max(line.points_used, 1));
   g.width_mm = s_right - s_left;
   g.height_mm = height;
   // A point at along-line position s lies at x = s / sqrt(1 + slope^2).

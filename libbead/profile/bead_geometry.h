@@ -77,6 +77,11 @@ struct BeadGeometry {
   double center_x_mm = kNaN;
   double left_edge_x_mm = kNaN;
   double right_edge_x_mm = kNaN;
+  // Standard uncertainty of area_mm2 from sampling and noise: each edge
+  // lies anywhere within its bracketing segment (h_edge * ds / sqrt(12)),
+  // each height carries the reference RMS (sum of ds^2), and so does the
+  // line's offset over the width (rms * width / sqrt(points used)).
+  double area_sigma_mm2 = kNaN;
   double threshold_mm = kNaN;  // detection threshold used
   int bead_points = 0;         // valid points above threshold in the bead
   int dropped_points = 0;      // NaN or spike points between the bead's edges

@@ -32,14 +32,16 @@ Outline RoundedRectangle(double w, double h, double rb, double rt, int vertices)
   return o;
 }
 
-Outline CutSuperellipse(double a, double b, double c, double n, int vertices) {
-  // Parametric: x = a sgn(cos t) |cos t|^(2/n), y = c + b sgn(sin t) |sin t|^(2/n).
-  auto pw = [n](double v) { return std::copysign(std::pow(std::abs(v), 2.0 / n), v); };
-  const double t0 = -std::asin(std::pow(c / b, n / 2.0));  // where y = 0, on the right
+Outline CutSuperellipse(double a, double b, double c, double n_top, double n_bottom, int vertices) {
+  // Parametric: x = a sgn(cos t) |cos t|^(2/n), y = c + b sgn(sin t) |sin t|^(2/n),
+  // with n = n_top above the widest point (sin t > 0) and n_bottom below.
+  auto pw = [](double v, double n) { return std::copysign(std::pow(std::abs(v), 2.0 / n), v); };
+  const double t0 = -std::asin(std::pow(c / b, n_bottom / 2.0));  // where y = 0, on the right
   Outline o;
   for (int i = 0; i < vertices; ++i) {
     const double t = (std::numbers::pi - t0) + (2 * t0 - std::numbers::pi) * i / (vertices - 1);
-    o.emplace_back(a * pw(std::cos(t)), std::max(0.0, c + b * pw(std::sin(t))));
+    const double n = std::sin(t) >= 0 ? n_top : n_bottom;
+    o.emplace_back(a * pw(std::cos(t), n), std::max(0.0, c + b * pw(std::sin(t), n)));
   }
   o.front().y() = 0.0;
   o.back().y() = 0.0;
@@ -54,7 +56,8 @@ Outline UnitBeadOutline(const BeadConfig& c) {
       return RoundedRectangle(c.aspect, 1.0, c.bottom_radius_frac, c.top_radius_frac, c.outline_vertices);
     case BeadConfig::Shape::kSuperellipse: {
       const double b = 1.0 / (1.0 + c.center_lift_frac);
-      return CutSuperellipse(c.aspect / 2, b, c.center_lift_frac * b, c.exponent, c.outline_vertices);
+      return CutSuperellipse(c.aspect / 2, b, c.center_lift_frac * b, c.exponent,
+                             c.bottom_exponent > 0 ? c.bottom_exponent : c.exponent, c.outline_vertices);
     }
     case BeadConfig::Shape::kParabola: return ParabolaOutline(c.aspect, 1.0, 0.0, c.outline_vertices);
   }

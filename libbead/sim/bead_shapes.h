@@ -7,7 +7,9 @@
 //    per corner); top corners of radius rt.
 //    area = W H - (1 - pi/4) (2 rb^2 + 2 rt^2)
 //  - superellipse |x/a|^n + |(y - c)/b|^n <= 1 cut by the surface y = 0,
-//    centre lifted c = center_lift_frac b: contact narrower than the max width.
+//    centre lifted c = center_lift_frac b: contact narrower than the max width;
+//    with bottom_exponent set, the part below the widest point has its own
+//    exponent (the hidden half is then not the mirror of the seen half).
 //  - parabola of width aspect H (no undercut).
 #pragma once
 

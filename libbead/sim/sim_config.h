@@ -53,7 +53,8 @@ struct BeadConfig {
   double aspect = 1.6;                 // max width / height
   double bottom_radius_frac = 0.25;    // rounded rectangle: bottom corner radius / height (undercut)
   double top_radius_frac = 0.35;       // rounded rectangle: top corner radius / height
-  double exponent = 2.5;               // superellipse exponent
+  double exponent = 2.5;               // superellipse exponent (above its widest point)
+  double bottom_exponent = 0.0;        // below its widest point (0: the same): not symmetric
   double center_lift_frac = 0.3;       // superellipse: centre height / half-height (undercut)
   double center_wander_mm = 0.3;       // bead centre wanders by up to this ...
   double center_wander_period_s = 7.0; // ... with this period

@@ -7,7 +7,7 @@
 //              rpm_noise, flow_noise_frac},
 //   wheel: {mode, surface_speed_mm_s, target_area_mm2, gain_rpm_per_v, tau_s, delay_s, cmd_levels_v, cmd_durations_s},
 //   encoder: {start_count, missed_read_prob},
-//   bead: {shape, aspect, bottom_radius_frac, top_radius_frac, exponent, center_lift_frac,
+//   bead: {shape, aspect, bottom_radius_frac, top_radius_frac, exponent, bottom_exponent, center_lift_frac,
 //          center_wander_mm, center_wander_period_s, outline_vertices},
 //   sensor: {rate_hz, points, x_min_mm, x_max_mm, fan, z_sigma_mm, z_quantum_mm, dropout_prob,
 //            spike_prob, spike_mm, dropped_profile_prob, roll_deg, runout_mm},
@@ -208,7 +208,7 @@ void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
   r.GetInt(en, "encoder.", "start_count", c.encoder.start_count, 0, 9.0e15);
   r.Get(en, "encoder.", "missed_read_prob", c.encoder.missed_read_prob, 0, 0.5);
 
-  const YAML::Node bd = r.Section(root, "bead", {"shape", "aspect", "bottom_radius_frac", "top_radius_frac", "exponent",
+  const YAML::Node bd = r.Section(root, "bead", {"shape", "aspect", "bottom_radius_frac", "top_radius_frac", "exponent", "bottom_exponent",
                                                  "center_lift_frac", "center_wander_mm", "center_wander_period_s",
                                                  "outline_vertices"});
   using S = BeadConfig::Shape;
@@ -218,6 +218,7 @@ void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
   r.Get(bd, "bead.", "bottom_radius_frac", c.bead.bottom_radius_frac, 0, 0.5);
   r.Get(bd, "bead.", "top_radius_frac", c.bead.top_radius_frac, 0, 0.5);
   r.Get(bd, "bead.", "exponent", c.bead.exponent, 1.2, 20);
+  r.Get(bd, "bead.", "bottom_exponent", c.bead.bottom_exponent, 0, 20);
   r.Get(bd, "bead.", "center_lift_frac", c.bead.center_lift_frac, 0, 0.95);
   r.Get(bd, "bead.", "center_wander_mm", c.bead.center_wander_mm, 0, 20);
   r.Get(bd, "bead.", "center_wander_period_s", c.bead.center_wander_period_s, 0.01, 1e5);
