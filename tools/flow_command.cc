@@ -24,7 +24,8 @@ Run AddFlow(CLI::App& app) {
   cmd->footer(
       "In:  RIG.yaml (encoder, wheel, offset, reference areas) and RUN.h5 with /profiles and /log.\n"
       "Out: flow CSV: t_s (when the material left the nozzle), encoder, surface_speed_mm_s,\n"
-      "     area_mm2, area_corrected_mm2, flow_mm3_s, screw_rpm, then profile, valid.\n"
+      "     area_mm2, area_corrected_mm2, flow_mm3_s, screw_rpm, then profile, valid,\n"
+      "     occlusion_bias_mm2, area_corrected_sigma_mm2, flow_sigma_mm3_s (see --occlusion).\n"
       "     Prints the run's total volume (mm^3).\n"
       "With no arguments it runs on the bundled sample run (testdata/sample) and says so.\n"
       "Example:\n"
@@ -56,7 +57,7 @@ Run AddFlow(CLI::App& app) {
         block.size(), [&](std::size_t i) { return block.view(i); }, rig.reference_left, rig.reference_right,
         args->profile);
     const OcclusionColumns occ = RunOcclusion(args->occlusion, rig, block, geometry);
-    const FlowResult flow = ComputeFlow(rig, block, geometry, *run.log, args->flow, occ.corrected);
+    const FlowResult flow = ComputeFlow(rig, block, geometry, *run.log, args->flow, occ.corrected, occ.sigma);
     WriteFlowCsv(args->output, flow);
     std::size_t valid = 0;
     for (const auto& s : flow.samples) valid += s.valid;

@@ -49,7 +49,8 @@ std::vector<double> SurfaceSpeed(const Rig& rig, const std::vector<double>& t, c
 }
 
 FlowResult ComputeFlow(const Rig& rig, const ProfileBlock& profiles, const std::vector<BeadGeometry>& geometry,
-                       const AcquisitionLog& log, const FlowOptions& o, const std::vector<double>& corrected) {
+                       const AcquisitionLog& log, const FlowOptions& o, const std::vector<double>& corrected,
+                       const std::vector<double>& corrected_sigma) {
   if (geometry.size() != profiles.size()) throw Error("flow: one geometry per profile is needed");
   if (log.size() < 3) throw Error("flow: the run has no acquisition log (/log), so no wheel speed");
   FlowResult r;
@@ -92,6 +93,9 @@ FlowResult ComputeFlow(const Rig& rig, const ProfileBlock& profiles, const std::
     s.area_mm2 = a_f[k];
     s.area_corrected_mm2 = c_f[k];
     s.flow_mm3_s = s.surface_speed_mm_s * s.area_corrected_mm2;
+    s.occlusion_bias_mm2 = s.area_mm2 - s.area_corrected_mm2;
+    s.area_corrected_sigma_mm2 = corrected_sigma.size() == n ? corrected_sigma[k] : kNaN;
+    s.flow_sigma_mm3_s = s.surface_speed_mm_s * s.area_corrected_sigma_mm2;
     s.screw_rpm = InterpolateLinear(log.t_s.data(), log.screw_rpm.data(), log.size(), s.t_s);
     s.valid = std::isfinite(s.t_s) && std::isfinite(s.flow_mm3_s);
   }

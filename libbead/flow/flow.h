@@ -39,7 +39,10 @@ struct FlowSample {
   double surface_speed_mm_s = 0.0;
   double area_mm2 = 0.0;        // NaN: not measured
   double area_corrected_mm2 = 0.0;
+  double occlusion_bias_mm2 = 0.0;        // area - corrected area
+  double area_corrected_sigma_mm2 = 0.0;  // NaN when no occlusion stage ran
   double flow_mm3_s = 0.0;
+  double flow_sigma_mm3_s = 0.0;          // v * area_corrected_sigma (the area's share)
   double screw_rpm = 0.0;
   bool valid = false;
 };
@@ -52,10 +55,11 @@ struct FlowResult {
   int encoder_repairs = 0;
 };
 
-// `corrected` (optional, same length as geometry): occlusion-corrected areas.
+// `corrected` and `corrected_sigma` (optional, same length as geometry):
+// occlusion-corrected areas and their standard uncertainties.
 FlowResult ComputeFlow(const Rig& rig, const ProfileBlock& profiles, const std::vector<BeadGeometry>& geometry,
                        const AcquisitionLog& log, const FlowOptions& options = {},
-                       const std::vector<double>& corrected = {});
+                       const std::vector<double>& corrected = {}, const std::vector<double>& corrected_sigma = {});
 
 // The Savitzky-Golay window of the speed, in samples of spacing dt (odd).
 int SpeedWindowSamples(const FlowOptions& options, double dt);

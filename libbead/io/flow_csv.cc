@@ -10,13 +10,15 @@ namespace bead {
 void WriteFlowCsv(const std::string& path, const FlowResult& flow) {
   AtomicFile out(path);
   auto& s = out.stream();
-  s << "t_s,encoder,surface_speed_mm_s,area_mm2,area_corrected_mm2,flow_mm3_s,screw_rpm,profile,valid\n";
+  s << "t_s,encoder,surface_speed_mm_s,area_mm2,area_corrected_mm2,flow_mm3_s,screw_rpm,profile,valid,"
+       "occlusion_bias_mm2,area_corrected_sigma_mm2,flow_sigma_mm3_s\n";
   for (const FlowSample& f : flow.samples) {
     const bool known = std::isfinite(f.t_s);
     s << CsvNumber(f.t_s) << ',' << (known ? std::to_string(f.encoder) : "") << ','
       << CsvNumber(f.surface_speed_mm_s) << ',' << CsvNumber(f.area_mm2) << ',' << CsvNumber(f.area_corrected_mm2)
       << ',' << CsvNumber(f.flow_mm3_s) << ',' << CsvNumber(f.screw_rpm) << ',' << f.profile << ','
-      << (f.valid ? 1 : 0) << '\n';
+      << (f.valid ? 1 : 0) << ',' << CsvNumber(f.occlusion_bias_mm2) << ',' << CsvNumber(f.area_corrected_sigma_mm2)
+      << ',' << CsvNumber(f.flow_sigma_mm3_s) << '\n';
   }
   out.Commit();
 }

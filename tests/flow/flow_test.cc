@@ -197,7 +197,9 @@ TEST(FlowCommand, WritesTheSpecCsvAndSaysWhatIsMissing) {
                           (dir / "flow.csv") + " > " + (dir / "out.txt");
   ASSERT_EQ(std::system(cmd.c_str()), 0);
   const std::string csv = test::ReadText(dir / "flow.csv");
-  EXPECT_EQ(csv.rfind("t_s,encoder,surface_speed_mm_s,area_mm2,area_corrected_mm2,flow_mm3_s,screw_rpm,", 0), 0u);
+  EXPECT_EQ(csv.rfind("t_s,encoder,surface_speed_mm_s,area_mm2,area_corrected_mm2,flow_mm3_s,screw_rpm,profile,valid,"
+                      "occlusion_bias_mm2,area_corrected_sigma_mm2,flow_sigma_mm3_s\n", 0),
+            0u);
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), static_cast<long>(run.run.profiles.size()) + 1);
   EXPECT_NE(test::ReadText(dir / "out.txt").find("total volume: "), std::string::npos);
   run.run.log.reset();
