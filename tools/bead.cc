@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   runs["simulate"] = bead::tools::AddSimulate(app);
   runs["flow"] = bead::tools::AddFlow(app);
   runs["calibrate"] = bead::tools::AddCalibrate(app);
+  runs["identify"] = bead::tools::AddIdentify(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

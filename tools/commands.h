@@ -14,5 +14,6 @@ Run AddMeasure(CLI::App& app);
 Run AddSimulate(CLI::App& app);
 Run AddFlow(CLI::App& app);
 Run AddCalibrate(CLI::App& app);
+Run AddIdentify(CLI::App& app);
 
 }  // namespace bead::tools

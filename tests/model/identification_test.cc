@@ -150,3 +150,33 @@ TEST(Identify, OrderTableFavoursTheTrueOrder) {
 
 }  // namespace
 }  // namespace bead::model
+
+#include <nlohmann/json.hpp>
+
+#include "tests/support/temp_dir.h"
+
+namespace bead::model {
+namespace {
+
+// The command on any CSV: named columns, gaps skipped, the JSON model.
+TEST(IdentifyCommand, ReadsAnyCsvAndWritesTheModel) {
+  const Data d = Eq22Data(5, 0.0);
+  test::TempDir dir;
+  std::string csv = "time,rpm,weld_width,other\n";
+  for (std::size_t i = 0; i < d.t.size(); ++i)
+    csv += std::to_string(d.t[i]) + "," + std::to_string(d.u[i]) + "," + (i % 97 == 5 ? std::string() : std::to_string(d.y[i])) + ",x\n";
+  test::WriteText(dir / "data.csv", csv);
+  const std::string cmd = std::string(BEAD_CLI) + " identify " + (dir / "data.csv") +
+                          " --time time --input rpm --output weld_width --poles 2 --zeros 2 --max-delay-s 0.5 -o " +
+                          (dir / "model.json") + " > " + (dir / "out.txt");
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << test::ReadText(dir / "out.txt");
+  const std::string out = test::ReadText(dir / "out.txt");
+  EXPECT_NE(out.find("skipped as gaps"), std::string::npos) << out;
+  const auto j = nlohmann::json::parse(test::ReadText(dir / "model.json"));
+  EXPECT_NEAR(j["delay_s"].get<double>(), 0.15, 0.01);
+  EXPECT_GT(j["fit_estimation_pct"].get<double>(), 99.0);
+  EXPECT_EQ(j["den"].size(), 3u);
+}
+
+}  // namespace
+}  // namespace bead::model
