@@ -33,6 +33,10 @@ struct Profiles {
   std::vector<float> z;  // kProfiles x points
 };
 
+bead::ProfileView ViewOf(const Profiles& p, std::size_t k) {
+  return bead::ProfileView{p.x, std::span<const float>(p.z.data() + k * p.points, p.points), 0.0, 0};
+}
+
 const Profiles& MakeProfiles(int points) {
   static std::map<int, std::unique_ptr<Profiles>> cache;
   auto& slot = cache[points];
@@ -60,9 +64,7 @@ void BM_ProfileGeometry(benchmark::State& state) {
   std::size_t k = 0;
   double sum = 0.0;
   for (auto _ : state) {
-    const bead::ProfileView view{p.x, std::span<const float>(p.z.data() + k * p.points, p.points), 0.0, 0};
-    const bead::BeadGeometry& g = processor.Process(view);
-    sum += g.area_mm2;
+    sum += processor.Process(ViewOf(p, k)).area_mm2;
     k = (k + 1) % kProfiles;
   }
   benchmark::DoNotOptimize(sum);
@@ -79,9 +81,7 @@ const bead::occlusion::PooledOcclusion& Pool(const Profiles& p) {
   if (pool.ok) return pool;
   bead::ProfileProcessor processor(kLeft, kRight, {}, p.points);
   std::vector<bead::BeadGeometry> geometry;
-  auto view = [&](std::size_t k) {
-    return bead::ProfileView{p.x, std::span<const float>(p.z.data() + k * p.points, p.points), 0.0, 0};
-  };
+  auto view = [&](std::size_t k) { return ViewOf(p, k); };
   for (std::size_t k = 0; k < kProfiles; ++k) geometry.push_back(processor.Process(view(k)));
   pool = bead::occlusion::PoolOcclusion(kProfiles, view, geometry, {});
   return pool;
@@ -94,9 +94,7 @@ void BM_ProfileGeometryPooledCorrection(benchmark::State& state) {
   std::size_t k = 0;
   double sum = 0.0;
   for (auto _ : state) {
-    const bead::ProfileView view{p.x, std::span<const float>(p.z.data() + k * p.points, p.points), 0.0, 0};
-    const bead::BeadGeometry& g = processor.Process(view);
-    sum += bead::occlusion::ApplyPooled(pool, g).area_mm2;
+    sum += bead::occlusion::ApplyPooled(pool, processor.Process(ViewOf(p, k))).area_mm2;
     k = (k + 1) % kProfiles;
   }
   benchmark::DoNotOptimize(sum);
@@ -109,9 +107,7 @@ void BM_PoolOcclusion(benchmark::State& state) {
   const Profiles& p = MakeProfiles(640);
   bead::ProfileProcessor processor(kLeft, kRight, {}, p.points);
   std::vector<bead::BeadGeometry> geometry;
-  auto view = [&](std::size_t k) {
-    return bead::ProfileView{p.x, std::span<const float>(p.z.data() + k * p.points, p.points), 0.0, 0};
-  };
+  auto view = [&](std::size_t k) { return ViewOf(p, k); };
   for (std::size_t k = 0; k < kProfiles; ++k) geometry.push_back(processor.Process(view(k)));
   for (auto _ : state) benchmark::DoNotOptimize(bead::occlusion::PoolOcclusion(kProfiles, view, geometry, {}).bias_fraction);
 }

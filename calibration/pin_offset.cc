@@ -2,6 +2,8 @@
 
 #include <ceres/ceres.h>
 
+#include "libbead/fit/solver_options.h"
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -104,10 +106,7 @@ PinScanFit FitPinScan(const Rig& rig, const PinScan& scan, const OffsetOptions& 
     problem.AddResidualBlock(new ceres::AutoDiffCostFunction<ChordResidual, 1, 1, 1, 1>(new ChordResidual(c[i], w[i], k)),
                              new ceres::CauchyLoss(std::max(resolution, 1e-3)), &center, &radius, &base);
   problem.SetParameterLowerBound(&radius, 0, 1e-3);
-  ceres::Solver::Options so;
-  so.linear_solver_type = ceres::DENSE_QR;
-  so.max_num_iterations = 100;
-  so.logging_type = ceres::SILENT;
+  const ceres::Solver::Options so = fit::QuietDenseOptions(100);
   ceres::Solver::Summary summary;
   ceres::Solve(so, &problem, &summary);
   if (!summary.IsSolutionUsable()) {

@@ -2,6 +2,8 @@
 
 #include <ceres/ceres.h>
 
+#include "libbead/fit/solver_options.h"
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -154,10 +156,7 @@ IdentifiedModel IdentifyTransferFunction(const std::vector<double>& t, const std
     cost->SetNumResiduals(static_cast<int>(y.size()));
     ceres::Problem problem;
     problem.AddResidualBlock(cost, nullptr, theta.data());
-    ceres::Solver::Options so;
-    so.linear_solver_type = ceres::DENSE_QR;
-    so.max_num_iterations = o.max_iterations;
-    so.logging_type = ceres::SILENT;
+    const ceres::Solver::Options so = fit::QuietDenseOptions(o.max_iterations);
     ceres::Solver::Summary summary;
     ceres::Solve(so, &problem, &summary);
     const TransferFunction tf = FromTheta(theta, n, m, delay);

@@ -2,6 +2,8 @@
 
 #include <ceres/ceres.h>
 
+#include "libbead/fit/solver_options.h"
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -57,10 +59,7 @@ double Fit(const Points& pts, double huber, double& center, std::vector<double>&
     problem.SetParameterLowerBound(p.data(), k, lo[static_cast<std::size_t>(k)]);
     problem.SetParameterUpperBound(p.data(), k, hi[static_cast<std::size_t>(k)]);
   }
-  ceres::Solver::Options so;
-  so.linear_solver_type = ceres::DENSE_QR;
-  so.max_num_iterations = 200;
-  so.logging_type = ceres::SILENT;
+  const ceres::Solver::Options so = fit::QuietDenseOptions(200);
   ceres::Solver::Summary summary;
   ceres::Solve(so, &problem, &summary);
   if (!summary.IsSolutionUsable()) return -1;
