@@ -5,6 +5,7 @@
 
 #include "libbead/core/error.h"
 #include "libbead/flow/extrusion_time.h"
+#include "libbead/profile/median.h"
 #include "libbead/series/encoder.h"
 #include "libbead/series/hampel.h"
 #include "libbead/series/interpolate.h"
@@ -48,6 +49,13 @@ std::vector<double> SurfaceSpeed(const Rig& rig, const std::vector<double>& t, c
   return out;
 }
 
+double AreaSigmaFloor(const std::vector<BeadGeometry>& geometry) {
+  std::vector<double> sigmas;
+  for (const BeadGeometry& g : geometry)
+    if (g.valid() && std::isfinite(g.area_sigma_mm2)) sigmas.push_back(g.area_sigma_mm2);
+  return sigmas.empty() ? 0.0 : MedianInPlace(sigmas.data(), sigmas.size());
+}
+
 FlowResult ComputeFlow(const Rig& rig, const ProfileBlock& profiles, const std::vector<BeadGeometry>& geometry,
                        const AcquisitionLog& log, const FlowOptions& o, const std::vector<double>& corrected,
                        const std::vector<double>& corrected_sigma) {
@@ -68,8 +76,9 @@ FlowResult ComputeFlow(const Rig& rig, const ProfileBlock& profiles, const std::
     area[k] = a;
     area_c[k] = corrected.size() == n && g.valid() ? corrected[k] : a;
   }
-  const HampelResult ha = Hampel(area, o.area_hampel_half, o.hampel_nsigma);
-  const HampelResult hc = Hampel(area_c, o.area_hampel_half, o.hampel_nsigma);
+  const double floor = o.area_sigma_floor_mm2 >= 0 ? o.area_sigma_floor_mm2 : AreaSigmaFloor(geometry);
+  const HampelResult ha = Hampel(area, o.area_hampel_half, o.hampel_nsigma, floor);
+  const HampelResult hc = Hampel(area_c, o.area_hampel_half, o.hampel_nsigma, floor);
   r.area_outliers = ha.outliers;
   std::vector<double> a_f = ha.y, c_f = hc.y;
   if (o.area_smooth_window > 1) {

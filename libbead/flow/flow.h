@@ -3,9 +3,10 @@
 // For each profile: its unwrapped wheel position; the extrusion time t_e
 // (extrusion_time.h); the surface speed v(t_e) from the log's encoder
 // (unwrapped and repaired, Savitzky-Golay derivative of position, then a
-// Hampel filter on the speed); the area A (Hampel on the series, optional
-// Savitzky-Golay smoothing; a profile with no bead is area 0, one that
-// could not be measured is a gap); the screw RPM at t_e from the log; and
+// Hampel filter on the speed); the area A (Hampel on the series, its sigma
+// floored at the run's median area_sigma_mm2 so the edge-sampling sawtooth
+// is not taken for outliers; optional Savitzky-Golay smoothing; a profile
+// with no bead is area 0, one that could not be measured is a gap); the screw RPM at t_e from the log; and
 // Q = v * A, with the corrected area where the occlusion stage gives one.
 // The run's volume is the trapezoid integral of Q over extrusion time,
 // bridging gaps linearly.
@@ -27,6 +28,9 @@ struct FlowOptions {
   double speed_hampel_s = 0.05;  // Hampel half window on the speed
   int area_hampel_half = 5;      // Hampel half window on the area, profiles
   double hampel_nsigma = 3.0;
+  // Floor on the area Hampel's sigma, mm^2; < 0: the batch takes the run's
+  // median area_sigma_mm2, the streaming variant the running median so far.
+  double area_sigma_floor_mm2 = -1.0;
   int area_smooth_window = 0;    // odd: Savitzky-Golay smoothing of the area (0: none)
   int area_smooth_order = 2;
   int max_fill = 10;             // gaps up to this many profiles are bridged
@@ -54,6 +58,10 @@ struct FlowResult {
   int speed_outliers = 0;
   int encoder_repairs = 0;
 };
+
+// The Hampel sigma floor for the area series: the median area_sigma_mm2 of
+// the valid profiles (0 when there are none).
+double AreaSigmaFloor(const std::vector<BeadGeometry>& geometry);
 
 // `corrected` and `corrected_sigma` (optional, same length as geometry):
 // occlusion-corrected areas and their standard uncertainties.

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "libbead/flow/extrusion_time.h"
+#include "libbead/profile/median.h"
 #include "libbead/series/hampel.h"
 #include "libbead/series/interpolate.h"
 #include "libbead/series/savgol.h"
@@ -36,6 +37,7 @@ void StreamingFlow::PushProfile(double t_s, int64_t raw, const BeadGeometry& g, 
   const double a = g.valid() ? g.area_mm2 : (g.status == ProfileStatus::kNoBead ? 0.0 : kNaN);
   profiles_.push_back({static_cast<int64_t>(next_profile_++), t_s, raw, a, g.valid() && !std::isnan(area_c) ? area_c : a});
   area_window_.push_back(a);
+  if (g.valid() && std::isfinite(g.area_sigma_mm2)) area_sigmas_.push_back(g.area_sigma_mm2);
   area_c_window_.push_back(profiles_.back().area_c);
   ProcessProfiles();
 }
@@ -100,14 +102,20 @@ void StreamingFlow::ProcessProfiles() {
     // Its speed must be final around t_e.
     if (!finished_ && std::isfinite(t_e) && (speed_upto_ < 2 || t_[speed_upto_ - 1] < t_e)) return;
     bool out = false;
+    double floor = options_.area_sigma_floor_mm2;
+    if (floor < 0) {
+      scratch = area_sigmas_;
+      floor = scratch.empty() ? 0.0 : MedianInPlace(scratch.data(), scratch.size());
+    }
     FlowSample s;
     s.profile = p.index;
     s.t_s = t_e;
     s.encoder = RawFromCounts(target, rig_.encoder);
     s.surface_speed_mm_s = InterpolateLinear(t_.data(), speed_.data(), speed_upto_, t_e);
-    s.area_mm2 = HampelAt(area_window_.data(), have, j, options_.area_hampel_half, options_.hampel_nsigma, &out, scratch);
+    s.area_mm2 =
+        HampelAt(area_window_.data(), have, j, options_.area_hampel_half, options_.hampel_nsigma, &out, scratch, floor);
     s.area_corrected_mm2 =
-        HampelAt(area_c_window_.data(), have, j, options_.area_hampel_half, options_.hampel_nsigma, &out, scratch);
+        HampelAt(area_c_window_.data(), have, j, options_.area_hampel_half, options_.hampel_nsigma, &out, scratch, floor);
     s.flow_mm3_s = s.surface_speed_mm_s * s.area_corrected_mm2;
     s.screw_rpm = InterpolateLinear(t_.data(), rpm_.data(), repaired_upto_, t_e);
     s.valid = std::isfinite(s.t_s) && std::isfinite(s.flow_mm3_s);

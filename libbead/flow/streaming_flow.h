@@ -10,7 +10,9 @@
 // The arithmetic is the batch's: away from the run's first and last windows
 // the results are identical. Differences, by design: encoder glitches use
 // the fixed threshold min_glitch_counts (the batch can also raise it from
-// the whole run's noise), and the optional area smoothing is batch-only.
+// the whole run's noise); unless area_sigma_floor_mm2 is given, the area
+// Hampel's floor is the running median of the sigmas seen so far (the
+// batch's is the whole run's); the optional area smoothing is batch-only.
 // It keeps the whole run's log and areas (about 20 kB per second of log at
 // 500 Hz): fine for runs of minutes to hours, not for days.
 #pragma once
@@ -63,7 +65,7 @@ class StreamingFlow {
     double area, area_c;
   };
   std::deque<Pending> profiles_;
-  std::vector<double> area_window_, area_c_window_;
+  std::vector<double> area_window_, area_c_window_, area_sigmas_;
   std::size_t next_profile_ = 0;
   std::deque<FlowSample> ready_;
   bool finished_ = false;

@@ -8,7 +8,7 @@
 namespace bead {
 
 double HampelAt(const double* x, std::size_t n, std::size_t i, int k, double nsigma, bool* outlier,
-                std::vector<double>& window) {
+                std::vector<double>& window, double min_sigma) {
   // MATLAB's scale: the MAD of a normal distribution times this is its sigma.
   constexpr double kMadScale = 1.4826022185;
   *outlier = false;
@@ -20,7 +20,7 @@ double HampelAt(const double* x, std::size_t n, std::size_t i, int k, double nsi
     if (!std::isnan(x[j])) window.push_back(x[j]);
   const double m = MedianInPlace(window.data(), window.size());
   for (double& v : window) v = std::abs(v - m);
-  const double sigma = kMadScale * MedianInPlace(window.data(), window.size());
+  const double sigma = std::max(kMadScale * MedianInPlace(window.data(), window.size()), min_sigma);
   if (std::abs(x[i] - m) > nsigma * sigma) {
     *outlier = true;
     return m;
@@ -28,7 +28,7 @@ double HampelAt(const double* x, std::size_t n, std::size_t i, int k, double nsi
   return x[i];
 }
 
-HampelResult Hampel(const std::vector<double>& x, int k, double nsigma) {
+HampelResult Hampel(const std::vector<double>& x, int k, double nsigma, double min_sigma) {
   HampelResult r;
   const std::size_t n = x.size();
   r.y = x;
@@ -36,7 +36,7 @@ HampelResult Hampel(const std::vector<double>& x, int k, double nsigma) {
   std::vector<double> scratch;
   for (std::size_t i = 0; i < n; ++i) {
     bool out = false;
-    r.y[i] = HampelAt(x.data(), n, i, k, nsigma, &out, scratch);
+    r.y[i] = HampelAt(x.data(), n, i, k, nsigma, &out, scratch, min_sigma);
     r.outlier[i] = out;
     r.outliers += out;
   }
