@@ -104,8 +104,13 @@ void StreamingFlow::ProcessProfiles() {
     bool out = false;
     double floor = options_.area_sigma_floor_mm2;
     if (floor < 0) {
-      scratch = area_sigmas_;
-      floor = scratch.empty() ? 0.0 : MedianInPlace(scratch.data(), scratch.size());
+      // The running median, refreshed each time the count doubles (amortised O(1)).
+      if (area_sigmas_.size() >= 2 * floor_count_ && !area_sigmas_.empty()) {
+        scratch = area_sigmas_;
+        running_floor_ = MedianInPlace(scratch.data(), scratch.size());
+        floor_count_ = area_sigmas_.size();
+      }
+      floor = running_floor_;
     }
     FlowSample s;
     s.profile = p.index;

@@ -11,8 +11,8 @@
 // the results are identical. Differences, by design: encoder glitches use
 // the fixed threshold min_glitch_counts (the batch can also raise it from
 // the whole run's noise); unless area_sigma_floor_mm2 is given, the area
-// Hampel's floor is the running median of the sigmas seen so far (the
-// batch's is the whole run's); the optional area smoothing is batch-only.
+// Hampel's floor is the running median of the sigmas seen so far,
+// refreshed as their count doubles (the batch's is the whole run's); the optional area smoothing is batch-only.
 // It keeps the whole run's log and areas (about 20 kB per second of log at
 // 500 Hz): fine for runs of minutes to hours, not for days.
 #pragma once
@@ -66,6 +66,8 @@ class StreamingFlow {
   };
   std::deque<Pending> profiles_;
   std::vector<double> area_window_, area_c_window_, area_sigmas_;
+  double running_floor_ = 0.0;    // median of area_sigmas_ when it held floor_count_ values
+  std::size_t floor_count_ = 0;
   std::size_t next_profile_ = 0;
   std::deque<FlowSample> ready_;
   bool finished_ = false;
