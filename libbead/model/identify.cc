@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "libbead/core/error.h"
+#include "libbead/series/interpolate.h"
 
 namespace bead::model {
 namespace {
@@ -116,10 +117,7 @@ IdentifiedModel IdentifyTransferFunction(const std::vector<double>& t, const std
     out.reason = "too few samples for this model";
     return out;
   }
-  std::vector<double> steps;
-  for (std::size_t i = 1; i < t.size(); ++i) steps.push_back(t[i] - t[i - 1]);
-  std::nth_element(steps.begin(), steps.begin() + static_cast<long>(steps.size() / 2), steps.end());
-  const double dt = steps[steps.size() / 2];
+  const double dt = MedianStep(t);
   const double lambda = o.filter_rad_s > 0 ? o.filter_rad_s : 2 * M_PI / (20 * dt);
 
   // Delay grid, each scored by its SVF start's simulation error.

@@ -9,7 +9,6 @@ ProfileProcessor::ProfileProcessor(const ReferenceArea& left, const ReferenceAre
     : left_(left), right_(right), options_(options), workspace_(max_points) {}
 
 const BeadGeometry& ProfileProcessor::Process(const ProfileView& view) {
-  if (view.x_mm.size() > workspace_.capacity()) workspace_.Reserve(view.x_mm.size());
   GatherPoints(view, left_, right_, workspace_);
   const ReferenceLine line = FitGatheredReferenceLine(options_.reference, workspace_);
   result_ = MeasureBead(view, line, left_, right_, options_.bead, workspace_);

@@ -1,6 +1,8 @@
 // Flow in extrusion time against the digital twin's truth.
 #include "libbead/flow/flow.h"
 #include "libbead/flow/streaming_flow.h"
+#include "libbead/model/fit_metrics.h"
+#include "libbead/series/interpolate.h"
 #include "libbead/profile/profile_processor.h"
 
 #include <gtest/gtest.h>
@@ -31,24 +33,6 @@ Measured SimulateAndMeasure(const sim::SimConfig& c) {
   return m;
 }
 
-double Interp(const std::vector<double>& t, const std::vector<double>& y, double x) {
-  const std::size_t j = static_cast<std::size_t>(std::upper_bound(t.begin(), t.end(), x) - t.begin());
-  if (j == 0) return y.front();
-  if (j >= t.size()) return y.back();
-  return y[j - 1] + (x - t[j - 1]) / (t[j] - t[j - 1]) * (y[j] - y[j - 1]);
-}
-
-// MATLAB compare's fit: 100 (1 - ||y - yhat|| / ||y - mean(y)||).
-double FitPercent(const std::vector<double>& y, const std::vector<double>& yhat) {
-  double mean = 0, num = 0, den = 0;
-  for (double v : y) mean += v / y.size();
-  for (std::size_t i = 0; i < y.size(); ++i) {
-    num += (y[i] - yhat[i]) * (y[i] - yhat[i]);
-    den += (y[i] - mean) * (y[i] - mean);
-  }
-  return 100.0 * (1.0 - std::sqrt(num / den));
-}
-
 sim::SimConfig NoUndercut() {
   sim::SimConfig c;
   c.seed = 7;
@@ -69,11 +53,11 @@ TEST(Flow, FitsTheTrueFlowOnBeadsWithoutUndercut) {
   std::vector<double> y, yhat;
   for (const FlowSample& s : m.flow.samples) {
     if (!s.valid) continue;
-    y.push_back(Interp(m.run.truth.flow.t_s, m.run.truth.flow.flow_mm3_s, s.t_s));
+    y.push_back(InterpolateLinear(m.run.truth.flow.t_s.data(), m.run.truth.flow.flow_mm3_s.data(), m.run.truth.flow.t_s.size(), s.t_s));
     yhat.push_back(s.flow_mm3_s);
   }
   ASSERT_GT(y.size(), 2000u);
-  EXPECT_GE(FitPercent(y, yhat), 95.0);
+  EXPECT_GE(model::FitPercent(y, yhat), 95.0);  // MATLAB compare
   EXPECT_GT(m.flow.encoder_repairs, 0);
   // The volume measured is the volume laid over the extrusion times covered,
   // to the area's per-profile sampling error averaged over the run (0.5 %).
