@@ -3,93 +3,185 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 
 #include "libbead/profile/median.h"
+#include "libbead/profile/simd_dispatch.h"
+#include "libbead/profile/vec8.h"
 
 namespace bead {
 namespace {
 
-// Height and along-line position of every ordered point, then drops spikes:
-// points standing more than spike_mm off the median of themselves and
-// their four nearest neighbours. Leaves the kept points in w.x, w.s, w.h, w.order.
-void HeightsWithoutSpikes(const ProfileView& view, const ReferenceLine& line, double spike_mm,
-                          ProfileWorkspace& w) {
-  const double a = line.intercept_mm, b = line.slope;
+// The points' heights h and along-line positions s about the line, and
+// their x, for the points with finite z only (w.removed records where the
+// dropouts were). In float and shifted: s is measured from `s_offset_mm`
+// (double), so the rounding stays at the scale of the profile's width.
+struct Heights {
+  float* h = nullptr;
+  float* s = nullptr;
+  float* x = nullptr;
+  std::size_t n = 0;
+  double s_offset_mm = 0.0;
+  double inv_norm = 1.0;  // 1 / sqrt(1 + slope^2): along-line s to x
+};
+
+Heights ComputeHeights(const PointSet& p, const ReferenceLine& line, ProfileWorkspace& w) {
+  using namespace vec;
+  const double b = line.slope;
   const double inv_norm = 1.0 / std::sqrt(1.0 + b * b);
-  const std::size_t n = w.n_valid;
-  double* xs = w.x.data();
-  double* ss = w.s.data();
-  double* hs = w.h.data();
-  for (std::size_t k = 0; k < n; ++k) {
-    const double x = view.x_mm[w.order[k]];
-    const double z = view.z_mm[w.order[k]];
-    xs[k] = x;
-    hs[k] = (z - a - b * x) * inv_norm;
-    ss[k] = (x + b * (z - a)) * inv_norm;
-  }
-  // Median of five, so two adjacent spikes are caught too; three at the ends.
-  // Only where a neighbour jumps by more than spike_mm: otherwise three of
-  // the five (the point and both neighbours) lie within spike_mm of the
-  // point, so their median does too, and the point is kept.
-  bool any = false;
-  for (std::size_t k = 1; k + 1 < n; ++k) {
-    if (std::abs(hs[k] - hs[k - 1]) <= spike_mm && std::abs(hs[k] - hs[k + 1]) <= spike_mm) continue;
-    const double med = (k >= 2 && k + 2 < n) ? Median5(hs[k - 2], hs[k - 1], hs[k + 1], hs[k + 2], hs[k])
-                                             : Median3(hs[k - 1], hs[k], hs[k + 1]);
-    if (std::abs(hs[k] - med) > spike_mm) {
-      if (!any) std::fill(w.keep.begin(), w.keep.begin() + static_cast<long>(n), uint8_t{1});
-      w.keep[k] = 0;
-      any = true;
+  const float x0 = p.x[p.n / 2];
+  const double z0 = line.intercept_mm + b * x0;  // the line at x0
+  const float z0f = static_cast<float>(z0);
+  const float dz0 = static_cast<float>(z0 - z0f);
+  const float bf = static_cast<float>(b), inv = static_cast<float>(inv_norm);
+  const V8 vx0 = Splat(x0), vz0 = Splat(z0f), vdz0 = Splat(dz0), vb = Splat(bf), vinv = Splat(inv);
+  float* hs = w.h.data();
+  float* ss = w.s.data();
+  float* xs = w.hx.data();
+  std::size_t m = 0, removed = 0, k = 0;
+  auto one = [&](std::size_t i) {
+    const float x = p.x[i], z = p.z[i];
+    if (!((z - z) == 0.0f)) {
+      w.removed[removed++] = static_cast<int32_t>(i);
+      return;
     }
+    const float dx = x - x0, dz = z - z0f - dz0;
+    hs[m] = (dz - bf * dx) * inv;
+    ss[m] = (dx + bf * dz) * inv;
+    xs[m++] = x;
+  };
+  for (; k + 8 <= p.n; k += 8) {
+    const V8 x = Load(p.x + k), z = Load(p.z + k);
+    if (!All((z - z) == 0.0f)) {
+      for (std::size_t i = k; i < k + 8; ++i) one(i);
+      continue;
+    }
+    const V8 dx = x - vx0, dz = z - vz0 - vdz0;
+    Store(hs + m, (dz - vb * dx) * vinv);
+    Store(ss + m, (dx + vb * dz) * vinv);
+    Store(xs + m, x);
+    m += 8;
   }
-  if (!any) return;
-  std::size_t m = 0;
-  for (std::size_t k = 0; k < n; ++k) {
-    if (!w.keep[k]) continue;
-    w.order[m] = w.order[k];
-    xs[m] = xs[k];
-    ss[m] = ss[k];
-    hs[m] = hs[k];
-    ++m;
+  for (; k < p.n; ++k) one(k);
+  w.n_removed = removed;
+  // A point at (x, z) lies at s = (x + b (z - a)) / sqrt(1 + b^2) along
+  // the line; at x0 on the line that is x0 sqrt(1 + b^2).
+  return Heights{hs, ss, xs, m, x0 * std::sqrt(1.0 + b * b), inv_norm};
+}
+
+// Spikes: points standing more than spike_mm off the median of themselves
+// and their four nearest neighbours (median of five, so two adjacent
+// spikes are caught too; three at the ends). Only where a neighbour jumps
+// by more than spike_mm: otherwise three of the five (the point and both
+// neighbours) lie within spike_mm of the point, so their median does too.
+// Writes their indices, increasing, to w.spikes; returns how many.
+std::size_t FindSpikes(const Heights& g, float spike_mm, ProfileWorkspace& w) {
+  using namespace vec;
+  const float* h = g.h;
+  const std::size_t n = g.n;
+  if (n < 3) return 0;
+  std::size_t count = 0, next = 1;  // next: first candidate not yet decided
+  auto decide = [&](std::size_t k) {
+    if (k < next || k + 1 >= n) return;
+    next = k + 1;
+    const float med = (k >= 2 && k + 2 < n) ? Median5(h[k - 2], h[k - 1], h[k + 1], h[k + 2], h[k])
+                                            : Median3(h[k - 1], h[k], h[k + 1]);
+    if (std::abs(h[k] - med) > spike_mm) w.spikes[count++] = static_cast<int32_t>(k);
+  };
+  auto jump = [&](std::size_t k) { return std::abs(h[k + 1] - h[k]) > spike_mm; };  // between k and k + 1
+  const V8 sp = Splat(spike_mm);
+  std::size_t k = 0;
+  for (; k + 9 <= n; k += 8) {
+    if (!Any(Abs(Load(h + k + 1) - Load(h + k)) > sp)) continue;
+    for (std::size_t i = k; i < k + 8; ++i)
+      if (jump(i)) decide(i), decide(i + 1);
   }
-  w.n_valid = m;
+  for (; k + 1 < n; ++k)
+    if (jump(k)) decide(k), decide(k + 1);
+  return count;
+}
+
+// Removes the spikes from h, s and x.
+void RemoveSpikes(Heights& g, std::size_t spikes, const ProfileWorkspace& w) {
+  std::size_t m = 0, start = 0;
+  for (std::size_t r = 0; r <= spikes; ++r) {
+    const std::size_t end = r < spikes ? static_cast<std::size_t>(w.spikes[r]) : g.n;
+    const std::size_t len = end - start;
+    if (len > 0) {
+      std::memmove(g.h + m, g.h + start, len * sizeof(float));
+      std::memmove(g.s + m, g.s + start, len * sizeof(float));
+      std::memmove(g.x + m, g.x + start, len * sizeof(float));
+      m += len;
+    }
+    start = end + 1;
+  }
+  g.n = m;
+}
+
+// Index in the point set of point k after the spikes were removed.
+std::size_t PointIndex(const ProfileWorkspace& w, std::size_t k) {
+  for (std::size_t r = 0; r < w.n_spikes && static_cast<std::size_t>(w.spikes[r]) <= k; ++r) ++k;
+  return k;
+}
+
+float Trapezoid(const Heights& g, std::size_t first, std::size_t last) {
+  using namespace vec;
+  V8 acc{};
+  std::size_t k = first;
+  for (; k + 8 <= last; k += 8)
+    acc += (Load(g.h + k) + Load(g.h + k + 1)) * (Load(g.s + k + 1) - Load(g.s + k));
+  float sum = Sum(acc);
+  for (; k < last; ++k) sum += (g.h[k] + g.h[k + 1]) * (g.s[k + 1] - g.s[k]);
+  return 0.5f * sum;
 }
 
 struct Run {
-  std::size_t first = 0, last = 0;  // inclusive, indices into w.s / w.h
-  double integral = -1.0;
+  std::size_t first = 0, last = 0;  // inclusive
+  float integral = -1.0f;
 };
 
-bool InReference(double x, const ReferenceArea& left, const ReferenceArea& right) {
-  return left.Contains(x) || right.Contains(x);
+// Whether some point of [first, last] lies in `area` (x is increasing).
+bool TouchesArea(const Heights& g, std::size_t first, std::size_t last, const ReferenceArea& area) {
+  const float* it = std::lower_bound(g.x + first, g.x + last + 1, area.x_min_mm,
+                                     [](float a, double v) { return a < v; });
+  return it != g.x + last + 1 && *it <= area.x_max_mm;
+}
+
+// Whether some point of [first, last] lies outside both areas.
+bool HasPointOutside(const Heights& g, std::size_t first, std::size_t last, const ReferenceArea& left,
+                     const ReferenceArea& right) {
+  for (const ReferenceArea* a : {&left, &right})
+    if (a->Contains(g.x[first]) && a->Contains(g.x[last])) return false;  // an interval holds them all
+  if (!(left.Contains(g.x[first]) || right.Contains(g.x[first]))) return true;
+  if (!(left.Contains(g.x[last]) || right.Contains(g.x[last]))) return true;
+  for (std::size_t k = first; k <= last; ++k)
+    if (!left.Contains(g.x[k]) && !right.Contains(g.x[k])) return true;
+  return false;
 }
 
 // The run of consecutive points above `threshold` (gaps up to max_gap) with
 // the largest integral, among runs holding a point outside both areas.
-Run LargestRun(const ProfileWorkspace& w, double threshold, double max_gap, const ReferenceArea& left,
+Run LargestRun(const Heights& g, float threshold, float max_gap, const ReferenceArea& left,
                const ReferenceArea& right) {
-  Run best, current;
-  bool open = false, outside = false;
-  const std::size_t n = w.n_valid;
-  auto close = [&]() {
-    if (open && outside && current.integral > best.integral) best = current;
-    open = false;
-  };
-  for (std::size_t k = 0; k < n; ++k) {
-    const bool above = w.h[k] > threshold;
-    if (open && (!above || w.s[k] - w.s[k - 1] > max_gap)) close();
-    if (!above) continue;
-    if (!open) {
-      open = true;
-      outside = false;
-      current = Run{k, k, 0.0};
-    } else {
-      current.integral += 0.5 * (w.h[k] + w.h[k - 1]) * (w.s[k] - w.s[k - 1]);
-      current.last = k;
-    }
-    outside = outside || !InReference(w.x[k], left, right);
+  const float* h = g.h;
+  const float* s = g.s;
+  const std::size_t n = g.n;
+  const vec::V8 vt = vec::Splat(threshold), vg = vec::Splat(max_gap);
+  Run best;
+  std::size_t k = 0;
+  while (k < n) {
+    // The next point above the threshold.
+    while (k + 8 <= n && !vec::Any(vec::Load(h + k) > vt)) k += 8;
+    while (k < n && !(h[k] > threshold)) ++k;
+    if (k == n) break;
+    // Its run: while above and joined.
+    std::size_t j = k + 1;
+    while (j + 8 <= n && vec::All((vec::Load(h + j) > vt) & (vec::Load(s + j) - vec::Load(s + j - 1) <= vg))) j += 8;
+    while (j < n && h[j] > threshold && s[j] - s[j - 1] <= max_gap) ++j;
+    const Run run{k, j - 1, Trapezoid(g, k, j - 1)};
+    if (run.integral > best.integral && HasPointOutside(g, run.first, run.last, left, right)) best = run;
+    k = j;
   }
-  close();
   return best;
 }
 
@@ -115,23 +207,29 @@ const char* StatusName(ProfileStatus status) {
   return "unknown";
 }
 
-BeadGeometry MeasureBead(const ProfileView& view, const ReferenceLine& line, const ReferenceArea& left,
+BEAD_HOT BeadGeometry MeasureBead(const PointSet& p, const ReferenceLine& line, const ReferenceArea& left,
                          const ReferenceArea& right, const BeadOptions& options, ProfileWorkspace& w) {
   BeadGeometry g;
   g.reference = line;
-  if (w.n_valid < static_cast<std::size_t>(std::max(options.min_profile_points, 3))) {
+  w.n_spikes = 0;
+  const auto min_points = static_cast<std::size_t>(std::max(options.min_profile_points, 3));
+  if (!line.ok) {
+    const bool few = CountFiniteZ(p, 0, p.n) < min_points;
+    g.status = few ? ProfileStatus::kTooFewPoints : ProfileStatus::kNoReference;
+    return g;
+  }
+  Heights pts = ComputeHeights(p, line, w);
+  if (pts.n < min_points) {
     g.status = ProfileStatus::kTooFewPoints;
     return g;
   }
-  if (!line.ok) {
-    g.status = ProfileStatus::kNoReference;
-    return g;
-  }
-  HeightsWithoutSpikes(view, line, options.spike_mm, w);
+  w.n_spikes = FindSpikes(pts, static_cast<float>(options.spike_mm), w);
+  if (w.n_spikes > 0) RemoveSpikes(pts, w.n_spikes, w);
   g.threshold_mm = std::max(options.min_threshold_mm, options.threshold_sigmas * line.residual_rms_mm);
 
-  const Run run = LargestRun(w, g.threshold_mm, options.max_gap_mm, left, right);
-  const std::size_t count = run.integral < 0.0 ? 0 : run.last - run.first + 1;
+  const auto max_gap = static_cast<float>(options.max_gap_mm);
+  const Run run = LargestRun(pts, static_cast<float>(g.threshold_mm), max_gap, left, right);
+  const std::size_t count = run.integral < 0.0f ? 0 : run.last - run.first + 1;
   if (count < static_cast<std::size_t>(std::max(options.min_bead_points, 2))) {
     g.status = ProfileStatus::kNoBead;
     return g;
@@ -139,52 +237,73 @@ BeadGeometry MeasureBead(const ProfileView& view, const ReferenceLine& line, con
   g.bead_points = static_cast<int>(count);
   // The bead's feet: from the run outward while the height stays above the
   // noise floor; the point beyond is the bare surface that brackets the edge.
-  const double floor_mm = std::max(options.edge_floor_sigmas * line.residual_rms_mm, options.min_edge_floor_mm);
-  const std::size_t n = w.n_valid;
+  const float* h = pts.h;
+  const float* s = pts.s;
+  const auto floor_mm =
+      static_cast<float>(std::max(options.edge_floor_sigmas * line.residual_rms_mm, options.min_edge_floor_mm));
+  const std::size_t n = pts.n;
   std::size_t lo = run.first, hi = run.last;
-  auto joined = [&](std::size_t a, std::size_t b) { return w.s[b] - w.s[a] <= options.max_gap_mm; };
-  while (lo > 0 && joined(lo - 1, lo) && w.h[lo - 1] > floor_mm) --lo;
-  while (hi + 1 < n && joined(hi, hi + 1) && w.h[hi + 1] > floor_mm) ++hi;
+  auto joined = [&](std::size_t a, std::size_t b) { return s[b] - s[a] <= max_gap; };
+  while (lo > 0 && joined(lo - 1, lo) && h[lo - 1] > floor_mm) --lo;
+  while (hi + 1 < n && joined(hi, hi + 1) && h[hi + 1] > floor_mm) ++hi;
   if (lo == 0 || !joined(lo - 1, lo) || hi + 1 >= n || !joined(hi, hi + 1)) {
     g.status = ProfileStatus::kBeadEdgeNotSeen;
     return g;
   }
   --lo;
   ++hi;
-  for (std::size_t k = run.first; k <= run.last; ++k) {
-    if (InReference(w.x[k], left, right)) {
-      g.status = ProfileStatus::kBeadInReferenceArea;
-      return g;
-    }
+  if (TouchesArea(pts, run.first, run.last, left) || TouchesArea(pts, run.first, run.last, right)) {
+    g.status = ProfileStatus::kBeadInReferenceArea;
+    return g;
   }
 
-  double area = 0.0, moment = 0.0, height = -1.0, ds2 = 0.0;
-  for (std::size_t k = lo; k < hi; ++k) {
-    const double ds = w.s[k + 1] - w.s[k];
-    const double piece = 0.5 * (w.h[k] + w.h[k + 1]) * ds;
+  // Trapezoids from the bare point to the bare point: area, first moment
+  // along the line, and the sum of squared spacings (for the uncertainty).
+  using namespace vec;
+  V8 v_area{}, v_moment{}, v_ds2{};
+  std::size_t k = lo;
+  for (; k + 8 <= hi; k += 8) {
+    const V8 s0 = Load(s + k), s1 = Load(s + k + 1);
+    const V8 ds = s1 - s0;
+    const V8 piece = (Load(h + k) + Load(h + k + 1)) * ds;  // twice the trapezoid
+    v_area += piece;
+    v_moment += piece * (s0 + s1);
+    v_ds2 += ds * ds;
+  }
+  float area = 0.5f * Sum(v_area), moment = 0.25f * Sum(v_moment), ds2 = Sum(v_ds2);
+  for (; k < hi; ++k) {
+    const float ds = s[k + 1] - s[k];
+    const float piece = 0.5f * (h[k] + h[k + 1]) * ds;
     area += piece;
-    moment += piece * 0.5 * (w.s[k] + w.s[k + 1]);
+    moment += piece * 0.5f * (s[k] + s[k + 1]);
     ds2 += ds * ds;
   }
-  for (std::size_t k = run.first; k <= run.last; ++k)
-    height = std::max(height, Median3(w.h[k - 1], w.h[k], w.h[k + 1]));
+  // Robust maximum: the largest median of three neighbouring heights.
+  V8 v_height = Splat(-1.0f);
+  for (k = run.first; k + 8 <= run.last + 1; k += 8) {
+    const V8 a = Load(h + k - 1), b = Load(h + k), c = Load(h + k + 1);
+    v_height = Max(v_height, Max(Min(a, b), Min(Max(a, b), c)));
+  }
+  float height = MaxOf(v_height);
+  for (; k <= run.last; ++k) height = std::max(height, Median3(h[k - 1], h[k], h[k + 1]));
 
-  const double inv_norm = 1.0 / std::sqrt(1.0 + line.slope * line.slope);
-  const double s_left = EdgeCrossing(w.s[lo], w.h[lo], w.s[lo + 1], w.h[lo + 1]);
-  const double s_right = EdgeCrossing(w.s[hi], w.h[hi], w.s[hi - 1], w.h[hi - 1]);
+  const double s_left = EdgeCrossing(s[lo], h[lo], s[lo + 1], h[lo + 1]);
+  const double s_right = EdgeCrossing(s[hi], h[hi], s[hi - 1], h[hi - 1]);
   g.area_mm2 = area;
   const double rms = line.residual_rms_mm;
-  const double edge_l = w.h[lo + 1] * (w.s[lo + 1] - w.s[lo]), edge_r = w.h[hi - 1] * (w.s[hi] - w.s[hi - 1]);
-  const double width = w.s[hi] - w.s[lo];
+  const double edge_l = double(h[lo + 1]) * (s[lo + 1] - s[lo]), edge_r = double(h[hi - 1]) * (s[hi] - s[hi - 1]);
+  const double width = double(s[hi]) - s[lo];
   g.area_sigma_mm2 = std::sqrt((edge_l * edge_l + edge_r * edge_r) / 12.0 + rms * rms * ds2 +
                                rms * rms * width * width / std::max(line.points_used, 1));
   g.width_mm = s_right - s_left;
   g.height_mm = height;
   // A point at along-line position s lies at x = s / sqrt(1 + slope^2).
-  g.center_x_mm = (area > 0.0 ? moment / area : 0.5 * (s_left + s_right)) * inv_norm;
-  g.left_edge_x_mm = s_left * inv_norm;
-  g.right_edge_x_mm = s_right * inv_norm;
-  g.dropped_points = std::abs(w.order[hi] - w.order[lo]) - 1 - static_cast<int>(hi - lo - 1);
+  const double s_centre = area > 0.0f ? double(moment) / area : 0.5 * (s_left + s_right);
+  g.center_x_mm = (pts.s_offset_mm + s_centre) * pts.inv_norm;
+  g.left_edge_x_mm = (pts.s_offset_mm + s_left) * pts.inv_norm;
+  g.right_edge_x_mm = (pts.s_offset_mm + s_right) * pts.inv_norm;
+  const int32_t view_lo = ViewIndex(w, PointIndex(w, lo)), view_hi = ViewIndex(w, PointIndex(w, hi));
+  g.dropped_points = std::abs(view_hi - view_lo) - 1 - static_cast<int>(hi - lo - 1);
   g.status = ProfileStatus::kValid;
   return g;
 }

@@ -28,6 +28,7 @@
 #include <limits>
 
 #include "libbead/core/rig.h"
+#include "libbead/profile/point_set.h"
 #include "libbead/profile/profile.h"
 #include "libbead/profile/reference_line.h"
 #include "libbead/profile/workspace.h"
@@ -90,10 +91,9 @@ struct BeadGeometry {
   bool valid() const { return status == ProfileStatus::kValid; }
 };
 
-// Measures the bead of `view` against `line`. The workspace must hold the
-// gathered points of this view (GatherPoints, or FitReferenceLine which
-// calls it); nothing is allocated.
-BeadGeometry MeasureBead(const ProfileView& view, const ReferenceLine& line, const ReferenceArea& left,
+// Measures the bead of the prepared points (point_set.h, the last set the
+// workspace prepared) against `line`; nothing is allocated.
+BeadGeometry MeasureBead(const PointSet& points, const ReferenceLine& line, const ReferenceArea& left,
                          const ReferenceArea& right, const BeadOptions& options, ProfileWorkspace& workspace);
 
 }  // namespace bead

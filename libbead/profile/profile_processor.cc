@@ -1,6 +1,6 @@
 #include "libbead/profile/profile_processor.h"
 
-#include "libbead/profile/gather.h"
+#include "libbead/profile/point_set.h"
 
 namespace bead {
 
@@ -9,9 +9,9 @@ ProfileProcessor::ProfileProcessor(const ReferenceArea& left, const ReferenceAre
     : left_(left), right_(right), options_(options), workspace_(max_points) {}
 
 const BeadGeometry& ProfileProcessor::Process(const ProfileView& view) {
-  GatherPoints(view, left_, right_, workspace_);
-  const ReferenceLine line = FitGatheredReferenceLine(options_.reference, workspace_);
-  result_ = MeasureBead(view, line, left_, right_, options_.bead, workspace_);
+  const PointSet points = PreparePoints(view, workspace_);
+  const ReferenceLine line = FitReferenceLine(points, left_, right_, options_.reference, workspace_.scratch.data());
+  result_ = MeasureBead(points, line, left_, right_, options_.bead, workspace_);
   return result_;
 }
 

@@ -1,73 +1,129 @@
 #include "libbead/profile/reference_line.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 
-#include "libbead/profile/gather.h"
-#include "libbead/profile/median.h"
+#include "libbead/profile/vec8.h"
+#include "libbead/profile/simd_dispatch.h"
 
 namespace bead {
 namespace {
 
 // The MAD of a normal distribution times this is its standard deviation.
 constexpr double kMadToSigma = 1.482602218505602;
+// The first inlier band needs only a rough spread (the later bands come
+// from the fits): the MAD of this many residuals is within about 20 %.
+constexpr std::size_t kMadSamples = 32;
 
-std::size_t StrideFor(std::size_t n, int max_samples) {
-  const std::size_t m = static_cast<std::size_t>(max_samples < 1 ? 1 : max_samples);
-  return n <= m ? 1 : (n + m - 1) / m;
+// The median of values[0, n), by counting for each candidate how many
+// values lie below it: no branches to mispredict, which on the few dozen
+// samples here beats a selection. `values` must have room for n rounded up
+// to a multiple of 8 (the padding is set to +infinity).
+float CountingMedian(float* values, std::size_t n) {
+  using namespace vec;
+  const std::size_t padded = (n + 7) / 8 * 8;
+  for (std::size_t i = n; i < padded; ++i) values[i] = std::numeric_limits<float>::infinity();
+  // Order statistics k1 = (n - 1) / 2 and k2 = n / 2 (equal for odd n).
+  const auto k1 = static_cast<int32_t>((n - 1) / 2), k2 = static_cast<int32_t>(n / 2);
+  float m1 = 0.0f, m2 = 0.0f;
+  bool found1 = false, found2 = false;
+  for (std::size_t i = 0; i < n && !(found1 && found2); ++i) {
+    const V8 c = Splat(values[i]);
+    M8 below{}, at_or_below{};
+    for (std::size_t j = 0; j < padded; j += 8) {
+      const V8 v = Load(values + j);
+      below += v < c;  // lanes are -1 where true
+      at_or_below += v <= c;
+    }
+    const int32_t lt = -SumInt(below), le = -SumInt(at_or_below);
+    if (lt <= k1 && k1 < le) m1 = values[i], found1 = true;
+    if (lt <= k2 && k2 < le) m2 = values[i], found2 = true;
+  }
+  return 0.5f * (m1 + m2);
 }
 
-// Median of every `stride`-th of the first n values, via `scratch`.
-double StridedMedian(const std::vector<double>& values, std::size_t n, std::size_t stride, std::vector<double>& scratch) {
-  scratch.clear();
-  for (std::size_t i = stride / 2; i < n; i += stride) scratch.push_back(values[i]);
-  return MedianInPlace(scratch.data(), scratch.size());
-}
-
-// The points of both areas, each area strided for the robust statistics.
-struct AreaPoints {
-  const ProfileWorkspace& w;
-  std::size_t stride_l, stride_r;
+// An area's points: indices [begin, end) of the point set (x increasing),
+// and every stride-th of them for the robust statistics.
+struct AreaRange {
+  std::size_t begin = 0, end = 0, stride = 1;
+  std::size_t size() const { return end - begin; }
+  std::size_t first_sample() const { return begin + stride / 2; }
 };
 
-// Vertical inlier band about z = a + b x: `inlier_sigmas` robust standard
-// deviations (1.4826 MAD) of the strided samples' residuals, never below
-// the floor `min_sigma_mm`.
-double InlierBand(const AreaPoints& p, std::vector<double>& scratch, double a, double b,
-                  const ReferenceLineOptions& options) {
-  const ProfileWorkspace& w = p.w;
-  scratch.clear();
-  for (std::size_t i = p.stride_l / 2; i < w.n_left; i += p.stride_l)
-    scratch.push_back(std::abs(w.left_z[i] - a - b * w.left_x[i]));
-  for (std::size_t i = p.stride_r / 2; i < w.n_right; i += p.stride_r)
-    scratch.push_back(std::abs(w.right_z[i] - a - b * w.right_x[i]));
-  const double sigma_v = std::max(kMadToSigma * MedianInPlace(scratch.data(), scratch.size()),
-                                  options.min_sigma_mm * std::sqrt(1.0 + b * b));
-  return options.inlier_sigmas * sigma_v;
+AreaRange RangeOf(const PointSet& p, const ReferenceArea& area, int max_samples) {
+  AreaRange r;
+  r.begin = LowerIndex(p, area.x_min_mm);
+  r.end = std::max(r.begin, UpperIndex(p, area.x_max_mm));
+  const std::size_t m = static_cast<std::size_t>(std::max(max_samples, 1));
+  r.stride = r.size() <= m ? 1 : (r.size() + m - 1) / m;
+  return r;
 }
 
-// Least-squares sums of the inliers, shifted by (x0, z0) for conditioning.
+// An area's samples with finite z, x into xs and z into zs; returns how many.
+std::size_t Samples(const PointSet& p, const AreaRange& r, float* xs, float* zs) {
+  std::size_t count = 0;
+  for (std::size_t i = r.first_sample(); i < r.end; i += r.stride) {
+    xs[count] = p.x[i];
+    zs[count] = p.z[i];
+    count += (p.z[i] - p.z[i]) == 0.0f;
+  }
+  return count;
+}
+
+// Median of sorted values.
+double SortedMedian(const float* xs, std::size_t n) {
+  return n % 2 == 1 ? xs[n / 2] : 0.5 * (double(xs[n / 2 - 1]) + double(xs[n / 2]));
+}
+
+
+// The line in shifted coordinates: z - z0 = c + b (x - x0).
+struct ShiftedLine {
+  double x0 = 0, z0 = 0, c = 0, b = 0;
+};
+
+// Least-squares sums over one area's points within `band` (vertical) of
+// the line, in the line's shifted coordinates (a dropout's NaN residual is
+// never within it).
 struct Sums {
-  double n = 0, sx = 0, sz = 0, sxx = 0, sxz = 0, rr = 0;
-  int Add(const std::vector<double>& xs, const std::vector<double>& zs, std::size_t count, double a, double b,
-          double band, double x0, double z0) {
-    int used = 0;
-    for (std::size_t i = 0; i < count; ++i) {
-      const double r = zs[i] - a - b * xs[i];
-      if (std::abs(r) > band) continue;
-      const double dx = xs[i] - x0;
-      const double dz = zs[i] - z0;
-      n += 1;
-      sx += dx;
-      sz += dz;
-      sxx += dx * dx;
-      sxz += dx * dz;
-      rr += r * r;
-      ++used;
-    }
-    return used;
+  double n = 0, sx = 0, sz = 0, sxx = 0, sxz = 0, szz = 0, rr = 0;
+  void Add(const Sums& o) {
+    n += o.n, sx += o.sx, sz += o.sz, sxx += o.sxx, sxz += o.sxz, szz += o.szz, rr += o.rr;
   }
 };
+
+Sums InlierSums(const PointSet& p, const AreaRange& r, const ShiftedLine& line, double band) {
+  using namespace vec;
+  const float x0 = static_cast<float>(line.x0), z0 = static_cast<float>(line.z0);
+  const float c = static_cast<float>(line.c), b = static_cast<float>(line.b), bw = static_cast<float>(band);
+  const V8 vx0 = Splat(x0), vz0 = Splat(z0), vc = Splat(c), vb = Splat(b), vbw = Splat(bw);
+  V8 n{}, sx{}, sz{}, sxx{}, sxz{}, szz{}, rr{};
+  std::size_t i = r.begin;
+  for (; i + 8 <= r.end; i += 8) {
+    const V8 dx = Load(p.x + i) - vx0;
+    const V8 dz = Load(p.z + i) - vz0;
+    const V8 res = dz - vc - vb * dx;
+    const M8 in = Abs(res) <= vbw;
+    const V8 idx = Select(in, dx, V8{}), idz = Select(in, dz, V8{}), ires = Select(in, res, V8{});
+    n += ToFloat(in);
+    sx += idx;
+    sz += idz;
+    sxx += idx * idx;
+    sxz += idx * idz;
+    szz += idz * idz;
+    rr += ires * ires;
+  }
+  Sums sums{Sum(n), Sum(sx), Sum(sz), Sum(sxx), Sum(sxz), Sum(szz), Sum(rr)};
+  for (; i < r.end; ++i) {
+    const float dx = p.x[i] - x0, dz = p.z[i] - z0;
+    const float res = dz - c - b * dx;
+    if (!(std::abs(res) <= bw)) continue;
+    sums.Add(Sums{1.0, dx, dz, double(dx) * dx, double(dx) * dz, double(dz) * dz, double(res) * res});
+  }
+  return sums;
+}
+
 
 }  // namespace
 
@@ -75,52 +131,79 @@ double ReferenceLine::HeightAt(double x_mm, double z_mm) const {
   return (z_mm - intercept_mm - slope * x_mm) / std::sqrt(1.0 + slope * slope);
 }
 
-ReferenceLine FitReferenceLine(const ProfileView& view, const ReferenceArea& left,
-                               const ReferenceArea& right, const ReferenceLineOptions& options,
-                               ProfileWorkspace& w) {
-  GatherPoints(view, left, right, w);
-  return FitGatheredReferenceLine(options, w);
+BEAD_HOT ReferenceLine FitReferenceLine(const PointSet& p, const ReferenceArea& left, const ReferenceArea& right,
+                                        const ReferenceLineOptions& options, float* scratch) {
+  ReferenceLine result;
+  const AreaRange rl = RangeOf(p, left, options.max_median_samples);
+  const AreaRange rr = RangeOf(p, right, options.max_median_samples);
+  const std::size_t valid_l = CountFiniteZ(p, rl.begin, rl.end), valid_r = CountFiniteZ(p, rr.begin, rr.end);
+  result.points_available = static_cast<int>(valid_l + valid_r);
+  const auto min_points = static_cast<std::size_t>(options.min_points_per_area);
+  if (valid_l < min_points || valid_r < min_points) return result;
+
+  // Robust start: the line through each area's (median x, median z) of its
+  // samples. Scratch layout: the left and right samples' z (each padded to
+  // a multiple of 8 for the median), then their x, then the residuals.
+  const std::size_t room_l = (rl.size() / rl.stride + 16) / 8 * 8, room_r = (rr.size() / rr.stride + 16) / 8 * 8;
+  float* zl_s = scratch;
+  float* zr_s = zl_s + room_l;
+  float* xl_s = zr_s + room_r;
+  float* xr_s = xl_s + room_l;
+  float* resid = xr_s + room_r;
+  const std::size_t cl = Samples(p, rl, xl_s, zl_s), cr = Samples(p, rr, xr_s, zr_s);
+  if (cl == 0 || cr == 0) return result;
+  const double xl = SortedMedian(xl_s, cl), xr = SortedMedian(xr_s, cr);
+  if (!(xr > xl)) return result;
+  const double zl = CountingMedian(zl_s, cl), zr = CountingMedian(zr_s, cr);
+  ShiftedLine line{0.5 * (xl + xr), 0.5 * (zl + zr), 0.0, (zr - zl) / (xr - xl)};
+
+  // First band: the robust spread (1.4826 MAD) of the residuals of at most
+  // kMadSamples of the samples about the start.
+  const std::size_t every = (cl + cr + kMadSamples - 1) / kMadSamples;
+  std::size_t count = 0;
+  for (std::size_t k = 0; k < cl + cr; k += every) {
+    const bool left_side = k < cl;
+    const float x = left_side ? xl_s[k] : xr_s[k - cl], z = left_side ? zl_s[k] : zr_s[k - cl];
+    resid[count++] = std::abs(static_cast<float>((z - line.z0) - line.b * (x - line.x0)));
+  }
+  const double floor_start = options.min_sigma_mm * std::sqrt(1.0 + line.b * line.b);
+  double band = options.inlier_sigmas * std::max(kMadToSigma * CountingMedian(resid, count), floor_start);
+
+  // Least-squares refits on the inliers; each next band is the inliers' RMS
+  // about the new line (the least-squares identity SSE = Szz - b Sxz on
+  // centred sums), and the last refit's inliers and RMS are reported.
+  const int refits = std::max(options.iterations, 1);
+  for (int iter = 0; iter < refits; ++iter) {
+    const Sums sl = InlierSums(p, rl, line, band);
+    const Sums sr = InlierSums(p, rr, line, band);
+    if (sl.n < options.min_points_per_area || sr.n < options.min_points_per_area) return result;
+    Sums s = sl;
+    s.Add(sr);
+    const double mx = s.sx / s.n, mz = s.sz / s.n;
+    const double sxx = s.sxx - s.n * mx * mx;
+    const double sxz = s.sxz - s.n * mx * mz;
+    const double szz = s.szz - s.n * mz * mz;
+    if (!(sxx > 0.0)) return result;
+    line.b = sxz / sxx;
+    line.c = mz - line.b * mx;
+    const double rms_v = std::sqrt(std::max(szz - line.b * sxz, 0.0) / s.n);
+    const double floor_v = options.min_sigma_mm * std::sqrt(1.0 + line.b * line.b);
+    band = options.inlier_sigmas * std::max(rms_v, floor_v);
+    if (iter + 1 == refits) {
+      result.ok = true;
+      result.slope = line.b;
+      result.intercept_mm = line.z0 + line.c - line.b * line.x0;
+      result.points_used = static_cast<int>(s.n);
+      result.residual_rms_mm = rms_v / std::sqrt(1.0 + line.b * line.b);
+    }
+  }
+  return result;
 }
 
-ReferenceLine FitGatheredReferenceLine(const ReferenceLineOptions& options, ProfileWorkspace& w) {
-  ReferenceLine line;
-  line.points_available = static_cast<int>(w.n_left + w.n_right);
-  const auto min_points = static_cast<std::size_t>(options.min_points_per_area);
-  if (w.n_left < min_points || w.n_right < min_points) return line;
-
-  // Robust start: the line through each area's (median x, median z).
-  const AreaPoints points{w, StrideFor(w.n_left, options.max_median_samples),
-                          StrideFor(w.n_right, options.max_median_samples)};
-  const double xl = StridedMedian(w.left_x, w.n_left, points.stride_l, w.scratch);
-  const double zl = StridedMedian(w.left_z, w.n_left, points.stride_l, w.scratch);
-  const double xr = StridedMedian(w.right_x, w.n_right, points.stride_r, w.scratch);
-  const double zr = StridedMedian(w.right_z, w.n_right, points.stride_r, w.scratch);
-  double b = (zr - zl) / (xr - xl);
-  double a = zl - b * xl;
-
-  // Refits on the inliers; the last pass only measures the final line.
-  for (int iter = 0; iter <= options.iterations; ++iter) {
-    const double band = InlierBand(points, w.scratch, a, b, options);
-    Sums sums;
-    const int used_l = sums.Add(w.left_x, w.left_z, w.n_left, a, b, band, xl, zl);
-    const int used_r = sums.Add(w.right_x, w.right_z, w.n_right, a, b, band, xl, zl);
-    if (used_l < options.min_points_per_area || used_r < options.min_points_per_area) return line;
-    if (iter == options.iterations) {
-      line.ok = true;
-      line.intercept_mm = a;
-      line.slope = b;
-      line.points_used = used_l + used_r;
-      line.residual_rms_mm = std::sqrt(sums.rr / sums.n / (1.0 + b * b));
-      return line;
-    }
-    const double mx = sums.sx / sums.n;
-    const double mz = sums.sz / sums.n;
-    const double sxx = sums.sxx - sums.n * mx * mx;
-    if (!(sxx > 0.0)) return line;
-    b = (sums.sxz - sums.n * mx * mz) / sxx;
-    a = (zl + mz) - b * (xl + mx);
-  }
-  return line;
+ReferenceLine FitReferenceLine(const ProfileView& view, const ReferenceArea& left, const ReferenceArea& right,
+                               const ReferenceLineOptions& options, ProfileWorkspace& workspace) {
+  const PointSet points = PreparePoints(view, workspace);
+  return FitReferenceLine(points, left, right, options, workspace.scratch.data());
 }
 
 }  // namespace bead

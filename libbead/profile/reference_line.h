@@ -5,13 +5,16 @@
 //
 // Method: a start through the (median x, median z) of each area, which
 // survives up to half the points of an area being spikes; then refits by
-// least squares on the points within `inlier_sigmas` robust standard
-// deviations (1.4826 * MAD of the residuals) of the current line.
+// least squares on the points within `inlier_sigmas` standard deviations of
+// the current line: first the robust one (1.4826 * MAD of the start's
+// residuals), then the RMS of the previous fit's inliers. The last refit's
+// inliers and their RMS are reported.
 #pragma once
 
 #include <limits>
 
 #include "libbead/core/rig.h"
+#include "libbead/profile/point_set.h"
 #include "libbead/profile/profile.h"
 #include "libbead/profile/workspace.h"
 
@@ -26,7 +29,7 @@ struct ReferenceLineOptions {
   double min_sigma_mm = 0.002;
   // Fewest valid points each area must hold for a fit.
   int min_points_per_area = 5;
-  // Least-squares refits after the median start.
+  // Least-squares refits after the median start (at least one).
   int iterations = 2;
   // At most this many points per area enter each median (evenly strided);
   // keeps the robust start cheap on long profiles.
@@ -46,14 +49,15 @@ struct ReferenceLine {
   double HeightAt(double x_mm, double z_mm) const;
 };
 
-// Fits the line; workspace buffers must hold view.size() points. Leaves
-// the gathered points (gather.h) in the workspace for MeasureBead.
-// On failure (an area with too few valid points) returns ok = false.
+// Fits the line to a prepared point set (point_set.h); `scratch` holds at
+// least 2 * points.n + 128 values (the workspace's does). On failure (an
+// area with too few valid points) returns ok = false.
+ReferenceLine FitReferenceLine(const PointSet& points, const ReferenceArea& left, const ReferenceArea& right,
+                               const ReferenceLineOptions& options, float* scratch);
+
+// The same from a view (prepares its points in the workspace).
 ReferenceLine FitReferenceLine(const ProfileView& view, const ReferenceArea& left,
                                const ReferenceArea& right, const ReferenceLineOptions& options,
                                ProfileWorkspace& workspace);
-
-// The same on points GatherPoints already put in the workspace.
-ReferenceLine FitGatheredReferenceLine(const ReferenceLineOptions& options, ProfileWorkspace& workspace);
 
 }  // namespace bead

@@ -3,10 +3,9 @@
 namespace bead {
 
 void ProfileWorkspace::Reserve(std::size_t points) {
-  for (auto* v : {&left_x, &left_z, &right_x, &right_z, &x, &s, &h}) v->resize(points);
-  scratch.reserve(points);
-  order.resize(points);
-  keep.resize(points);
+  for (auto* v : {&x, &z, &s, &h, &hx}) v->resize(points);
+  scratch.resize(2 * points + 128);  // median samples (padded to 8) and residuals
+  for (auto* v : {&removed, &map, &spikes}) v->resize(points);
 }
 
 }  // namespace bead

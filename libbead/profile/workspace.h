@@ -12,20 +12,26 @@
 namespace bead {
 
 struct ProfileWorkspace {
-  // Valid points inside the left and right reference areas.
-  std::vector<double> left_x, left_z, right_x, right_z;
-  std::size_t n_left = 0, n_right = 0;
-  // Scratch for medians (small, reserved).
-  std::vector<double> scratch;
-  // Valid points in x order: original index, x, along-line s, height h.
-  std::vector<int32_t> order;
-  std::vector<double> x, s, h;
-  std::vector<uint8_t> keep;
-  std::size_t n_valid = 0;  // entries of order (then of x, s, h once computed)
+  // The valid points in increasing x when the view's own arrays cannot be
+  // used as they are (point_set.h).
+  std::vector<float> x, z;
+  // How a point of the point set maps back to the view: either the sorted
+  // list of view indices that were left out (n_removed of them), or, when
+  // `mapped`, the view index of every point.
+  std::vector<int32_t> removed, map;
+  std::size_t n_removed = 0;
+  bool mapped = false;
+  // Per point of the point set: along-line position s and height h, and
+  // the point's x; spikes (indices into them) are removed in place.
+  std::vector<float> s, h, hx;
+  std::vector<int32_t> spikes;
+  std::size_t n_spikes = 0;
+  // Scratch for medians.
+  std::vector<float> scratch;
 
   explicit ProfileWorkspace(std::size_t points = 0) { Reserve(points); }
   void Reserve(std::size_t points);
-  std::size_t capacity() const { return order.size(); }
+  std::size_t capacity() const { return x.size(); }
 };
 
 }  // namespace bead

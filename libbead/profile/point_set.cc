@@ -1,0 +1,94 @@
+#include "libbead/profile/point_set.h"
+
+#include <algorithm>
+
+#include "libbead/profile/simd_dispatch.h"
+#include "libbead/profile/vec8.h"
+
+namespace bead {
+namespace {
+
+// x - x and z - z are NaN for NaN and infinities: one test for both
+// (bitwise and: no branch, so the block test vectorises).
+inline bool Finite(float x, float z) { return ((x - x) == 0.0f) & ((z - z) == 0.0f); }
+
+// Whether every x is finite and none is below its predecessor.
+bool FiniteAndIncreasing(const float* xs, std::size_t n) {
+  using namespace vec;
+  if (n == 0) return true;
+  M8 bad{};
+  std::size_t i = 1;
+  for (; i + 8 <= n; i += 8) {
+    const V8 x = Load(xs + i);
+    bad |= ((x - x) != 0.0f) | (x < Load(xs + i - 1));
+  }
+  bool tail_bad = !((xs[0] - xs[0]) == 0.0f);
+  for (; i < n; ++i) tail_bad |= !((xs[i] - xs[i]) == 0.0f) | (xs[i] < xs[i - 1]);
+  return !tail_bad && !Any(bad);
+}
+
+// The valid points sorted by x (ties in view order), through w.map.
+PointSet SortedCopy(const float* xs, const float* zs, std::size_t n, ProfileWorkspace& w) {
+  std::size_t m = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (Finite(xs[i], zs[i])) w.map[m++] = static_cast<int32_t>(i);
+  int32_t* map = w.map.data();
+  bool decreasing = true;
+  for (std::size_t k = 1; k < m; ++k) decreasing &= xs[map[k]] <= xs[map[k - 1]];
+  if (decreasing) {
+    // Reversed order; reversing keeps ties in reverse view order, which
+    // the geometry does not depend on.
+    std::reverse(map, map + m);
+  } else {
+    std::sort(map, map + m, [&](int32_t a, int32_t b) { return xs[a] < xs[b] || (xs[a] == xs[b] && a < b); });
+  }
+  for (std::size_t k = 0; k < m; ++k) {
+    w.x[k] = xs[map[k]];
+    w.z[k] = zs[map[k]];
+  }
+  w.mapped = true;
+  return PointSet{w.x.data(), w.z.data(), m};
+}
+
+}  // namespace
+
+BEAD_HOT PointSet PreparePoints(const ProfileView& view, ProfileWorkspace& w) {
+  const std::size_t n = view.x_mm.size();
+  if (n > w.capacity()) w.Reserve(n);
+  w.mapped = false;
+  w.n_removed = 0;
+  const float* xs = view.x_mm.data();
+  const float* zs = view.z_mm.data();
+  if (FiniteAndIncreasing(xs, n)) return PointSet{xs, zs, n};
+  return SortedCopy(xs, zs, n, w);
+}
+
+BEAD_HOT std::size_t CountFiniteZ(const PointSet& p, std::size_t begin, std::size_t end) {
+  using namespace vec;
+  M8 finite{};
+  std::size_t i = begin;
+  for (; i + 8 <= end; i += 8) {
+    const V8 z = Load(p.z + i);
+    finite += (z - z) == 0.0f;  // lanes are -1 where true
+  }
+  auto count = static_cast<std::size_t>(-SumInt(finite));
+  for (; i < end; ++i) count += (p.z[i] - p.z[i]) == 0.0f;
+  return count;
+}
+
+int32_t ViewIndex(const ProfileWorkspace& w, std::size_t k) {
+  if (w.mapped) return w.map[k];
+  auto index = static_cast<int32_t>(k);
+  for (std::size_t r = 0; r < w.n_removed && w.removed[r] <= index; ++r) ++index;
+  return index;
+}
+
+std::size_t LowerIndex(const PointSet& p, double value) {
+  return static_cast<std::size_t>(std::lower_bound(p.x, p.x + p.n, value, [](float a, double v) { return a < v; }) - p.x);
+}
+
+std::size_t UpperIndex(const PointSet& p, double value) {
+  return static_cast<std::size_t>(std::upper_bound(p.x, p.x + p.n, value, [](double v, float a) { return v < a; }) - p.x);
+}
+
+}  // namespace bead

@@ -1,0 +1,37 @@
+// PointSet: a profile's points with finite x in increasing x, the form
+// every later stage works on; a non-finite z marks a dropout, which the
+// later stages skip. A sensor that reports x in order (the usual case, NaN
+// z where it saw nothing) is used as it is, without a copy; reversed or
+// unsorted x, or a non-finite x, gets a sorted copy of the finite points.
+// The workspace remembers how to map a point back to its index in the view.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "libbead/profile/profile.h"
+#include "libbead/profile/workspace.h"
+
+namespace bead {
+
+struct PointSet {
+  const float* x = nullptr;  // finite, increasing (ties allowed)
+  const float* z = nullptr;  // non-finite: a dropout
+  std::size_t n = 0;
+};
+
+// Grows the workspace only if the view is longer than its capacity.
+PointSet PreparePoints(const ProfileView& view, ProfileWorkspace& workspace);
+
+// Index in the view of the k-th point with finite z of the last prepared
+// set (the heights stage records where the dropouts were).
+int32_t ViewIndex(const ProfileWorkspace& workspace, std::size_t k);
+
+// How many of the points [begin, end) have a finite z.
+std::size_t CountFiniteZ(const PointSet& points, std::size_t begin, std::size_t end);
+
+// Index of the first point with x >= value (n if none), and of the first with x > value.
+std::size_t LowerIndex(const PointSet& points, double value);
+std::size_t UpperIndex(const PointSet& points, double value);
+
+}  // namespace bead

@@ -1,0 +1,58 @@
+// Eight floats at a time, written with GCC's vector extensions so that one
+// source builds to AVX2 (one register) or SSE2 (two) - see simd_dispatch.h.
+// Only what the per-profile loops need.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+
+// The helpers are always inlined, so no vector crosses a call (GCC's
+// -Wpsabi note about the AVX calling convention does not apply; the
+// sources using them build with -Wno-psabi).
+#define BEAD_VEC inline __attribute__((always_inline))
+
+namespace bead::vec {
+
+typedef float V8 __attribute__((vector_size(32)));
+typedef int32_t M8 __attribute__((vector_size(32)));  // lanes all ones (true) or zero
+
+BEAD_VEC V8 Load(const float* p) {
+  V8 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+BEAD_VEC void Store(float* p, V8 v) { std::memcpy(p, &v, sizeof v); }
+BEAD_VEC V8 Splat(float x) { return V8{} + x; }
+BEAD_VEC V8 Abs(V8 v) { return v < 0.0f ? -v : v; }
+BEAD_VEC V8 Select(M8 m, V8 a, V8 b) { return m ? a : b; }  // a where m, else b
+BEAD_VEC V8 Min(V8 a, V8 b) { return a < b ? a : b; }
+BEAD_VEC V8 Max(V8 a, V8 b) { return a > b ? a : b; }
+BEAD_VEC V8 ToFloat(M8 m) { return Select(m, Splat(1.0f), Splat(0.0f)); }
+
+// Horizontal reductions, by halving.
+BEAD_VEC bool Any(M8 m) {
+  const auto a = __builtin_shufflevector(m, m, 0, 1, 2, 3, 0, 1, 2, 3) | __builtin_shufflevector(m, m, 4, 5, 6, 7, 4, 5, 6, 7);
+  const auto b = a | __builtin_shufflevector(a, a, 2, 3, 0, 1, 2, 3, 0, 1);
+  return (b[0] | b[1]) != 0;
+}
+BEAD_VEC bool All(M8 m) { return !Any(~m); }
+BEAD_VEC float Sum(V8 v) {
+  const V8 a = v + __builtin_shufflevector(v, v, 4, 5, 6, 7, 0, 1, 2, 3);
+  const V8 b = a + __builtin_shufflevector(a, a, 2, 3, 0, 1, 2, 3, 0, 1);
+  return b[0] + b[1];
+}
+BEAD_VEC int32_t SumInt(M8 v) {
+  const M8 a = v + __builtin_shufflevector(v, v, 4, 5, 6, 7, 0, 1, 2, 3);
+  const M8 b = a + __builtin_shufflevector(a, a, 2, 3, 0, 1, 2, 3, 0, 1);
+  return b[0] + b[1];
+}
+BEAD_VEC float MaxOf(V8 v) {
+  const V8 a = Max(v, __builtin_shufflevector(v, v, 4, 5, 6, 7, 0, 1, 2, 3));
+  const V8 b = Max(a, __builtin_shufflevector(a, a, 2, 3, 0, 1, 2, 3, 0, 1));
+  return b[0] > b[1] ? b[0] : b[1];
+}
+
+}  // namespace bead::vec
+
+#undef BEAD_VEC
