@@ -50,18 +50,40 @@ Heights ComputeHeights(const PointSet& p, const ReferenceLine& line, ProfileWork
     ss[m] = (dx + bf * dz) * inv;
     xs[m++] = x;
   };
-  for (; k + 8 <= p.n; k += 8) {
-    const V8 x = Load(p.x + k), z = Load(p.z + k);
+  auto eight = [&](std::size_t i) {
+    const V8 x = Load(p.x + i), z = Load(p.z + i);
     if (!All((z - z) == 0.0f)) {
-      for (std::size_t i = k; i < k + 8; ++i) one(i);
-      continue;
+      for (std::size_t j = i; j < i + 8; ++j) one(j);
+      return;
     }
     const V8 dx = x - vx0, dz = z - vz0 - vdz0;
     Store(hs + m, (dz - vb * dx) * vinv);
     Store(ss + m, (dx + vb * dz) * vinv);
     Store(xs + m, x);
     m += 8;
+  };
+  // Blocks of 32 points with one finiteness test (the reductions cost more
+  // than the arithmetic); a block with a dropout goes eight at a time.
+  for (; k + 32 <= p.n; k += 32) {
+    M8 finite = ~M8{};
+    for (std::size_t i = k; i < k + 32; i += 8) {
+      const V8 z = Load(p.z + i);
+      finite &= (z - z) == 0.0f;
+    }
+    if (!All(finite)) {
+      for (std::size_t i = k; i < k + 32; i += 8) eight(i);
+      continue;
+    }
+    for (std::size_t i = k; i < k + 32; i += 8) {
+      const V8 x = Load(p.x + i), z = Load(p.z + i);
+      const V8 dx = x - vx0, dz = z - vz0 - vdz0;
+      Store(hs + m, (dz - vb * dx) * vinv);
+      Store(ss + m, (dx + vb * dz) * vinv);
+      Store(xs + m, x);
+      m += 8;
+    }
   }
+  for (; k + 8 <= p.n; k += 8) eight(k);
   for (; k < p.n; ++k) one(k);
   w.n_removed = removed;
   // A point at (x, z) lies at s = (x + b (z - a)) / sqrt(1 + b^2) along
@@ -91,10 +113,15 @@ std::size_t FindSpikes(const Heights& g, float spike_mm, ProfileWorkspace& w) {
   auto jump = [&](std::size_t k) { return std::abs(h[k + 1] - h[k]) > spike_mm; };  // between k and k + 1
   const V8 sp = Splat(spike_mm);
   std::size_t k = 0;
-  for (; k + 9 <= n; k += 8) {
-    if (!Any(Abs(Load(h + k + 1) - Load(h + k)) > sp)) continue;
-    for (std::size_t i = k; i < k + 8; ++i)
-      if (jump(i)) decide(i), decide(i + 1);
+  for (; k + 33 <= n; k += 32) {  // one test per 32 pairs
+    M8 jumps{};
+    for (std::size_t i = k; i < k + 32; i += 8) jumps |= Abs(Load(h + i + 1) - Load(h + i)) > sp;
+    if (!Any(jumps)) continue;
+    for (std::size_t i = k; i < k + 32; i += 8) {
+      if (!Any(Abs(Load(h + i + 1) - Load(h + i)) > sp)) continue;
+      for (std::size_t t = i; t < i + 8; ++t)
+        if (jump(t)) decide(t), decide(t + 1);
+    }
   }
   for (; k + 1 < n; ++k)
     if (jump(k)) decide(k), decide(k + 1);
@@ -171,7 +198,10 @@ Run LargestRun(const Heights& g, float threshold, float max_gap, const Reference
   std::size_t k = 0;
   while (k < n) {
     // The next point above the threshold.
-    while (k + 8 <= n && !vec::Any(vec::Load(h + k) > vt)) k += 8;
+    while (k + 32 <= n &&
+           !vec::Any((vec::Load(h + k) > vt) | (vec::Load(h + k + 8) > vt) | (vec::Load(h + k + 16) > vt) |
+                     (vec::Load(h + k + 24) > vt)))
+      k += 32;
     while (k < n && !(h[k] > threshold)) ++k;
     if (k == n) break;
     // Its run: while above and joined.

@@ -21,7 +21,7 @@ bool FiniteAndIncreasing(const float* xs, std::size_t n) {
   for (; i + 8 <= n; i += 8) {
     const V8 x = Load(xs + i);
     bad |= ((x - x) != 0.0f) | (x < Load(xs + i - 1));
-  }
+  }  // one reduction at the end
   bool tail_bad = !((xs[0] - xs[0]) == 0.0f);
   for (; i < n; ++i) tail_bad |= !((xs[i] - xs[i]) == 0.0f) | (xs[i] < xs[i - 1]);
   return !tail_bad && !Any(bad);

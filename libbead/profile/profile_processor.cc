@@ -10,7 +10,7 @@ ProfileProcessor::ProfileProcessor(const ReferenceArea& left, const ReferenceAre
 
 const BeadGeometry& ProfileProcessor::Process(const ProfileView& view) {
   const PointSet points = PreparePoints(view, workspace_);
-  const ReferenceLine line = FitReferenceLine(points, left_, right_, options_.reference, workspace_.scratch.data());
+  const ReferenceLine line = FitReferenceLine(points, left_, right_, options_.reference, workspace_);
   result_ = MeasureBead(points, line, left_, right_, options_.bead, workspace_);
   return result_;
 }

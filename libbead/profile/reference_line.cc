@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <limits>
 
+#include "libbead/profile/median.h"
 #include "libbead/profile/vec8.h"
 #include "libbead/profile/simd_dispatch.h"
 
@@ -13,9 +14,6 @@ namespace {
 
 // The MAD of a normal distribution times this is its standard deviation.
 constexpr double kMadToSigma = 1.482602218505602;
-// The first inlier band needs only a rough spread (the later bands come
-// from the fits): the MAD of this many residuals is within about 20 %.
-constexpr std::size_t kMadSamples = 32;
 
 // The median of values[0, n), by counting for each candidate how many
 // values lie below it: no branches to mispredict, which on the few dozen
@@ -45,29 +43,49 @@ float CountingMedian(float* values, std::size_t n) {
 }
 
 // An area's points: indices [begin, end) of the point set (x increasing),
-// and every stride-th of them for the robust statistics.
+// the dropouts among them, and every stride-th valid point for the robust
+// statistics (counted over valid points, so a dropout marked by NaN z in
+// place gives the same samples as one cut out of a sorted copy).
 struct AreaRange {
   std::size_t begin = 0, end = 0, stride = 1;
-  std::size_t size() const { return end - begin; }
-  std::size_t first_sample() const { return begin + stride / 2; }
+  const int32_t* dropouts = nullptr;  // increasing point indices
+  std::size_t n_dropouts = 0;
+  std::size_t valid() const { return end - begin - n_dropouts; }
 };
 
-AreaRange RangeOf(const PointSet& p, const ReferenceArea& area, int max_samples) {
+AreaRange RangeOf(const PointSet& p, const ReferenceArea& area, int max_samples, int32_t* dropouts) {
+  using namespace vec;
   AreaRange r;
   r.begin = LowerIndex(p, area.x_min_mm);
   r.end = std::max(r.begin, UpperIndex(p, area.x_max_mm));
+  std::size_t count = 0;
+  auto check = [&](std::size_t i) {
+    if (!((p.z[i] - p.z[i]) == 0.0f)) dropouts[count++] = static_cast<int32_t>(i);
+  };
+  std::size_t i = r.begin;
+  for (; i + 8 <= r.end; i += 8) {
+    const V8 z = Load(p.z + i);
+    if (All((z - z) == 0.0f)) continue;
+    for (std::size_t k = i; k < i + 8; ++k) check(k);
+  }
+  for (; i < r.end; ++i) check(i);
+  r.dropouts = dropouts;
+  r.n_dropouts = count;
   const std::size_t m = static_cast<std::size_t>(std::max(max_samples, 1));
-  r.stride = r.size() <= m ? 1 : (r.size() + m - 1) / m;
+  r.stride = r.valid() <= m ? 1 : (r.valid() + m - 1) / m;
   return r;
 }
 
-// An area's samples with finite z, x into xs and z into zs; returns how many.
+// An area's samples, x into xs and z into zs: valid points stride/2,
+// stride/2 + stride, ...; returns how many.
 std::size_t Samples(const PointSet& p, const AreaRange& r, float* xs, float* zs) {
-  std::size_t count = 0;
-  for (std::size_t i = r.first_sample(); i < r.end; i += r.stride) {
+  std::size_t count = 0, d = 0;
+  for (std::size_t v = r.stride / 2; v < r.valid(); v += r.stride) {
+    // Point index of the v-th valid point: step over the dropouts before it.
+    std::size_t i = r.begin + v + d;
+    while (d < r.n_dropouts && static_cast<std::size_t>(r.dropouts[d]) <= i) ++d, ++i;
     xs[count] = p.x[i];
-    zs[count] = p.z[i];
-    count += (p.z[i] - p.z[i]) == 0.0f;
+    zs[count++] = p.z[i];
   }
   return count;
 }
@@ -76,6 +94,36 @@ std::size_t Samples(const PointSet& p, const AreaRange& r, float* xs, float* zs)
 double SortedMedian(const float* xs, std::size_t n) {
   return n % 2 == 1 ? xs[n / 2] : 0.5 * (double(xs[n / 2 - 1]) + double(xs[n / 2]));
 }
+
+// The median of the medians of three (values i, i + g, i + 2g for
+// g = n / 3; below 9 values, the plain median). A median of three is off
+// only if two of its values are outliers, so any arrangement of fewer than
+// a third of the values being outliers leaves it among the good ones, and
+// random outliers at 20 % spoil it with probability below 1e-4 even for 16
+// triples; with a third of the candidates the counting is cheap. The
+// median of three draws has the median of their distribution, so this
+// estimates the same median. `triples` has room for n / 3 + 8 values.
+float MedianOfTriples(float* values, std::size_t n, float* triples) {
+  if (n < 9) return CountingMedian(values, n);
+  using namespace vec;
+  const std::size_t g = n / 3;
+  std::size_t i = 0;
+  for (; i + 8 <= g; i += 8) {
+    const V8 a = Load(values + i), b = Load(values + i + g), c = Load(values + i + 2 * g);
+    Store(triples + i, Max(Min(a, b), Min(Max(a, b), c)));
+  }
+  for (; i < g; ++i) triples[i] = Median3(values[i], values[i + g], values[i + 2 * g]);
+  return CountingMedian(triples, g);
+}
+
+// The centre of an area's samples (x increasing): the median of the
+// medians of three of z, and the median x of the samples those medians
+// stand for (i + g on a straight line).
+void AreaCentre(const float* xs, float* zs, std::size_t count, float* triples, double& x_mid, double& z_mid) {
+  z_mid = MedianOfTriples(zs, count, triples);
+  x_mid = count < 9 ? SortedMedian(xs, count) : SortedMedian(xs + count / 3, count / 3);
+}
+
 
 
 // The line in shifted coordinates: z - z0 = c + b (x - x0).
@@ -132,42 +180,40 @@ double ReferenceLine::HeightAt(double x_mm, double z_mm) const {
 }
 
 BEAD_HOT ReferenceLine FitReferenceLine(const PointSet& p, const ReferenceArea& left, const ReferenceArea& right,
-                                        const ReferenceLineOptions& options, float* scratch) {
+                                        const ReferenceLineOptions& options, ProfileWorkspace& w) {
   ReferenceLine result;
-  const AreaRange rl = RangeOf(p, left, options.max_median_samples);
-  const AreaRange rr = RangeOf(p, right, options.max_median_samples);
-  const std::size_t valid_l = CountFiniteZ(p, rl.begin, rl.end), valid_r = CountFiniteZ(p, rr.begin, rr.end);
-  result.points_available = static_cast<int>(valid_l + valid_r);
-  const auto min_points = static_cast<std::size_t>(options.min_points_per_area);
-  if (valid_l < min_points || valid_r < min_points) return result;
+  const AreaRange rl = RangeOf(p, left, options.max_median_samples, w.area_dropouts.data());
+  const AreaRange rr = RangeOf(p, right, options.max_median_samples, w.area_dropouts.data() + rl.n_dropouts);
+  result.points_available = static_cast<int>(rl.valid() + rr.valid());
+  const auto min_points = static_cast<std::size_t>(std::max(options.min_points_per_area, 1));
+  if (rl.valid() < min_points || rr.valid() < min_points) return result;
+  float* scratch = w.scratch.data();
 
   // Robust start: the line through each area's (median x, median z) of its
   // samples. Scratch layout: the left and right samples' z (each padded to
   // a multiple of 8 for the median), then their x, then the residuals.
-  const std::size_t room_l = (rl.size() / rl.stride + 16) / 8 * 8, room_r = (rr.size() / rr.stride + 16) / 8 * 8;
+  const std::size_t room_l = (rl.valid() / rl.stride + 16) / 8 * 8, room_r = (rr.valid() / rr.stride + 16) / 8 * 8;
   float* zl_s = scratch;
   float* zr_s = zl_s + room_l;
   float* xl_s = zr_s + room_r;
   float* xr_s = xl_s + room_l;
   float* resid = xr_s + room_r;
+  float* triples = resid + room_l + room_r;
   const std::size_t cl = Samples(p, rl, xl_s, zl_s), cr = Samples(p, rr, xr_s, zr_s);
-  if (cl == 0 || cr == 0) return result;
-  const double xl = SortedMedian(xl_s, cl), xr = SortedMedian(xr_s, cr);
-  if (!(xr > xl)) return result;
-  const double zl = CountingMedian(zl_s, cl), zr = CountingMedian(zr_s, cr);
+  if (!(xr_s[0] > xl_s[cl - 1])) return result;  // overlapping areas
+  double xl, zl, xr, zr;
+  AreaCentre(xl_s, zl_s, cl, triples, xl, zl);
+  AreaCentre(xr_s, zr_s, cr, triples, xr, zr);
   ShiftedLine line{0.5 * (xl + xr), 0.5 * (zl + zr), 0.0, (zr - zl) / (xr - xl)};
 
-  // First band: the robust spread (1.4826 MAD) of the residuals of at most
-  // kMadSamples of the samples about the start.
-  const std::size_t every = (cl + cr + kMadSamples - 1) / kMadSamples;
-  std::size_t count = 0;
-  for (std::size_t k = 0; k < cl + cr; k += every) {
-    const bool left_side = k < cl;
-    const float x = left_side ? xl_s[k] : xr_s[k - cl], z = left_side ? zl_s[k] : zr_s[k - cl];
-    resid[count++] = std::abs(static_cast<float>((z - line.z0) - line.b * (x - line.x0)));
-  }
+  // First band: the robust spread (1.4826 MAD) of the samples' residuals
+  // about the start, the MAD taken as the median of medians of three (the
+  // median of three draws shares the median of their distribution).
+  for (std::size_t k = 0; k < cl; ++k) resid[k] = std::abs(static_cast<float>((zl_s[k] - line.z0) - line.b * (xl_s[k] - line.x0)));
+  for (std::size_t k = 0; k < cr; ++k) resid[cl + k] = std::abs(static_cast<float>((zr_s[k] - line.z0) - line.b * (xr_s[k] - line.x0)));
   const double floor_start = options.min_sigma_mm * std::sqrt(1.0 + line.b * line.b);
-  double band = options.inlier_sigmas * std::max(kMadToSigma * CountingMedian(resid, count), floor_start);
+  const double mad = MedianOfTriples(resid, cl + cr, triples);
+  double band = options.inlier_sigmas * std::max(kMadToSigma * mad, floor_start);
 
   // Least-squares refits on the inliers; each next band is the inliers' RMS
   // about the new line (the least-squares identity SSE = Szz - b Sxz on
@@ -203,7 +249,7 @@ BEAD_HOT ReferenceLine FitReferenceLine(const PointSet& p, const ReferenceArea& 
 ReferenceLine FitReferenceLine(const ProfileView& view, const ReferenceArea& left, const ReferenceArea& right,
                                const ReferenceLineOptions& options, ProfileWorkspace& workspace) {
   const PointSet points = PreparePoints(view, workspace);
-  return FitReferenceLine(points, left, right, options, workspace.scratch.data());
+  return FitReferenceLine(points, left, right, options, workspace);
 }
 
 }  // namespace bead

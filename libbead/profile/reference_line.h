@@ -3,8 +3,10 @@
 // NaN dropouts, reflection spikes (well beyond 20 % of the reference
 // points), sensor roll (slope) and wheel runout (intercept moves).
 //
-// Method: a start through the (median x, median z) of each area, which
-// survives up to half the points of an area being spikes; then refits by
+// Method: a start through the centre of each area's samples (at most
+// max_median_samples, evenly strided): the median of their medians of
+// three, which survives any arrangement of up to a third of them being
+// spikes (reference_line.cc says more); then refits by
 // least squares on the points within `inlier_sigmas` standard deviations of
 // the current line: first the robust one (1.4826 * MAD of the start's
 // residuals), then the RMS of the previous fit's inliers. The last refit's
@@ -49,11 +51,11 @@ struct ReferenceLine {
   double HeightAt(double x_mm, double z_mm) const;
 };
 
-// Fits the line to a prepared point set (point_set.h); `scratch` holds at
-// least 2 * points.n + 128 values (the workspace's does). On failure (an
-// area with too few valid points) returns ok = false.
+// Fits the line to a prepared point set (point_set.h), with the
+// workspace's scratch buffers. On failure (an area with too few valid
+// points) returns ok = false.
 ReferenceLine FitReferenceLine(const PointSet& points, const ReferenceArea& left, const ReferenceArea& right,
-                               const ReferenceLineOptions& options, float* scratch);
+                               const ReferenceLineOptions& options, ProfileWorkspace& workspace);
 
 // The same from a view (prepares its points in the workspace).
 ReferenceLine FitReferenceLine(const ProfileView& view, const ReferenceArea& left,

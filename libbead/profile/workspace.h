@@ -26,8 +26,10 @@ struct ProfileWorkspace {
   std::vector<float> s, h, hx;
   std::vector<int32_t> spikes;
   std::size_t n_spikes = 0;
-  // Scratch for medians.
+  // Scratch for the reference line: its samples and residuals, and the
+  // dropouts inside the reference areas.
   std::vector<float> scratch;
+  std::vector<int32_t> area_dropouts;
 
   explicit ProfileWorkspace(std::size_t points = 0) { Reserve(points); }
   void Reserve(std::size_t points);
