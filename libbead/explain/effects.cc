@@ -1,0 +1,179 @@
+#include "libbead/explain/effects.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace bead::explain {
+namespace {
+
+double Mean(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += x;
+  return v.empty() ? 0.0 : s / static_cast<double>(v.size());
+}
+
+double Sd(const std::vector<double>& v) {
+  const double m = Mean(v);
+  double s = 0;
+  for (double x : v) s += (x - m) * (x - m);
+  return v.size() < 2 ? 0.0 : std::sqrt(s / static_cast<double>(v.size() - 1));
+}
+
+std::vector<double> Linspace(double a, double b, int n) {
+  std::vector<double> v;
+  for (int i = 0; i < n; ++i) v.push_back(a + (b - a) * i / (n - 1));
+  return v;
+}
+
+std::vector<double> Logspace(double a, double b, int n) {
+  std::vector<double> v;
+  for (int i = 0; i < n; ++i) v.push_back(a * std::pow(b / a, static_cast<double>(i) / (n - 1)));
+  return v;
+}
+
+Effect Make(std::string name, std::string description, Effect::Kind kind, std::string feature) {
+  Effect e;
+  e.name = std::move(name);
+  e.description = std::move(description);
+  e.kind = kind;
+  e.feature = std::move(feature);
+  return e;
+}
+
+}  // namespace
+
+std::vector<std::vector<double>> Effect::Columns(const SeriesData& d, const double* nl) const {
+  const std::size_t n = d.size();
+  std::vector<std::vector<double>> cols;
+  if (kind == Kind::kPositionShift || kind == Kind::kDelay || kind == Kind::kDelayDrift) return cols;
+  if (part >= 0) {
+    const auto& a = d.parts[static_cast<std::size_t>(part)].angle_rad;
+    std::vector<double> c(n), s(n);
+    for (std::size_t i = 0; i < n; ++i) c[i] = std::cos(harmonic * a[i]), s[i] = std::sin(harmonic * a[i]);
+    cols.push_back(std::move(c));
+    cols.push_back(std::move(s));
+    return cols;
+  }
+  std::vector<double> c(n, 0.0);
+  if (feature == "scale" || feature == "bias") {
+    std::fill(c.begin(), c.end(), 1.0);
+  } else if (feature == "drift") {
+    const double t0 = 0.5 * (d.t.front() + d.t.back()), half = 0.5 * (d.t.back() - d.t.front());
+    std::vector<double> c2(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double x = (d.t[i] - t0) / half;
+      c[i] = x;
+      c2[i] = x * x;
+    }
+    cols.push_back(std::move(c));
+    cols.push_back(std::move(c2));
+    return cols;
+  } else if (feature == "time_to_laser") {
+    // Cooling shrink approached with time constant tau after laying: the
+    // area left at time-to-laser dt is 1 - s (1 - exp(-dt / tau)); the
+    // column is -(1 - exp(-dt / tau)) so the parameter is s.
+    for (std::size_t i = 0; i < n; ++i) c[i] = -(1.0 - std::exp(-d.time_to_laser_s[i] / nl[0]));
+  } else if (feature == "height") {
+    const double m = Mean(d.height_mm);
+    for (std::size_t i = 0; i < n; ++i) c[i] = (d.height_mm[i] - m) / m;
+  } else if (feature == "buildup") {
+    for (std::size_t i = 0; i < n; ++i) c[i] = 1.0 - std::exp(-d.segment_time_s[i] / nl[0]);
+  } else if (feature == "level") {
+    const double m = Mean(d.base), s = Sd(d.base);
+    for (std::size_t i = 0; i < n; ++i) c[i] = s > 0 ? (d.base[i] - m) / s : 0.0;
+  }
+  cols.push_back(std::move(c));
+  return cols;
+}
+
+double Effect::PositionShift(const double* nl) const { return kind == Kind::kPositionShift ? nl[0] : 0.0; }
+
+void Effect::AddDelay(const SeriesData& d, const double* nl, std::vector<double>& delay) const {
+  if (kind == Kind::kDelay) {
+    for (double& x : delay) x += nl[0];
+  } else if (kind == Kind::kDelayDrift) {
+    // The delay grows linearly over the record: nl[0] seconds from start to end.
+    const double t0 = 0.5 * (d.t.front() + d.t.back()), span = d.t.back() - d.t.front();
+    for (std::size_t i = 0; i < delay.size(); ++i) delay[i] += nl[0] * (d.t[i] - t0) / span;
+  }
+}
+
+std::vector<Effect> Catalogue(const SeriesData& d, const CatalogueOptions& o) {
+  using K = Effect::Kind;
+  std::vector<Effect> out;
+  const double span = d.t.back() - d.t.front();
+  if (o.has_wheel && d.shifted) {
+    Effect e = Make("encoder_offset", "the nozzle-to-laser offset is wrong: data misaligned in wheel position",
+                    K::kPositionShift, "offset");
+    e.nonlinear = {"shift_counts"};
+    e.grid = {Linspace(-o.position_range_counts, o.position_range_counts, 61)};
+    out.push_back(e);
+  }
+  if (d.shifted || d.base_delayed) {
+    Effect e = Make("time_shift", "measurement and model misaligned in time (latency, a wrong delay)", K::kDelay,
+                    "delay");
+    e.nonlinear = {"shift_s"};
+    e.grid = {Linspace(-o.delay_range_s, o.delay_range_s, 41)};
+    out.push_back(e);
+    Effect f = Make("delay_drift", "the delay changes over the record", K::kDelayDrift, "delay_drift");
+    f.nonlinear = {"delay_change_s"};
+    f.grid = {Linspace(-o.delay_range_s, o.delay_range_s, 41)};
+    out.push_back(f);
+  }
+  for (std::size_t p = 0; p < d.parts.size(); ++p) {
+    const auto& a = d.parts[p].angle_rad;
+    const double turns = std::abs(a.back() - a.front()) / (2 * std::numbers::pi);
+    if (turns < 2.0) continue;  // a periodic term needs the part to turn a few times
+    for (int h = 1; h <= 2; ++h) {
+      Effect e = Make((h == 1 ? "once_per_rev[" : "twice_per_rev[") + d.parts[p].name + "]",
+                      (h == 1 ? "once" : "twice") + std::string(" per revolution of the ") + d.parts[p].name +
+                          " (runout, eccentricity)",
+                      K::kMultiplicative, "periodic");
+      e.part = static_cast<int>(p);
+      e.harmonic = h;
+      e.tracks = d.parts[p].name;
+      e.linear = {"cos_rel", "sin_rel"};
+      out.push_back(e);
+    }
+  }
+  if (!d.time_to_laser_s.empty() && Sd(d.time_to_laser_s) > 0.05 * Mean(d.time_to_laser_s)) {
+    Effect e = Make("cooling_shrink", "the bead shrinks between laying and measuring (varies with time to laser)",
+                    K::kMultiplicative, "time_to_laser");
+    e.nonlinear = {"tau_s"};
+    const double m = Mean(d.time_to_laser_s);
+    e.grid = {Logspace(0.1 * m, 10.0 * m, 25)};
+    e.linear = {"shrink_frac"};
+    out.push_back(e);
+  }
+  if (!d.height_mm.empty() && Sd(d.height_mm) > 0.02 * Mean(d.height_mm)) {
+    Effect e = Make("height_dependence", "the error grows with bead height (occlusion left over)", K::kMultiplicative,
+                    "height");
+    e.linear = {"rel_per_rel_height"};
+    out.push_back(e);
+  }
+  Effect drift = Make("drift", "slow drift over the record (linear and quadratic)", K::kAdditive, "drift");
+  drift.linear = {"linear_" + d.y_unit, "quadratic_" + d.y_unit};
+  out.push_back(drift);
+  if (!d.segment_time_s.empty()) {
+    Effect e = Make("buildup", "a saturating build-up after each start (heat accumulating)", K::kAdditive, "buildup");
+    e.nonlinear = {"tau_s"};
+    e.grid = {Logspace(span / 200.0, span, 25)};
+    e.linear = {"amplitude_" + d.y_unit};
+    out.push_back(e);
+  }
+  Effect level = Make("level_gain", "the gain changes with the operating level", K::kMultiplicative, "level");
+  level.linear = {"rel_per_sd_level"};
+  out.push_back(level);
+  if (o.model_given) {
+    Effect s = Make("scale", "the model's gain is off by a factor", K::kMultiplicative, "scale");
+    s.linear = {"rel"};
+    out.push_back(s);
+    Effect b = Make("bias", "a constant offset", K::kAdditive, "bias");
+    b.linear = {"value_" + d.y_unit};
+    out.push_back(b);
+  }
+  return out;
+}
+
+}  // namespace bead::explain

@@ -1,0 +1,80 @@
+// The loop that closes the model: diagnose the residual, try every effect
+// of the catalogue the data supports, keep the one that helps most, and
+// repeat. No overfitting: an effect is kept only when
+//  1. fitted on the estimation half of the record (every other of
+//     `blocks` time blocks) it lowers the BIC there, and
+//  2. on the held-out blocks (or on another run, when given) it lowers the
+//     squared error significantly: F = (drop in SSE per added parameter) /
+//     (SSE left per effective sample, N_eff from the residual's lag-one
+//     correlation) above the chi-square quantile at level `alpha`.
+// Kept effects are refitted on the whole record for the report, each
+// parameter with a 95 % interval from the Ceres covariance, scaled by the
+// residual variance and by N / N_eff for the residual's lag-one correlation.
+// Afterwards, every significant peak left in the residual spectrum is
+// checked against the rotating parts (their mean rate and first two
+// harmonics) and reported as unexplained with what it tracks.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "libbead/explain/diagnostics.h"
+#include "libbead/explain/effects.h"
+#include "libbead/explain/series_data.h"
+
+namespace bead::explain {
+
+struct FittedParameter {
+  std::string name;
+  double value = 0.0, ci95 = 0.0;  // value +- ci95
+};
+
+struct AddedEffect {
+  std::string name, description, tracks;
+  std::vector<FittedParameter> parameters;
+  double fit_before_pct = 0, fit_after_pct = 0, rms_before = 0, rms_after = 0;
+  double bic_drop = 0;   // on the estimation blocks
+  double heldout_f = 0;  // F on the held-out data
+};
+
+struct Candidate {  // every effect tried in a round, for the diagnostics
+  int round = 0;
+  std::string name;
+  double bic_drop = 0, heldout_f = 0;
+  bool accepted = false;
+};
+
+struct Unexplained {
+  std::string what;    // "periodic" or "correlated residual"
+  std::string tracks;  // "wheel at the nozzle x1", "frequency 3.10 Hz", ...
+  double frequency_hz = 0, power = 0, false_alarm = 1;
+};
+
+struct ExplainOptions {
+  CatalogueOptions catalogue;
+  int blocks = 20;
+  double alpha = 0.01;
+  int max_effects = 5;
+  int lags = 25;
+  double spectrum_max_hz = 20.0;
+  const SeriesData* validation = nullptr;  // another run: held-out data instead of the blocks
+};
+
+struct ExplainReport {
+  std::vector<AddedEffect> effects_added;
+  std::vector<Candidate> candidates;
+  std::vector<Unexplained> unexplained;
+  double fit_before_pct = 0, fit_after_pct = 0, rms_before = 0, rms_after = 0;
+  Whiteness whiteness_before, whiteness_after;
+  InputCorrelation input_before, input_after;
+  Spectrum spectrum_before, spectrum_after;
+  std::vector<double> residual_before, residual_after;
+  // The wheel-position shift that best aligns the data (whether or not it
+  // was kept as an effect), with its 95 % interval; NaN without a wheel.
+  double position_shift_counts = 0, position_shift_ci95_counts = 0;
+  bool position_shift_estimated = false;
+};
+
+ExplainReport Explain(const SeriesData& data, const ExplainOptions& options = {});
+
+}  // namespace bead::explain

@@ -1,0 +1,40 @@
+// SeriesData: what the explain loop works on - a measured output y against
+// a base model's prediction at the same times, with whatever the data lets
+// us reconstruct beside it (the phase of each rotating part, the time
+// between laying and measuring, the bead's height, time since the process
+// started), and how to re-evaluate y and the prediction when the data is
+// shifted in wheel position or the model's input in time.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace bead::explain {
+
+// A rotating part whose phase the data gives: its angle at each sample.
+struct RotatingPart {
+  std::string name;               // e.g. "wheel at the nozzle"
+  std::vector<double> angle_rad;  // unwrapped
+};
+
+struct SeriesData {
+  std::vector<double> t, u, y, base;  // same length, finite
+  std::string y_unit = "";            // for the report
+  std::vector<RotatingPart> parts;
+  std::vector<double> time_to_laser_s;  // empty when not known
+  std::vector<double> height_mm;        // empty when not known
+  std::vector<double> segment_time_s;   // time since the process (re)started
+  // y and base with the extrusion times moved by `counts` of wheel position
+  // and the model input delayed by extra_delay_s[i] more; empty function
+  // when the data has no wheel (then only the delay applies, through
+  // base_delayed).
+  std::function<void(double counts, const std::vector<double>& extra_delay_s, std::vector<double>& y,
+                     std::vector<double>& base)>
+      shifted;
+  std::function<std::vector<double>(const std::vector<double>& extra_delay_s)> base_delayed;
+
+  std::size_t size() const { return t.size(); }
+};
+
+}  // namespace bead::explain
