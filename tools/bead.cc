@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   runs["flow"] = bead::tools::AddFlow(app);
   runs["calibrate"] = bead::tools::AddCalibrate(app);
   runs["identify"] = bead::tools::AddIdentify(app);
+  runs["explain"] = bead::tools::AddExplain(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -15,5 +15,6 @@ Run AddSimulate(CLI::App& app);
 Run AddFlow(CLI::App& app);
 Run AddCalibrate(CLI::App& app);
 Run AddIdentify(CLI::App& app);
+Run AddExplain(CLI::App& app);
 
 }  // namespace bead::tools

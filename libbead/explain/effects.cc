@@ -71,9 +71,12 @@ std::vector<std::vector<double>> Effect::Columns(const SeriesData& d, const doub
     return cols;
   } else if (feature == "time_to_laser") {
     // Cooling shrink approached with time constant tau after laying: the
-    // area left at time-to-laser dt is 1 - s (1 - exp(-dt / tau)); the
-    // column is -(1 - exp(-dt / tau)) so the parameter is s.
-    for (std::size_t i = 0; i < n; ++i) c[i] = -(1.0 - std::exp(-d.time_to_laser_s[i] / nl[0]));
+    // area left at time-to-laser dt is 1 - s (1 - exp(-dt / tau)). Scaled
+    // so that the parameter is the shrink at the mean time-to-laser m,
+    // which the data pins down even when tau (the curvature) it barely does.
+    const double m = Mean(d.time_to_laser_s), tau = std::max(nl[0], 1e-3);
+    const double at_mean = 1.0 - std::exp(-m / tau);
+    for (std::size_t i = 0; i < n; ++i) c[i] = -(1.0 - std::exp(-d.time_to_laser_s[i] / tau)) / at_mean;
   } else if (feature == "height") {
     const double m = Mean(d.height_mm);
     for (std::size_t i = 0; i < n; ++i) c[i] = (d.height_mm[i] - m) / m;
@@ -143,7 +146,7 @@ std::vector<Effect> Catalogue(const SeriesData& d, const CatalogueOptions& o) {
     e.nonlinear = {"tau_s"};
     const double m = Mean(d.time_to_laser_s);
     e.grid = {Logspace(0.1 * m, 10.0 * m, 25)};
-    e.linear = {"shrink_frac"};
+    e.linear = {"shrink_at_mean_frac"};
     out.push_back(e);
   }
   if (!d.height_mm.empty() && Sd(d.height_mm) > 0.02 * Mean(d.height_mm)) {

@@ -150,25 +150,64 @@ void Refine(const SeriesData& d, Set& set, const std::vector<std::size_t>& rows,
     }
     cost->SetNumResiduals(static_cast<int>(rows.size()));
     problem.AddResidualBlock(cost, nullptr, blocks);
+    // A nonlinear parameter stays within its search grid (a time constant
+    // the data cannot pin would run off to infinity).
+    for (std::size_t e = 0; e < set.size(); ++e)
+      for (std::size_t k = 0; k < set[e].nl(); ++k) {
+        const auto& grid = set[e].effect.grid[k];
+        problem.SetParameterLowerBound(blocks[e], static_cast<int>(k), grid.front());
+        problem.SetParameterUpperBound(blocks[e], static_cast<int>(k), grid.back());
+      }
     ceres::Solver::Summary summary;
     ceres::Solve(fit::QuietDenseOptions(30), &problem, &summary);
     if (!uncertainty) return;
     ceres::Covariance::Options co;
     co.algorithm_type = ceres::DENSE_SVD;
-    ceres::Covariance cov(co);
     std::vector<std::pair<const double*, const double*>> pairs;
     for (double* b : blocks) pairs.push_back({b, b});
-    if (!cov.Compute(pairs, &problem)) return;
-    uncertainty->sd.clear();
-    for (std::size_t e = 0; e < set.size(); ++e) {
-      const std::size_t m = set[e].params.size();
-      std::vector<double> c(m * m);
-      cov.GetCovarianceBlock(blocks[e], blocks[e], c.data());
-      std::vector<double> sd(m);
-      for (std::size_t k = 0; k < m; ++k) sd[k] = std::sqrt(std::max(c[k * m + k], 0.0));
-      uncertainty->sd.push_back(sd);
+    // Standard deviations from the covariance blocks; parameters [0, held)
+    // of an effect were held (unbounded), or all of them when it is `fixed`.
+    auto collect = [&](ceres::Covariance& cov, bool nonlinear_held, const std::vector<bool>& fixed) {
+      uncertainty->sd.clear();
+      for (std::size_t e = 0; e < set.size(); ++e) {
+        const std::size_t m = set[e].params.size();
+        std::vector<double> sd(m, kInf);
+        if (!fixed[e]) {
+          std::vector<double> c(m * m);  // in the ambient space, also with a manifold
+          cov.GetCovarianceBlock(blocks[e], blocks[e], c.data());
+          for (std::size_t k = nonlinear_held ? set[e].nl() : 0; k < m; ++k) sd[k] = std::sqrt(std::max(c[k * m + k], 0.0));
+        }
+        uncertainty->sd.push_back(sd);
+      }
+      uncertainty->ok = true;
+    };
+    {
+      ceres::Covariance cov(co);
+      if (cov.Compute(pairs, &problem)) {
+        collect(cov, false, std::vector<bool>(set.size(), false));
+        return;
+      }
     }
-    uncertainty->ok = true;
+    // Some nonlinear parameter is not identified by the data: its interval
+    // is unbounded, and the others' are computed with it held.
+    std::vector<bool> held(set.size(), false);
+    std::vector<std::pair<const double*, const double*>> kept;
+    for (std::size_t e = 0; e < set.size(); ++e) {
+      const int nl = static_cast<int>(set[e].nl()), m = static_cast<int>(set[e].params.size());
+      if (nl == 0) {
+        kept.push_back({blocks[e], blocks[e]});
+      } else if (nl == m) {
+        problem.SetParameterBlockConstant(blocks[e]);
+        held[e] = true;
+      } else {
+        std::vector<int> fixed;
+        for (int k = 0; k < nl; ++k) fixed.push_back(k);
+        problem.SetManifold(blocks[e], new ceres::SubsetManifold(m, fixed));
+        kept.push_back({blocks[e], blocks[e]});
+      }
+    }
+    ceres::Covariance cov(co);
+    if (cov.Compute(kept, &problem)) collect(cov, true, held);
     return;
   }
   SolveLinear(d, set, rows);
@@ -272,6 +311,43 @@ double HeldOutF(const SeriesData& v, const Set& before, const Set& after, const 
   return (sse_b - sse_a) / static_cast<double>(added_parameters) / (sse_a / n_eff);
 }
 
+// A periodic term against the residual's own colour: the held-out F of
+// the same term on the same part turning at other rates (its angle scaled
+// about the start), at least two frequency resolutions away from the
+// part's own rate and its second harmonic. A colored residual gives such
+// surrogates large F too; a real periodic effect beats all of them.
+double LargestSurrogateF(const SeriesData& d, const SeriesData& v, bool separate_validation, const Set& current,
+                         const Effect& effect, const std::vector<std::size_t>& estimation,
+                         const std::vector<std::size_t>& held_out) {
+  const auto& angle = d.parts[static_cast<std::size_t>(effect.part)].angle_rad;
+  const double revs = std::abs(angle.back() - angle.front()) / (2 * std::numbers::pi);
+  double largest = -kInf;
+  for (int k = 2; k <= 6; ++k) {
+    for (int sign : {-1, 1}) {
+      const double factor = 1.0 + sign * k / revs;
+      if (factor < 0.3 || std::abs(factor - 2.0) < 2.0 / revs) continue;
+      auto scaled = [&](const SeriesData& src) {
+        SeriesData copy = src;
+        RotatingPart part = copy.parts[static_cast<std::size_t>(effect.part)];
+        const double a0 = part.angle_rad.front();
+        for (double& a : part.angle_rad) a = a0 + factor * (a - a0);
+        part.name += " (surrogate)";
+        copy.parts.push_back(part);
+        return copy;
+      };
+      const SeriesData ds = scaled(d);
+      const SeriesData vs = separate_validation ? scaled(v) : ds;
+      Effect e = effect;
+      e.part = static_cast<int>(ds.parts.size()) - 1;
+      Set trial = current;
+      trial.push_back(Active{e, std::vector<double>(e.linear.size(), 0.0)});
+      Fit(ds, trial, estimation);
+      largest = std::max(largest, HeldOutF(vs, current, trial, held_out, trial.back().params.size()));
+    }
+  }
+  return largest;
+}
+
 double Rms(const std::vector<double>& r) {
   double s = 0;
   std::size_t n = 0;
@@ -349,8 +425,13 @@ ExplainReport Explain(const SeriesData& d, const ExplainOptions& o) {
       const double drop = bic_now - Bic(Sse(Residual(d, trial), estimation), estimation.size(), ParameterCount(trial));
       const std::size_t p_new = trial.back().params.size();
       const double t = HeldOutF(validation, current_est, trial, held_out, p_new);
-      const bool ok = drop > 0 && t > ChiSquareQuantile(1.0 - o.alpha, static_cast<int>(p_new)) / static_cast<double>(p_new);
-      report.candidates.push_back({round, catalogue[c].name, drop, t, false});
+      bool ok = drop > 0 && t > ChiSquareQuantile(1.0 - o.alpha, static_cast<int>(p_new)) / static_cast<double>(p_new);
+      double surrogate = NAN;
+      if (ok && catalogue[c].part >= 0) {
+        surrogate = LargestSurrogateF(d, validation, o.validation != nullptr, current_est, catalogue[c], estimation, held_out);
+        ok = t > surrogate;
+      }
+      report.candidates.push_back({round, catalogue[c].name, drop, t, surrogate, false});
       if (ok && drop > best_drop) best = static_cast<int>(c), best_drop = drop, best_t = t, best_set = trial;
     }
     if (best < 0) break;

@@ -6,7 +6,9 @@
 //  2. on the held-out blocks (or on another run, when given) it lowers the
 //     squared error significantly: F = (drop in SSE per added parameter) /
 //     (SSE left per effective sample, N_eff from the residual's lag-one
-//     correlation) above the chi-square quantile at level `alpha`.
+//     correlation) above the chi-square quantile at level `alpha`; a
+//     periodic term must also beat the same term fitted to its part turning
+//     at other rates (surrogates, which a coloured residual fits too).
 // Kept effects are refitted on the whole record for the report, each
 // parameter with a 95 % interval from the Ceres covariance, scaled by the
 // residual variance and by N / N_eff for the residual's lag-one correlation.
@@ -41,6 +43,7 @@ struct Candidate {  // every effect tried in a round, for the diagnostics
   int round = 0;
   std::string name;
   double bic_drop = 0, heldout_f = 0;
+  double surrogate_f = 0;  // periodic terms: the largest surrogate's F (NaN: not tried)
   bool accepted = false;
 };
 

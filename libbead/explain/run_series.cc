@@ -1,0 +1,96 @@
+#include "libbead/explain/run_series.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <numbers>
+
+#include "libbead/explain/model_series.h"
+#include "libbead/flow/extrusion_time.h"
+#include "libbead/profile/median.h"
+#include "libbead/series/encoder.h"
+
+namespace bead::explain {
+namespace {
+
+// What the shift hook needs, kept alive by the hook.
+struct RunState {
+  std::vector<double> log_t, log_counts, speed, model_flow;
+  std::unique_ptr<ExtrusionTimeFinder> finder;
+  std::vector<double> t_measured, counts_measured, area;
+  double offset = 0.0;
+};
+
+}  // namespace
+
+RunSeries MakeRunSeries(const Rig& rig, const ProfileBlock& profiles, const std::vector<BeadGeometry>& geometry,
+                        const AcquisitionLog& log, const FlowResult& flow, const model::TransferFunction& tf,
+                        const FlowOptions& flow_options) {
+  auto st = std::make_shared<RunState>();
+  st->log_t = log.t_s;
+  st->log_counts = UnwrapEncoder(log.encoder, rig.encoder, log.t_s).counts;
+  st->speed = SurfaceSpeed(rig, st->log_t, st->log_counts, flow_options);
+  st->model_flow = model::Simulate(tf, log.t_s, log.screw_rpm);
+  st->finder = std::make_unique<ExtrusionTimeFinder>(st->log_t, st->log_counts);
+  st->offset = rig.offset_counts;
+  // The screw's angle: the integral of its speed.
+  std::vector<double> screw(log.size(), 0.0);
+  for (std::size_t j = 1; j < log.size(); ++j)
+    screw[j] = screw[j - 1] + 0.5 * (log.screw_rpm[j] + log.screw_rpm[j - 1]) / 60.0 * 2 * std::numbers::pi *
+                                  (log.t_s[j] - log.t_s[j - 1]);
+
+  RunSeries out;
+  SeriesData& d = out.data;
+  d.y_unit = "mm3_s";
+  RotatingPart wheel{"wheel", {}}, screw_part{"screw", {}};
+  std::vector<double> latency;
+  for (std::size_t k = 0; k < flow.samples.size(); ++k) {
+    const FlowSample& s = flow.samples[k];
+    if (!s.valid || !std::isfinite(s.area_corrected_mm2) || s.area_corrected_mm2 <= 0.0) continue;
+    const double t_k = profiles.t_s[k];
+    const double p_k = UnwrapNear(profiles.encoder[k], rig.encoder, st->finder->PositionAt(t_k));
+    out.profile.push_back(k);
+    st->t_measured.push_back(t_k);
+    st->counts_measured.push_back(p_k);
+    st->area.push_back(s.area_corrected_mm2);
+    d.t.push_back(s.t_s);
+    d.u.push_back(s.screw_rpm);
+    d.y.push_back(s.flow_mm3_s);
+    d.base.push_back(InterpolateAt(st->log_t, st->model_flow, s.t_s));
+    wheel.angle_rad.push_back(CountsToAngleRad(p_k - rig.offset_counts, rig.encoder));
+    screw_part.angle_rad.push_back(InterpolateAt(log.t_s, screw, s.t_s));
+    d.time_to_laser_s.push_back(t_k - s.t_s);
+    d.height_mm.push_back(geometry[k].height_mm);
+    // When did the log's encoder read this profile's count?
+    const double t_at = st->finder->Find(t_k + 1.0, p_k);
+    if (std::isfinite(t_at)) latency.push_back(t_k - t_at);
+  }
+  d.parts = {wheel, screw_part};
+  if (!latency.empty()) {
+    std::vector<double> dev(latency.size());
+    const double med = MedianInPlace(latency.data(), latency.size());
+    for (std::size_t i = 0; i < dev.size(); ++i) dev[i] = std::abs(latency[i] - med);
+    const double sigma = 1.4826 * MedianInPlace(dev.data(), dev.size());
+    out.timestamp_offset_s = med;
+    // The median's standard error is 1.2533 sigma / sqrt(n) for normal scatter.
+    out.timestamp_offset_ci95_s = 1.96 * 1.2533 * sigma / std::sqrt(static_cast<double>(latency.size()));
+  }
+  d.shifted = [st](double counts, const std::vector<double>& extra_delay, std::vector<double>& y,
+                   std::vector<double>& base) {
+    const std::size_t n = st->t_measured.size();
+    y.resize(n);
+    base.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double t_e = st->finder->Find(st->t_measured[i], st->counts_measured[i] - st->offset - counts);
+      if (!std::isfinite(t_e)) {
+        y[i] = base[i] = std::numeric_limits<double>::quiet_NaN();
+        continue;
+      }
+      y[i] = InterpolateAt(st->log_t, st->speed, t_e) * st->area[i];
+      base[i] = InterpolateAt(st->log_t, st->model_flow, t_e - (extra_delay.empty() ? 0.0 : extra_delay[i]));
+    }
+  };
+  return out;
+}
+
+}  // namespace bead::explain
