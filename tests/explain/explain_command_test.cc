@@ -1,0 +1,100 @@
+// `bead explain` as a user runs it: the bundled sample run (run mode) and
+// a weld-style CSV (uneven, with gaps) validated on a second run; its JSON
+// holds the fields the issue names; bad input fails with the file named.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <random>
+
+#include "libbead/explain/model_series.h"
+#include "tests/support/temp_dir.h"
+
+namespace bead::explain {
+namespace {
+
+int RunCli(const std::string& args, const std::string& out) {
+  return std::system((std::string(BEAD_CLI) + " " + args + " > " + out + " 2>&1").c_str());
+}
+
+TEST(ExplainCommand, SampleRunReportsOffsetDiagnosticsAndSpectrum) {
+  test::TempDir dir;
+  const std::string sample = std::string(BEAD_SOURCE_DIR) + "/testdata/sample";
+  ASSERT_EQ(RunCli("explain --rig " + sample + "/rig.yaml " + sample + "/run.h5 -o " + (dir / "explain.json"),
+                   dir / "out.txt"),
+            0)
+      << test::ReadText(dir / "out.txt");
+  const std::string out = test::ReadText(dir / "out.txt");
+  EXPECT_NE(out.find("encoder offset from the run"), std::string::npos) << out;
+  const auto j = nlohmann::json::parse(test::ReadText(dir / "explain.json"));
+  for (const char* key : {"effects_added", "unexplained", "offset_from_run_counts", "offset_from_run_ci95_counts",
+                          "rig_offset_counts", "diagnostics", "spectrum", "fit_before_pct", "fit_after_pct"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["rig_offset_counts"].get<double>(), 3071.5);
+  // The sample's rig file is the twin's truth: the run agrees within its interval.
+  EXPECT_NEAR(j["offset_from_run_counts"].get<double>(), 3071.5, 1.5 * j["offset_from_run_ci95_counts"].get<double>());
+  EXPECT_TRUE(j["diagnostics"]["whiteness_before"].contains("chi2"));
+  EXPECT_FALSE(j["spectrum"]["before"]["frequency_hz"].empty());
+}
+
+// Width of a weld bead against wire feed speed: sampled unevenly, off for a
+// while in the middle, and drifting (heat); a second run drifts the same way.
+void WriteWeldCsv(const std::string& path, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> step(0.03, 0.07), level(4.0, 9.0), hold(0.5, 2.0);
+  std::normal_distribution<double> noise(0.0, 0.02);
+  std::vector<double> t, u;
+  double next = 0.0, value = 6.0;
+  for (double x = 0.0; x < 50.0; x += step(rng)) {
+    if (x > 20.0 && x < 24.0) continue;
+    if (x >= next) value = level(rng), next = x + hold(rng);
+    t.push_back(x);
+    u.push_back(value);
+  }
+  const SeriesData d = ModelSeries(t, u, std::vector<double>(t.size(), 0.0), {{0.5}, {0.3, 1.0}, 0.1});
+  std::string csv = "time_s,wire_feed_m_min,width_mm,operator\n";
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const double width = d.base[i] + 0.25 * (t[i] - 25.0) / 25.0 + noise(rng);
+    csv += std::to_string(t[i]) + "," + std::to_string(u[i]) + "," + (i % 50 == 7 ? "" : std::to_string(width)) + ",anna\n";
+  }
+  test::WriteText(path, csv);
+}
+
+TEST(ExplainCommand, AnyCsvWithAnotherRunAsHeldOutData) {
+  test::TempDir dir;
+  WriteWeldCsv(dir / "weld1.csv", 1);
+  WriteWeldCsv(dir / "weld2.csv", 2);
+  ASSERT_EQ(RunCli("explain " + (dir / "weld1.csv") + " --time time_s --input wire_feed_m_min --output width_mm " +
+                       "--poles 1 --zeros 0 --validate " + (dir / "weld2.csv") + " -o " + (dir / "explain.json"),
+                   dir / "out.txt"),
+            0)
+      << test::ReadText(dir / "out.txt");
+  const auto j = nlohmann::json::parse(test::ReadText(dir / "explain.json"));
+  ASSERT_FALSE(j["effects_added"].empty()) << test::ReadText(dir / "out.txt");
+  EXPECT_EQ(j["effects_added"][0]["name"], "drift");
+  EXPECT_LT(j["effects_added"][0]["rms_after"].get<double>(), j["effects_added"][0]["rms_before"].get<double>());
+  EXPECT_TRUE(j["offset_from_run_counts"].is_null());
+}
+
+TEST(ExplainCommand, BadInputNamesTheFile) {
+  test::TempDir dir;
+  WriteWeldCsv(dir / "weld.csv", 3);
+  EXPECT_NE(RunCli("explain " + (dir / "weld.csv") + " --input nope --output width_mm -o " + (dir / "e.json"),
+                   dir / "out.txt"),
+            0);
+  std::string out = test::ReadText(dir / "out.txt");
+  EXPECT_NE(out.find("weld.csv"), std::string::npos) << out;
+  EXPECT_NE(out.find("no column 'nope'"), std::string::npos) << out;
+  test::WriteText(dir / "model.json", "{\"num\": [1.0]}");
+  EXPECT_NE(RunCli("explain " + (dir / "weld.csv") + " --time time_s --input wire_feed_m_min --output width_mm --model " +
+                       (dir / "model.json") + " -o " + (dir / "e.json"),
+                   dir / "out.txt"),
+            0);
+  out = test::ReadText(dir / "out.txt");
+  EXPECT_NE(out.find("model.json"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "e.json"));
+}
+
+}  // namespace
+}  // namespace bead::explain
