@@ -4,8 +4,10 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <random>
 
+#include "libbead/model/feed_forward.h"
 #include "libbead/sim/bead_shapes.h"
 #include "libbead/sim/command_signal.h"
 #include "libbead/sim/sensor_model.h"
@@ -68,8 +70,18 @@ Timeline RunDynamics(const SimConfig& c, std::mt19937_64& rng) {
   tl.area.assign(n, 0.0);
 
   model::DiscreteSystem to_rpm(c.extruder.voltage_to_rpm, c.dt_s), to_flow(c.extruder.rpm_to_flow, c.dt_s);
-  // Noise-free copies predict the flow for the feed-forward wheel.
-  model::DiscreteSystem model_rpm(c.extruder.voltage_to_rpm, c.dt_s), model_flow(c.extruder.rpm_to_flow, c.dt_s);
+  // The feed-forward wheel controller (thesis 4.2), ticking at its own rate
+  // on noise-free models; its command is held between ticks.
+  std::optional<model::FeedForward> feed_forward;
+  std::size_t controller_ticks = 1;
+  if (c.wheel.mode == WheelConfig::Mode::kFeedForward) {
+    model::WheelModel wheel{c.wheel.gain_rpm_per_v, c.wheel.tau_s, c.wheel.delay_s, c.rig.wheel_diameter_mm / 2};
+    model::FeedForwardOptions fo;
+    fo.target_area_mm2 = c.wheel.target_area_mm2;
+    fo.rate_hz = c.wheel.controller_rate_hz;
+    feed_forward.emplace(c.extruder.voltage_to_rpm, c.extruder.rpm_to_flow, wheel, fo);
+    controller_ticks = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(1.0 / (fo.rate_hz * c.dt_s))));
+  }
   const auto lag = [&](double delay) { return static_cast<std::size_t>(std::llround(delay / c.dt_s)); };
   const std::size_t rpm_lag = lag(c.extruder.voltage_to_rpm.delay_s), flow_lag = lag(c.extruder.rpm_to_flow.delay_s);
   const std::size_t wheel_lag = lag(c.wheel.delay_s);
@@ -78,7 +90,6 @@ Timeline RunDynamics(const SimConfig& c, std::mt19937_64& rng) {
   const double noise_gain = std::sqrt((1 + noise_alpha) / (1 - noise_alpha));
   double flow_noise = 0.0;
   const double radius = c.rig.wheel_diameter_mm / 2;
-  std::vector<double> model_q(n, 0.0), model_rpm_hist(n, 0.0);
   double wheel_rpm = c.wheel.mode == WheelConfig::Mode::kConstant ? c.wheel.surface_speed_mm_s / radius * 60.0 / kTwoPi : 0.0;
 
   for (std::size_t i = 0; i < n; ++i) {
@@ -89,8 +100,6 @@ Timeline RunDynamics(const SimConfig& c, std::mt19937_64& rng) {
     flow_noise = noise_alpha * flow_noise + (1 - noise_alpha) * gauss(rng);
     tl.flow[i] = std::max(0.0, to_flow.Step(u_flow) * (1.0 + c.extruder.flow_noise_frac * noise_gain * flow_noise));
 
-    model_rpm_hist[i] = model_rpm.Step(u_rpm);
-    model_q[i] = std::max(0.0, model_flow.Step(i >= flow_lag ? model_rpm_hist[i - flow_lag] : 0.0));
 
     // The wheel: its command, then its first-order response (thesis 3.3.3).
     switch (c.wheel.mode) {
@@ -98,13 +107,9 @@ Timeline RunDynamics(const SimConfig& c, std::mt19937_64& rng) {
       case WheelConfig::Mode::kCommanded:
         tl.wheel_cmd_v[i] = StepsAt(c.wheel.cmd_levels_v, c.wheel.cmd_durations_s, t);
         break;
-      case WheelConfig::Mode::kFeedForward: {
-        // Thesis chapter 4: the surface speed that lays the target area for
-        // the flow the models predict, never below a crawl that keeps the wheel turning.
-        const double v = std::max(model_q[i] / c.wheel.target_area_mm2, 20.0);
-        tl.wheel_cmd_v[i] = v / radius * 60.0 / kTwoPi / c.wheel.gain_rpm_per_v;
+      case WheelConfig::Mode::kFeedForward:
+        tl.wheel_cmd_v[i] = i % controller_ticks == 0 ? feed_forward->Step(tl.command_v[i]) : tl.wheel_cmd_v[i - 1];
         break;
-      }
     }
     if (c.wheel.mode != WheelConfig::Mode::kConstant) {
       const double v_in = i >= wheel_lag ? tl.wheel_cmd_v[i - wheel_lag] : 0.0;

@@ -35,7 +35,8 @@ struct ExtruderConfig {
 struct WheelConfig {
   enum class Mode { kConstant, kCommanded, kFeedForward } mode = Mode::kConstant;
   double surface_speed_mm_s = 200.0;  // constant mode (15 RPM of the 254.762 mm wheel is 200 mm/s)
-  double target_area_mm2 = 14.0;      // feed-forward: the area to hold
+  double target_area_mm2 = 14.0;      // feed-forward: the area to hold ...
+  double controller_rate_hz = 100.0;  // ... by a controller ticking at this rate (model/feed_forward.h)
   double gain_rpm_per_v = 2.517;      // thesis 3.3.3: wheel voltage -> RPM, first order ...
   double tau_s = 0.0377;              // ... with this time constant ...
   double delay_s = 0.009;             // ... and delay

@@ -5,7 +5,8 @@
 //   extruder: {command: {kind, base_v, levels_v, durations_s, amplitude_v, bit_time_s, start_s, stop_s},
 //              voltage_to_rpm: {num, den, delay_s}, rpm_to_flow: {num, den, delay_s},
 //              rpm_noise, flow_noise_frac},
-//   wheel: {mode, surface_speed_mm_s, target_area_mm2, gain_rpm_per_v, tau_s, delay_s, cmd_levels_v, cmd_durations_s},
+//   wheel: {mode, surface_speed_mm_s, target_area_mm2, controller_rate_hz, gain_rpm_per_v, tau_s, delay_s,
+//           cmd_levels_v, cmd_durations_s},
 //   encoder: {start_count, missed_read_prob},
 //   bead: {shape, aspect, bottom_radius_frac, top_radius_frac, exponent, bottom_exponent, center_lift_frac,
 //          center_wander_mm, center_wander_period_s, outline_vertices},
@@ -191,13 +192,14 @@ void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
     r.Get(ex, "extruder.", "flow_noise_frac", c.extruder.flow_noise_frac, 0, 1);
   }
 
-  const YAML::Node wh = r.Section(root, "wheel", {"mode", "surface_speed_mm_s", "target_area_mm2", "gain_rpm_per_v",
-                                                  "tau_s", "delay_s", "cmd_levels_v", "cmd_durations_s"});
+  const YAML::Node wh = r.Section(root, "wheel", {"mode", "surface_speed_mm_s", "target_area_mm2", "controller_rate_hz",
+                                                  "gain_rpm_per_v", "tau_s", "delay_s", "cmd_levels_v", "cmd_durations_s"});
   using M = WheelConfig::Mode;
   r.GetEnum<M>(wh, "wheel.", "mode", c.wheel.mode,
                {{"constant", M::kConstant}, {"commanded", M::kCommanded}, {"feedforward", M::kFeedForward}});
   r.Get(wh, "wheel.", "surface_speed_mm_s", c.wheel.surface_speed_mm_s, 1, 1e4);
   r.Get(wh, "wheel.", "target_area_mm2", c.wheel.target_area_mm2, 0.01, 1e4);
+  r.Get(wh, "wheel.", "controller_rate_hz", c.wheel.controller_rate_hz, 1, 1e5);
   r.Get(wh, "wheel.", "gain_rpm_per_v", c.wheel.gain_rpm_per_v, 1e-3, 1e4);
   r.Get(wh, "wheel.", "tau_s", c.wheel.tau_s, 1e-4, 100);
   r.Get(wh, "wheel.", "delay_s", c.wheel.delay_s, 0, 10);
