@@ -95,26 +95,26 @@ json ReportJson(const explain::ExplainReport& r, const model::TransferFunction& 
     candidates.push_back({{"round", c.round}, {"name", c.name}, {"bic_drop", c.bic_drop}, {"heldout_f", c.heldout_f},
                           {"surrogate_f", Finite(c.surrogate_f)}, {"accepted", c.accepted}});
   return {{"model", {{"num", tf.num}, {"den", tf.den}, {"delay_s", tf.delay_s}, {"source", model_source}}},
-          {"fit_before_pct", r.fit_before_pct},
-          {"fit_after_pct", r.fit_after_pct},
-          {"rms_before", r.rms_before},
-          {"rms_after", r.rms_after},
+          {"fit_before_pct", r.before.fit_pct},
+          {"fit_after_pct", r.after.fit_pct},
+          {"rms_before", r.before.rms},
+          {"rms_after", r.after.rms},
           {"effects_added", effects},
           {"unexplained", unexplained},
           {"diagnostics",
-           {{"whiteness_before", ToJson(r.whiteness_before)},
-            {"whiteness_after", ToJson(r.whiteness_after)},
-            {"input_correlation_before", ToJson(r.input_before)},
-            {"input_correlation_after", ToJson(r.input_after)},
+           {{"whiteness_before", ToJson(r.before.whiteness)},
+            {"whiteness_after", ToJson(r.after.whiteness)},
+            {"input_correlation_before", ToJson(r.before.input)},
+            {"input_correlation_after", ToJson(r.after.input)},
             {"candidates", candidates}}},
-          {"spectrum", {{"before", ToJson(r.spectrum_before)}, {"after", ToJson(r.spectrum_after)}}}};
+          {"spectrum", {{"before", ToJson(r.before.spectrum)}, {"after", ToJson(r.after.spectrum)}}}};
 }
 
 void PrintReport(const explain::ExplainReport& r, const std::string& unit) {
   std::printf("\nbefore: fit %.2f %%, RMS error %.4g %s; residual %s (chi2 %.1f, 99 %% limit %.1f), %s the input\n",
-              r.fit_before_pct, r.rms_before, unit.c_str(), r.whiteness_before.white ? "white" : "not white",
-              r.whiteness_before.chi2, r.whiteness_before.chi2_limit,
-              r.input_before.independent ? "independent of" : "correlated with");
+              r.before.fit_pct, r.before.rms, unit.c_str(), r.before.whiteness.white ? "white" : "not white",
+              r.before.whiteness.chi2, r.before.whiteness.chi2_limit,
+              r.before.input.independent ? "independent of" : "correlated with");
   std::printf("\n%-32s %-44s %9s %9s %11s %11s\n", "effect", "parameters (95 % interval)", "fit_bef_%", "fit_aft_%",
               "rms_before", "rms_after");
   if (r.effects_added.empty()) std::printf("%-32s\n", "(none added)");
@@ -128,8 +128,8 @@ void PrintReport(const explain::ExplainReport& r, const std::string& unit) {
     std::printf("%-32s %-44s %9.2f %9.2f %11.4g %11.4g\n", e.name.c_str(), params.c_str(), e.fit_before_pct,
                 e.fit_after_pct, e.rms_before, e.rms_after);
   }
-  std::printf("\nafter: fit %.2f %%, RMS error %.4g %s; residual %s (chi2 %.1f)\n", r.fit_after_pct, r.rms_after,
-              unit.c_str(), r.whiteness_after.white ? "white" : "not white", r.whiteness_after.chi2);
+  std::printf("\nafter: fit %.2f %%, RMS error %.4g %s; residual %s (chi2 %.1f)\n", r.after.fit_pct, r.after.rms,
+              unit.c_str(), r.after.whiteness.white ? "white" : "not white", r.after.whiteness.chi2);
   for (const auto& u : r.unexplained)
     std::printf("unexplained: %s, tracks %s (power %.1f, false alarm %.2g)\n", u.what.c_str(), u.tracks.c_str(),
                 u.power, u.false_alarm);

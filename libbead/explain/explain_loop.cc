@@ -1,6 +1,7 @@
 #include "libbead/explain/explain_loop.h"
 
 #include <ceres/ceres.h>
+#include <glog/logging.h>
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -182,8 +183,14 @@ void Refine(const SeriesData& d, Set& set, const std::vector<std::size_t>& rows,
       uncertainty->ok = true;
     };
     {
+      // A rank-deficient covariance is an expected outcome here (handled
+      // below); keep Ceres from logging it as an error.
+      const int level = FLAGS_minloglevel;
+      FLAGS_minloglevel = google::GLOG_FATAL;
       ceres::Covariance cov(co);
-      if (cov.Compute(pairs, &problem)) {
+      const bool computed = cov.Compute(pairs, &problem);
+      FLAGS_minloglevel = level;
+      if (computed) {
         collect(cov, false, std::vector<bool>(set.size(), false));
         return;
       }
@@ -362,6 +369,27 @@ double FitOf(const SeriesData& d, const Set& set) {
   return model::FitPercent(y, pred);
 }
 
+// The factor from Ceres's (J^T J)^-1 to parameter standard deviations: the
+// residual's standard deviation, times sqrt(N / N_eff) for its lag-one
+// correlation (N_eff = N (1 - rho) / (1 + rho)).
+double Inflation(const SeriesData& d, const Set& set, const std::vector<std::size_t>& rows) {
+  const std::vector<double> r = Residual(d, set);
+  const double dof = std::max(1.0, static_cast<double>(rows.size()) - static_cast<double>(ParameterCount(set)));
+  const double rho = std::clamp(LagOneCorrelation(r), 0.0, 0.99);
+  return std::sqrt(Sse(r, rows) / dof) * std::sqrt((1 + rho) / (1 - rho));
+}
+
+Diagnosis Diagnose(const SeriesData& d, const Set& set, const ExplainOptions& o) {
+  Diagnosis g;
+  g.residual = Residual(d, set);
+  g.fit_pct = FitOf(d, set);
+  g.rms = Rms(g.residual);
+  g.whiteness = ResidualWhiteness(g.residual, o.lags);
+  g.input = ResidualInputCorrelation(g.residual, d.u, o.lags);
+  g.spectrum = ResidualSpectrum(d.t, g.residual, o.spectrum_max_hz);
+  return g;
+}
+
 std::vector<FittedParameter> Parameters(const Active& a, const Uncertainty& u, std::size_t index, double inflate) {
   std::vector<FittedParameter> out;
   const std::size_t nl = a.nl();
@@ -401,12 +429,7 @@ ExplainReport Explain(const SeriesData& d, const ExplainOptions& o) {
 
   const std::vector<Effect> catalogue = Catalogue(d, o.catalogue);
   Set current;
-  report.residual_before = Residual(d, current);
-  report.fit_before_pct = FitOf(d, current);
-  report.rms_before = Rms(report.residual_before);
-  report.whiteness_before = ResidualWhiteness(report.residual_before, o.lags);
-  report.input_before = ResidualInputCorrelation(report.residual_before, d.u, o.lags);
-  report.spectrum_before = ResidualSpectrum(d.t, report.residual_before, o.spectrum_max_hz);
+  report.before = Diagnose(d, current, o);
 
   std::vector<bool> used(catalogue.size(), false);
   for (int round = 0; round < o.max_effects; ++round) {
@@ -444,10 +467,7 @@ ExplainReport Explain(const SeriesData& d, const ExplainOptions& o) {
     Uncertainty u;
     Refine(d, after, all, &u);
     const std::vector<double> r_before = Residual(d, current), r_after = Residual(d, after);
-    const double p = static_cast<double>(ParameterCount(after));
-    const double sigma = std::sqrt(Sse(r_after, all) / std::max(1.0, static_cast<double>(n) - p));
-    const double rho = std::clamp(LagOneCorrelation(r_after), 0.0, 0.99);
-    const double inflate = sigma * std::sqrt((1 + rho) / (1 - rho));
+    const double inflate = Inflation(d, after, all);
     AddedEffect added;
     const Active& a = after.back();
     added.name = a.effect.name;
@@ -467,11 +487,9 @@ ExplainReport Explain(const SeriesData& d, const ExplainOptions& o) {
   if (!current.empty()) {
     Uncertainty u;
     Refine(d, current, all, &u);
-    const std::vector<double> r = Residual(d, current);
-    const double sigma = std::sqrt(Sse(r, all) / std::max(1.0, static_cast<double>(n) - ParameterCount(current)));
-    const double rho = std::clamp(LagOneCorrelation(r), 0.0, 0.99);
+    const double inflate = Inflation(d, current, all);
     for (std::size_t e = 0; e < current.size(); ++e)
-      report.effects_added[e].parameters = Parameters(current[e], u, e, sigma * std::sqrt((1 + rho) / (1 - rho)));
+      report.effects_added[e].parameters = Parameters(current[e], u, e, inflate);
   }
 
   // The wheel-position shift that best aligns the data, with its interval.
@@ -486,27 +504,20 @@ ExplainReport Explain(const SeriesData& d, const ExplainOptions& o) {
     }
     Uncertainty u;
     Refine(d, trial, all, &u);
-    const std::vector<double> r = Residual(d, trial);
-    const double sigma = std::sqrt(Sse(r, all) / std::max(1.0, static_cast<double>(n) - ParameterCount(trial)));
-    const double rho = std::clamp(LagOneCorrelation(r), 0.0, 0.99);
+    const double inflate = Inflation(d, trial, all);
     for (std::size_t k = 0; k < trial.size(); ++k) {
       if (trial[k].effect.kind != Effect::Kind::kPositionShift) continue;
       report.position_shift_estimated = true;
       report.position_shift_counts = trial[k].params[0];
-      report.position_shift_ci95_counts = u.ok ? 1.96 * u.sd[k][0] * sigma * std::sqrt((1 + rho) / (1 - rho)) : kInf;
+      report.position_shift_ci95_counts = u.ok ? 1.96 * u.sd[k][0] * inflate : kInf;
     }
   }
 
-  report.residual_after = Residual(d, current);
-  report.fit_after_pct = FitOf(d, current);
-  report.rms_after = Rms(report.residual_after);
-  report.whiteness_after = ResidualWhiteness(report.residual_after, o.lags);
-  report.input_after = ResidualInputCorrelation(report.residual_after, d.u, o.lags);
-  report.spectrum_after = ResidualSpectrum(d.t, report.residual_after, o.spectrum_max_hz);
+  report.after = Diagnose(d, current, o);
 
   // What is left: every significant peak, matched to a rotating part.
   const double span = d.t.back() - d.t.front();
-  for (const SpectrumPeak& peak : report.spectrum_after.peaks) {
+  for (const SpectrumPeak& peak : report.after.spectrum.peaks) {
     Unexplained u{"periodic", "", peak.frequency_hz, peak.power, peak.false_alarm};
     for (const RotatingPart& part : d.parts) {
       const double rate = std::abs(part.angle_rad.back() - part.angle_rad.front()) / (2 * std::numbers::pi * span);
@@ -521,7 +532,7 @@ ExplainReport Explain(const SeriesData& d, const ExplainOptions& o) {
     }
     report.unexplained.push_back(u);
   }
-  if (!report.whiteness_after.white && report.unexplained.empty())
+  if (!report.after.whiteness.white && report.unexplained.empty())
     report.unexplained.push_back({"correlated residual", "no single frequency (not white: chi-square above its 99 % limit)", 0, 0, 1});
   return report;
 }

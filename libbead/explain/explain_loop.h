@@ -53,6 +53,15 @@ struct Unexplained {
   double frequency_hz = 0, power = 0, false_alarm = 1;
 };
 
+// The residual of a model and what it shows.
+struct Diagnosis {
+  std::vector<double> residual;  // y - prediction, per sample
+  double fit_pct = 0, rms = 0;   // MATLAB compare's fit %, RMS error
+  Whiteness whiteness;
+  InputCorrelation input;
+  Spectrum spectrum;
+};
+
 struct ExplainOptions {
   CatalogueOptions catalogue;
   int blocks = 20;
@@ -67,11 +76,7 @@ struct ExplainReport {
   std::vector<AddedEffect> effects_added;
   std::vector<Candidate> candidates;
   std::vector<Unexplained> unexplained;
-  double fit_before_pct = 0, fit_after_pct = 0, rms_before = 0, rms_after = 0;
-  Whiteness whiteness_before, whiteness_after;
-  InputCorrelation input_before, input_after;
-  Spectrum spectrum_before, spectrum_after;
-  std::vector<double> residual_before, residual_after;
+  Diagnosis before, after;  // the base model alone, and with the effects kept
   // The wheel-position shift that best aligns the data (whether or not it
   // was kept as an effect), with its 95 % interval; NaN without a wheel.
   double position_shift_counts = 0, position_shift_ci95_counts = 0;

@@ -71,7 +71,7 @@ TEST(ExplainSeries, CleanDataGetsNothing) {
     const Case c = Make(seed, [](const SeriesData& d, std::size_t i) { return d.base[i]; });
     const ExplainReport r = Explain(c.data);
     EXPECT_TRUE(r.effects_added.empty()) << "seed " << seed << ": " << r.effects_added.front().name;
-    EXPECT_TRUE(r.whiteness_after.white) << "seed " << seed;
+    EXPECT_TRUE(r.after.whiteness.white) << "seed " << seed;
   }
 }
 
