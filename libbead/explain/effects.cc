@@ -46,7 +46,7 @@ Effect Make(std::string name, std::string description, Effect::Kind kind, std::s
 std::vector<std::vector<double>> Effect::Columns(const SeriesData& d, const double* nl) const {
   const std::size_t n = d.size();
   std::vector<std::vector<double>> cols;
-  if (kind == Kind::kPositionShift || kind == Kind::kDelay || kind == Kind::kDelayDrift) return cols;
+  if (kind == Kind::kPositionShift || IsDelay()) return cols;
   if (part >= 0) {
     const auto& a = d.parts[static_cast<std::size_t>(part)].angle_rad;
     std::vector<double> c(n), s(n);
@@ -99,6 +99,12 @@ void Effect::AddDelay(const SeriesData& d, const double* nl, std::vector<double>
     // The delay grows linearly over the record: nl[0] seconds from start to end.
     const double t0 = 0.5 * (d.t.front() + d.t.back()), span = d.t.back() - d.t.front();
     for (std::size_t i = 0; i < delay.size(); ++i) delay[i] += nl[0] * (d.t[i] - t0) / span;
+  } else if (kind == Kind::kDelayLevel) {
+    // A lag that grows with the operating level (standardised model
+    // output): on signals slower than it, a first-order time constant acts
+    // as such a lag, so this stands for a time constant that changes with level.
+    const double m = Mean(d.base), s = Sd(d.base);
+    for (std::size_t i = 0; i < delay.size(); ++i) delay[i] += s > 0 ? nl[0] * (d.base[i] - m) / s : 0.0;
   }
 }
 
@@ -123,6 +129,11 @@ std::vector<Effect> Catalogue(const SeriesData& d, const CatalogueOptions& o) {
     f.nonlinear = {"delay_change_s"};
     f.grid = {Linspace(-o.delay_range_s, o.delay_range_s, 41)};
     out.push_back(f);
+    Effect g = Make("level_lag", "the response lags more at a higher level (a time constant changing with level)",
+                    K::kDelayLevel, "level_lag");
+    g.nonlinear = {"lag_s_per_sd_level"};
+    g.grid = {Linspace(-0.5 * o.delay_range_s, 0.5 * o.delay_range_s, 41)};
+    out.push_back(g);
   }
   for (std::size_t p = 0; p < d.parts.size(); ++p) {
     const auto& a = d.parts[p].angle_rad;

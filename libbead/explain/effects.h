@@ -23,13 +23,14 @@ struct Effect {
   std::string tracks;       // the rotating part a periodic term follows ("" otherwise)
   std::vector<std::string> nonlinear, linear;  // parameter names, with units
   std::vector<std::vector<double>> grid;       // start grid of each nonlinear parameter
-  enum class Kind { kPositionShift, kDelay, kDelayDrift, kMultiplicative, kAdditive } kind;
+  enum class Kind { kPositionShift, kDelay, kDelayDrift, kDelayLevel, kMultiplicative, kAdditive } kind;
   // The columns of the linear parameters for given nonlinear ones: the
   // multiplicative terms' factors (times base) or the additive terms.
   std::vector<std::vector<double>> Columns(const SeriesData& data, const double* nonlinear_values) const;
-  // The extra input delay per sample (kDelay, kDelayDrift) or the
+  // The extra input delay per sample (kDelay, kDelayDrift, kDelayLevel) or the
   // position shift (kPositionShift) for given nonlinear values.
   double PositionShift(const double* nonlinear_values) const;
+  bool IsDelay() const { return kind == Kind::kDelay || kind == Kind::kDelayDrift || kind == Kind::kDelayLevel; }
   void AddDelay(const SeriesData& data, const double* nonlinear_values, std::vector<double>& delay) const;
 
   // Which catalogued feature it is built from (set by the catalogue).

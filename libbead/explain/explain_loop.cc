@@ -43,7 +43,7 @@ void Shifted(const SeriesData& d, const Set& set, std::vector<double>& y, std::v
   bool delayed = false;
   for (const Active& a : set) {
     shift += a.effect.PositionShift(a.params.data());
-    if (a.effect.kind == Effect::Kind::kDelay || a.effect.kind == Effect::Kind::kDelayDrift) {
+    if (a.effect.IsDelay()) {
       a.effect.AddDelay(d, a.params.data(), delay);
       delayed = true;
     }

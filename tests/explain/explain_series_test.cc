@@ -131,6 +131,41 @@ TEST(ExplainSeries, FindsChangingDelay) {
   EXPECT_NEAR(p.value, change, 1.5 * p.ci95);
 }
 
+// A process whose time constant grows with its level, 0.8 s at the mean
+// output and 0.8 + 0.25 s per standard deviation above it (integrated
+// finely); the model knows only 0.8 s. The catalogue's stand-in is a lag
+// that grows with level: found, positive, and the error drops.
+TEST(ExplainSeries, FindsATimeConstantThatChangesWithLevel) {
+  const Case c = Make(9, [&](const SeriesData& d, std::size_t i) {
+    static std::vector<double> y;
+    if (i == 0) {
+      double m = 0, s = 0;
+      for (double b : d.base) m += b;
+      m /= d.base.size();
+      for (double b : d.base) s += (b - m) * (b - m);
+      s = std::sqrt(s / (d.base.size() - 1));
+      y.assign(d.size(), 0.0);
+      double state = 0.0;
+      for (std::size_t k = 1; k < d.size(); ++k) {
+        const double dt = d.t[k] - d.t[k - 1];
+        if (d.segment_time_s[k] == 0.0) state = 0.0;  // the stop: from rest again
+        const double u = InterpolateAt(d.t, d.u, d.t[k - 1] - 0.2);  // the input, 0.2 s late
+        const double tau = std::max(0.2, 0.8 + 0.25 * (state - m) / s);
+        for (int sub = 0; sub < 20; ++sub) state += dt / 20 * (2.0 * u - state) / tau;
+        y[k] = state;
+      }
+    }
+    return y[i];
+  });
+  const ExplainReport r = Explain(c.data);
+  ASSERT_GE(r.effects_added.size(), 1u);
+  EXPECT_EQ(r.effects_added[0].name, "level_lag");
+  const auto& p = Param(r.effects_added[0], "lag_s_per_sd_level");
+  EXPECT_GT(p.value, 0.0);
+  EXPECT_GT(p.value, p.ci95);  // significantly positive
+  EXPECT_LT(r.effects_added[0].rms_after, 0.8 * r.effects_added[0].rms_before);
+}
+
 TEST(ExplainSeries, PeriodicStructureWithNoPartIsReportedUnexplained) {
   const Case c = Make(8, [&](const SeriesData& d, std::size_t i) { return d.base[i] + 0.3 * std::sin(2 * kPi * 1.7 * d.t[i]); });
   const ExplainReport r = Explain(c.data);
