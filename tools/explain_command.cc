@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <memory>
+#include <optional>
 
 #include "libbead/core/error.h"
 #include "libbead/explain/explain_loop.h"
@@ -154,12 +156,13 @@ Run AddExplain(CLI::App& app) {
   auto args = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand("explain", "Find what the model lacks: residual diagnostics and effects added");
   cmd->footer(
-      "Run mode:  bead explain --rig RIG.yaml RUN.h5 [--model model.json] -o explain.json\n"
+      "Run mode:  bead explain --rig RIG.yaml RUN.h5 [--model model.json] [--validate OTHER.h5] -o explain.json\n"
       "  measures the run, computes the flow Q = v A (bead flow), takes the model of flow from screw\n"
       "  RPM (--model, from `bead identify -o`; else identified on this run), then adds, one at a time,\n"
       "  the effects that lower the BIC and pass a held-out test: encoder offset, time shift, changing\n"
       "  delay, once/twice per revolution of the wheel or screw, cooling shrink, height dependence,\n"
-      "  drift, level-dependent gain (and scale, bias with --model). Reports the encoder offset the run\n"
+      "  drift, level-dependent gain and lag (and scale, bias with --model); with --validate another run\n"
+      "  of the same rig is the held-out data. Reports the encoder offset the run\n"
       "  itself implies, with its 95 % interval, beside the rig file's; and the profile time stamps\n"
       "  against the log (a sensor latency).\n"
       "CSV mode:  bead explain DATA.csv --input COL --output COL [--time COL] [--validate OTHER.csv]\n"
@@ -180,7 +183,8 @@ Run AddExplain(CLI::App& app) {
   cmd->add_option("--input", args->input, "CSV mode: input column");
   cmd->add_option("--output", args->output, "CSV mode: output column");
   cmd->add_option("--time", args->time, "CSV mode: time column (s)");
-  cmd->add_option("--validate", args->validate, "CSV mode: another run, the held-out data")->check(CLI::ExistingFile);
+  cmd->add_option("--validate", args->validate, "Another run (same rig, or same columns): the held-out data")
+      ->check(CLI::ExistingFile);
   cmd->add_option("--poles", args->poles, "Identified model: poles")->capture_default_str()->check(CLI::Range(1, 6));
   cmd->add_option("--zeros", args->zeros, "Identified model: zeros")->capture_default_str()->check(CLI::Range(0, 6));
   cmd->add_option("--max-delay-s", args->max_delay_s, "Identified model: largest delay searched")->capture_default_str();
@@ -214,20 +218,40 @@ Run AddExplain(CLI::App& app) {
 
     if (!args->rig.empty()) {
       const Rig rig = ReadRig(args->rig);
-      const RunArchive run = LoadRun(args->data);
-      if (!run.log) throw Error(Located(args->data, "/log", "missing: explain needs the acquisition log"));
-      const ProfileBlock& block = run.profiles;
-      const std::vector<BeadGeometry> geometry = MeasureProfiles(
-          block.size(), [&](std::size_t i) { return block.view(i); }, rig.reference_left, rig.reference_right, {});
-      const OcclusionColumns occ = RunOcclusion(args->occlusion, rig, block, geometry);
-      const FlowResult flow = ComputeFlow(rig, block, geometry, *run.log, {}, occ.corrected, occ.sigma);
-      std::vector<double> t, u, y;
-      for (const auto& s : flow.samples)
-        if (s.valid) t.push_back(s.t_s), u.push_back(s.screw_rpm), y.push_back(s.flow_mm3_s);
-      if (t.size() < 50) throw Error(Located(args->data, "", "fewer than 50 profiles with a flow: nothing to explain"));
+      // A run measured: its flow in extrusion time (kept alive with the archive).
+      struct Measured {
+        RunArchive run;
+        std::vector<BeadGeometry> geometry;
+        FlowResult flow;
+        std::vector<double> t, u, y;  // valid samples
+      };
+      auto measure = [&](const std::string& path) {
+        auto m = std::make_unique<Measured>();
+        m->run = LoadRun(path);
+        if (!m->run.log) throw Error(Located(path, "/log", "missing: explain needs the acquisition log"));
+        const ProfileBlock& block = m->run.profiles;
+        m->geometry = MeasureProfiles(
+            block.size(), [&](std::size_t i) { return block.view(i); }, rig.reference_left, rig.reference_right, {});
+        const OcclusionColumns occ = RunOcclusion(args->occlusion, rig, block, m->geometry);
+        m->flow = ComputeFlow(rig, block, m->geometry, *m->run.log, {}, occ.corrected, occ.sigma);
+        for (const auto& s : m->flow.samples)
+          if (s.valid) m->t.push_back(s.t_s), m->u.push_back(s.screw_rpm), m->y.push_back(s.flow_mm3_s);
+        if (m->t.size() < 50) throw Error(Located(path, "", "fewer than 50 profiles with a flow: nothing to explain"));
+        return m;
+      };
+      const auto main_run = measure(args->data);
       std::string source;
-      const model::TransferFunction tf = model_for(t, u, y, args->data, source);
-      const explain::RunSeries series = explain::MakeRunSeries(rig, block, geometry, *run.log, flow, tf);
+      const model::TransferFunction tf = model_for(main_run->t, main_run->u, main_run->y, args->data, source);
+      auto series_of = [&](const Measured& m) {
+        return explain::MakeRunSeries(rig, m.run.profiles, m.geometry, *m.run.log, m.flow, tf);
+      };
+      const explain::RunSeries series = series_of(*main_run);
+      std::optional<explain::RunSeries> other;
+      if (!args->validate.empty()) {
+        other = series_of(*measure(args->validate));
+        options.validation = &other->data;
+        std::printf("held-out data: %s (%zu samples)\n", args->validate.c_str(), other->data.size());
+      }
       options.catalogue.has_wheel = true;
       options.catalogue.position_range_counts = rig.encoder.counts_per_rev / 20.0;
       std::printf("%s: %zu samples of flow in extrusion time; explaining...\n", args->data.c_str(), series.data.size());

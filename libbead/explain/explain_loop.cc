@@ -9,6 +9,7 @@
 #include <limits>
 #include <numbers>
 
+#include "libbead/core/error.h"
 #include "libbead/fit/solver_options.h"
 #include "libbead/model/fit_metrics.h"
 
@@ -411,6 +412,8 @@ std::vector<FittedParameter> Parameters(const Active& a, const Uncertainty& u, s
 }  // namespace
 
 ExplainReport Explain(const SeriesData& d, const ExplainOptions& o) {
+  if (d.size() < 20 || (o.validation && o.validation->size() < 20))
+    throw Error("explain: fewer than 20 samples (" + std::to_string(d.size()) + ") to explain");
   ExplainReport report;
   const std::size_t n = d.size();
   std::vector<std::size_t> all(n);

@@ -67,7 +67,8 @@ FlowResult ComputeFlow(const Rig& rig, const ProfileBlock& profiles, const std::
     // No bead on a good reference is a measurement: zero area.
     const double a = g.valid() ? g.area_mm2 : (g.status == ProfileStatus::kNoBead ? 0.0 : kNaN);
     area[k] = a;
-    area_c[k] = corrected.size() == n && g.valid() ? corrected[k] : a;
+    // A profile the occlusion stage gave no value (NaN) keeps its measured area.
+    area_c[k] = corrected.size() == n && g.valid() && std::isfinite(corrected[k]) ? corrected[k] : a;
   }
   const double floor = o.area_sigma_floor_mm2 >= 0 ? o.area_sigma_floor_mm2 : AreaSigmaFloor(geometry);
   const HampelResult ha = Hampel(area, o.area_hampel_half, o.hampel_nsigma, floor);

@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <complex>
 
 #include "libbead/core/error.h"
 #include "libbead/series/interpolate.h"
@@ -21,6 +22,14 @@ TransferFunction FromTheta(const std::vector<double>& theta, int n, int m, doubl
   for (int k = 0; k <= m; ++k) tf.num.push_back(theta[static_cast<std::size_t>(n + k)]);
   tf.delay_s = std::max(0.0, delay);
   return tf;
+}
+
+// theta = (a1..an, b0..bm) of a monic denominator.
+std::vector<double> ToTheta(const TransferFunction& tf, int n, int m) {
+  std::vector<double> theta;
+  for (int k = 1; k <= n; ++k) theta.push_back(tf.den[static_cast<std::size_t>(k)] / tf.den[0]);
+  for (int k = 0; k <= m; ++k) theta.push_back(tf.num[static_cast<std::size_t>(k)] / tf.den[0]);
+  return theta;
 }
 
 double Loss(const TransferFunction& tf, const std::vector<double>& t, const std::vector<double>& u,
@@ -45,6 +54,28 @@ bool Stable(const TransferFunction& tf, std::vector<double>* re = nullptr, std::
     if (im) im->push_back(roots(k).imag());
   }
   return stable;
+}
+
+// An unstable start made stable the way MATLAB's tfest does its initial
+// estimates: each pole in the right half plane reflected into the left
+// (its real part negated), the monic denominator rebuilt from the poles.
+// Returns false when the start was stable already.
+bool ReflectUnstablePoles(TransferFunction& tf) {
+  std::vector<double> re, im;
+  if (Stable(tf, &re, &im)) return false;
+  std::vector<std::complex<double>> poly = {1.0};
+  for (std::size_t k = 0; k < re.size(); ++k) {
+    const std::complex<double> root(re[k] < 0 ? re[k] : -std::max(std::abs(re[k]), 1e-6), im[k]);
+    std::vector<std::complex<double>> next(poly.size() + 1, 0.0);
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+      next[i] += poly[i];
+      next[i + 1] -= root * poly[i];
+    }
+    poly = next;
+  }
+  const double lead = tf.den[0];
+  for (std::size_t i = 0; i < tf.den.size(); ++i) tf.den[i] = lead * poly[i].real();
+  return true;
 }
 
 // Young's state-variable filter: linear least squares for the coefficients.
@@ -136,9 +167,11 @@ IdentifiedModel IdentifyTransferFunction(const std::vector<double>& t, const std
   for (double d : delays) {
     const auto theta = SvfStart(t, u, y, n, m, d, lambda, dt);
     if (!theta) continue;
-    const TransferFunction tf = FromTheta(*theta, n, m, d);
+    TransferFunction tf = FromTheta(*theta, n, m, d);
+    std::vector<double> start = *theta;
+    if (ReflectUnstablePoles(tf)) start = ToTheta(tf, n, m);
     if (!Stable(tf)) continue;
-    candidates.push_back({Loss(tf, t, u, y), d, *theta});
+    candidates.push_back({Loss(tf, t, u, y), d, start});
   }
   if (candidates.empty()) {
     out.reason = "no stable starting model (try other orders, or a fixed --delay)";

@@ -92,6 +92,13 @@ TEST(Flow, AreaHampelDoesNotFlagTheEdgeSamplingSawtooth) {
   const FlowResult floored = ComputeFlow(run.rig_file, b, g, *run.run.log, {});
   EXPECT_GT(unfloored.area_outliers, 0.02 * b.size());
   EXPECT_LT(floored.area_outliers, 0.01 * b.size());
+
+  // No occlusion value for a profile (NaN, as `--occlusion none` or a failed
+  // pool gives) means its measured area, not a gap: the same flow as none given.
+  const std::vector<double> none(b.size(), NAN);
+  const FlowResult with_nan = ComputeFlow(run.rig_file, b, g, *run.run.log, {}, none, none);
+  EXPECT_DOUBLE_EQ(with_nan.total_volume_mm3, floored.total_volume_mm3);
+  EXPECT_GT(with_nan.total_volume_mm3, 0.0);
 }
 
 // On a noiseless run the extrusion time is exact to the encoder's
