@@ -441,6 +441,7 @@ ExplainReport Explain(const SeriesData& d, const ExplainOptions& o) {
     const double bic_now = Bic(Sse(Residual(d, current_est), estimation), estimation.size(), ParameterCount(current_est));
     int best = -1;
     double best_drop = 0.0, best_t = 0.0;
+    const auto candidates_left = static_cast<std::size_t>(std::count(used.begin(), used.end(), false));
     Set best_set;
     for (std::size_t c = 0; c < catalogue.size(); ++c) {
       if (used[c]) continue;
@@ -451,7 +452,10 @@ ExplainReport Explain(const SeriesData& d, const ExplainOptions& o) {
       const double drop = bic_now - Bic(Sse(Residual(d, trial), estimation), estimation.size(), ParameterCount(trial));
       const std::size_t p_new = trial.back().params.size();
       const double t = HeldOutF(validation, current_est, trial, held_out, p_new);
-      bool ok = drop > 0 && t > ChiSquareQuantile(1.0 - o.alpha, static_cast<int>(p_new)) / static_cast<double>(p_new);
+      // Every candidate of the round is a test: Bonferroni keeps the chance
+      // of adding a false one in a round at alpha.
+      const double level = 1.0 - o.alpha / static_cast<double>(candidates_left);
+      bool ok = drop > 0 && t > ChiSquareQuantile(level, static_cast<int>(p_new)) / static_cast<double>(p_new);
       double surrogate = NAN;
       if (ok && catalogue[c].part >= 0) {
         surrogate = LargestSurrogateF(d, validation, o.validation != nullptr, current_est, catalogue[c], estimation, held_out);

@@ -6,7 +6,9 @@
 //  2. on the held-out blocks (or on another run, when given) it lowers the
 //     squared error significantly: F = (drop in SSE per added parameter) /
 //     (SSE left per effective sample, N_eff from the residual's lag-one
-//     correlation) above the chi-square quantile at level `alpha`; a
+//     correlation) above the chi-square quantile at level alpha / K, K the
+//     candidates tried in the round (Bonferroni: at most alpha of adding a
+//     false effect per round); a
 //     periodic term must also beat the same term fitted to its part turning
 //     at other rates (surrogates, which a coloured residual fits too).
 // Kept effects are refitted on the whole record for the report, each
