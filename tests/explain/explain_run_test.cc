@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <memory>
 
@@ -141,6 +142,9 @@ TEST(ExplainRun, FindsAWrongEncoderOffset) {
   const double true_offset = o.run->sim.truth.offset_counts;
   const double from_run = o.run->sim.rig_file.offset_counts + o.report.position_shift_counts;
   EXPECT_NEAR(from_run, true_offset, 1.5 * o.report.position_shift_ci95_counts);
+  std::printf("offset: rig file %.1f, from the run %.1f +- %.1f, true %.1f counts; RMS %.2f -> %.2f mm^3/s\n",
+              o.run->sim.rig_file.offset_counts, from_run, o.report.position_shift_ci95_counts, true_offset,
+              e->rms_before, e->rms_after);
   EXPECT_LT(o.report.position_shift_ci95_counts, 100.0);
 }
 
@@ -154,6 +158,8 @@ TEST(ExplainRun, FindsWheelEccentricity) {
   double ci = 0;
   const double amplitude = Param(*e, "amplitude_rel", &ci);
   EXPECT_NEAR(amplitude, c.effects.eccentricity_mm / (c.rig.wheel_diameter_mm / 2), 1.5 * ci);
+  std::printf("eccentricity: once per rev %.4f +- %.4f, true e/R %.4f; RMS %.2f -> %.2f mm^3/s\n", amplitude, ci,
+              c.effects.eccentricity_mm / (c.rig.wheel_diameter_mm / 2), e->rms_before, e->rms_after);
   EXPECT_LT(e->rms_after, e->rms_before);
 }
 
@@ -173,6 +179,8 @@ TEST(ExplainRun, FindsCoolingShrink) {
   EXPECT_NEAR(shrink, 0.05 * (1 - std::exp(-m / 0.8)), 1.5 * ci_shrink) << Names(o.report);
   EXPECT_LT(ci_shrink, 0.25 * shrink);  // pinned down ...
   EXPECT_NEAR(tau, 0.8, 1.5 * ci_tau);  // ... where the curvature, on 0.5-1 s to the laser, is not
+  std::printf("shrink: at the mean time to laser %.4f +- %.4f (true %.4f), tau %.2f +- %.2f s (true 0.8); RMS %.2f -> %.2f\n",
+              shrink, ci_shrink, 0.05 * (1 - std::exp(-m / 0.8)), tau, ci_tau, e->rms_before, e->rms_after);
   EXPECT_LT(e->rms_after, e->rms_before);
 }
 
@@ -181,6 +189,8 @@ TEST(ExplainRun, SensorLatencyShowsInTheTimeStampsNotInTheFlow) {
   c.effects.sensor_latency_s = 0.03;
   const Outcome o = ExplainRun(c);
   EXPECT_NEAR(o.series.timestamp_offset_s, 0.03, std::max(1.5 * o.series.timestamp_offset_ci95_s, 1e-4));
+  std::printf("latency: time stamps %.5f +- %.5f s late (true 0.03)\n", o.series.timestamp_offset_s,
+              o.series.timestamp_offset_ci95_s);
   // The flow uses the profile's own latched count: its flow is a clean
   // run's, with nothing to add and no misalignment to blame on the latency.
   EXPECT_TRUE(o.report.effects_added.empty()) << Names(o.report);
