@@ -425,7 +425,8 @@ ExplainReport Explain(const SeriesData& d, const ExplainOptions& o) {
     to.insert(to.end(), blocks[b].begin(), blocks[b].end());
   }
   const SeriesData& validation = o.validation ? *o.validation : d;
-  if (o.validation) {
+  if (o.validation) {  // another run is held out: estimate on the whole of this one
+    estimation = all;
     held_out.resize(validation.size());
     for (std::size_t i = 0; i < held_out.size(); ++i) held_out[i] = i;
   }

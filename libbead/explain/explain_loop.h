@@ -2,7 +2,8 @@
 // of the catalogue the data supports, keep the one that helps most, and
 // repeat. No overfitting: an effect is kept only when
 //  1. fitted on the estimation half of the record (every other of
-//     `blocks` time blocks) it lowers the BIC there, and
+//     `blocks` time blocks; the whole record when another run is the
+//     held-out data) it lowers the BIC there, and
 //  2. on the held-out blocks (or on another run, when given) it lowers the
 //     squared error significantly: F = (drop in SSE per added parameter) /
 //     (SSE left per effective sample, N_eff from the residual's lag-one
