@@ -92,8 +92,10 @@ double Sse(const std::vector<double>& r, const std::vector<std::size_t>& rows) {
   return s;
 }
 
-// The linear parameters for the current nonlinear ones, by least squares on `rows`.
-void SolveLinear(const SeriesData& d, Set& set, const std::vector<std::size_t>& rows) {
+// The linear parameters for the current nonlinear ones, by least squares on
+// `rows`; returns the design matrix (its columns: the linear parameters in
+// order), which depends on the nonlinear parameters only.
+Eigen::MatrixXd SolveLinear(const SeriesData& d, Set& set, const std::vector<std::size_t>& rows) {
   std::vector<double> y, base;
   Shifted(d, set, y, base);
   std::vector<std::vector<double>> columns;
@@ -107,7 +109,7 @@ void SolveLinear(const SeriesData& d, Set& set, const std::vector<std::size_t>& 
       where.push_back({e, j});
     }
   }
-  if (columns.empty()) return;
+  if (columns.empty()) return {};
   Eigen::MatrixXd a(rows.size(), columns.size());
   Eigen::VectorXd b(rows.size());
   for (std::size_t r = 0; r < rows.size(); ++r) {
@@ -117,6 +119,7 @@ void SolveLinear(const SeriesData& d, Set& set, const std::vector<std::size_t>& 
   }
   const Eigen::VectorXd x = a.colPivHouseholderQr().solve(b);
   for (std::size_t c = 0; c < columns.size(); ++c) set[where[c].first].params[set[where[c].first].nl() + where[c].second] = x(c);
+  return a;
 }
 
 struct CostFunctor {
@@ -218,23 +221,9 @@ void Refine(const SeriesData& d, Set& set, const std::vector<std::size_t>& rows,
     if (cov.Compute(kept, &problem)) collect(cov, true, held);
     return;
   }
-  SolveLinear(d, set, rows);
-  if (!uncertainty) return;
+  const Eigen::MatrixXd a = SolveLinear(d, set, rows);
+  if (!uncertainty || a.cols() == 0) return;
   // Linear: (A^T A)^-1 directly.
-  std::vector<double> y, base;
-  Shifted(d, set, y, base);
-  std::vector<std::vector<double>> columns;
-  for (const Active& a : set) {
-    auto cols = a.effect.Columns(d, a.params.data());
-    for (auto& c : cols) {
-      if (a.effect.kind == Effect::Kind::kMultiplicative)
-        for (std::size_t i = 0; i < c.size(); ++i) c[i] *= base[i];
-      columns.push_back(std::move(c));
-    }
-  }
-  Eigen::MatrixXd a(rows.size(), columns.size());
-  for (std::size_t r = 0; r < rows.size(); ++r)
-    for (std::size_t c = 0; c < columns.size(); ++c) a(r, c) = columns[c][rows[r]];
   const Eigen::MatrixXd ata = a.transpose() * a;
   Eigen::FullPivLU<Eigen::MatrixXd> lu(ata);
   if (!lu.isInvertible()) return;

@@ -16,7 +16,4 @@ namespace bead::explain {
 SeriesData ModelSeries(const std::vector<double>& t, const std::vector<double>& u, const std::vector<double>& y,
                        const model::TransferFunction& tf, const std::string& y_unit = "");
 
-// Linear interpolation of (t, v) at x, clamped at the ends; t increasing.
-double InterpolateAt(const std::vector<double>& t, const std::vector<double>& v, double x);
-
 }  // namespace bead::explain

@@ -5,10 +5,10 @@
 #include <memory>
 #include <numbers>
 
-#include "libbead/explain/model_series.h"
 #include "libbead/flow/extrusion_time.h"
 #include "libbead/profile/median.h"
 #include "libbead/series/encoder.h"
+#include "libbead/series/interpolate.h"
 
 namespace bead::explain {
 namespace {
@@ -56,9 +56,9 @@ RunSeries MakeRunSeries(const Rig& rig, const ProfileBlock& profiles, const std:
     d.t.push_back(s.t_s);
     d.u.push_back(s.screw_rpm);
     d.y.push_back(s.flow_mm3_s);
-    d.base.push_back(InterpolateAt(st->log_t, st->model_flow, s.t_s));
+    d.base.push_back(InterpolateLinear(st->log_t, st->model_flow, s.t_s));
     wheel.angle_rad.push_back(CountsToAngleRad(p_k - rig.offset_counts, rig.encoder));
-    screw_part.angle_rad.push_back(InterpolateAt(log.t_s, screw, s.t_s));
+    screw_part.angle_rad.push_back(InterpolateLinear(log.t_s, screw, s.t_s));
     d.time_to_laser_s.push_back(t_k - s.t_s);
     d.height_mm.push_back(geometry[k].height_mm);
     // When did the log's encoder read this profile's count?
@@ -86,8 +86,8 @@ RunSeries MakeRunSeries(const Rig& rig, const ProfileBlock& profiles, const std:
         y[i] = base[i] = std::numeric_limits<double>::quiet_NaN();
         continue;
       }
-      y[i] = InterpolateAt(st->log_t, st->speed, t_e) * st->area[i];
-      base[i] = InterpolateAt(st->log_t, st->model_flow, t_e - (extra_delay.empty() ? 0.0 : extra_delay[i]));
+      y[i] = InterpolateLinear(st->log_t, st->speed, t_e) * st->area[i];
+      base[i] = InterpolateLinear(st->log_t, st->model_flow, t_e - (extra_delay.empty() ? 0.0 : extra_delay[i]));
     }
   };
   return out;

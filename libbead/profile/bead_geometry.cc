@@ -145,12 +145,6 @@ void RemoveSpikes(Heights& g, std::size_t spikes, const ProfileWorkspace& w) {
   g.n = m;
 }
 
-// Index in the point set of point k after the spikes were removed.
-std::size_t PointIndex(const ProfileWorkspace& w, std::size_t k) {
-  for (std::size_t r = 0; r < w.n_spikes && static_cast<std::size_t>(w.spikes[r]) <= k; ++r) ++k;
-  return k;
-}
-
 float Trapezoid(const Heights& g, std::size_t first, std::size_t last) {
   using namespace vec;
   V8 acc{};
@@ -312,7 +306,7 @@ BEAD_HOT BeadGeometry MeasureBead(const PointSet& p, const ReferenceLine& line, 
   V8 v_height = Splat(-1.0f);
   for (k = run.first; k + 8 <= run.last + 1; k += 8) {
     const V8 a = Load(h + k - 1), b = Load(h + k), c = Load(h + k + 1);
-    v_height = Max(v_height, Max(Min(a, b), Min(Max(a, b), c)));
+    v_height = Max(v_height, vec::Median3(a, b, c));
   }
   float height = MaxOf(v_height);
   for (; k <= run.last; ++k) height = std::max(height, Median3(h[k - 1], h[k], h[k + 1]));
@@ -332,7 +326,9 @@ BEAD_HOT BeadGeometry MeasureBead(const PointSet& p, const ReferenceLine& line, 
   g.center_x_mm = (pts.s_offset_mm + s_centre) * pts.inv_norm;
   g.left_edge_x_mm = (pts.s_offset_mm + s_left) * pts.inv_norm;
   g.right_edge_x_mm = (pts.s_offset_mm + s_right) * pts.inv_norm;
-  const int32_t view_lo = ViewIndex(w, PointIndex(w, lo)), view_hi = ViewIndex(w, PointIndex(w, hi));
+  // Back through the spikes removed, then the dropouts, to the view's indices.
+  auto view_index = [&](std::size_t k) { return ViewIndex(w, KeptToOriginal(w.spikes.data(), w.n_spikes, k)); };
+  const int32_t view_lo = view_index(lo), view_hi = view_index(hi);
   g.dropped_points = std::abs(view_hi - view_lo) - 1 - static_cast<int>(hi - lo - 1);
   g.status = ProfileStatus::kValid;
   return g;

@@ -76,11 +76,14 @@ BEAD_HOT std::size_t CountFiniteZ(const PointSet& p, std::size_t begin, std::siz
   return count;
 }
 
+std::size_t KeptToOriginal(const int32_t* removed, std::size_t n_removed, std::size_t k) {
+  for (std::size_t r = 0; r < n_removed && static_cast<std::size_t>(removed[r]) <= k; ++r) ++k;
+  return k;
+}
+
 int32_t ViewIndex(const ProfileWorkspace& w, std::size_t k) {
   if (w.mapped) return w.map[k];
-  auto index = static_cast<int32_t>(k);
-  for (std::size_t r = 0; r < w.n_removed && w.removed[r] <= index; ++r) ++index;
-  return index;
+  return static_cast<int32_t>(KeptToOriginal(w.removed.data(), w.n_removed, k));
 }
 
 std::size_t LowerIndex(const PointSet& p, double value) {

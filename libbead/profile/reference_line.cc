@@ -110,7 +110,7 @@ float MedianOfTriples(float* values, std::size_t n, float* triples) {
   std::size_t i = 0;
   for (; i + 8 <= g; i += 8) {
     const V8 a = Load(values + i), b = Load(values + i + g), c = Load(values + i + 2 * g);
-    Store(triples + i, Max(Min(a, b), Min(Max(a, b), c)));
+    Store(triples + i, vec::Median3(a, b, c));
   }
   for (; i < g; ++i) triples[i] = Median3(values[i], values[i + g], values[i + 2 * g]);
   return CountingMedian(triples, g);

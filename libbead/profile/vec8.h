@@ -28,6 +28,8 @@ BEAD_VEC V8 Abs(V8 v) { return v < 0.0f ? -v : v; }
 BEAD_VEC V8 Select(M8 m, V8 a, V8 b) { return m ? a : b; }  // a where m, else b
 BEAD_VEC V8 Min(V8 a, V8 b) { return a < b ? a : b; }
 BEAD_VEC V8 Max(V8 a, V8 b) { return a > b ? a : b; }
+// Lane-wise median of three (the same formula as median.h's Median3).
+BEAD_VEC V8 Median3(V8 a, V8 b, V8 c) { return Max(Min(a, b), Min(Max(a, b), c)); }
 BEAD_VEC V8 ToFloat(M8 m) { return Select(m, Splat(1.0f), Splat(0.0f)); }
 
 // Horizontal reductions, by halving.

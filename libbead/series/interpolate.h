@@ -21,6 +21,10 @@ inline double InterpolateLinear(const double* t, const double* y, std::size_t n,
   return y[j - 1] + (x - t[j - 1]) / (t[j] - t[j - 1]) * (y[j] - y[j - 1]);
 }
 
+inline double InterpolateLinear(const std::vector<double>& t, const std::vector<double>& y, double x) {
+  return InterpolateLinear(t.data(), y.data(), std::min(t.size(), y.size()), x);
+}
+
 // Median spacing of sample times (the nominal sampling step); 0 for fewer than 2.
 inline double MedianStep(const std::vector<double>& t) {
   if (t.size() < 2) return 0.0;

@@ -14,6 +14,7 @@
 
 #include "libbead/explain/explain_loop.h"
 #include "libbead/explain/model_series.h"
+#include "libbead/series/interpolate.h"
 
 namespace bead::explain {
 namespace {
@@ -47,17 +48,36 @@ struct Case {
   SeriesData data;
 };
 
-// y from the model's own series through `effect`, plus noise.
+// y = `effect` of the model's own (noiseless) series, plus noise.
 template <typename F>
 Case Make(unsigned seed, F effect) {
   const Data in = MakeInput(seed);
-  SeriesData clean = ModelSeries(in.t, in.u, std::vector<double>(in.t.size(), 0.0), Process());
+  const SeriesData clean = ModelSeries(in.t, in.u, std::vector<double>(in.t.size(), 0.0), Process());
+  std::vector<double> y = effect(clean);
   std::mt19937_64 rng(seed + 100);
   std::normal_distribution<double> noise(0.0, 0.08);  // 1 % of the 2..10 output range
-  std::vector<double> y(in.t.size());
-  for (std::size_t i = 0; i < y.size(); ++i) y[i] = effect(clean, i) + noise(rng);
+  for (double& v : y) v += noise(rng);
   Case c{y, ModelSeries(in.t, in.u, y, Process(), "units")};
   return c;
+}
+
+// An effect given sample by sample: f(clean series, i).
+template <typename F>
+auto EachSample(F f) {
+  return [f](const SeriesData& d) {
+    std::vector<double> y(d.size());
+    for (std::size_t i = 0; i < y.size(); ++i) y[i] = f(d, i);
+    return y;
+  };
+}
+
+// Mean and standard deviation of the model's output: its operating level.
+void Level(const SeriesData& d, double& mean, double& sd) {
+  mean = sd = 0.0;
+  for (double b : d.base) mean += b;
+  mean /= d.base.size();
+  for (double b : d.base) sd += (b - mean) * (b - mean);
+  sd = std::sqrt(sd / (d.base.size() - 1));
 }
 
 const FittedParameter& Param(const AddedEffect& e, const std::string& name) {
@@ -68,7 +88,7 @@ const FittedParameter& Param(const AddedEffect& e, const std::string& name) {
 
 TEST(ExplainSeries, CleanDataGetsNothing) {
   for (unsigned seed = 1; seed <= 3; ++seed) {
-    const Case c = Make(seed, [](const SeriesData& d, std::size_t i) { return d.base[i]; });
+    const Case c = Make(seed, [](const SeriesData& d) { return d.base; });
     const ExplainReport r = Explain(c.data);
     EXPECT_TRUE(r.effects_added.empty()) << "seed " << seed << ": " << r.effects_added.front().name;
     EXPECT_TRUE(r.after.whiteness.white) << "seed " << seed;
@@ -77,7 +97,7 @@ TEST(ExplainSeries, CleanDataGetsNothing) {
 
 TEST(ExplainSeries, FindsDrift) {
   const double slope = 0.4;  // units from the middle to the end of the record
-  const Case c = Make(4, [&](const SeriesData& d, std::size_t i) { return d.base[i] + slope * (d.t[i] - 30.0) / 30.0; });
+  const Case c = Make(4, EachSample([&](const SeriesData& d, std::size_t i) { return d.base[i] + slope * (d.t[i] - 30.0) / 30.0; }));
   const ExplainReport r = Explain(c.data);
   ASSERT_EQ(r.effects_added.size(), 1u);
   EXPECT_EQ(r.effects_added[0].name, "drift");
@@ -88,9 +108,9 @@ TEST(ExplainSeries, FindsDrift) {
 
 TEST(ExplainSeries, FindsSaturatingBuildUp) {
   const double amplitude = 0.6, tau = 4.0;
-  const Case c = Make(5, [&](const SeriesData& d, std::size_t i) {
+  const Case c = Make(5, EachSample([&](const SeriesData& d, std::size_t i) {
     return d.base[i] + amplitude * (1.0 - std::exp(-d.segment_time_s[i] / tau));
-  });
+  }));
   const ExplainReport r = Explain(c.data);
   ASSERT_GE(r.effects_added.size(), 1u);
   EXPECT_EQ(r.effects_added[0].name, "buildup");
@@ -102,13 +122,12 @@ TEST(ExplainSeries, FindsSaturatingBuildUp) {
 
 TEST(ExplainSeries, FindsLevelDependentGain) {
   const double g = 0.05;
-  const Case c = Make(6, [&](const SeriesData& d, std::size_t i) {
-    double m = 0, s = 0;
-    for (double b : d.base) m += b;
-    m /= d.base.size();
-    for (double b : d.base) s += (b - m) * (b - m);
-    s = std::sqrt(s / (d.base.size() - 1));
-    return d.base[i] * (1.0 + g * (d.base[i] - m) / s);
+  const Case c = Make(6, [&](const SeriesData& d) {
+    double m, s;
+    Level(d, m, s);
+    std::vector<double> y(d.size());
+    for (std::size_t i = 0; i < y.size(); ++i) y[i] = d.base[i] * (1.0 + g * (d.base[i] - m) / s);
+    return y;
   });
   const ExplainReport r = Explain(c.data);
   ASSERT_GE(r.effects_added.size(), 1u);
@@ -119,10 +138,10 @@ TEST(ExplainSeries, FindsLevelDependentGain) {
 
 TEST(ExplainSeries, FindsChangingDelay) {
   const double change = 0.3;  // s, start to end
-  const Case c = Make(7, [&](const SeriesData& d, std::size_t i) {
+  const Case c = Make(7, [&](const SeriesData& d) {
     std::vector<double> extra(d.size());
     for (std::size_t k = 0; k < extra.size(); ++k) extra[k] = change * (d.t[k] - 0.5 * (d.t.front() + d.t.back())) / (d.t.back() - d.t.front());
-    return d.base_delayed(extra)[i];
+    return d.base_delayed(extra);
   });
   const ExplainReport r = Explain(c.data);
   ASSERT_GE(r.effects_added.size(), 1u);
@@ -136,26 +155,20 @@ TEST(ExplainSeries, FindsChangingDelay) {
 // finely); the model knows only 0.8 s. The catalogue's stand-in is a lag
 // that grows with level: found, positive, and the error drops.
 TEST(ExplainSeries, FindsATimeConstantThatChangesWithLevel) {
-  const Case c = Make(9, [&](const SeriesData& d, std::size_t i) {
-    static std::vector<double> y;
-    if (i == 0) {
-      double m = 0, s = 0;
-      for (double b : d.base) m += b;
-      m /= d.base.size();
-      for (double b : d.base) s += (b - m) * (b - m);
-      s = std::sqrt(s / (d.base.size() - 1));
-      y.assign(d.size(), 0.0);
-      double state = 0.0;
-      for (std::size_t k = 1; k < d.size(); ++k) {
-        const double dt = d.t[k] - d.t[k - 1];
-        if (d.segment_time_s[k] == 0.0) state = 0.0;  // the stop: from rest again
-        const double u = InterpolateAt(d.t, d.u, d.t[k - 1] - 0.2);  // the input, 0.2 s late
-        const double tau = std::max(0.2, 0.8 + 0.25 * (state - m) / s);
-        for (int sub = 0; sub < 20; ++sub) state += dt / 20 * (2.0 * u - state) / tau;
-        y[k] = state;
-      }
+  const Case c = Make(9, [&](const SeriesData& d) {
+    double m, s;
+    Level(d, m, s);
+    std::vector<double> y(d.size(), 0.0);
+    double state = 0.0;
+    for (std::size_t k = 1; k < d.size(); ++k) {
+      const double dt = d.t[k] - d.t[k - 1];
+      if (d.segment_time_s[k] == 0.0) state = 0.0;  // the stop: from rest again
+      const double u = InterpolateLinear(d.t, d.u, d.t[k - 1] - 0.2);  // the input, 0.2 s late
+      const double tau = std::max(0.2, 0.8 + 0.25 * (state - m) / s);
+      for (int sub = 0; sub < 20; ++sub) state += dt / 20 * (2.0 * u - state) / tau;
+      y[k] = state;
     }
-    return y[i];
+    return y;
   });
   const ExplainReport r = Explain(c.data);
   ASSERT_GE(r.effects_added.size(), 1u);
@@ -167,7 +180,7 @@ TEST(ExplainSeries, FindsATimeConstantThatChangesWithLevel) {
 }
 
 TEST(ExplainSeries, PeriodicStructureWithNoPartIsReportedUnexplained) {
-  const Case c = Make(8, [&](const SeriesData& d, std::size_t i) { return d.base[i] + 0.3 * std::sin(2 * kPi * 1.7 * d.t[i]); });
+  const Case c = Make(8, EachSample([&](const SeriesData& d, std::size_t i) { return d.base[i] + 0.3 * std::sin(2 * kPi * 1.7 * d.t[i]); }));
   const ExplainReport r = Explain(c.data);
   bool found = false;
   for (const auto& u : r.unexplained) found |= u.what == "periodic" && std::abs(u.frequency_hz - 1.7) < 0.05;
