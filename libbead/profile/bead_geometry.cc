@@ -50,17 +50,21 @@ Heights ComputeHeights(const PointSet& p, const ReferenceLine& line, ProfileWork
     ss[m] = (dx + bf * dz) * inv;
     xs[m++] = x;
   };
+  // Eight points with a dropout among them: the finite ones packed to the
+  // front (no branch per point), the dropouts' indices to w.removed.
+  const M8 lanes{0, 1, 2, 3, 4, 5, 6, 7};
   auto eight = [&](std::size_t i) {
     const V8 x = Load(p.x + i), z = Load(p.z + i);
-    if (!All((z - z) == 0.0f)) {
-      for (std::size_t j = i; j < i + 8; ++j) one(j);
-      return;
-    }
+    const int bits = Bits((z - z) == 0.0f);
     const V8 dx = x - vx0, dz = z - vz0 - vdz0;
-    Store(hs + m, (dz - vb * dx) * vinv);
-    Store(ss + m, (dx + vb * dz) * vinv);
-    Store(xs + m, x);
-    m += 8;
+    const M8 keep = PackIndex(bits);
+    Store(hs + m, Pack((dz - vb * dx) * vinv, keep));
+    Store(ss + m, Pack((dx + vb * dz) * vinv, keep));
+    Store(xs + m, Pack(x, keep));
+    Store(w.removed.data() + removed, Pack(lanes + static_cast<int32_t>(i), PackIndex(bits ^ 0xff)));
+    const auto kept = static_cast<std::size_t>(__builtin_popcount(bits));
+    m += kept;
+    removed += 8 - kept;
   };
   // Blocks of 32 points with one finiteness test (the reductions cost more
   // than the arithmetic); a block with a dropout goes eight at a time.
@@ -128,21 +132,34 @@ std::size_t FindSpikes(const Heights& g, float spike_mm, ProfileWorkspace& w) {
   return count;
 }
 
-// Removes the spikes from h, s and x.
-void RemoveSpikes(Heights& g, std::size_t spikes, const ProfileWorkspace& w) {
-  std::size_t m = 0, start = 0;
-  for (std::size_t r = 0; r <= spikes; ++r) {
-    const std::size_t end = r < spikes ? static_cast<std::size_t>(w.spikes[r]) : g.n;
-    const std::size_t len = end - start;
-    if (len > 0) {
-      std::memmove(g.h + m, g.h + start, len * sizeof(float));
-      std::memmove(g.s + m, g.s + start, len * sizeof(float));
-      std::memmove(g.x + m, g.x + start, len * sizeof(float));
-      m += len;
+// Puts each run of adjacent spikes on the chord between the points either
+// side of it (FindSpikes never marks the first or last point), in h, s and
+// x alike. The trapezoids then add up to exactly what they would with the
+// spikes left out, and no array is moved.
+void BridgeSpikes(Heights& g, std::size_t spikes, const ProfileWorkspace& w) {
+  for (std::size_t r = 0; r < spikes;) {
+    const auto first = static_cast<std::size_t>(w.spikes[r]);
+    std::size_t last = first;
+    while (++r < spikes && static_cast<std::size_t>(w.spikes[r]) == last + 1) ++last;
+    const std::size_t a = first - 1, b = last + 1;
+    const float span = static_cast<float>(b - a);
+    for (std::size_t k = first; k <= last; ++k) {
+      const float t = static_cast<float>(k - a) / span;
+      g.h[k] = g.h[a] + t * (g.h[b] - g.h[a]);
+      g.s[k] = g.s[a] + t * (g.s[b] - g.s[a]);
+      g.x[k] = g.x[a] + t * (g.x[b] - g.x[a]);
     }
-    start = end + 1;
   }
-  g.n = m;
+}
+
+// How many spikes lie in [first, last].
+std::size_t SpikesWithin(const ProfileWorkspace& w, std::size_t first, std::size_t last) {
+  std::size_t count = 0;
+  for (std::size_t r = 0; r < w.n_spikes; ++r) {
+    const auto k = static_cast<std::size_t>(w.spikes[r]);
+    count += (k >= first) & (k <= last);
+  }
+  return count;
 }
 
 float Trapezoid(const Heights& g, std::size_t first, std::size_t last) {
@@ -248,12 +265,12 @@ BEAD_HOT BeadGeometry MeasureBead(const PointSet& p, const ReferenceLine& line, 
     return g;
   }
   w.n_spikes = FindSpikes(pts, static_cast<float>(options.spike_mm), w);
-  if (w.n_spikes > 0) RemoveSpikes(pts, w.n_spikes, w);
+  if (w.n_spikes > 0) BridgeSpikes(pts, w.n_spikes, w);
   g.threshold_mm = std::max(options.min_threshold_mm, options.threshold_sigmas * line.residual_rms_mm);
 
   const auto max_gap = static_cast<float>(options.max_gap_mm);
   const Run run = LargestRun(pts, static_cast<float>(g.threshold_mm), max_gap, left, right);
-  const std::size_t count = run.integral < 0.0f ? 0 : run.last - run.first + 1;
+  const std::size_t count = run.integral < 0.0f ? 0 : run.last - run.first + 1 - SpikesWithin(w, run.first, run.last);
   if (count < static_cast<std::size_t>(std::max(options.min_bead_points, 2))) {
     g.status = ProfileStatus::kNoBead;
     return g;
@@ -327,9 +344,11 @@ BEAD_HOT BeadGeometry MeasureBead(const PointSet& p, const ReferenceLine& line, 
   g.left_edge_x_mm = (pts.s_offset_mm + s_left) * pts.inv_norm;
   g.right_edge_x_mm = (pts.s_offset_mm + s_right) * pts.inv_norm;
   // Back through the spikes removed, then the dropouts, to the view's indices.
-  auto view_index = [&](std::size_t k) { return ViewIndex(w, KeptToOriginal(w.spikes.data(), w.n_spikes, k)); };
-  const int32_t view_lo = view_index(lo), view_hi = view_index(hi);
-  g.dropped_points = std::abs(view_hi - view_lo) - 1 - static_cast<int>(hi - lo - 1);
+  // Dropouts (view points between the bare points not among the heights)
+  // and spikes between the bead's bare points.
+  const int32_t view_lo = ViewIndex(w, lo), view_hi = ViewIndex(w, hi);
+  g.dropped_points = std::abs(view_hi - view_lo) - 1 - static_cast<int>(hi - lo - 1) +
+                     static_cast<int>(SpikesWithin(w, lo + 1, hi - 1));
   g.status = ProfileStatus::kValid;
   return g;
 }

@@ -23,6 +23,7 @@ BEAD_VEC V8 Load(const float* p) {
   return v;
 }
 BEAD_VEC void Store(float* p, V8 v) { std::memcpy(p, &v, sizeof v); }
+BEAD_VEC void Store(int32_t* p, M8 v) { std::memcpy(p, &v, sizeof v); }
 BEAD_VEC V8 Splat(float x) { return V8{} + x; }
 BEAD_VEC V8 Abs(V8 v) { return v < 0.0f ? -v : v; }
 BEAD_VEC V8 Select(M8 m, V8 a, V8 b) { return m ? a : b; }  // a where m, else b
@@ -49,6 +50,35 @@ BEAD_VEC int32_t SumInt(M8 v) {
   const M8 b = a + __builtin_shufflevector(a, a, 2, 3, 0, 1, 2, 3, 0, 1);
   return b[0] + b[1];
 }
+// The lanes' truth as bits 0-7 (lane i: bit i).
+BEAD_VEC int Bits(M8 m) { return SumInt(m & M8{1, 2, 4, 8, 16, 32, 64, 128}); }
+
+// Left-packing: for each 8-bit lane set, the indices of its lanes in order,
+// then the others (a vector permutation; AVX2 does it in one instruction).
+struct PackTable {
+  int32_t index[256][8];
+};
+constexpr PackTable MakePackTable() {
+  PackTable t{};
+  for (int bits = 0; bits < 256; ++bits) {
+    int k = 0;
+    for (int lane = 0; lane < 8; ++lane)
+      if (bits & (1 << lane)) t.index[bits][k++] = lane;
+    for (int lane = 0; lane < 8; ++lane)
+      if (!(bits & (1 << lane))) t.index[bits][k++] = lane;
+  }
+  return t;
+}
+inline constexpr PackTable kPackTable = MakePackTable();
+BEAD_VEC M8 PackIndex(int bits) {
+  M8 m;
+  std::memcpy(&m, kPackTable.index[bits], sizeof m);
+  return m;
+}
+// The lanes of v set in `bits` first, in order (the rest after them).
+BEAD_VEC V8 Pack(V8 v, M8 index) { return __builtin_shuffle(v, index); }
+BEAD_VEC M8 Pack(M8 v, M8 index) { return __builtin_shuffle(v, index); }
+
 BEAD_VEC float MaxOf(V8 v) {
   const V8 a = Max(v, __builtin_shufflevector(v, v, 4, 5, 6, 7, 0, 1, 2, 3));
   const V8 b = Max(a, __builtin_shufflevector(a, a, 2, 3, 0, 1, 2, 3, 0, 1));

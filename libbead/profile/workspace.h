@@ -22,7 +22,7 @@ struct ProfileWorkspace {
   std::size_t n_removed = 0;
   bool mapped = false;
   // Per point of the point set: along-line position s and height h, and
-  // the point's x; spikes (indices into them) are removed in place.
+  // the point's x; spikes (indices into them) are bridged in place.
   std::vector<float> s, h, hx;
   std::vector<int32_t> spikes;
   std::size_t n_spikes = 0;
