@@ -8,10 +8,6 @@
 namespace bead {
 namespace {
 
-// x - x and z - z are NaN for NaN and infinities: one test for both
-// (bitwise and: no branch, so the block test vectorises).
-inline bool Finite(float x, float z) { return ((x - x) == 0.0f) & ((z - z) == 0.0f); }
-
 // Whether every x is finite and none is below its predecessor.
 bool FiniteAndIncreasing(const float* xs, std::size_t n) {
   using namespace vec;
@@ -27,11 +23,13 @@ bool FiniteAndIncreasing(const float* xs, std::size_t n) {
   return !tail_bad && !Any(bad);
 }
 
-// The valid points sorted by x (ties in view order), through w.map.
+// The points with finite x sorted by x (ties in view order), through w.map.
+// A non-finite z stays, as the dropout it is: a profile and its reverse
+// then give the same point set.
 PointSet SortedCopy(const float* xs, const float* zs, std::size_t n, ProfileWorkspace& w) {
   std::size_t m = 0;
   for (std::size_t i = 0; i < n; ++i)
-    if (Finite(xs[i], zs[i])) w.map[m++] = static_cast<int32_t>(i);
+    if ((xs[i] - xs[i]) == 0.0f) w.map[m++] = static_cast<int32_t>(i);
   int32_t* map = w.map.data();
   bool decreasing = true;
   for (std::size_t k = 1; k < m; ++k) decreasing &= xs[map[k]] <= xs[map[k - 1]];
@@ -82,8 +80,8 @@ std::size_t KeptToOriginal(const int32_t* removed, std::size_t n_removed, std::s
 }
 
 int32_t ViewIndex(const ProfileWorkspace& w, std::size_t k) {
-  if (w.mapped) return w.map[k];
-  return static_cast<int32_t>(KeptToOriginal(w.removed.data(), w.n_removed, k));
+  const std::size_t i = KeptToOriginal(w.removed.data(), w.n_removed, k);
+  return w.mapped ? w.map[i] : static_cast<int32_t>(i);
 }
 
 std::size_t LowerIndex(const PointSet& p, double value) {
@@ -92,6 +90,18 @@ std::size_t LowerIndex(const PointSet& p, double value) {
 
 std::size_t UpperIndex(const PointSet& p, double value) {
   return static_cast<std::size_t>(std::upper_bound(p.x, p.x + p.n, value, [](double v, float a) { return v < a; }) - p.x);
+}
+
+std::size_t LowerIndex(const PointSet& p, double value, std::size_t& hint) {
+  const std::size_t h = hint;
+  if (h <= p.n && (h == 0 || p.x[h - 1] < value) && (h == p.n || !(p.x[h] < value))) return h;
+  return hint = LowerIndex(p, value);
+}
+
+std::size_t UpperIndex(const PointSet& p, double value, std::size_t& hint) {
+  const std::size_t h = hint;
+  if (h <= p.n && (h == 0 || !(value < p.x[h - 1])) && (h == p.n || value < p.x[h])) return h;
+  return hint = UpperIndex(p, value);
 }
 
 }  // namespace bead

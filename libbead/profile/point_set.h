@@ -2,7 +2,8 @@
 // every later stage works on; a non-finite z marks a dropout, which the
 // later stages skip. A sensor that reports x in order (the usual case, NaN
 // z where it saw nothing) is used as it is, without a copy; reversed or
-// unsorted x, or a non-finite x, gets a sorted copy of the finite points.
+// unsorted x, or a non-finite x, gets a sorted copy of the points with a
+// finite x (dropouts kept in place).
 // The workspace remembers how to map a point back to its index in the view.
 #pragma once
 
@@ -37,5 +38,9 @@ std::size_t CountFiniteZ(const PointSet& points, std::size_t begin, std::size_t 
 // Index of the first point with x >= value (n if none), and of the first with x > value.
 std::size_t LowerIndex(const PointSet& points, double value);
 std::size_t UpperIndex(const PointSet& points, double value);
+// The same, trying `hint` first (an index found for an earlier profile)
+// and updating it: O(1) when the x grid has not changed.
+std::size_t LowerIndex(const PointSet& points, double value, std::size_t& hint);
+std::size_t UpperIndex(const PointSet& points, double value, std::size_t& hint);
 
 }  // namespace bead

@@ -15,79 +15,87 @@ namespace {
 // The MAD of a normal distribution times this is its standard deviation.
 constexpr double kMadToSigma = 1.482602218505602;
 
-// The median of values[0, n), by counting for each candidate how many
-// values lie below it: no branches to mispredict, which on the few dozen
-// samples here beats a selection. `values` must have room for n rounded up
-// to a multiple of 8 (the padding is set to +infinity).
+// Ranks a group of V * 8 candidates (values[c, c + 8V)) against all n
+// values at once: each lane counts the values below it and at or below it,
+// and the lanes holding order statistic k1 or k2 keep their value.
+template <int V>
+void RankGroup(const float* values, std::size_t n, std::size_t c, int32_t k1, int32_t k2, vec::V8& pick1,
+               vec::V8& pick2) {
+  using namespace vec;
+  V8 cand[V];
+  M8 lt[V], le[V];
+  for (int q = 0; q < V; ++q) cand[q] = Load(values + c + 8 * q), lt[q] = M8{}, le[q] = M8{};
+  for (std::size_t j = 0; j < n; ++j) {
+    const V8 v = Splat(values[j]);
+    for (int q = 0; q < V; ++q) {
+      lt[q] += v < cand[q];  // lanes are -1 where true
+      le[q] += v <= cand[q];
+    }
+  }
+  const V8 none = Splat(-std::numeric_limits<float>::infinity());
+  for (int q = 0; q < V; ++q) {
+    // Order statistic k sits where (values below) <= k < (values at or below).
+    pick1 = Max(pick1, Select((lt[q] >= -k1) & (le[q] < -k1), cand[q], none));
+    pick2 = Max(pick2, Select((lt[q] >= -k2) & (le[q] < -k2), cand[q], none));
+  }
+}
+
+// The median of values[0, n), by counting for each value how many lie
+// below it: no branch depends on the data, which on the few dozen samples
+// here beats a selection. `values` must have room for n rounded up to a
+// multiple of 8 (the padding is set to +infinity, which no rank reaches).
 float CountingMedian(float* values, std::size_t n) {
   using namespace vec;
   const std::size_t padded = (n + 7) / 8 * 8;
   for (std::size_t i = n; i < padded; ++i) values[i] = std::numeric_limits<float>::infinity();
   // Order statistics k1 = (n - 1) / 2 and k2 = n / 2 (equal for odd n).
   const auto k1 = static_cast<int32_t>((n - 1) / 2), k2 = static_cast<int32_t>(n / 2);
-  float m1 = 0.0f, m2 = 0.0f;
-  bool found1 = false, found2 = false;
-  for (std::size_t i = 0; i < n && !(found1 && found2); ++i) {
-    const V8 c = Splat(values[i]);
-    M8 below{}, at_or_below{};
-    for (std::size_t j = 0; j < padded; j += 8) {
-      const V8 v = Load(values + j);
-      below += v < c;  // lanes are -1 where true
-      at_or_below += v <= c;
-    }
-    const int32_t lt = -SumInt(below), le = -SumInt(at_or_below);
-    if (lt <= k1 && k1 < le) m1 = values[i], found1 = true;
-    if (lt <= k2 && k2 < le) m2 = values[i], found2 = true;
+  V8 pick1 = Splat(-std::numeric_limits<float>::infinity()), pick2 = pick1;
+  std::size_t c = 0;
+  for (; c + 32 <= padded; c += 32) RankGroup<4>(values, n, c, k1, k2, pick1, pick2);
+  switch ((padded - c) / 8) {
+    case 3: RankGroup<3>(values, n, c, k1, k2, pick1, pick2); break;
+    case 2: RankGroup<2>(values, n, c, k1, k2, pick1, pick2); break;
+    case 1: RankGroup<1>(values, n, c, k1, k2, pick1, pick2); break;
+    default: break;
   }
-  return 0.5f * (m1 + m2);
+  return 0.5f * (MaxOf(pick1) + MaxOf(pick2));
 }
 
 // An area's points: indices [begin, end) of the point set (x increasing),
-// the dropouts among them, and every stride-th valid point for the robust
-// statistics (counted over valid points, so a dropout marked by NaN z in
-// place gives the same samples as one cut out of a sorted copy).
+// how many of them have a finite z, and the spacing of the samples for the
+// robust statistics (every stride-th point, dropouts skipped).
 struct AreaRange {
-  std::size_t begin = 0, end = 0, stride = 1;
-  const int32_t* dropouts = nullptr;  // increasing point indices
-  std::size_t n_dropouts = 0;
-  std::size_t valid() const { return end - begin - n_dropouts; }
+  std::size_t begin = 0, end = 0, valid = 0, stride = 1;
+  std::size_t size() const { return end - begin; }
 };
 
-AreaRange RangeOf(const PointSet& p, const ReferenceArea& area, int max_samples, int32_t* dropouts) {
-  using namespace vec;
+AreaRange RangeOf(const PointSet& p, const ReferenceArea& area, int max_samples, std::size_t* hints) {
   AreaRange r;
-  r.begin = LowerIndex(p, area.x_min_mm);
-  r.end = std::max(r.begin, UpperIndex(p, area.x_max_mm));
-  std::size_t count = 0;
-  auto check = [&](std::size_t i) {
-    if (!((p.z[i] - p.z[i]) == 0.0f)) dropouts[count++] = static_cast<int32_t>(i);
-  };
-  std::size_t i = r.begin;
-  for (; i + 8 <= r.end; i += 8) {
-    const V8 z = Load(p.z + i);
-    if (All((z - z) == 0.0f)) continue;
-    for (std::size_t k = i; k < i + 8; ++k) check(k);
-  }
-  for (; i < r.end; ++i) check(i);
-  r.dropouts = dropouts;
-  r.n_dropouts = count;
+  r.begin = LowerIndex(p, area.x_min_mm, hints[0]);
+  r.end = std::max(r.begin, UpperIndex(p, area.x_max_mm, hints[1]));
+  r.valid = CountFiniteZ(p, r.begin, r.end);
   const std::size_t m = static_cast<std::size_t>(std::max(max_samples, 1));
-  r.stride = r.valid() <= m ? 1 : (r.valid() + m - 1) / m;
+  r.stride = r.size() <= m ? 1 : (r.size() + m - 1) / m;
   return r;
 }
 
-// An area's samples, x into xs and z into zs: valid points stride/2,
-// stride/2 + stride, ...; returns how many.
+// An area's samples, x into xs and z into zs: the points stride/2,
+// stride/2 + stride, ... with a finite z (packed without a branch); returns
+// how many. Where the dropouts hit nearly every sampled point, every point.
 std::size_t Samples(const PointSet& p, const AreaRange& r, float* xs, float* zs) {
-  std::size_t count = 0, d = 0;
-  for (std::size_t v = r.stride / 2; v < r.valid(); v += r.stride) {
-    // Point index of the v-th valid point: step over the dropouts before it.
-    std::size_t i = r.begin + v + d;
-    while (d < r.n_dropouts && static_cast<std::size_t>(r.dropouts[d]) <= i) ++d, ++i;
-    xs[count] = p.x[i];
-    zs[count++] = p.z[i];
-  }
-  return count;
+  auto take = [&](std::size_t stride) {
+    std::size_t count = 0;
+    for (std::size_t i = r.begin + stride / 2; i < r.end; i += stride) {
+      const float z = p.z[i];
+      xs[count] = p.x[i];
+      zs[count] = z;
+      count += (z - z) == 0.0f;
+    }
+    return count;
+  };
+  const std::size_t count = take(r.stride);
+  return count >= std::min<std::size_t>(r.valid, 3) ? count : take(1);
 }
 
 // Median of sorted values.
@@ -182,17 +190,19 @@ double ReferenceLine::HeightAt(double x_mm, double z_mm) const {
 BEAD_HOT ReferenceLine FitReferenceLine(const PointSet& p, const ReferenceArea& left, const ReferenceArea& right,
                                         const ReferenceLineOptions& options, ProfileWorkspace& w) {
   ReferenceLine result;
-  const AreaRange rl = RangeOf(p, left, options.max_median_samples, w.area_dropouts.data());
-  const AreaRange rr = RangeOf(p, right, options.max_median_samples, w.area_dropouts.data() + rl.n_dropouts);
-  result.points_available = static_cast<int>(rl.valid() + rr.valid());
+  const AreaRange rl = RangeOf(p, left, options.max_median_samples, w.area_hints);
+  const AreaRange rr = RangeOf(p, right, options.max_median_samples, w.area_hints + 2);
+  result.points_available = static_cast<int>(rl.valid + rr.valid);
   const auto min_points = static_cast<std::size_t>(std::max(options.min_points_per_area, 1));
-  if (rl.valid() < min_points || rr.valid() < min_points) return result;
+  if (rl.valid < min_points || rr.valid < min_points) return result;
+  if (rl.end > rr.begin) return result;  // overlapping areas
   float* scratch = w.scratch.data();
 
   // Robust start: the line through each area's (median x, median z) of its
   // samples. Scratch layout: the left and right samples' z (each padded to
-  // a multiple of 8 for the median), then their x, then the residuals.
-  const std::size_t room_l = (rl.valid() / rl.stride + 16) / 8 * 8, room_r = (rr.valid() / rr.stride + 16) / 8 * 8;
+  // a multiple of 8 for the median), then their x, then the residuals
+  // (room for every point of the areas: Samples may take them all).
+  const std::size_t room_l = (rl.size() + 16) / 8 * 8, room_r = (rr.size() + 16) / 8 * 8;
   float* zl_s = scratch;
   float* zr_s = zl_s + room_l;
   float* xl_s = zr_s + room_r;
@@ -209,8 +219,9 @@ BEAD_HOT ReferenceLine FitReferenceLine(const PointSet& p, const ReferenceArea& 
   // First band: the robust spread (1.4826 MAD) of the samples' residuals
   // about the start, the MAD taken as the median of medians of three (the
   // median of three draws shares the median of their distribution).
-  for (std::size_t k = 0; k < cl; ++k) resid[k] = std::abs(static_cast<float>((zl_s[k] - line.z0) - line.b * (xl_s[k] - line.x0)));
-  for (std::size_t k = 0; k < cr; ++k) resid[cl + k] = std::abs(static_cast<float>((zr_s[k] - line.z0) - line.b * (xr_s[k] - line.x0)));
+  const auto x0 = static_cast<float>(line.x0), z0 = static_cast<float>(line.z0), b0 = static_cast<float>(line.b);
+  for (std::size_t k = 0; k < cl; ++k) resid[k] = std::abs((zl_s[k] - z0) - b0 * (xl_s[k] - x0));
+  for (std::size_t k = 0; k < cr; ++k) resid[cl + k] = std::abs((zr_s[k] - z0) - b0 * (xr_s[k] - x0));
   const double floor_start = options.min_sigma_mm * std::sqrt(1.0 + line.b * line.b);
   const double mad = MedianOfTriples(resid, cl + cr, triples);
   double band = options.inlier_sigmas * std::max(kMadToSigma * mad, floor_start);

@@ -6,7 +6,6 @@ void ProfileWorkspace::Reserve(std::size_t points) {
   for (auto* v : {&x, &z, &s, &h, &hx}) v->resize(points);
   scratch.resize(4 * points + 256);  // median samples (padded to 8), residuals, triples
   for (auto* v : {&removed, &map, &spikes}) v->resize(points);
-  area_dropouts.resize(2 * points);  // both areas, even if a rig lets them overlap
 }
 
 }  // namespace bead

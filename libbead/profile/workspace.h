@@ -26,10 +26,11 @@ struct ProfileWorkspace {
   std::vector<float> s, h, hx;
   std::vector<int32_t> spikes;
   std::size_t n_spikes = 0;
-  // Scratch for the reference line: its samples and residuals, and the
-  // dropouts inside the reference areas.
+  // Scratch for the reference line: its samples and residuals; and where
+  // the reference areas began and ended on the last profile (a sensor's x
+  // rarely changes, so the searches start by checking these).
   std::vector<float> scratch;
-  std::vector<int32_t> area_dropouts;
+  std::size_t area_hints[4] = {};
 
   explicit ProfileWorkspace(std::size_t points = 0) { Reserve(points); }
   void Reserve(std::size_t points);
