@@ -8,19 +8,19 @@
 namespace bead {
 namespace {
 
-// Whether every x is finite and none is below its predecessor.
+// Whether every x is finite and none is below its predecessor: each x
+// must be >= the one before (false for NaN), and with the first and last
+// finite, so is every x between.
 bool FiniteAndIncreasing(const float* xs, std::size_t n) {
   using namespace vec;
   if (n == 0) return true;
-  M8 bad{};
+  if (!((xs[0] - xs[0]) == 0.0f) || !((xs[n - 1] - xs[n - 1]) == 0.0f)) return false;
+  M8 ordered = ~M8{};
   std::size_t i = 1;
-  for (; i + 8 <= n; i += 8) {
-    const V8 x = Load(xs + i);
-    bad |= ((x - x) != 0.0f) | (x < Load(xs + i - 1));
-  }  // one reduction at the end
-  bool tail_bad = !((xs[0] - xs[0]) == 0.0f);
-  for (; i < n; ++i) tail_bad |= !((xs[i] - xs[i]) == 0.0f) | (xs[i] < xs[i - 1]);
-  return !tail_bad && !Any(bad);
+  for (; i + 8 <= n; i += 8) ordered &= Load(xs + i) >= Load(xs + i - 1);  // one reduction at the end
+  bool tail = true;
+  for (; i < n; ++i) tail &= xs[i] >= xs[i - 1];
+  return tail && All(ordered);
 }
 
 // The points with finite x sorted by x (ties in view order), through w.map.

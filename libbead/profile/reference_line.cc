@@ -139,47 +139,52 @@ struct ShiftedLine {
   double x0 = 0, z0 = 0, c = 0, b = 0;
 };
 
-// Least-squares sums over one area's points within `band` (vertical) of
+// Least-squares sums over both areas' points within `band` (vertical) of
 // the line, in the line's shifted coordinates (a dropout's NaN residual is
-// never within it).
+// never within it), and each area's count of them.
 struct Sums {
-  double n = 0, sx = 0, sz = 0, sxx = 0, sxz = 0, szz = 0, rr = 0;
-  void Add(const Sums& o) {
-    n += o.n, sx += o.sx, sz += o.sz, sxx += o.sxx, sxz += o.sxz, szz += o.szz, rr += o.rr;
-  }
+  double n = 0, sx = 0, sz = 0, sxx = 0, sxz = 0, szz = 0;
+  double n_left = 0, n_right = 0;
 };
 
-Sums InlierSums(const PointSet& p, const AreaRange& r, const ShiftedLine& line, double band) {
+Sums InlierSums(const PointSet& p, const AreaRange& left, const AreaRange& right, const ShiftedLine& line,
+                double band) {
   using namespace vec;
   const float x0 = static_cast<float>(line.x0), z0 = static_cast<float>(line.z0);
   const float c = static_cast<float>(line.c), b = static_cast<float>(line.b), bw = static_cast<float>(band);
   const V8 vx0 = Splat(x0), vz0 = Splat(z0), vc = Splat(c), vb = Splat(b), vbw = Splat(bw);
-  V8 n{}, sx{}, sz{}, sxx{}, sxz{}, szz{}, rr{};
-  std::size_t i = r.begin;
-  for (; i + 8 <= r.end; i += 8) {
-    const V8 dx = Load(p.x + i) - vx0;
-    const V8 dz = Load(p.z + i) - vz0;
-    const V8 res = dz - vc - vb * dx;
-    const M8 in = Abs(res) <= vbw;
-    const V8 idx = Select(in, dx, V8{}), idz = Select(in, dz, V8{}), ires = Select(in, res, V8{});
-    n += ToFloat(in);
-    sx += idx;
-    sz += idz;
-    sxx += idx * idx;
-    sxz += idx * idz;
-    szz += idz * idz;
-    rr += ires * ires;
-  }
-  Sums sums{Sum(n), Sum(sx), Sum(sz), Sum(sxx), Sum(sxz), Sum(szz), Sum(rr)};
-  for (; i < r.end; ++i) {
-    const float dx = p.x[i] - x0, dz = p.z[i] - z0;
-    const float res = dz - c - b * dx;
-    if (!(std::abs(res) <= bw)) continue;
-    sums.Add(Sums{1.0, dx, dz, double(dx) * dx, double(dx) * dz, double(dz) * dz, double(res) * res});
-  }
+  V8 sx{}, sz{}, sxx{}, sxz{}, szz{};
+  Sums sums;
+  auto area = [&](const AreaRange& r) {
+    V8 n{};
+    std::size_t i = r.begin;
+    for (; i + 8 <= r.end; i += 8) {
+      const V8 dx = Load(p.x + i) - vx0;
+      const V8 dz = Load(p.z + i) - vz0;
+      const M8 in = Abs(dz - vc - vb * dx) <= vbw;
+      const V8 idx = Select(in, dx, V8{}), idz = Select(in, dz, V8{});
+      n += ToFloat(in);
+      sx += idx;
+      sz += idz;
+      sxx += idx * idx;
+      sxz += idx * idz;
+      szz += idz * idz;
+    }
+    double count = Sum(n);
+    for (; i < r.end; ++i) {
+      const float dx = p.x[i] - x0, dz = p.z[i] - z0;
+      if (!(std::abs(dz - c - b * dx) <= bw)) continue;
+      count += 1.0;
+      sums.sx += dx, sums.sz += dz, sums.sxx += double(dx) * dx, sums.sxz += double(dx) * dz, sums.szz += double(dz) * dz;
+    }
+    return count;
+  };
+  sums.n_left = area(left);
+  sums.n_right = area(right);
+  sums.n = sums.n_left + sums.n_right;
+  sums.sx += Sum(sx), sums.sz += Sum(sz), sums.sxx += Sum(sxx), sums.sxz += Sum(sxz), sums.szz += Sum(szz);
   return sums;
 }
-
 
 }  // namespace
 
@@ -231,11 +236,8 @@ BEAD_HOT ReferenceLine FitReferenceLine(const PointSet& p, const ReferenceArea& 
   // centred sums), and the last refit's inliers and RMS are reported.
   const int refits = std::max(options.iterations, 1);
   for (int iter = 0; iter < refits; ++iter) {
-    const Sums sl = InlierSums(p, rl, line, band);
-    const Sums sr = InlierSums(p, rr, line, band);
-    if (sl.n < options.min_points_per_area || sr.n < options.min_points_per_area) return result;
-    Sums s = sl;
-    s.Add(sr);
+    const Sums s = InlierSums(p, rl, rr, line, band);
+    if (s.n_left < options.min_points_per_area || s.n_right < options.min_points_per_area) return result;
     const double mx = s.sx / s.n, mz = s.sz / s.n;
     const double sxx = s.sxx - s.n * mx * mx;
     const double sxz = s.sxz - s.n * mx * mz;
