@@ -98,6 +98,11 @@ std::size_t Samples(const PointSet& p, const AreaRange& r, float* xs, float* zs)
   return count >= std::min<std::size_t>(r.valid, 3) ? count : take(1);
 }
 
+// The line in shifted coordinates: z - z0 = c + b (x - x0).
+struct ShiftedLine {
+  double x0 = 0, z0 = 0, c = 0, b = 0;
+};
+
 // Median of sorted values.
 double SortedMedian(const float* xs, std::size_t n) {
   return n % 2 == 1 ? xs[n / 2] : 0.5 * (double(xs[n / 2 - 1]) + double(xs[n / 2]));
@@ -134,16 +139,102 @@ void AreaCentre(const float* xs, float* zs, std::size_t count, float* triples, d
 
 
 
-// The line in shifted coordinates: z - z0 = c + b (x - x0).
-struct ShiftedLine {
-  double x0 = 0, z0 = 0, c = 0, b = 0;
+// The start: a line through both areas' centres, and the robust spread of
+// the samples' residuals about it (their MAD, as the median of medians of
+// three: the median of three draws shares the median of their
+// distribution).
+struct Start {
+  ShiftedLine line;
+  double mad = 0.0;
+  bool ok = false;
 };
 
+// From every stride-th point of each area (any size, any dropouts).
+Start SampledStart(const PointSet& p, const AreaRange& rl, const AreaRange& rr, float* scratch) {
+  // Scratch layout: the left and right samples' z (each padded to a
+  // multiple of 8 for the median), then their x, then the residuals (room
+  // for every point of the areas: Samples may take them all).
+  const std::size_t room_l = (rl.size() + 16) / 8 * 8, room_r = (rr.size() + 16) / 8 * 8;
+  float* zl_s = scratch;
+  float* zr_s = zl_s + room_l;
+  float* xl_s = zr_s + room_r;
+  float* xr_s = xl_s + room_l;
+  float* resid = xr_s + room_r;
+  float* triples = resid + room_l + room_r;
+  const std::size_t cl = Samples(p, rl, xl_s, zl_s), cr = Samples(p, rr, xr_s, zr_s);
+  Start start;
+  if (!(xr_s[0] > xl_s[cl - 1])) return start;  // overlapping areas
+  double xl, zl, xr, zr;
+  AreaCentre(xl_s, zl_s, cl, triples, xl, zl);
+  AreaCentre(xr_s, zr_s, cr, triples, xr, zr);
+  start.line = ShiftedLine{0.5 * (xl + xr), 0.5 * (zl + zr), 0.0, (zr - zl) / (xr - xl)};
+  const auto x0 = static_cast<float>(start.line.x0), z0 = static_cast<float>(start.line.z0);
+  const auto b0 = static_cast<float>(start.line.b);
+  for (std::size_t k = 0; k < cl; ++k) resid[k] = std::abs((zl_s[k] - z0) - b0 * (xl_s[k] - x0));
+  for (std::size_t k = 0; k < cr; ++k) resid[cl + k] = std::abs((zr_s[k] - z0) - b0 * (xr_s[k] - x0));
+  start.mad = MedianOfTriples(resid, cl + cr, triples);
+  start.ok = true;
+  return start;
+}
+
+// The usual case, from 48 points per area without a loop over points: six
+// spots of eight adjacent points spread evenly over each area, the triples
+// formed across spots j, j + 2, j + 4 (so each triple spans the area, and a
+// glint must cover two of its three spots to spoil it). A dropout counts as
+// an outlier (+infinity). Not ok when the dropouts are too many for that;
+// then SampledStart, which skips them.
+constexpr std::size_t kSpots = 6, kSpotSamples = 8 * kSpots;
+
+Start SpotStart(const PointSet& p, const AreaRange& rl, const AreaRange& rr, float* scratch) {
+  using namespace vec;
+  const V8 inf = Splat(std::numeric_limits<float>::infinity());
+  float* zs = scratch;                       // [area][spot][8]
+  float* xs = zs + 2 * kSpotSamples;
+  float* triples = xs + 2 * kSpotSamples;  // 32
+  double x_mid[2], z_mid[2];
+  for (int a = 0; a < 2; ++a) {
+    const AreaRange& r = a == 0 ? rl : rr;
+    float* z = zs + a * kSpotSamples;
+    float* x = xs + a * kSpotSamples;
+    double x_sum = 0.0;
+    for (std::size_t j = 0; j < kSpots; ++j) {
+      const std::size_t at = r.begin + (r.size() - 8) * j / (kSpots - 1);
+      const V8 spot = Load(p.z + at);
+      Store(z + 8 * j, Select(spot == spot, spot, inf));
+      Store(x + 8 * j, Load(p.x + at));
+      x_sum += double(p.x[at]) + p.x[at + 7];
+    }
+    for (std::size_t t = 0; t < 2; ++t)
+      Store(triples + 16 * a + 8 * t, vec::Median3(Load(z + 8 * t), Load(z + 8 * (t + 2)), Load(z + 8 * (t + 4))));
+    x_mid[a] = x_sum / (2 * kSpots);
+    z_mid[a] = CountingMedian(triples + 16 * a, 16);
+  }
+  Start start;
+  if (!(std::isfinite(z_mid[0]) && std::isfinite(z_mid[1]))) return start;
+  start.line = ShiftedLine{0.5 * (x_mid[0] + x_mid[1]), 0.5 * (z_mid[0] + z_mid[1]), 0.0,
+                           (z_mid[1] - z_mid[0]) / (x_mid[1] - x_mid[0])};
+  const V8 x0 = Splat(static_cast<float>(start.line.x0)), z0 = Splat(static_cast<float>(start.line.z0));
+  const V8 b0 = Splat(static_cast<float>(start.line.b));
+  for (std::size_t k = 0; k < 2 * kSpotSamples; k += 8)
+    Store(zs + k, Abs((Load(zs + k) - z0) - b0 * (Load(xs + k) - x0)));
+  for (std::size_t a = 0; a < 2; ++a)
+    for (std::size_t t = 0; t < 2; ++t) {
+      const float* r = zs + a * kSpotSamples + 8 * t;
+      Store(triples + 16 * a + 8 * t, vec::Median3(Load(r), Load(r + 16), Load(r + 32)));
+    }
+  start.mad = CountingMedian(triples, 32);
+  start.ok = std::isfinite(start.mad);
+  return start;
+}
+
 // Least-squares sums over both areas' points within `band` (vertical) of
-// the line, in the line's shifted coordinates (a dropout's NaN residual is
-// never within it), and each area's count of them.
+// the line, of dx = x - x0 and of their residual r about the line (a
+// dropout's NaN residual is never within it), and each area's count of
+// them. Fitting the residuals (a correction to the line) rather than z
+// keeps the float sums at the scale of the noise: the sum of squares then
+// does not cancel against the tilt's.
 struct Sums {
-  double n = 0, sx = 0, sz = 0, sxx = 0, sxz = 0, szz = 0;
+  double n = 0, sx = 0, sr = 0, sxx = 0, sxr = 0, srr = 0;
   double n_left = 0, n_right = 0;
 };
 
@@ -153,36 +244,36 @@ Sums InlierSums(const PointSet& p, const AreaRange& left, const AreaRange& right
   const float x0 = static_cast<float>(line.x0), z0 = static_cast<float>(line.z0);
   const float c = static_cast<float>(line.c), b = static_cast<float>(line.b), bw = static_cast<float>(band);
   const V8 vx0 = Splat(x0), vz0 = Splat(z0), vc = Splat(c), vb = Splat(b), vbw = Splat(bw);
-  V8 sx{}, sz{}, sxx{}, sxz{}, szz{};
+  V8 sx{}, sr{}, sxx{}, sxr{}, srr{};
   Sums sums;
   auto area = [&](const AreaRange& r) {
     V8 n{};
     std::size_t i = r.begin;
     for (; i + 8 <= r.end; i += 8) {
       const V8 dx = Load(p.x + i) - vx0;
-      const V8 dz = Load(p.z + i) - vz0;
-      const M8 in = Abs(dz - vc - vb * dx) <= vbw;
-      const V8 idx = Select(in, dx, V8{}), idz = Select(in, dz, V8{});
+      const V8 res = (Load(p.z + i) - vz0) - vc - vb * dx;
+      const M8 in = Abs(res) <= vbw;
+      const V8 idx = Select(in, dx, V8{}), ires = Select(in, res, V8{});
       n += ToFloat(in);
       sx += idx;
-      sz += idz;
+      sr += ires;
       sxx += idx * idx;
-      sxz += idx * idz;
-      szz += idz * idz;
+      sxr += idx * ires;
+      srr += ires * ires;
     }
     double count = Sum(n);
     for (; i < r.end; ++i) {
-      const float dx = p.x[i] - x0, dz = p.z[i] - z0;
-      if (!(std::abs(dz - c - b * dx) <= bw)) continue;
+      const float dx = p.x[i] - x0, res = (p.z[i] - z0) - c - b * dx;
+      if (!(std::abs(res) <= bw)) continue;
       count += 1.0;
-      sums.sx += dx, sums.sz += dz, sums.sxx += double(dx) * dx, sums.sxz += double(dx) * dz, sums.szz += double(dz) * dz;
+      sums.sx += dx, sums.sr += res, sums.sxx += double(dx) * dx, sums.sxr += double(dx) * res, sums.srr += double(res) * res;
     }
     return count;
   };
   sums.n_left = area(left);
   sums.n_right = area(right);
   sums.n = sums.n_left + sums.n_right;
-  sums.sx += Sum(sx), sums.sz += Sum(sz), sums.sxx += Sum(sxx), sums.sxz += Sum(sxz), sums.szz += Sum(szz);
+  sums.sx += Sum(sx), sums.sr += Sum(sr), sums.sxx += Sum(sxx), sums.sxr += Sum(sxr), sums.srr += Sum(srr);
   return sums;
 }
 
@@ -201,51 +292,35 @@ BEAD_HOT ReferenceLine FitReferenceLine(const PointSet& p, const ReferenceArea& 
   const auto min_points = static_cast<std::size_t>(std::max(options.min_points_per_area, 1));
   if (rl.valid < min_points || rr.valid < min_points) return result;
   if (rl.end > rr.begin) return result;  // overlapping areas
-  float* scratch = w.scratch.data();
-
-  // Robust start: the line through each area's (median x, median z) of its
-  // samples. Scratch layout: the left and right samples' z (each padded to
-  // a multiple of 8 for the median), then their x, then the residuals
-  // (room for every point of the areas: Samples may take them all).
-  const std::size_t room_l = (rl.size() + 16) / 8 * 8, room_r = (rr.size() + 16) / 8 * 8;
-  float* zl_s = scratch;
-  float* zr_s = zl_s + room_l;
-  float* xl_s = zr_s + room_r;
-  float* xr_s = xl_s + room_l;
-  float* resid = xr_s + room_r;
-  float* triples = resid + room_l + room_r;
-  const std::size_t cl = Samples(p, rl, xl_s, zl_s), cr = Samples(p, rr, xr_s, zr_s);
-  if (!(xr_s[0] > xl_s[cl - 1])) return result;  // overlapping areas
-  double xl, zl, xr, zr;
-  AreaCentre(xl_s, zl_s, cl, triples, xl, zl);
-  AreaCentre(xr_s, zr_s, cr, triples, xr, zr);
-  ShiftedLine line{0.5 * (xl + xr), 0.5 * (zl + zr), 0.0, (zr - zl) / (xr - xl)};
-
-  // First band: the robust spread (1.4826 MAD) of the samples' residuals
-  // about the start, the MAD taken as the median of medians of three (the
-  // median of three draws shares the median of their distribution).
-  const auto x0 = static_cast<float>(line.x0), z0 = static_cast<float>(line.z0), b0 = static_cast<float>(line.b);
-  for (std::size_t k = 0; k < cl; ++k) resid[k] = std::abs((zl_s[k] - z0) - b0 * (xl_s[k] - x0));
-  for (std::size_t k = 0; k < cr; ++k) resid[cl + k] = std::abs((zr_s[k] - z0) - b0 * (xr_s[k] - x0));
+  // Robust start: the line through each area's centre (median x, median
+  // z of its samples), and the first band from the spread about it.
+  const bool spots = options.max_median_samples >= static_cast<int>(kSpotSamples) &&
+                     rl.size() >= kSpotSamples && rr.size() >= kSpotSamples;
+  Start start;
+  if (spots) start = SpotStart(p, rl, rr, w.scratch.data());
+  if (!start.ok) start = SampledStart(p, rl, rr, w.scratch.data());
+  if (!start.ok) return result;
+  ShiftedLine line = start.line;
   const double floor_start = options.min_sigma_mm * std::sqrt(1.0 + line.b * line.b);
-  const double mad = MedianOfTriples(resid, cl + cr, triples);
-  double band = options.inlier_sigmas * std::max(kMadToSigma * mad, floor_start);
+  double band = options.inlier_sigmas * std::max(kMadToSigma * start.mad, floor_start);
 
-  // Least-squares refits on the inliers; each next band is the inliers' RMS
-  // about the new line (the least-squares identity SSE = Szz - b Sxz on
-  // centred sums), and the last refit's inliers and RMS are reported.
+  // Least-squares refits on the inliers, each a correction (dc, db) fitted
+  // to their residuals; each next band is the inliers' RMS about the new
+  // line (the least-squares identity SSE = Srr - db Sxr on centred sums),
+  // and the last refit's inliers and RMS are reported.
   const int refits = std::max(options.iterations, 1);
   for (int iter = 0; iter < refits; ++iter) {
     const Sums s = InlierSums(p, rl, rr, line, band);
     if (s.n_left < options.min_points_per_area || s.n_right < options.min_points_per_area) return result;
-    const double mx = s.sx / s.n, mz = s.sz / s.n;
+    const double mx = s.sx / s.n, mr = s.sr / s.n;
     const double sxx = s.sxx - s.n * mx * mx;
-    const double sxz = s.sxz - s.n * mx * mz;
-    const double szz = s.szz - s.n * mz * mz;
+    const double sxr = s.sxr - s.n * mx * mr;
+    const double srr = s.srr - s.n * mr * mr;
     if (!(sxx > 0.0)) return result;
-    line.b = sxz / sxx;
-    line.c = mz - line.b * mx;
-    const double rms_v = std::sqrt(std::max(szz - line.b * sxz, 0.0) / s.n);
+    const double db = sxr / sxx;
+    line.b += db;
+    line.c += mr - db * mx;
+    const double rms_v = std::sqrt(std::max(srr - db * sxr, 0.0) / s.n);
     const double floor_v = options.min_sigma_mm * std::sqrt(1.0 + line.b * line.b);
     band = options.inlier_sigmas * std::max(rms_v, floor_v);
     if (iter + 1 == refits) {
