@@ -97,38 +97,46 @@ Heights ComputeHeights(const PointSet& p, const ReferenceLine& line, ProfileWork
 
 // Spikes: points standing more than spike_mm off the median of themselves
 // and their four nearest neighbours (median of five, so two adjacent
-// spikes are caught too; three at the ends). Only where a neighbour jumps
-// by more than spike_mm: otherwise three of the five (the point and both
-// neighbours) lie within spike_mm of the point, so their median does too.
-// Writes their indices, increasing, to w.spikes; returns how many.
+// spikes are caught too; three at the ends; never the first or last
+// point). Only next to a jump of more than spike_mm: otherwise three of
+// the five (the point and both neighbours) lie within spike_mm of the
+// point, so their median does too. So blocks of 32 points are tested for
+// jumps first, and only a block next to one is tested point by point,
+// eight at a time. Writes their indices, increasing, to w.spikes; returns
+// how many.
 std::size_t FindSpikes(const Heights& g, float spike_mm, ProfileWorkspace& w) {
   using namespace vec;
   const float* h = g.h;
   const std::size_t n = g.n;
   if (n < 3) return 0;
-  std::size_t count = 0, next = 1;  // next: first candidate not yet decided
-  auto decide = [&](std::size_t k) {
-    if (k < next || k + 1 >= n) return;
-    next = k + 1;
+  std::size_t count = 0;
+  auto jump = [&](std::size_t k) { return std::abs(h[k + 1] - h[k]) > spike_mm; };  // between k and k + 1
+  auto test = [&](std::size_t k) {  // one point, 1 <= k <= n - 2
     const float med = (k >= 2 && k + 2 < n) ? Median5(h[k - 2], h[k - 1], h[k + 1], h[k + 2], h[k])
                                             : Median3(h[k - 1], h[k], h[k + 1]);
     if (std::abs(h[k] - med) > spike_mm) w.spikes[count++] = static_cast<int32_t>(k);
   };
-  auto jump = [&](std::size_t k) { return std::abs(h[k + 1] - h[k]) > spike_mm; };  // between k and k + 1
   const V8 sp = Splat(spike_mm);
-  std::size_t k = 0;
-  for (; k + 33 <= n; k += 32) {  // one test per 32 pairs
+  // Point 1 alone (its median is of three); blocks of 32 from point 2, each
+  // with the pairs (k, k + 1) of its points and the pair before it.
+  if (jump(0) || jump(1)) test(1);
+  bool jump_before = jump(1);
+  std::size_t k = 2;
+  for (; k + 34 <= n; k += 32) {
     M8 jumps{};
     for (std::size_t i = k; i < k + 32; i += 8) jumps |= Abs(Load(h + i + 1) - Load(h + i)) > sp;
-    if (!Any(jumps)) continue;
+    const bool near_jump = jump_before || Any(jumps);
+    jump_before = jump(k + 31);
+    if (!near_jump) continue;
     for (std::size_t i = k; i < k + 32; i += 8) {
-      if (!Any(Abs(Load(h + i + 1) - Load(h + i)) > sp)) continue;
-      for (std::size_t t = i; t < i + 8; ++t)
-        if (jump(t)) decide(t), decide(t + 1);
+      const V8 a = Load(h + i - 2), b = Load(h + i - 1), c = Load(h + i), d = Load(h + i + 1), e = Load(h + i + 2);
+      const V8 lo = Max(Min(a, b), Min(d, e)), hi = Min(Max(a, b), Max(d, e));
+      int bits = Bits(Abs(c - vec::Median3(lo, hi, c)) > sp);
+      for (; bits != 0; bits &= bits - 1) w.spikes[count++] = static_cast<int32_t>(i + __builtin_ctz(bits));
     }
   }
   for (; k + 1 < n; ++k)
-    if (jump(k)) decide(k), decide(k + 1);
+    if (jump(k - 1) || jump(k)) test(k);
   return count;
 }
 

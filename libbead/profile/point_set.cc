@@ -69,6 +69,12 @@ BEAD_HOT std::size_t CountFiniteZ(const PointSet& p, std::size_t begin, std::siz
     const V8 z = Load(p.z + i);
     finite += (z - z) == 0.0f;  // lanes are -1 where true
   }
+  if (i < end && end - begin >= 8) {
+    // The last eight points, without the lanes already counted.
+    const V8 z = Load(p.z + end - 8);
+    finite += ((z - z) == 0.0f) & (M8{0, 1, 2, 3, 4, 5, 6, 7} >= static_cast<int32_t>(i - (end - 8)));
+    i = end;
+  }
   auto count = static_cast<std::size_t>(-SumInt(finite));
   for (; i < end; ++i) count += (p.z[i] - p.z[i]) == 0.0f;
   return count;

@@ -222,7 +222,9 @@ Start SpotStart(const PointSet& p, const AreaRange& rl, const AreaRange& rr, flo
       const float* r = zs + a * kSpotSamples + 8 * t;
       Store(triples + 16 * a + 8 * t, vec::Median3(Load(r), Load(r + 16), Load(r + 32)));
     }
-  start.mad = CountingMedian(triples, 32);
+  // Each area's median of its 16, averaged: ranking 16 twice costs a
+  // quarter of ranking 32 once.
+  start.mad = 0.5 * (CountingMedian(triples, 16) + CountingMedian(triples + 16, 16));
   start.ok = std::isfinite(start.mad);
   return start;
 }
@@ -246,34 +248,41 @@ Sums InlierSums(const PointSet& p, const AreaRange& left, const AreaRange& right
   const V8 vx0 = Splat(x0), vz0 = Splat(z0), vc = Splat(c), vb = Splat(b), vbw = Splat(bw);
   V8 sx{}, sr{}, sxx{}, sxr{}, srr{};
   Sums sums;
+  const M8 lanes{0, 1, 2, 3, 4, 5, 6, 7};
+  auto add = [&](V8 x, V8 z, M8 lane_in, V8& n) {
+    const V8 dx = x - vx0;
+    const V8 res = (z - vz0) - vc - vb * dx;
+    const M8 in = (Abs(res) <= vbw) & lane_in;
+    const V8 idx = Select(in, dx, V8{}), ires = Select(in, res, V8{});
+    n += ToFloat(in);
+    sx += idx;
+    sr += ires;
+    sxx += idx * idx;
+    sxr += idx * ires;
+    srr += ires * ires;
+  };
   auto area = [&](const AreaRange& r) {
     V8 n{};
     std::size_t i = r.begin;
-    for (; i + 8 <= r.end; i += 8) {
-      const V8 dx = Load(p.x + i) - vx0;
-      const V8 res = (Load(p.z + i) - vz0) - vc - vb * dx;
-      const M8 in = Abs(res) <= vbw;
-      const V8 idx = Select(in, dx, V8{}), ires = Select(in, res, V8{});
-      n += ToFloat(in);
-      sx += idx;
-      sr += ires;
-      sxx += idx * idx;
-      sxr += idx * ires;
-      srr += ires * ires;
+    for (; i + 8 <= r.end; i += 8) add(Load(p.x + i), Load(p.z + i), ~M8{}, n);
+    if (i < r.end && r.size() >= 8) {
+      // The last eight points, without the lanes already added.
+      const std::size_t last = r.end - 8;
+      add(Load(p.x + last), Load(p.z + last), lanes >= static_cast<int32_t>(i - last), n);
+    } else {
+      for (; i < r.end; ++i) {
+        const float dx = p.x[i] - x0, res = (p.z[i] - z0) - c - b * dx;
+        if (!(std::abs(res) <= bw)) continue;
+        n[0] += 1.0f;
+        sx[0] += dx, sr[0] += res, sxx[0] += dx * dx, sxr[0] += dx * res, srr[0] += res * res;
+      }
     }
-    double count = Sum(n);
-    for (; i < r.end; ++i) {
-      const float dx = p.x[i] - x0, res = (p.z[i] - z0) - c - b * dx;
-      if (!(std::abs(res) <= bw)) continue;
-      count += 1.0;
-      sums.sx += dx, sums.sr += res, sums.sxx += double(dx) * dx, sums.sxr += double(dx) * res, sums.srr += double(res) * res;
-    }
-    return count;
+    return Sum(n);
   };
   sums.n_left = area(left);
   sums.n_right = area(right);
   sums.n = sums.n_left + sums.n_right;
-  sums.sx += Sum(sx), sums.sr += Sum(sr), sums.sxx += Sum(sxx), sums.sxr += Sum(sxr), sums.srr += Sum(srr);
+  sums.sx = Sum(sx), sums.sr = Sum(sr), sums.sxx = Sum(sxx), sums.sxr = Sum(sxr), sums.srr = Sum(srr);
   return sums;
 }
 
