@@ -6,10 +6,11 @@
 #include <cstring>
 
 #include "libbead/profile/median.h"
-#include "libbead/profile/simd_dispatch.h"
+#include "libbead/profile/kernel.h"
 #include "libbead/profile/vec8.h"
 
 namespace bead {
+namespace BEAD_KERNEL {
 namespace {
 
 // The points' heights h and along-line positions s about the line, and
@@ -244,26 +245,14 @@ double EdgeCrossing(double s_out, double h_out, double s_in, double h_in) {
 
 }  // namespace
 
-const char* StatusName(ProfileStatus status) {
-  switch (status) {
-    case ProfileStatus::kValid: return "valid";
-    case ProfileStatus::kTooFewPoints: return "too_few_points";
-    case ProfileStatus::kNoReference: return "no_reference";
-    case ProfileStatus::kNoBead: return "no_bead";
-    case ProfileStatus::kBeadEdgeNotSeen: return "bead_edge_not_seen";
-    case ProfileStatus::kBeadInReferenceArea: return "bead_in_reference_area";
-  }
-  return "unknown";
-}
-
-BEAD_HOT BeadGeometry MeasureBead(const PointSet& p, const ReferenceLine& line, const ReferenceArea& left,
+BeadGeometry MeasureBead(const PointSet& p, const ReferenceLine& line, const ReferenceArea& left,
                          const ReferenceArea& right, const BeadOptions& options, ProfileWorkspace& w) {
   BeadGeometry g;
   g.reference = line;
   w.n_spikes = 0;
   const auto min_points = static_cast<std::size_t>(std::max(options.min_profile_points, 3));
   if (!line.ok) {
-    const bool few = CountFiniteZ(p, 0, p.n) < min_points;
+    const bool few = BEAD_KERNEL::CountFiniteZ(p, 0, p.n) < min_points;
     g.status = few ? ProfileStatus::kTooFewPoints : ProfileStatus::kNoReference;
     return g;
   }
@@ -361,4 +350,5 @@ BEAD_HOT BeadGeometry MeasureBead(const PointSet& p, const ReferenceLine& line, 
   return g;
 }
 
+}  // namespace BEAD_KERNEL
 }  // namespace bead

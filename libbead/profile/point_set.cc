@@ -2,10 +2,11 @@
 
 #include <algorithm>
 
-#include "libbead/profile/simd_dispatch.h"
+#include "libbead/profile/kernel.h"
 #include "libbead/profile/vec8.h"
 
 namespace bead {
+namespace BEAD_KERNEL {
 namespace {
 
 // Whether every x is finite and none is below its predecessor: each x
@@ -50,7 +51,7 @@ PointSet SortedCopy(const float* xs, const float* zs, std::size_t n, ProfileWork
 
 }  // namespace
 
-BEAD_HOT PointSet PreparePoints(const ProfileView& view, ProfileWorkspace& w) {
+PointSet PreparePoints(const ProfileView& view, ProfileWorkspace& w) {
   const std::size_t n = view.x_mm.size();
   if (n > w.capacity()) w.Reserve(n);
   w.mapped = false;
@@ -61,7 +62,7 @@ BEAD_HOT PointSet PreparePoints(const ProfileView& view, ProfileWorkspace& w) {
   return SortedCopy(xs, zs, n, w);
 }
 
-BEAD_HOT std::size_t CountFiniteZ(const PointSet& p, std::size_t begin, std::size_t end) {
+std::size_t CountFiniteZ(const PointSet& p, std::size_t begin, std::size_t end) {
   using namespace vec;
   M8 finite{};
   std::size_t i = begin;
@@ -80,34 +81,5 @@ BEAD_HOT std::size_t CountFiniteZ(const PointSet& p, std::size_t begin, std::siz
   return count;
 }
 
-std::size_t KeptToOriginal(const int32_t* removed, std::size_t n_removed, std::size_t k) {
-  for (std::size_t r = 0; r < n_removed && static_cast<std::size_t>(removed[r]) <= k; ++r) ++k;
-  return k;
-}
-
-int32_t ViewIndex(const ProfileWorkspace& w, std::size_t k) {
-  const std::size_t i = KeptToOriginal(w.removed.data(), w.n_removed, k);
-  return w.mapped ? w.map[i] : static_cast<int32_t>(i);
-}
-
-std::size_t LowerIndex(const PointSet& p, double value) {
-  return static_cast<std::size_t>(std::lower_bound(p.x, p.x + p.n, value, [](float a, double v) { return a < v; }) - p.x);
-}
-
-std::size_t UpperIndex(const PointSet& p, double value) {
-  return static_cast<std::size_t>(std::upper_bound(p.x, p.x + p.n, value, [](double v, float a) { return v < a; }) - p.x);
-}
-
-std::size_t LowerIndex(const PointSet& p, double value, std::size_t& hint) {
-  const std::size_t h = hint;
-  if (h <= p.n && (h == 0 || p.x[h - 1] < value) && (h == p.n || !(p.x[h] < value))) return h;
-  return hint = LowerIndex(p, value);
-}
-
-std::size_t UpperIndex(const PointSet& p, double value, std::size_t& hint) {
-  const std::size_t h = hint;
-  if (h <= p.n && (h == 0 || !(value < p.x[h - 1])) && (h == p.n || value < p.x[h])) return h;
-  return hint = UpperIndex(p, value);
-}
-
+}  // namespace BEAD_KERNEL
 }  // namespace bead

@@ -1,17 +1,15 @@
 #include "libbead/profile/profile_processor.h"
 
-#include "libbead/profile/point_set.h"
+#include "libbead/profile/kernel.h"
 
 namespace bead {
 
 ProfileProcessor::ProfileProcessor(const ReferenceArea& left, const ReferenceArea& right,
                                    const ProfileOptions& options, std::size_t max_points)
-    : left_(left), right_(right), options_(options), workspace_(max_points) {}
+    : left_(left), right_(right), options_(options), workspace_(max_points), kernel_(&ActiveKernel()) {}
 
 const BeadGeometry& ProfileProcessor::Process(const ProfileView& view) {
-  const PointSet points = PreparePoints(view, workspace_);
-  const ReferenceLine line = FitReferenceLine(points, left_, right_, options_.reference, workspace_);
-  result_ = MeasureBead(points, line, left_, right_, options_.bead, workspace_);
+  result_ = kernel_->process(view, left_, right_, options_, workspace_);
   return result_;
 }
 

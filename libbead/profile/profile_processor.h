@@ -16,6 +16,8 @@
 
 namespace bead {
 
+struct ProfileKernel;
+
 struct ProfileOptions {
   ReferenceLineOptions reference;
   BeadOptions bead;
@@ -35,6 +37,7 @@ class ProfileProcessor {
   ReferenceArea left_, right_;
   ProfileOptions options_;
   ProfileWorkspace workspace_;
+  const ProfileKernel* kernel_;  // kernel.h: the build this processor runs
   BeadGeometry result_;
 };
 

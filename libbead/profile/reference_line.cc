@@ -7,9 +7,10 @@
 
 #include "libbead/profile/median.h"
 #include "libbead/profile/vec8.h"
-#include "libbead/profile/simd_dispatch.h"
+#include "libbead/profile/kernel.h"
 
 namespace bead {
+namespace BEAD_KERNEL {
 namespace {
 
 // The MAD of a normal distribution times this is its standard deviation.
@@ -74,7 +75,7 @@ AreaRange RangeOf(const PointSet& p, const ReferenceArea& area, int max_samples,
   AreaRange r;
   r.begin = LowerIndex(p, area.x_min_mm, hints[0]);
   r.end = std::max(r.begin, UpperIndex(p, area.x_max_mm, hints[1]));
-  r.valid = CountFiniteZ(p, r.begin, r.end);
+  r.valid = BEAD_KERNEL::CountFiniteZ(p, r.begin, r.end);
   const std::size_t m = static_cast<std::size_t>(std::max(max_samples, 1));
   r.stride = r.size() <= m ? 1 : (r.size() + m - 1) / m;
   return r;
@@ -288,12 +289,8 @@ Sums InlierSums(const PointSet& p, const AreaRange& left, const AreaRange& right
 
 }  // namespace
 
-double ReferenceLine::HeightAt(double x_mm, double z_mm) const {
-  return (z_mm - intercept_mm - slope * x_mm) / std::sqrt(1.0 + slope * slope);
-}
-
-BEAD_HOT ReferenceLine FitReferenceLine(const PointSet& p, const ReferenceArea& left, const ReferenceArea& right,
-                                        const ReferenceLineOptions& options, ProfileWorkspace& w) {
+ReferenceLine FitReferenceLine(const PointSet& p, const ReferenceArea& left, const ReferenceArea& right,
+                               const ReferenceLineOptions& options, ProfileWorkspace& w) {
   ReferenceLine result;
   const AreaRange rl = RangeOf(p, left, options.max_median_samples, w.area_hints);
   const AreaRange rr = RangeOf(p, right, options.max_median_samples, w.area_hints + 2);
@@ -343,10 +340,5 @@ BEAD_HOT ReferenceLine FitReferenceLine(const PointSet& p, const ReferenceArea& 
   return result;
 }
 
-ReferenceLine FitReferenceLine(const ProfileView& view, const ReferenceArea& left, const ReferenceArea& right,
-                               const ReferenceLineOptions& options, ProfileWorkspace& workspace) {
-  const PointSet points = PreparePoints(view, workspace);
-  return FitReferenceLine(points, left, right, options, workspace);
-}
-
+}  // namespace BEAD_KERNEL
 }  // namespace bead

@@ -1,5 +1,6 @@
 // Eight floats at a time, written with GCC's vector extensions so that one
-// source builds to AVX2 (one register) or SSE2 (two) - see simd_dispatch.h.
+// source builds to AVX2 (one register) or SSE2 (two) - see kernel.h; the
+// mask reductions use AVX's own instructions where they are built for it.
 // Only what the per-profile loops need.
 #pragma once
 
@@ -34,12 +35,19 @@ BEAD_VEC V8 Median3(V8 a, V8 b, V8 c) { return Max(Min(a, b), Min(Max(a, b), c))
 BEAD_VEC V8 ToFloat(M8 m) { return Select(m, Splat(1.0f), Splat(0.0f)); }
 
 // Horizontal reductions, by halving.
+#ifdef __AVX2__
+typedef long long V4L __attribute__((vector_size(32)));
+BEAD_VEC bool Any(M8 m) { return !__builtin_ia32_ptestz256((V4L)m, (V4L)m); }
+BEAD_VEC bool All(M8 m) { return __builtin_ia32_movmskps256((V8)m) == 0xff; }
+BEAD_VEC int Bits(M8 m) { return __builtin_ia32_movmskps256((V8)m); }
+#else
 BEAD_VEC bool Any(M8 m) {
   const auto a = __builtin_shufflevector(m, m, 0, 1, 2, 3, 0, 1, 2, 3) | __builtin_shufflevector(m, m, 4, 5, 6, 7, 4, 5, 6, 7);
   const auto b = a | __builtin_shufflevector(a, a, 2, 3, 0, 1, 2, 3, 0, 1);
   return (b[0] | b[1]) != 0;
 }
 BEAD_VEC bool All(M8 m) { return !Any(~m); }
+#endif
 BEAD_VEC float Sum(V8 v) {
   const V8 a = v + __builtin_shufflevector(v, v, 4, 5, 6, 7, 0, 1, 2, 3);
   const V8 b = a + __builtin_shufflevector(a, a, 2, 3, 0, 1, 2, 3, 0, 1);
@@ -50,8 +58,10 @@ BEAD_VEC int32_t SumInt(M8 v) {
   const M8 b = a + __builtin_shufflevector(a, a, 2, 3, 0, 1, 2, 3, 0, 1);
   return b[0] + b[1];
 }
+#ifndef __AVX2__
 // The lanes' truth as bits 0-7 (lane i: bit i).
 BEAD_VEC int Bits(M8 m) { return SumInt(m & M8{1, 2, 4, 8, 16, 32, 64, 128}); }
+#endif
 
 // Left-packing: for each 8-bit lane set, the indices of its lanes in order,
 // then the others (a vector permutation; AVX2 does it in one instruction).
