@@ -7,6 +7,7 @@
 
 #include "libbead/profile/median.h"
 #include "libbead/profile/vec8.h"
+#include "libbead/profile/vec_sort.h"
 #include "libbead/profile/kernel.h"
 
 namespace bead {
@@ -212,7 +213,7 @@ Start SpotStart(const PointSet& p, const AreaRange& rl, const AreaRange& rr, flo
     for (std::size_t t = 0; t < 2; ++t)
       Store(triples + 16 * a + 8 * t, vec::Median3(Load(z + 8 * t), Load(z + 8 * (t + 2)), Load(z + 8 * (t + 4))));
     x_mid[a] = x_sum / (2 * kSpots);
-    z_mid[a] = CountingMedian(triples + 16 * a, 16);
+    z_mid[a] = vec::SortedMedian<2>(triples + 16 * a);
   }
   Start start;
   if (!(std::isfinite(z_mid[0]) && std::isfinite(z_mid[1]))) return start;
@@ -227,7 +228,7 @@ Start SpotStart(const PointSet& p, const AreaRange& rl, const AreaRange& rr, flo
       const float* r = zs + a * kSpotSamples + 8 * t;
       Store(triples + 16 * a + 8 * t, vec::Median3(Load(r), Load(r + 16), Load(r + 32)));
     }
-  start.mad = CountingMedian(triples, 32);
+  start.mad = vec::SortedMedian<4>(triples);
   start.ok = std::isfinite(start.mad);
   return start;
 }
