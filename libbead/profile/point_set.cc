@@ -58,6 +58,10 @@ PointSet PreparePoints(const ProfileView& view, ProfileWorkspace& w) {
   w.n_removed = 0;
   const float* xs = view.x_mm.data();
   const float* zs = view.z_mm.data();
+  // Every later stage reads z, the first ones at scattered places: ask for
+  // all of it now (a profile fresh from memory then arrives while x is
+  // being checked).
+  for (std::size_t i = 0; i < n; i += 16) __builtin_prefetch(zs + i);
   if (FiniteAndIncreasing(xs, n)) return PointSet{xs, zs, n};
   return SortedCopy(xs, zs, n, w);
 }
