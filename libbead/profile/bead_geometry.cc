@@ -14,9 +14,10 @@ namespace BEAD_KERNEL {
 namespace {
 
 // The points' heights h and along-line positions s about the line, and
-// their x, for the points with finite z only (w.removed records where the
-// dropouts were). In float and shifted: s is measured from `s_offset_mm`
-// (double), so the rounding stays at the scale of the profile's width.
+// their x, for the points with finite z only (w.kept_before records how
+// many came before each group of eight points, to find them again). In
+// float and shifted: s is measured from `s_offset_mm` (double), so the
+// rounding stays at the scale of the profile's width.
 struct Heights {
   float* h = nullptr;
   float* s = nullptr;
@@ -26,6 +27,10 @@ struct Heights {
   double inv_norm = 1.0;  // 1 / sqrt(1 + slope^2): along-line s to x
 };
 
+// Every group of eight points goes the same way, the finite ones packed to
+// the front by one permutation: no branch depends on where the dropouts
+// are (a test per block of them cost more in mispredictions than packing
+// every group costs in instructions).
 Heights ComputeHeights(const PointSet& p, const ReferenceLine& line, ProfileWorkspace& w) {
   using namespace vec;
   const double b = line.slope;
@@ -39,58 +44,29 @@ Heights ComputeHeights(const PointSet& p, const ReferenceLine& line, ProfileWork
   float* hs = w.h.data();
   float* ss = w.s.data();
   float* xs = w.hx.data();
-  std::size_t m = 0, removed = 0, k = 0;
-  auto one = [&](std::size_t i) {
-    const float x = p.x[i], z = p.z[i];
-    if (!((z - z) == 0.0f)) {
-      w.removed[removed++] = static_cast<int32_t>(i);
-      return;
-    }
-    const float dx = x - x0, dz = z - z0f - dz0;
-    hs[m] = (dz - bf * dx) * inv;
-    ss[m] = (dx + bf * dz) * inv;
-    xs[m++] = x;
-  };
-  // Eight points with a dropout among them: the finite ones packed to the
-  // front (no branch per point), the dropouts' indices to w.removed.
-  const M8 lanes{0, 1, 2, 3, 4, 5, 6, 7};
-  auto eight = [&](std::size_t i) {
-    const V8 x = Load(p.x + i), z = Load(p.z + i);
+  int32_t* kept_before = w.kept_before.data();
+  std::size_t m = 0, k = 0;
+  for (; k + 8 <= p.n; k += 8) {
+    kept_before[k / 8] = static_cast<int32_t>(m);
+    const V8 x = Load(p.x + k), z = Load(p.z + k);
     const int bits = Bits((z - z) == 0.0f);
     const V8 dx = x - vx0, dz = z - vz0 - vdz0;
     const M8 keep = PackIndex(bits);
     Store(hs + m, Pack((dz - vb * dx) * vinv, keep));
     Store(ss + m, Pack((dx + vb * dz) * vinv, keep));
     Store(xs + m, Pack(x, keep));
-    Store(w.removed.data() + removed, Pack(lanes + static_cast<int32_t>(i), PackIndex(bits ^ 0xff)));
-    const auto kept = static_cast<std::size_t>(__builtin_popcount(bits));
-    m += kept;
-    removed += 8 - kept;
-  };
-  // Blocks of 32 points with one finiteness test (the reductions cost more
-  // than the arithmetic); a block with a dropout goes eight at a time.
-  for (; k + 32 <= p.n; k += 32) {
-    M8 finite = ~M8{};
-    for (std::size_t i = k; i < k + 32; i += 8) {
-      const V8 z = Load(p.z + i);
-      finite &= (z - z) == 0.0f;
-    }
-    if (!All(finite)) {
-      for (std::size_t i = k; i < k + 32; i += 8) eight(i);
-      continue;
-    }
-    for (std::size_t i = k; i < k + 32; i += 8) {
-      const V8 x = Load(p.x + i), z = Load(p.z + i);
-      const V8 dx = x - vx0, dz = z - vz0 - vdz0;
-      Store(hs + m, (dz - vb * dx) * vinv);
-      Store(ss + m, (dx + vb * dz) * vinv);
-      Store(xs + m, x);
-      m += 8;
-    }
+    m += static_cast<std::size_t>(__builtin_popcount(bits));
   }
-  for (; k + 8 <= p.n; k += 8) eight(k);
-  for (; k < p.n; ++k) one(k);
-  w.n_removed = removed;
+  kept_before[k / 8] = static_cast<int32_t>(m);
+  for (; k < p.n; ++k) {
+    const float x = p.x[k], z = p.z[k];
+    if (!((z - z) == 0.0f)) continue;
+    const float dx = x - x0, dz = z - z0f - dz0;
+    hs[m] = (dz - bf * dx) * inv;
+    ss[m] = (dx + bf * dz) * inv;
+    xs[m++] = x;
+  }
+  kept_before[(p.n + 7) / 8] = static_cast<int32_t>(m);
   // A point at (x, z) lies at s = (x + b (z - a)) / sqrt(1 + b^2) along
   // the line; at x0 on the line that is x0 sqrt(1 + b^2).
   return Heights{hs, ss, xs, m, x0 * std::sqrt(1.0 + b * b), inv_norm};
@@ -340,10 +316,9 @@ BeadGeometry MeasureBead(const PointSet& p, const ReferenceLine& line, const Ref
   g.center_x_mm = (pts.s_offset_mm + s_centre) * pts.inv_norm;
   g.left_edge_x_mm = (pts.s_offset_mm + s_left) * pts.inv_norm;
   g.right_edge_x_mm = (pts.s_offset_mm + s_right) * pts.inv_norm;
-  // Back through the spikes removed, then the dropouts, to the view's indices.
-  // Dropouts (view points between the bare points not among the heights)
-  // and spikes between the bead's bare points.
-  const int32_t view_lo = ViewIndex(w, lo), view_hi = ViewIndex(w, hi);
+  // Dropped between the bead's bare points: the view's points there that
+  // are not among the heights (dropouts), and the spikes bridged.
+  const int32_t view_lo = ViewIndex(p, w, lo), view_hi = ViewIndex(p, w, hi);
   g.dropped_points = std::abs(view_hi - view_lo) - 1 - static_cast<int>(hi - lo - 1) +
                      static_cast<int>(SpikesWithin(w, lo + 1, hi - 1));
   g.status = ProfileStatus::kValid;

@@ -6,15 +6,16 @@
 
 namespace bead {
 
-std::size_t KeptToOriginal(const int32_t* removed, std::size_t n_removed, std::size_t k) {
-  // The indices are increasing: once one lies beyond k, so do the rest,
-  // and k stops growing; so every one can be tested, without a branch.
-  for (std::size_t r = 0; r < n_removed; ++r) k += static_cast<std::size_t>(removed[r]) <= k;
-  return k;
-}
-
-int32_t ViewIndex(const ProfileWorkspace& w, std::size_t k) {
-  const std::size_t i = KeptToOriginal(w.removed.data(), w.n_removed, k);
+int32_t ViewIndex(const PointSet& p, const ProfileWorkspace& w, std::size_t k) {
+  // The group of eight holding the k-th finite point: at or after group
+  // k / 8 (each group holds at most eight), before the first that has more
+  // than k finite points before it.
+  const std::size_t groups = (p.n + 7) / 8;
+  std::size_t g = k / 8;
+  while (g + 1 < groups && static_cast<std::size_t>(w.kept_before[g + 1]) <= k) ++g;
+  std::size_t i = 8 * g;
+  for (std::size_t before = static_cast<std::size_t>(w.kept_before[g]);; ++i)
+    if ((p.z[i] - p.z[i]) == 0.0f && before++ == k) break;
   return w.mapped ? w.map[i] : static_cast<int32_t>(i);
 }
 

@@ -55,7 +55,6 @@ PointSet PreparePoints(const ProfileView& view, ProfileWorkspace& w) {
   const std::size_t n = view.x_mm.size();
   if (n > w.capacity()) w.Reserve(n);
   w.mapped = false;
-  w.n_removed = 0;
   const float* xs = view.x_mm.data();
   const float* zs = view.z_mm.data();
   // Every later stage reads z, the first ones at scattered places: ask for

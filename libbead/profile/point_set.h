@@ -24,13 +24,9 @@ struct PointSet {
 // Grows the workspace only if the view is longer than its capacity.
 PointSet PreparePoints(const ProfileView& view, ProfileWorkspace& workspace);
 
-// Index among all of the k-th element kept when the sorted indices
-// removed[0, n_removed) were left out.
-std::size_t KeptToOriginal(const int32_t* removed, std::size_t n_removed, std::size_t k);
-
 // Index in the view of the k-th point with finite z of the last prepared
-// set (the heights stage records where the dropouts were).
-int32_t ViewIndex(const ProfileWorkspace& workspace, std::size_t k);
+// set (the heights stage records how many came before each group of eight).
+int32_t ViewIndex(const PointSet& points, const ProfileWorkspace& workspace, std::size_t k);
 
 // How many of the points [begin, end) have a finite z.
 std::size_t CountFiniteZ(const PointSet& points, std::size_t begin, std::size_t end);

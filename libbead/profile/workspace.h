@@ -15,11 +15,10 @@ struct ProfileWorkspace {
   // The valid points in increasing x when the view's own arrays cannot be
   // used as they are (point_set.h).
   std::vector<float> x, z;
-  // How a point of the point set maps back to the view: either the sorted
-  // list of view indices that were left out (n_removed of them), or, when
-  // `mapped`, the view index of every point.
-  std::vector<int32_t> removed, map;
-  std::size_t n_removed = 0;
+  // How a point of the point set maps back to the view: when `mapped`, the
+  // view index of every point; and, for each group of eight points, how
+  // many points with finite z came before it (the heights stage).
+  std::vector<int32_t> map, kept_before;
   bool mapped = false;
   // Per point of the point set: along-line position s and height h, and
   // the point's x; spikes (indices into them) are bridged in place.
