@@ -147,12 +147,27 @@ std::size_t SpikesWithin(const ProfileWorkspace& w, std::size_t first, std::size
   return count;
 }
 
+// Lanes of the eight points from `start` at or after `from` (for the last,
+// partial eight of a range, loaded as a whole eight ending at its end).
+vec::M8 LanesFrom(std::size_t start, std::size_t from) {
+  return vec::M8{0, 1, 2, 3, 4, 5, 6, 7} >= static_cast<int32_t>(from - start);
+}
+
+// Twice the trapezoid between points k and k + 1, eight at once.
+vec::V8 TwoTrapezoids(const float* h, const float* s, std::size_t k) {
+  using namespace vec;
+  return (Load(h + k) + Load(h + k + 1)) * (Load(s + k + 1) - Load(s + k));
+}
+
 float Trapezoid(const Heights& g, std::size_t first, std::size_t last) {
   using namespace vec;
   V8 acc{};
   std::size_t k = first;
-  for (; k + 8 <= last; k += 8)
-    acc += (Load(g.h + k) + Load(g.h + k + 1)) * (Load(g.s + k + 1) - Load(g.s + k));
+  for (; k + 8 <= last; k += 8) acc += TwoTrapezoids(g.h, g.s, k);
+  if (k < last && last - first >= 8) {
+    acc += Select(LanesFrom(last - 8, k), TwoTrapezoids(g.h, g.s, last - 8), V8{});
+    k = last;
+  }
   float sum = Sum(acc);
   for (; k < last; ++k) sum += (g.h[k] + g.h[k + 1]) * (g.s[k + 1] - g.s[k]);
   return 0.5f * sum;
@@ -190,23 +205,42 @@ Run LargestRun(const Heights& g, float threshold, float max_gap, const Reference
   const float* s = g.s;
   const std::size_t n = g.n;
   const vec::V8 vt = vec::Splat(threshold), vg = vec::Splat(max_gap);
-  Run best;
-  std::size_t k = 0;
-  while (k < n) {
-    // The next point above the threshold.
-    while (k + 32 <= n &&
-           !vec::Any((vec::Load(h + k) > vt) | (vec::Load(h + k + 8) > vt) | (vec::Load(h + k + 16) > vt) |
-                     (vec::Load(h + k + 24) > vt)))
-      k += 32;
+  using vec::Bits, vec::Load;
+  // Thirty-two points at once, as bits: above the threshold; and above it
+  // and within max_gap of the point before.
+  auto above = [&](std::size_t k) {
+    return static_cast<uint32_t>(Bits(Load(h + k) > vt) | Bits(Load(h + k + 8) > vt) << 8 |
+                                 Bits(Load(h + k + 16) > vt) << 16 | Bits(Load(h + k + 24) > vt) << 24);
+  };
+  auto continues = [&](std::size_t j) {
+    uint32_t bits = 0;
+    for (int q = 0; q < 4; ++q) {
+      const std::size_t i = j + 8 * static_cast<std::size_t>(q);
+      bits |= static_cast<uint32_t>(Bits((Load(h + i) > vt) & (Load(s + i) - Load(s + i - 1) <= vg))) << (8 * q);
+    }
+    return bits;
+  };
+  // The first point from k on above the threshold (n if none), and the
+  // first from j on that does not continue a run: found from the bits, with
+  // no loop over single points but at the profile's end.
+  auto next_above = [&](std::size_t k) {
+    for (; k + 32 <= n; k += 32)
+      if (const uint32_t bits = above(k)) return k + static_cast<std::size_t>(__builtin_ctz(bits));
     while (k < n && !(h[k] > threshold)) ++k;
-    if (k == n) break;
-    // Its run: while above and joined.
-    std::size_t j = k + 1;
-    while (j + 8 <= n && vec::All((vec::Load(h + j) > vt) & (vec::Load(s + j) - vec::Load(s + j - 1) <= vg))) j += 8;
+    return k;
+  };
+  auto run_end = [&](std::size_t j) {
+    for (; j + 32 <= n; j += 32)
+      if (const uint32_t ends = ~continues(j)) return j + static_cast<std::size_t>(__builtin_ctz(ends));
     while (j < n && h[j] > threshold && s[j] - s[j - 1] <= max_gap) ++j;
+    return j;
+  };
+  Run best;
+  for (std::size_t k = next_above(0); k < n;) {
+    const std::size_t j = run_end(k + 1);
     const Run run{k, j - 1, Trapezoid(g, k, j - 1)};
     if (run.integral > best.integral && HasPointOutside(g, run.first, run.last, left, right)) best = run;
-    k = j;
+    k = next_above(j);
   }
   return best;
 }
@@ -258,6 +292,24 @@ BeadGeometry MeasureBead(const PointSet& p, const ReferenceLine& line, const Ref
   const std::size_t n = pts.n;
   std::size_t lo = run.first, hi = run.last;
   auto joined = [&](std::size_t a, std::size_t b) { return s[b] - s[a] <= max_gap; };
+  {
+    // Eight points at a time, the steps counted from the mask's bits (a
+    // foot is a few points: no loop over them).
+    using namespace vec;
+    const V8 vf = Splat(floor_mm), vg = Splat(max_gap);
+    while (lo >= 9) {  // points lo - 8 .. lo - 1, each joined to the next
+      const int bits = Bits((Load(h + lo - 8) > vf) & (Load(s + lo - 7) - Load(s + lo - 8) <= vg));
+      const int steps = __builtin_clz(~(static_cast<uint32_t>(bits) << 24));  // set bits down from lane 7
+      lo -= static_cast<std::size_t>(steps);
+      if (steps < 8) break;
+    }
+    while (hi + 9 < n) {  // points hi + 1 .. hi + 8, each joined to the one before
+      const int bits = Bits((Load(h + hi + 1) > vf) & (Load(s + hi + 1) - Load(s + hi) <= vg));
+      const int steps = __builtin_ctz(~static_cast<uint32_t>(bits));  // set bits up from lane 0
+      hi += static_cast<std::size_t>(steps);
+      if (steps < 8) break;
+    }
+  }
   while (lo > 0 && joined(lo - 1, lo) && h[lo - 1] > floor_mm) --lo;
   while (hi + 1 < n && joined(hi, hi + 1) && h[hi + 1] > floor_mm) ++hi;
   if (lo == 0 || !joined(lo - 1, lo) || hi + 1 >= n || !joined(hi, hi + 1)) {
@@ -284,6 +336,16 @@ BeadGeometry MeasureBead(const PointSet& p, const ReferenceLine& line, const Ref
     v_moment += piece * (s0 + s1);
     v_ds2 += ds * ds;
   }
+  if (k < hi && hi - lo >= 8) {
+    const M8 fresh = LanesFrom(hi - 8, k);
+    const V8 s0 = Load(s + hi - 8), s1 = Load(s + hi - 7);
+    const V8 ds = Select(fresh, s1 - s0, V8{});
+    const V8 piece = (Load(h + hi - 8) + Load(h + hi - 7)) * ds;
+    v_area += piece;
+    v_moment += piece * (s0 + s1);
+    v_ds2 += ds * ds;
+    k = hi;
+  }
   float area = 0.5f * Sum(v_area), moment = 0.25f * Sum(v_moment), ds2 = Sum(v_ds2);
   for (; k < hi; ++k) {
     const float ds = s[k + 1] - s[k];
@@ -297,6 +359,12 @@ BeadGeometry MeasureBead(const PointSet& p, const ReferenceLine& line, const Ref
   for (k = run.first; k + 8 <= run.last + 1; k += 8) {
     const V8 a = Load(h + k - 1), b = Load(h + k), c = Load(h + k + 1);
     v_height = Max(v_height, vec::Median3(a, b, c));
+  }
+  if (k <= run.last && run.last - run.first >= 8) {
+    const std::size_t start = run.last - 7;
+    const V8 med = vec::Median3(Load(h + start - 1), Load(h + start), Load(h + start + 1));
+    v_height = Max(v_height, Select(LanesFrom(start, k), med, Splat(-1.0f)));
+    k = run.last + 1;
   }
   float height = MaxOf(v_height);
   for (; k <= run.last; ++k) height = std::max(height, Median3(h[k - 1], h[k], h[k + 1]));
