@@ -94,23 +94,30 @@ std::size_t FindSpikes(const Heights& g, float spike_mm, ProfileWorkspace& w) {
     if (std::abs(h[k] - med) > spike_mm) w.spikes[count++] = static_cast<int32_t>(k);
   };
   const V8 sp = Splat(spike_mm);
-  // Point 1 alone (its median is of three); blocks of 32 from point 2, each
-  // with the pairs (k, k + 1) of its points and the pair before it.
-  if (jump(0) || jump(1)) test(1);
-  bool jump_before = jump(1);
-  std::size_t k = 2;
-  for (; k + 34 <= n; k += 32) {
+  // Points start .. start + 31 (start >= 2, start + 34 <= n), those before
+  // `from` excepted (already tested), when a pair (k, k + 1) among them or
+  // the pair before them jumps.
+  auto block = [&](std::size_t start, std::size_t from, bool jump_before) {
     M8 jumps{};
-    for (std::size_t i = k; i < k + 32; i += 8) jumps |= Abs(Load(h + i + 1) - Load(h + i)) > sp;
-    const bool near_jump = jump_before || Any(jumps);
-    jump_before = jump(k + 31);
-    if (!near_jump) continue;
-    for (std::size_t i = k; i < k + 32; i += 8) {
+    for (std::size_t i = start; i < start + 32; i += 8) jumps |= Abs(Load(h + i + 1) - Load(h + i)) > sp;
+    if (!(jump_before || Any(jumps))) return;
+    for (std::size_t i = start; i < start + 32; i += 8) {
       const V8 a = Load(h + i - 2), b = Load(h + i - 1), c = Load(h + i), d = Load(h + i + 1), e = Load(h + i + 2);
       const V8 lo = Max(Min(a, b), Min(d, e)), hi = Min(Max(a, b), Max(d, e));
-      int bits = Bits(Abs(c - vec::Median3(lo, hi, c)) > sp);
+      const M8 fresh = M8{0, 1, 2, 3, 4, 5, 6, 7} >= static_cast<int32_t>(std::max(from, i) - i);
+      int bits = Bits((Abs(c - vec::Median3(lo, hi, c)) > sp) & fresh);
       for (; bits != 0; bits &= bits - 1) w.spikes[count++] = static_cast<int32_t>(i + __builtin_ctz(bits));
     }
+  };
+  // Point 1 alone (its median is of three); blocks of 32 from point 2, the
+  // last one ending at point n - 3 (overlapping the one before); point n - 2
+  // alone (its median is of three).
+  if (jump(0) || jump(1)) test(1);
+  std::size_t k = 2;
+  for (; k + 34 <= n; k += 32) block(k, k, jump(k - 1));
+  if (k + 2 < n && n >= 36) {
+    block(n - 34, k, jump(n - 35));
+    k = n - 2;
   }
   for (; k + 1 < n; ++k)
     if (jump(k - 1) || jump(k)) test(k);
