@@ -23,15 +23,13 @@ def reference_line(x, z):
     b = (np.median(zr) - np.median(zl)) / (np.median(xr) - np.median(xl))
     a = np.median(zl) - b * np.median(xl)
     xs, zs = np.concatenate([xl, xr]), np.concatenate([zl, zr])
-    for _ in range(2):
-        r = zs - a - b * xs
-        band = 3.5 * max(1.4826 * np.median(np.abs(r)), 0.002 * np.hypot(1, b))
-        m = np.abs(r) <= band
-        b, a = np.polyfit(xs[m], zs[m], 1)
+    # one least-squares refit on the points within 3.5 robust sigmas
     r = zs - a - b * xs
     band = 3.5 * max(1.4826 * np.median(np.abs(r)), 0.002 * np.hypot(1, b))
     m = np.abs(r) <= band
-    return a, b, np.sqrt(np.mean(r[m] ** 2) / (1 + b * b))
+    b, a = np.polyfit(xs[m], zs[m], 1)
+    r = zs[m] - a - b * xs[m]
+    return a, b, np.sqrt(np.mean(r ** 2) / (1 + b * b))
 
 
 def geometry(x, z):
