@@ -24,7 +24,6 @@ BEAD_VEC V8 Load(const float* p) {
   return v;
 }
 BEAD_VEC void Store(float* p, V8 v) { std::memcpy(p, &v, sizeof v); }
-BEAD_VEC void Store(int32_t* p, M8 v) { std::memcpy(p, &v, sizeof v); }
 BEAD_VEC V8 Splat(float x) { return V8{} + x; }
 BEAD_VEC V8 Abs(V8 v) { return v < 0.0f ? -v : v; }
 BEAD_VEC V8 Select(M8 m, V8 a, V8 b) { return m ? a : b; }  // a where m, else b
@@ -34,7 +33,18 @@ BEAD_VEC V8 Max(V8 a, V8 b) { return a > b ? a : b; }
 BEAD_VEC V8 Median3(V8 a, V8 b, V8 c) { return Max(Min(a, b), Min(Max(a, b), c)); }
 BEAD_VEC V8 ToFloat(M8 m) { return Select(m, Splat(1.0f), Splat(0.0f)); }
 
-// Horizontal reductions, by halving.
+// Horizontal reductions: by halving; the mask tests and the lanes' truth
+// as bits (lane i: bit i) with AVX's own instructions where built for it.
+BEAD_VEC float Sum(V8 v) {
+  const V8 a = v + __builtin_shufflevector(v, v, 4, 5, 6, 7, 0, 1, 2, 3);
+  const V8 b = a + __builtin_shufflevector(a, a, 2, 3, 0, 1, 2, 3, 0, 1);
+  return b[0] + b[1];
+}
+BEAD_VEC int32_t SumInt(M8 v) {
+  const M8 a = v + __builtin_shufflevector(v, v, 4, 5, 6, 7, 0, 1, 2, 3);
+  const M8 b = a + __builtin_shufflevector(a, a, 2, 3, 0, 1, 2, 3, 0, 1);
+  return b[0] + b[1];
+}
 #ifdef __AVX2__
 typedef long long V4L __attribute__((vector_size(32)));
 BEAD_VEC bool Any(M8 m) { return !__builtin_ia32_ptestz256((V4L)m, (V4L)m); }
@@ -47,21 +57,13 @@ BEAD_VEC bool Any(M8 m) {
   return (b[0] | b[1]) != 0;
 }
 BEAD_VEC bool All(M8 m) { return !Any(~m); }
-#endif
-BEAD_VEC float Sum(V8 v) {
-  const V8 a = v + __builtin_shufflevector(v, v, 4, 5, 6, 7, 0, 1, 2, 3);
-  const V8 b = a + __builtin_shufflevector(a, a, 2, 3, 0, 1, 2, 3, 0, 1);
-  return b[0] + b[1];
-}
-BEAD_VEC int32_t SumInt(M8 v) {
-  const M8 a = v + __builtin_shufflevector(v, v, 4, 5, 6, 7, 0, 1, 2, 3);
-  const M8 b = a + __builtin_shufflevector(a, a, 2, 3, 0, 1, 2, 3, 0, 1);
-  return b[0] + b[1];
-}
-#ifndef __AVX2__
-// The lanes' truth as bits 0-7 (lane i: bit i).
 BEAD_VEC int Bits(M8 m) { return SumInt(m & M8{1, 2, 4, 8, 16, 32, 64, 128}); }
 #endif
+BEAD_VEC float MaxOf(V8 v) {
+  const V8 a = Max(v, __builtin_shufflevector(v, v, 4, 5, 6, 7, 0, 1, 2, 3));
+  const V8 b = Max(a, __builtin_shufflevector(a, a, 2, 3, 0, 1, 2, 3, 0, 1));
+  return b[0] > b[1] ? b[0] : b[1];
+}
 
 // Left-packing: for each 8-bit lane set, the indices of its lanes in order,
 // then the others (a vector permutation; AVX2 does it in one instruction).
@@ -85,15 +87,9 @@ BEAD_VEC M8 PackIndex(int bits) {
   std::memcpy(&m, kPackTable.index[bits], sizeof m);
   return m;
 }
-// The lanes of v set in `bits` first, in order (the rest after them).
+// The lanes of v set in `bits` first, in order (the rest after them), with
+// index = PackIndex(bits).
 BEAD_VEC V8 Pack(V8 v, M8 index) { return __builtin_shuffle(v, index); }
-BEAD_VEC M8 Pack(M8 v, M8 index) { return __builtin_shuffle(v, index); }
-
-BEAD_VEC float MaxOf(V8 v) {
-  const V8 a = Max(v, __builtin_shufflevector(v, v, 4, 5, 6, 7, 0, 1, 2, 3));
-  const V8 b = Max(a, __builtin_shufflevector(a, a, 2, 3, 0, 1, 2, 3, 0, 1));
-  return b[0] > b[1] ? b[0] : b[1];
-}
 
 }  // namespace bead::vec
 
