@@ -65,18 +65,19 @@ float CountingMedian(float* values, std::size_t n) {
 }
 
 // An area's points: indices [begin, end) of the point set (x increasing),
-// how many of them have a finite z, and the spacing of the samples for the
+// how many of them have a finite z (counted where needed: the usual path
+// counts them while summing), and the spacing of the samples for the
 // robust statistics (every stride-th point, dropouts skipped).
 struct AreaRange {
   std::size_t begin = 0, end = 0, valid = 0, stride = 1;
   std::size_t size() const { return end - begin; }
+  void Count(const PointSet& p) { valid = BEAD_KERNEL::CountFiniteZ(p, begin, end); }
 };
 
 AreaRange RangeOf(const PointSet& p, const ReferenceArea& area, int max_samples, std::size_t* hints) {
   AreaRange r;
   r.begin = LowerIndex(p, area.x_min_mm, hints[0]);
   r.end = std::max(r.begin, UpperIndex(p, area.x_max_mm, hints[1]));
-  r.valid = BEAD_KERNEL::CountFiniteZ(p, r.begin, r.end);
   const std::size_t m = static_cast<std::size_t>(std::max(max_samples, 1));
   r.stride = r.size() <= m ? 1 : (r.size() + m - 1) / m;
   return r;
@@ -238,13 +239,14 @@ Start SpotStart(const PointSet& p, const AreaRange& rl, const AreaRange& rr, flo
 
 // Least-squares sums over both areas' points within `band` (vertical) of
 // the line, of dx = x - x0 and of their residual r about the line (a
-// dropout's NaN residual is never within it), and each area's count of
-// them. Fitting the residuals (a correction to the line) rather than z
+// dropout's NaN residual is never within it), each area's count of them,
+// and each area's count of points with a finite z. Fitting the residuals (a correction to the line) rather than z
 // keeps the float sums at the scale of the noise: the sum of squares then
 // does not cancel against the tilt's.
 struct Sums {
   double n = 0, sx = 0, sr = 0, sxx = 0, sxr = 0, srr = 0;
   double n_left = 0, n_right = 0;
+  std::size_t finite_left = 0, finite_right = 0;
 };
 
 Sums InlierSums(const PointSet& p, const AreaRange& left, const AreaRange& right, const ShiftedLine& line,
@@ -256,11 +258,12 @@ Sums InlierSums(const PointSet& p, const AreaRange& left, const AreaRange& right
   V8 sx{}, sr{}, sxx{}, sxr{}, srr{};
   Sums sums;
   const M8 lanes{0, 1, 2, 3, 4, 5, 6, 7};
-  auto add = [&](V8 x, V8 z, M8 lane_in, V8& n) {
+  auto add = [&](V8 x, V8 z, M8 lane_in, V8& n, M8& finite) {
     const V8 dx = x - vx0;
     const V8 res = (z - vz0) - vc - vb * dx;
     const M8 in = (Abs(res) <= vbw) & lane_in;
     const V8 idx = Select(in, dx, V8{}), ires = Select(in, res, V8{});
+    finite += (z == z) & lane_in;  // lanes are -1 where true
     n += ToFloat(in);
     sx += idx;
     sr += ires;
@@ -268,26 +271,29 @@ Sums InlierSums(const PointSet& p, const AreaRange& left, const AreaRange& right
     sxr += idx * ires;
     srr += ires * ires;
   };
-  auto area = [&](const AreaRange& r) {
+  auto area = [&](const AreaRange& r, double& inliers, std::size_t& finite_count) {
     V8 n{};
+    M8 finite{};
     std::size_t i = r.begin;
-    for (; i + 8 <= r.end; i += 8) add(Load(p.x + i), Load(p.z + i), ~M8{}, n);
+    for (; i + 8 <= r.end; i += 8) add(Load(p.x + i), Load(p.z + i), ~M8{}, n, finite);
     if (i < r.end && r.size() >= 8) {
       // The last eight points, without the lanes already added.
       const std::size_t last = r.end - 8;
-      add(Load(p.x + last), Load(p.z + last), lanes >= static_cast<int32_t>(i - last), n);
+      add(Load(p.x + last), Load(p.z + last), lanes >= static_cast<int32_t>(i - last), n, finite);
     } else {
       for (; i < r.end; ++i) {
         const float dx = p.x[i] - x0, res = (p.z[i] - z0) - c - b * dx;
+        finite[0] -= p.z[i] == p.z[i];
         if (!(std::abs(res) <= bw)) continue;
         n[0] += 1.0f;
         sx[0] += dx, sr[0] += res, sxx[0] += dx * dx, sxr[0] += dx * res, srr[0] += res * res;
       }
     }
-    return Sum(n);
+    inliers = Sum(n);
+    finite_count = static_cast<std::size_t>(-SumInt(finite));
   };
-  sums.n_left = area(left);
-  sums.n_right = area(right);
+  area(left, sums.n_left, sums.finite_left);
+  area(right, sums.n_right, sums.finite_right);
   sums.n = sums.n_left + sums.n_right;
   sums.sx = Sum(sx), sums.sr = Sum(sr), sums.sxx = Sum(sxx), sums.sxr = Sum(sxr), sums.srr = Sum(srr);
   return sums;
@@ -298,19 +304,29 @@ Sums InlierSums(const PointSet& p, const AreaRange& left, const AreaRange& right
 ReferenceLine FitReferenceLine(const PointSet& p, const ReferenceArea& left, const ReferenceArea& right,
                                const ReferenceLineOptions& options, ProfileWorkspace& w) {
   ReferenceLine result;
-  const AreaRange rl = RangeOf(p, left, options.max_median_samples, w.area_hints);
-  const AreaRange rr = RangeOf(p, right, options.max_median_samples, w.area_hints + 2);
-  result.points_available = static_cast<int>(rl.valid + rr.valid);
+  AreaRange rl = RangeOf(p, left, options.max_median_samples, w.area_hints);
+  AreaRange rr = RangeOf(p, right, options.max_median_samples, w.area_hints + 2);
   const auto min_points = static_cast<std::size_t>(std::max(options.min_points_per_area, 1));
-  if (rl.valid < min_points || rr.valid < min_points) return result;
-  if (rl.end > rr.begin) return result;  // overlapping areas
+  // Each area's valid points, counted here (the spot start goes without).
+  auto counted = [&] {
+    rl.Count(p), rr.Count(p);
+    result.points_available = static_cast<int>(rl.valid + rr.valid);
+    return rl.valid >= min_points && rr.valid >= min_points;
+  };
+  if (rl.end > rr.begin) {  // overlapping areas
+    counted();
+    return result;
+  }
   // Robust start: the line through each area's centre (median x, median
   // z of its samples), and the first band from the spread about it.
   const bool spots = options.max_median_samples >= static_cast<int>(kSpotSamples) &&
                      rl.size() >= kSpotSamples && rr.size() >= kSpotSamples;
   Start start;
   if (spots) start = SpotStart(p, rl, rr, w.scratch.data());
-  if (!start.ok) start = SampledStart(p, rl, rr, w.scratch.data());
+  if (!start.ok) {
+    if (!counted()) return result;
+    start = SampledStart(p, rl, rr, w.scratch.data());
+  }
   if (!start.ok) return result;
   ShiftedLine line = start.line;
   const double floor_start = options.min_sigma_mm * std::sqrt(1.0 + line.b * line.b);
@@ -323,6 +339,8 @@ ReferenceLine FitReferenceLine(const PointSet& p, const ReferenceArea& left, con
   const int refits = std::max(options.iterations, 1);
   for (int iter = 0; iter < refits; ++iter) {
     const Sums s = InlierSums(p, rl, rr, line, band);
+    result.points_available = static_cast<int>(s.finite_left + s.finite_right);
+    if (s.finite_left < min_points || s.finite_right < min_points) return result;
     if (s.n_left < options.min_points_per_area || s.n_right < options.min_points_per_area) return result;
     const double mx = s.sx / s.n, mr = s.sr / s.n;
     const double sxx = s.sxx - s.n * mx * mx;
