@@ -104,8 +104,7 @@ std::size_t FindSpikes(const Heights& g, float spike_mm, ProfileWorkspace& w) {
     for (std::size_t i = start; i < start + 32; i += 8) {
       const V8 a = Load(h + i - 2), b = Load(h + i - 1), c = Load(h + i), d = Load(h + i + 1), e = Load(h + i + 2);
       const V8 lo = Max(Min(a, b), Min(d, e)), hi = Min(Max(a, b), Max(d, e));
-      const M8 fresh = M8{0, 1, 2, 3, 4, 5, 6, 7} >= static_cast<int32_t>(std::max(from, i) - i);
-      int bits = Bits((Abs(c - vec::Median3(lo, hi, c)) > sp) & fresh);
+      int bits = Bits((Abs(c - vec::Median3(lo, hi, c)) > sp) & LanesFrom(i, std::max(from, i)));
       for (; bits != 0; bits &= bits - 1) w.spikes[count++] = static_cast<int32_t>(i + __builtin_ctz(bits));
     }
   };
@@ -154,12 +153,6 @@ std::size_t SpikesWithin(const ProfileWorkspace& w, std::size_t first, std::size
   return count;
 }
 
-// Lanes of the eight points from `start` at or after `from` (for the last,
-// partial eight of a range, loaded as a whole eight ending at its end).
-vec::M8 LanesFrom(std::size_t start, std::size_t from) {
-  return vec::M8{0, 1, 2, 3, 4, 5, 6, 7} >= static_cast<int32_t>(from - start);
-}
-
 // Twice the trapezoid between points k and k + 1, eight at once.
 vec::V8 TwoTrapezoids(const float* h, const float* s, std::size_t k) {
   using namespace vec;
@@ -172,7 +165,7 @@ float Trapezoid(const Heights& g, std::size_t first, std::size_t last) {
   std::size_t k = first;
   for (; k + 8 <= last; k += 8) acc += TwoTrapezoids(g.h, g.s, k);
   if (k < last && last - first >= 8) {
-    acc += Select(LanesFrom(last - 8, k), TwoTrapezoids(g.h, g.s, last - 8), V8{});
+    acc += Select(vec::LanesFrom(last - 8, k), TwoTrapezoids(g.h, g.s, last - 8), V8{});
     k = last;
   }
   float sum = Sum(acc);
@@ -334,23 +327,18 @@ BeadGeometry MeasureBead(const PointSet& p, const ReferenceLine& line, const Ref
   // along the line, and the sum of squared spacings (for the uncertainty).
   using namespace vec;
   V8 v_area{}, v_moment{}, v_ds2{};
+  auto add_pieces = [&](std::size_t at, M8 lanes) {  // the pieces from points at .. at + 7
+    const V8 s0 = Load(s + at), s1 = Load(s + at + 1);
+    const V8 ds = Select(lanes, s1 - s0, V8{});
+    const V8 piece = (Load(h + at) + Load(h + at + 1)) * ds;  // twice the trapezoid
+    v_area += piece;
+    v_moment += piece * (s0 + s1);
+    v_ds2 += ds * ds;
+  };
   std::size_t k = lo;
-  for (; k + 8 <= hi; k += 8) {
-    const V8 s0 = Load(s + k), s1 = Load(s + k + 1);
-    const V8 ds = s1 - s0;
-    const V8 piece = (Load(h + k) + Load(h + k + 1)) * ds;  // twice the trapezoid
-    v_area += piece;
-    v_moment += piece * (s0 + s1);
-    v_ds2 += ds * ds;
-  }
+  for (; k + 8 <= hi; k += 8) add_pieces(k, ~M8{});
   if (k < hi && hi - lo >= 8) {
-    const M8 fresh = LanesFrom(hi - 8, k);
-    const V8 s0 = Load(s + hi - 8), s1 = Load(s + hi - 7);
-    const V8 ds = Select(fresh, s1 - s0, V8{});
-    const V8 piece = (Load(h + hi - 8) + Load(h + hi - 7)) * ds;
-    v_area += piece;
-    v_moment += piece * (s0 + s1);
-    v_ds2 += ds * ds;
+    add_pieces(hi - 8, LanesFrom(hi - 8, k));
     k = hi;
   }
   float area = 0.5f * Sum(v_area), moment = 0.25f * Sum(v_moment), ds2 = Sum(v_ds2);
@@ -363,14 +351,13 @@ BeadGeometry MeasureBead(const PointSet& p, const ReferenceLine& line, const Ref
   }
   // Robust maximum: the largest median of three neighbouring heights.
   V8 v_height = Splat(-1.0f);
-  for (k = run.first; k + 8 <= run.last + 1; k += 8) {
-    const V8 a = Load(h + k - 1), b = Load(h + k), c = Load(h + k + 1);
-    v_height = Max(v_height, vec::Median3(a, b, c));
-  }
+  auto add_heights = [&](std::size_t at, M8 lanes) {  // the medians about points at .. at + 7
+    const V8 med = vec::Median3(Load(h + at - 1), Load(h + at), Load(h + at + 1));
+    v_height = Max(v_height, Select(lanes, med, Splat(-1.0f)));
+  };
+  for (k = run.first; k + 8 <= run.last + 1; k += 8) add_heights(k, ~M8{});
   if (k <= run.last && run.last - run.first >= 8) {
-    const std::size_t start = run.last - 7;
-    const V8 med = vec::Median3(Load(h + start - 1), Load(h + start), Load(h + start + 1));
-    v_height = Max(v_height, Select(LanesFrom(start, k), med, Splat(-1.0f)));
+    add_heights(run.last - 7, LanesFrom(run.last - 7, k));
     k = run.last + 1;
   }
   float height = MaxOf(v_height);

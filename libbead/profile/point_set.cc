@@ -76,7 +76,7 @@ std::size_t CountFiniteZ(const PointSet& p, std::size_t begin, std::size_t end) 
   if (i < end && end - begin >= 8) {
     // The last eight points, without the lanes already counted.
     const V8 z = Load(p.z + end - 8);
-    finite += ((z - z) == 0.0f) & (M8{0, 1, 2, 3, 4, 5, 6, 7} >= static_cast<int32_t>(i - (end - 8)));
+    finite += ((z - z) == 0.0f) & LanesFrom(end - 8, i);
     i = end;
   }
   auto count = static_cast<std::size_t>(-SumInt(finite));

@@ -5,10 +5,10 @@
 #include <cstddef>
 #include <limits>
 
+#include "libbead/profile/kernel.h"
 #include "libbead/profile/median.h"
 #include "libbead/profile/vec8.h"
 #include "libbead/profile/vec_sort.h"
-#include "libbead/profile/kernel.h"
 
 namespace bead {
 namespace BEAD_KERNEL {
@@ -140,8 +140,6 @@ void AreaCentre(const float* xs, float* zs, std::size_t count, float* triples, d
   x_mid = count < 9 ? SortedMedian(xs, count) : SortedMedian(xs + count / 3, count / 3);
 }
 
-
-
 // The start: a line through both areas' centres, and the robust spread of
 // the samples' residuals about it (their MAD, as the median of medians of
 // three: the median of three draws shares the median of their
@@ -240,9 +238,10 @@ Start SpotStart(const PointSet& p, const AreaRange& rl, const AreaRange& rr, flo
 // Least-squares sums over both areas' points within `band` (vertical) of
 // the line, of dx = x - x0 and of their residual r about the line (a
 // dropout's NaN residual is never within it), each area's count of them,
-// and each area's count of points with a finite z. Fitting the residuals (a correction to the line) rather than z
-// keeps the float sums at the scale of the noise: the sum of squares then
-// does not cancel against the tilt's.
+// and each area's count of points with a finite z. Fitting the residuals
+// (a correction to the line) rather than z keeps the float sums at the
+// scale of the noise: the sum of squares then does not cancel against the
+// tilt's.
 struct Sums {
   double n = 0, sx = 0, sr = 0, sxx = 0, sxr = 0, srr = 0;
   double n_left = 0, n_right = 0;
@@ -257,7 +256,6 @@ Sums InlierSums(const PointSet& p, const AreaRange& left, const AreaRange& right
   const V8 vx0 = Splat(x0), vz0 = Splat(z0), vc = Splat(c), vb = Splat(b), vbw = Splat(bw);
   V8 sx{}, sr{}, sxx{}, sxr{}, srr{};
   Sums sums;
-  const M8 lanes{0, 1, 2, 3, 4, 5, 6, 7};
   auto add = [&](V8 x, V8 z, M8 lane_in, V8& n, M8& finite) {
     const V8 dx = x - vx0;
     const V8 res = (z - vz0) - vc - vb * dx;
@@ -279,7 +277,7 @@ Sums InlierSums(const PointSet& p, const AreaRange& left, const AreaRange& right
     if (i < r.end && r.size() >= 8) {
       // The last eight points, without the lanes already added.
       const std::size_t last = r.end - 8;
-      add(Load(p.x + last), Load(p.z + last), lanes >= static_cast<int32_t>(i - last), n, finite);
+      add(Load(p.x + last), Load(p.z + last), LanesFrom(last, i), n, finite);
     } else {
       for (; i < r.end; ++i) {
         const float dx = p.x[i] - x0, res = (p.z[i] - z0) - c - b * dx;

@@ -32,6 +32,12 @@ BEAD_VEC V8 Max(V8 a, V8 b) { return a > b ? a : b; }
 // Lane-wise median of three (the same formula as median.h's Median3).
 BEAD_VEC V8 Median3(V8 a, V8 b, V8 c) { return Max(Min(a, b), Min(Max(a, b), c)); }
 BEAD_VEC V8 ToFloat(M8 m) { return Select(m, Splat(1.0f), Splat(0.0f)); }
+// The lanes of the eight points from `start` that are at or after `from`
+// (from >= start): a range's last, partial eight is loaded as the whole
+// eight ending at its end, the lanes already taken masked off.
+BEAD_VEC M8 LanesFrom(std::size_t start, std::size_t from) {
+  return M8{0, 1, 2, 3, 4, 5, 6, 7} >= static_cast<int32_t>(from - start);
+}
 
 // Horizontal reductions: by halving; the mask tests and the lanes' truth
 // as bits (lane i: bit i) with AVX's own instructions where built for it.
