@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """The per-profile bead geometry as a NumPy user would write it: the
 baseline libbead's benchmark compares itself with (same algorithm: median
-start, inlier least squares, perpendicular heights, largest run above the
-threshold, feet to the noise floor, trapezoid area, edge crossings).
+start, inlier least squares, perpendicular heights between the areas,
+largest run above the threshold, feet to the noise floor, trapezoid area, edge crossings).
 
 Usage: numpy_profile_geometry.py DATA.f32 N_PROFILES N_POINTS
 DATA holds the shared x grid [P] then z [N, P], float32. Prints profiles/s.
@@ -34,6 +34,10 @@ def reference_line(x, z):
 
 def geometry(x, z):
     a, b, rms = reference_line(x, z)
+    # the bead is looked for between the areas, 16 points into each
+    i0 = max(np.searchsorted(x, LEFT[1], side="right") - 16, 0)
+    i1 = min(np.searchsorted(x, RIGHT[0]) + 16, len(x))
+    x, z = x[i0:i1], z[i0:i1]
     ok = np.isfinite(z)
     x, z = x[ok], z[ok]
     norm = np.hypot(1.0, b)

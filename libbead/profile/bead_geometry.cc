@@ -13,11 +13,15 @@ namespace bead {
 namespace BEAD_KERNEL {
 namespace {
 
+// How far into each reference area the bead's search reaches, in points.
+constexpr std::size_t kAreaMargin = 16;
+
 // The points' heights h and along-line positions s about the line, and
-// their x, for the points with finite z only (w.kept_before records how
-// many came before each group of eight points, to find them again). In
-// float and shifted: s is measured from `s_offset_mm` (double), so the
-// rounding stays at the scale of the profile's width.
+// their x, for the points [begin, end) of the set with finite z only
+// (begin a multiple of eight; w.kept_before records how many came before
+// each group of eight points from begin, to find them again). In float and
+// shifted: s is measured from `s_offset_mm` (double), so the rounding stays
+// at the scale of the profile's width.
 struct Heights {
   float* h = nullptr;
   float* s = nullptr;
@@ -31,11 +35,12 @@ struct Heights {
 // the front by one permutation: no branch depends on where the dropouts
 // are (a test per block of them cost more in mispredictions than packing
 // every group costs in instructions).
-Heights ComputeHeights(const PointSet& p, const ReferenceLine& line, ProfileWorkspace& w) {
+Heights ComputeHeights(const PointSet& p, std::size_t begin, std::size_t end, const ReferenceLine& line,
+                       ProfileWorkspace& w) {
   using namespace vec;
   const double b = line.slope;
   const double inv_norm = 1.0 / std::sqrt(1.0 + b * b);
-  const float x0 = p.x[p.n / 2];
+  const float x0 = p.x[(begin + end) / 2];
   const double z0 = line.intercept_mm + b * x0;  // the line at x0
   const float z0f = static_cast<float>(z0);
   const float dz0 = static_cast<float>(z0 - z0f);
@@ -45,9 +50,11 @@ Heights ComputeHeights(const PointSet& p, const ReferenceLine& line, ProfileWork
   float* ss = w.s.data();
   float* xs = w.hx.data();
   int32_t* kept_before = w.kept_before.data();
-  std::size_t m = 0, k = 0;
-  for (; k + 8 <= p.n; k += 8) {
-    kept_before[k / 8] = static_cast<int32_t>(m);
+  w.heights_begin = begin;
+  w.heights_end = end;
+  std::size_t m = 0, k = begin;
+  for (; k + 8 <= end; k += 8) {
+    kept_before[(k - begin) / 8] = static_cast<int32_t>(m);
     const V8 x = Load(p.x + k), z = Load(p.z + k);
     const int bits = Bits((z - z) == 0.0f);
     const V8 dx = x - vx0, dz = z - vz0 - vdz0;
@@ -57,8 +64,8 @@ Heights ComputeHeights(const PointSet& p, const ReferenceLine& line, ProfileWork
     Store(xs + m, Pack(x, keep));
     m += static_cast<std::size_t>(__builtin_popcount(bits));
   }
-  kept_before[k / 8] = static_cast<int32_t>(m);
-  for (; k < p.n; ++k) {
+  kept_before[(k - begin) / 8] = static_cast<int32_t>(m);
+  for (; k < end; ++k) {
     const float x = p.x[k], z = p.z[k];
     if (!((z - z) == 0.0f)) continue;
     const float dx = x - x0, dz = z - z0f - dz0;
@@ -66,7 +73,7 @@ Heights ComputeHeights(const PointSet& p, const ReferenceLine& line, ProfileWork
     ss[m] = (dx + bf * dz) * inv;
     xs[m++] = x;
   }
-  kept_before[(p.n + 7) / 8] = static_cast<int32_t>(m);
+  kept_before[(end - begin + 7) / 8] = static_cast<int32_t>(m);
   // A point at (x, z) lies at s = (x + b (z - a)) / sqrt(1 + b^2) along
   // the line; at x0 on the line that is x0 sqrt(1 + b^2).
   return Heights{hs, ss, xs, m, x0 * std::sqrt(1.0 + b * b), inv_norm};
@@ -266,8 +273,21 @@ BeadGeometry MeasureBead(const PointSet& p, const ReferenceLine& line, const Ref
     g.status = few ? ProfileStatus::kTooFewPoints : ProfileStatus::kNoReference;
     return g;
   }
-  Heights pts = ComputeHeights(p, line, w);
-  if (pts.n < min_points) {
+  // The bead lies between the reference areas (rig.h): its search takes
+  // the points from kAreaMargin points inside the left area (rounded out to
+  // a group of eight) to kAreaMargin inside the right one, room for feet
+  // that dip below the threshold before the surface is bare. A run reaching
+  // into an area marks the profile; what lies beyond the areas (the
+  // wheel's rim, a clamp) is not looked at.
+  const std::size_t left_end = UpperIndex(p, left.x_max_mm, w.area_hints[1]);
+  const std::size_t right_begin = LowerIndex(p, right.x_min_mm, w.area_hints[2]);
+  const std::size_t begin = left_end > kAreaMargin ? (left_end - kAreaMargin) / 8 * 8 : 0;
+  const std::size_t end = std::max(begin, std::min(p.n, right_begin + kAreaMargin));
+  Heights pts = ComputeHeights(p, begin, end, line, w);
+  // Too few points in all: the areas' and the search's may overlap, so
+  // count the whole profile only when their sum falls short.
+  if (pts.n + static_cast<std::size_t>(line.points_available) < min_points &&
+      BEAD_KERNEL::CountFiniteZ(p, 0, p.n) < min_points) {
     g.status = ProfileStatus::kTooFewPoints;
     return g;
   }
@@ -283,6 +303,10 @@ BeadGeometry MeasureBead(const PointSet& p, const ReferenceLine& line, const Ref
     return g;
   }
   g.bead_points = static_cast<int>(count);
+  if (TouchesArea(pts, run.first, run.last, left) || TouchesArea(pts, run.first, run.last, right)) {
+    g.status = ProfileStatus::kBeadInReferenceArea;  // before the feet: the search may cut such a run short
+    return g;
+  }
   // The bead's feet: from the run outward while the height stays above the
   // noise floor; the point beyond is the bare surface that brackets the edge.
   const float* h = pts.h;
@@ -318,10 +342,6 @@ BeadGeometry MeasureBead(const PointSet& p, const ReferenceLine& line, const Ref
   }
   --lo;
   ++hi;
-  if (TouchesArea(pts, run.first, run.last, left) || TouchesArea(pts, run.first, run.last, right)) {
-    g.status = ProfileStatus::kBeadInReferenceArea;
-    return g;
-  }
 
   // Trapezoids from the bare point to the bare point: area, first moment
   // along the line, and the sum of squared spacings (for the uncertainty).

@@ -3,7 +3,9 @@
 // Definitions (all along and perpendicular to the reference line, so a
 // sensor roll does not change them):
 //  - height h of a point: its perpendicular distance above the line;
-//  - the bead: the connected run of points with h above the detection
+//  - the bead is looked for between the reference areas (from a few points
+//    inside one to a few inside the other; nothing beyond them is looked at):
+//    the connected run of points with h above the detection
 //    threshold, max(min_threshold_mm, threshold_sigmas * reference RMS),
 //    whose integral is largest; spikes (one or two points wide) are dropped first and
 //    dropouts up to max_gap_mm long inside it are bridged;
@@ -62,7 +64,7 @@ enum class ProfileStatus : uint8_t {
   kTooFewPoints,         // fewer valid points than min_profile_points
   kNoReference,          // a reference area holds too few valid points
   kNoBead,               // nothing stands above the threshold
-  kBeadEdgeNotSeen,      // the bead runs off the profile or into a long dropout
+  kBeadEdgeNotSeen,      // the bead's foot runs into a long dropout, or far into a reference area
   kBeadInReferenceArea,  // the bead reaches into a reference area
 };
 

@@ -17,9 +17,13 @@ struct ProfileWorkspace {
   std::vector<float> x, z;
   // How a point of the point set maps back to the view: when `mapped`, the
   // view index of every point; and, for each group of eight points, how
-  // many points with finite z came before it (the heights stage).
+  // many points with finite z came before it (the heights stage, from
+  // heights_begin).
   std::vector<int32_t> map, kept_before;
   bool mapped = false;
+  // The points [heights_begin, heights_end) of the set the heights stage
+  // took (the bead's search range; heights_begin a multiple of eight).
+  std::size_t heights_begin = 0, heights_end = 0;
   // Per point of the point set: along-line position s and height h, and
   // the point's x; spikes (indices into them) are bridged in place.
   std::vector<float> s, h, hx;

@@ -249,9 +249,9 @@ TEST(BeadGeometry, InvalidProfilesSayWhy) {
   const auto grid = test::UniformGrid(640);
   // No bead: the bare surface.
   EXPECT_EQ(Measure(test::Render({}, {}, grid)).status, ProfileStatus::kNoBead);
-  // A bead running off the end of the profile.
-  EXPECT_EQ(Measure(test::Render(sim::RectangleOutline(6.0, 2.0, 27.0), {}, grid)).status,
-            ProfileStatus::kBeadEdgeNotSeen);
+  // A bead beyond the right reference area (running off the profile's
+  // end): not between the areas, so not looked at.
+  EXPECT_EQ(Measure(test::Render(sim::RectangleOutline(6.0, 2.0, 27.0), {}, grid)).status, ProfileStatus::kNoBead);
   // A bead reaching into the right reference area.
   EXPECT_EQ(Measure(test::Render(sim::RectangleOutline(6.0, 2.0, 11.0), {}, grid)).status,
             ProfileStatus::kBeadInReferenceArea);
@@ -271,6 +271,35 @@ TEST(BeadGeometry, InvalidProfilesSayWhy) {
   auto sparse = test::Render(sim::RectangleOutline(6.0, 2.0), {}, grid);
   for (std::size_t i = 8; i < sparse.z.size(); ++i) sparse.z[i] = kNaN;
   EXPECT_EQ(Measure(sparse).status, ProfileStatus::kTooFewPoints);
+}
+
+// The bead is looked for between the reference areas, up to 16 points
+// into each (bead_geometry.cc, kAreaMargin): a taller block beyond an area
+// (the wheel's rim, a clamp) does not take the bead's place, and a film
+// below the threshold spreading from the bead's foot is a foot while it
+// stays within those 16 points, an edge not seen beyond them.
+TEST(BeadGeometry, TheBeadIsLookedForBetweenTheAreas) {
+  const auto grid = test::UniformGrid(640);  // 0.078 mm spacing
+  const double dx = 50.0 / 639.0;
+  // Bead 6 x 2 (12 mm^2); block 20 mm tall from x = 24.3 to the profile's
+  // end (0.7 x 20 = 14 mm^2 seen): the larger run, were it looked at.
+  const sim::Outline with_block = {{-3.0, 0.0}, {-3.0, 2.0}, {3.0, 2.0}, {3.0, 0.0}, {24.3, 0.0}, {24.3, 20.0},
+                                   {26.0, 20.0}};
+  const BeadGeometry g = Measure(test::Render(with_block, {}, grid));
+  ASSERT_TRUE(g.valid()) << StatusName(g.status);
+  EXPECT_NEAR(g.area_mm2, 12.0, 2.0 * dx);  // each edge errs by at most H dx / 2
+  EXPECT_NEAR(g.width_mm, 6.0, 2.0 * dx);
+  // A 20 um film (above the 1 um noise floor, below the 50 um threshold of
+  // a noise-free profile) from the bead's left side to x_end, entering the
+  // left area (x < -12) by 1 mm (13 points) or 2.5 mm (32 points).
+  auto with_film = [](double x_end) {
+    return sim::Outline{{x_end, 0.0}, {x_end, 0.02}, {-3.0, 0.02}, {-3.0, 2.0}, {3.0, 2.0}, {3.0, 0.0}};
+  };
+  const BeadGeometry near = Measure(test::Render(with_film(-13.0), {}, grid));
+  ASSERT_TRUE(near.valid()) << StatusName(near.status);
+  EXPECT_NEAR(near.left_edge_x_mm, -13.0, 2.0 * dx);
+  EXPECT_NEAR(near.area_mm2, 12.0 + 10.0 * 0.02, 2.0 * dx);
+  EXPECT_EQ(Measure(test::Render(with_film(-14.5), {}, grid)).status, ProfileStatus::kBeadEdgeNotSeen);
 }
 
 // A spike is bridged on the chord of its neighbours, which adds exactly the
