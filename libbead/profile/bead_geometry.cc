@@ -46,6 +46,9 @@ Heights ComputeHeights(const PointSet& p, std::size_t begin, std::size_t end, co
   const float dz0 = static_cast<float>(z0 - z0f);
   const float bf = static_cast<float>(b), inv = static_cast<float>(inv_norm);
   const V8 vx0 = Splat(x0), vz0 = Splat(z0f), vdz0 = Splat(dz0), vb = Splat(bf), vinv = Splat(inv);
+  // Local pointers: the stores (memcpy) could alias the structs holding them.
+  const float* px = p.x;
+  const float* pz = p.z;
   float* hs = w.h.data();
   float* ss = w.s.data();
   float* xs = w.hx.data();
@@ -54,8 +57,8 @@ Heights ComputeHeights(const PointSet& p, std::size_t begin, std::size_t end, co
   w.heights_end = end;
   std::size_t m = 0, k = begin;
   for (; k + 8 <= end; k += 8) {
-    kept_before[(k - begin) / 8] = static_cast<int32_t>(m);
-    const V8 x = Load(p.x + k), z = Load(p.z + k);
+    *kept_before++ = static_cast<int32_t>(m);
+    const V8 x = Load(px + k), z = Load(pz + k);
     const int bits = Bits((z - z) == 0.0f);
     const V8 dx = x - vx0, dz = z - vz0 - vdz0;
     const M8 keep = PackIndex(bits);
@@ -64,16 +67,16 @@ Heights ComputeHeights(const PointSet& p, std::size_t begin, std::size_t end, co
     Store(xs + m, Pack(x, keep));
     m += static_cast<std::size_t>(__builtin_popcount(bits));
   }
-  kept_before[(k - begin) / 8] = static_cast<int32_t>(m);
+  *kept_before = static_cast<int32_t>(m);  // before the last, partial group (if any)
   for (; k < end; ++k) {
-    const float x = p.x[k], z = p.z[k];
+    const float x = px[k], z = pz[k];
     if (!((z - z) == 0.0f)) continue;
     const float dx = x - x0, dz = z - z0f - dz0;
     hs[m] = (dz - bf * dx) * inv;
     ss[m] = (dx + bf * dz) * inv;
     xs[m++] = x;
   }
-  kept_before[(end - begin + 7) / 8] = static_cast<int32_t>(m);
+  kept_before[(end - begin) % 8 != 0 ? 1 : 0] = static_cast<int32_t>(m);  // after it
   // A point at (x, z) lies at s = (x + b (z - a)) / sqrt(1 + b^2) along
   // the line; at x0 on the line that is x0 sqrt(1 + b^2).
   return Heights{hs, ss, xs, m, x0 * std::sqrt(1.0 + b * b), inv_norm};

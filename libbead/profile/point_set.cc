@@ -18,7 +18,12 @@ bool FiniteAndIncreasing(const float* xs, std::size_t n) {
   if (!((xs[0] - xs[0]) == 0.0f) || !((xs[n - 1] - xs[n - 1]) == 0.0f)) return false;
   M8 ordered = ~M8{};
   std::size_t i = 1;
+#pragma GCC unroll 4
   for (; i + 8 <= n; i += 8) ordered &= Load(xs + i) >= Load(xs + i - 1);  // one reduction at the end
+  if (i < n && n >= 9) {
+    ordered &= Load(xs + n - 8) >= Load(xs + n - 9);  // the last eight pairs, some again
+    i = n;
+  }
   bool tail = true;
   for (; i < n; ++i) tail &= xs[i] >= xs[i - 1];
   return tail && All(ordered);
@@ -60,6 +65,7 @@ PointSet PreparePoints(const ProfileView& view, ProfileWorkspace& w) {
   // Every later stage reads z, the first ones at scattered places: ask for
   // all of it now (a profile fresh from memory then arrives while x is
   // being checked).
+#pragma GCC unroll 4
   for (std::size_t i = 0; i < n; i += 16) __builtin_prefetch(zs + i);
   if (FiniteAndIncreasing(xs, n)) return PointSet{xs, zs, n};
   return SortedCopy(xs, zs, n, w);
