@@ -185,7 +185,7 @@ float Trapezoid(const Heights& g, std::size_t first, std::size_t last) {
 
 struct Run {
   std::size_t first = 0, last = 0;  // inclusive
-  float integral = -1.0f;
+  bool found = false;
 };
 
 // Whether some point of [first, last] lies in `area` (x is increasing).
@@ -231,25 +231,47 @@ Run LargestRun(const Heights& g, float threshold, float max_gap, const Reference
     return bits;
   };
   // The first point from k on above the threshold (n if none), and the
-  // first from j on that does not continue a run: found from the bits, with
-  // no loop over single points but at the profile's end.
+  // first from j on that does not continue a run: found from the bits, the
+  // last, partial 32 as the 32 ending at the profile's end, the bits of
+  // points already passed shifted out (single points only in a profile of
+  // fewer than 33).
+  auto first_bit = [](std::size_t at, uint32_t bits) { return at + static_cast<std::size_t>(__builtin_ctz(bits)); };
   auto next_above = [&](std::size_t k) {
     for (; k + 32 <= n; k += 32)
-      if (const uint32_t bits = above(k)) return k + static_cast<std::size_t>(__builtin_ctz(bits));
+      if (const uint32_t bits = above(k)) return first_bit(k, bits);
+    if (k < n && n >= 33) {
+      const uint32_t bits = above(n - 32) >> (k - (n - 32));
+      return bits != 0 ? first_bit(k, bits) : n;
+    }
     while (k < n && !(h[k] > threshold)) ++k;
     return k;
   };
   auto run_end = [&](std::size_t j) {
     for (; j + 32 <= n; j += 32)
-      if (const uint32_t ends = ~continues(j)) return j + static_cast<std::size_t>(__builtin_ctz(ends));
+      if (const uint32_t ends = ~continues(j)) return first_bit(j, ends);
+    if (j < n && n >= 33) {
+      const uint32_t ends = ~continues(n - 32) >> (j - (n - 32));
+      return ends != 0 ? first_bit(j, ends) : n;
+    }
     while (j < n && h[j] > threshold && s[j] - s[j - 1] <= max_gap) ++j;
     return j;
   };
+  // The integrals are summed only when two runs compete (the usual
+  // profile has one); negative: not summed yet.
   Run best;
+  float best_integral = -1.0f;
   for (std::size_t k = next_above(0); k < n;) {
     const std::size_t j = run_end(k + 1);
-    const Run run{k, j - 1, Trapezoid(g, k, j - 1)};
-    if (run.integral > best.integral && HasPointOutside(g, run.first, run.last, left, right)) best = run;
+    if (HasPointOutside(g, k, j - 1, left, right)) {
+      const Run run{k, j - 1, true};
+      if (!best.found) {
+        best = run;
+      } else {
+        if (best_integral < 0.0f) best_integral = Trapezoid(g, best.first, best.last);
+        const float integral = Trapezoid(g, run.first, run.last);
+        if (integral > best_integral) best = run, best_integral = integral;
+      }
+    }
     k = next_above(j);
   }
   return best;
@@ -300,7 +322,7 @@ BeadGeometry MeasureBead(const PointSet& p, const ReferenceLine& line, const Ref
 
   const auto max_gap = static_cast<float>(options.max_gap_mm);
   const Run run = LargestRun(pts, static_cast<float>(g.threshold_mm), max_gap, left, right);
-  const std::size_t count = run.integral < 0.0f ? 0 : run.last - run.first + 1 - SpikesWithin(w, run.first, run.last);
+  const std::size_t count = run.found ? run.last - run.first + 1 - SpikesWithin(w, run.first, run.last) : 0;
   if (count < static_cast<std::size_t>(std::max(options.min_bead_points, 2))) {
     g.status = ProfileStatus::kNoBead;
     return g;

@@ -27,16 +27,4 @@ std::size_t UpperIndex(const PointSet& p, double value) {
   return static_cast<std::size_t>(std::upper_bound(p.x, p.x + p.n, value, [](double v, float a) { return v < a; }) - p.x);
 }
 
-std::size_t LowerIndex(const PointSet& p, double value, std::size_t& hint) {
-  const std::size_t h = hint;
-  if (h <= p.n && (h == 0 || p.x[h - 1] < value) && (h == p.n || !(p.x[h] < value))) return h;
-  return hint = LowerIndex(p, value);
-}
-
-std::size_t UpperIndex(const PointSet& p, double value, std::size_t& hint) {
-  const std::size_t h = hint;
-  if (h <= p.n && (h == 0 || !(value < p.x[h - 1])) && (h == p.n || value < p.x[h])) return h;
-  return hint = UpperIndex(p, value);
-}
-
 }  // namespace bead

@@ -36,8 +36,17 @@ std::size_t CountFiniteZ(const PointSet& points, std::size_t begin, std::size_t 
 std::size_t LowerIndex(const PointSet& points, double value);
 std::size_t UpperIndex(const PointSet& points, double value);
 // The same, trying `hint` first (an index found for an earlier profile)
-// and updating it: O(1) when the x grid has not changed.
-std::size_t LowerIndex(const PointSet& points, double value, std::size_t& hint);
-std::size_t UpperIndex(const PointSet& points, double value, std::size_t& hint);
+// and updating it: O(1) when the x grid has not changed (inline: the
+// kernel checks six hints per profile).
+inline std::size_t LowerIndex(const PointSet& p, double value, std::size_t& hint) {
+  const std::size_t h = hint;
+  if (h <= p.n && (h == 0 || p.x[h - 1] < value) && (h == p.n || !(p.x[h] < value))) return h;
+  return hint = LowerIndex(p, value);
+}
+inline std::size_t UpperIndex(const PointSet& p, double value, std::size_t& hint) {
+  const std::size_t h = hint;
+  if (h <= p.n && (h == 0 || !(value < p.x[h - 1])) && (h == p.n || value < p.x[h])) return h;
+  return hint = UpperIndex(p, value);
+}
 
 }  // namespace bead
