@@ -16,16 +16,15 @@ namespace {
 // How far into each reference area the bead's search reaches, in points.
 constexpr std::size_t kAreaMargin = 16;
 
-// The points' heights h and along-line positions s about the line, and
-// their x, for the points [begin, end) of the set with finite z only
-// (begin a multiple of eight; w.kept_before records how many came before
-// each group of eight points from begin, to find them again). In float and
-// shifted: s is measured from `s_offset_mm` (double), so the rounding stays
-// at the scale of the profile's width.
+// The points' heights h and along-line positions s about the line, for
+// the points [begin, end) of the set with finite z only (begin a multiple
+// of eight; w.kept_before records how many came before each group of eight
+// points from begin, to find them again: SetIndex). In float and shifted: s
+// is measured from `s_offset_mm` (double), so the rounding stays at the
+// scale of the profile's width.
 struct Heights {
   float* h = nullptr;
   float* s = nullptr;
-  float* x = nullptr;
   std::size_t n = 0;
   double s_offset_mm = 0.0;
   double inv_norm = 1.0;  // 1 / sqrt(1 + slope^2): along-line s to x
@@ -51,7 +50,6 @@ Heights ComputeHeights(const PointSet& p, std::size_t begin, std::size_t end, co
   const float* pz = p.z;
   float* hs = w.h.data();
   float* ss = w.s.data();
-  float* xs = w.hx.data();
   int32_t* kept_before = w.kept_before.data();
   w.heights_begin = begin;
   w.heights_end = end;
@@ -64,7 +62,6 @@ Heights ComputeHeights(const PointSet& p, std::size_t begin, std::size_t end, co
     const M8 keep = PackIndex(bits);
     Store(hs + m, Pack((dz - vb * dx) * vinv, keep));
     Store(ss + m, Pack((dx + vb * dz) * vinv, keep));
-    Store(xs + m, Pack(x, keep));
     m += static_cast<std::size_t>(__builtin_popcount(bits));
   }
   *kept_before = static_cast<int32_t>(m);  // before the last, partial group (if any)
@@ -73,14 +70,41 @@ Heights ComputeHeights(const PointSet& p, std::size_t begin, std::size_t end, co
     if (!((z - z) == 0.0f)) continue;
     const float dx = x - x0, dz = z - z0f - dz0;
     hs[m] = (dz - bf * dx) * inv;
-    ss[m] = (dx + bf * dz) * inv;
-    xs[m++] = x;
+    ss[m++] = (dx + bf * dz) * inv;
   }
   kept_before[(end - begin) % 8 != 0 ? 1 : 0] = static_cast<int32_t>(m);  // after it
   // A point at (x, z) lies at s = (x + b (z - a)) / sqrt(1 + b^2) along
   // the line; at x0 on the line that is x0 sqrt(1 + b^2).
-  return Heights{hs, ss, xs, m, x0 * std::sqrt(1.0 + b * b), inv_norm};
+  return Heights{hs, ss, m, x0 * std::sqrt(1.0 + b * b), inv_norm};
 }
+
+// Index in the point set of the k-th height: in the group of eight at or
+// after k / 8 (each holds at most eight) before the first with more than k
+// heights before it, the (k - heights before)-th point with finite z.
+std::size_t SetIndex(const PointSet& p, const ProfileWorkspace& w, std::size_t k) {
+  using namespace vec;
+  const std::size_t groups = (w.heights_end - w.heights_begin + 7) / 8;
+  std::size_t g = k / 8;
+  while (g + 1 < groups && static_cast<std::size_t>(w.kept_before[g + 1]) <= k) ++g;
+  const std::size_t at = w.heights_begin + 8 * g;
+  unsigned bits = 0;
+  if (at + 8 <= p.n) {
+    const V8 z = Load(p.z + at);
+    bits = static_cast<unsigned>(Bits((z - z) == 0.0f));
+  } else {
+    for (std::size_t i = at; i < p.n; ++i) bits |= static_cast<unsigned>((p.z[i] - p.z[i]) == 0.0f) << (i - at);
+  }
+  for (std::size_t j = k - static_cast<std::size_t>(w.kept_before[g]); j > 0; --j) bits &= bits - 1;
+  return at + static_cast<std::size_t>(__builtin_ctz(bits));
+}
+
+// The reference areas' points in the set: [left_begin, left_end) and
+// [right_begin, right_end), x increasing.
+struct AreaIndices {
+  std::size_t left_begin, left_end, right_begin, right_end;
+  bool InLeft(std::size_t i) const { return i >= left_begin && i < left_end; }
+  bool InRight(std::size_t i) const { return i >= right_begin && i < right_end; }
+};
 
 // Spikes: points standing more than spike_mm off the median of themselves
 // and their four nearest neighbours (median of five, so two adjacent
@@ -134,8 +158,8 @@ std::size_t FindSpikes(const Heights& g, float spike_mm, ProfileWorkspace& w) {
 }
 
 // Puts each run of adjacent spikes on the chord between the points either
-// side of it (FindSpikes never marks the first or last point), in h, s and
-// x alike. The trapezoids then add up to exactly what they would with the
+// side of it (FindSpikes never marks the first or last point), in h and s
+// alike. The trapezoids then add up to exactly what they would with the
 // spikes left out, and no array is moved.
 void BridgeSpikes(Heights& g, std::size_t spikes, const ProfileWorkspace& w) {
   for (std::size_t r = 0; r < spikes;) {
@@ -148,7 +172,6 @@ void BridgeSpikes(Heights& g, std::size_t spikes, const ProfileWorkspace& w) {
       const float t = static_cast<float>(k - a) / span;
       g.h[k] = g.h[a] + t * (g.h[b] - g.h[a]);
       g.s[k] = g.s[a] + t * (g.s[b] - g.s[a]);
-      g.x[k] = g.x[a] + t * (g.x[b] - g.x[a]);
     }
   }
 }
@@ -184,33 +207,32 @@ float Trapezoid(const Heights& g, std::size_t first, std::size_t last) {
 }
 
 struct Run {
-  std::size_t first = 0, last = 0;  // inclusive
+  std::size_t first = 0, last = 0;          // heights, inclusive
+  std::size_t set_first = 0, set_last = 0;  // the same points' indices in the set
   bool found = false;
 };
 
-// Whether some point of [first, last] lies in `area` (x is increasing).
-bool TouchesArea(const Heights& g, std::size_t first, std::size_t last, const ReferenceArea& area) {
-  const float* it = std::lower_bound(g.x + first, g.x + last + 1, area.x_min_mm,
-                                     [](float a, double v) { return a < v; });
-  return it != g.x + last + 1 && *it <= area.x_max_mm;
+// A run of heights, as the indices in the set of its first and last
+// point: every point with finite z between them is in it. Whether one of
+// them lies in the area [begin, end) of the set.
+bool TouchesArea(const PointSet& p, std::size_t first, std::size_t last, std::size_t begin, std::size_t end) {
+  const std::size_t from = std::max(first, begin), to = std::min(last + 1, end);
+  return from < to && BEAD_KERNEL::CountFiniteZ(p, from, to) > 0;
 }
 
-// Whether some point of [first, last] lies outside both areas.
-bool HasPointOutside(const Heights& g, std::size_t first, std::size_t last, const ReferenceArea& left,
-                     const ReferenceArea& right) {
-  for (const ReferenceArea* a : {&left, &right})
-    if (a->Contains(g.x[first]) && a->Contains(g.x[last])) return false;  // an interval holds them all
-  if (!(left.Contains(g.x[first]) || right.Contains(g.x[first]))) return true;
-  if (!(left.Contains(g.x[last]) || right.Contains(g.x[last]))) return true;
-  for (std::size_t k = first; k <= last; ++k)
-    if (!left.Contains(g.x[k]) && !right.Contains(g.x[k])) return true;
-  return false;
+// Whether one of them lies outside both areas: one of its ends does, or it
+// spans the gap between the areas and a point there has a finite z.
+bool HasPointOutside(const PointSet& p, std::size_t first, std::size_t last, const AreaIndices& a) {
+  const bool first_in = a.InLeft(first) || a.InRight(first), last_in = a.InLeft(last) || a.InRight(last);
+  if (!first_in || !last_in) return true;
+  if (a.InLeft(first) == a.InLeft(last)) return false;  // both in one area
+  return BEAD_KERNEL::CountFiniteZ(p, a.left_end, a.right_begin) > 0;
 }
 
 // The run of consecutive points above `threshold` (gaps up to max_gap) with
 // the largest integral, among runs holding a point outside both areas.
-Run LargestRun(const Heights& g, float threshold, float max_gap, const ReferenceArea& left,
-               const ReferenceArea& right) {
+Run LargestRun(const PointSet& p, const Heights& g, float threshold, float max_gap, const AreaIndices& areas,
+               const ProfileWorkspace& w) {
   const float* h = g.h;
   const float* s = g.s;
   const std::size_t n = g.n;
@@ -262,8 +284,9 @@ Run LargestRun(const Heights& g, float threshold, float max_gap, const Reference
   float best_integral = -1.0f;
   for (std::size_t k = next_above(0); k < n;) {
     const std::size_t j = run_end(k + 1);
-    if (HasPointOutside(g, k, j - 1, left, right)) {
-      const Run run{k, j - 1, true};
+    const std::size_t set_first = SetIndex(p, w, k), set_last = SetIndex(p, w, j - 1);
+    if (HasPointOutside(p, set_first, set_last, areas)) {
+      const Run run{k, j - 1, set_first, set_last, true};
       if (!best.found) {
         best = run;
       } else {
@@ -304,8 +327,9 @@ BeadGeometry MeasureBead(const PointSet& p, const ReferenceLine& line, const Ref
   // that dip below the threshold before the surface is bare. A run reaching
   // into an area marks the profile; what lies beyond the areas (the
   // wheel's rim, a clamp) is not looked at.
-  const std::size_t left_end = UpperIndex(p, left.x_max_mm, w.area_hints[1]);
-  const std::size_t right_begin = LowerIndex(p, right.x_min_mm, w.area_hints[2]);
+  const AreaIndices areas{LowerIndex(p, left.x_min_mm, w.area_hints[0]), UpperIndex(p, left.x_max_mm, w.area_hints[1]),
+                          LowerIndex(p, right.x_min_mm, w.area_hints[2]), UpperIndex(p, right.x_max_mm, w.area_hints[3])};
+  const std::size_t left_end = areas.left_end, right_begin = areas.right_begin;
   const std::size_t begin = left_end > kAreaMargin ? (left_end - kAreaMargin) / 8 * 8 : 0;
   const std::size_t end = std::max(begin, std::min(p.n, right_begin + kAreaMargin));
   Heights pts = ComputeHeights(p, begin, end, line, w);
@@ -321,14 +345,15 @@ BeadGeometry MeasureBead(const PointSet& p, const ReferenceLine& line, const Ref
   g.threshold_mm = std::max(options.min_threshold_mm, options.threshold_sigmas * line.residual_rms_mm);
 
   const auto max_gap = static_cast<float>(options.max_gap_mm);
-  const Run run = LargestRun(pts, static_cast<float>(g.threshold_mm), max_gap, left, right);
+  const Run run = LargestRun(p, pts, static_cast<float>(g.threshold_mm), max_gap, areas, w);
   const std::size_t count = run.found ? run.last - run.first + 1 - SpikesWithin(w, run.first, run.last) : 0;
   if (count < static_cast<std::size_t>(std::max(options.min_bead_points, 2))) {
     g.status = ProfileStatus::kNoBead;
     return g;
   }
   g.bead_points = static_cast<int>(count);
-  if (TouchesArea(pts, run.first, run.last, left) || TouchesArea(pts, run.first, run.last, right)) {
+  if (TouchesArea(p, run.set_first, run.set_last, areas.left_begin, areas.left_end) ||
+      TouchesArea(p, run.set_first, run.set_last, areas.right_begin, areas.right_end)) {
     g.status = ProfileStatus::kBeadInReferenceArea;  // before the feet: the search may cut such a run short
     return g;
   }
@@ -425,7 +450,11 @@ BeadGeometry MeasureBead(const PointSet& p, const ReferenceLine& line, const Ref
   g.right_edge_x_mm = (pts.s_offset_mm + s_right) * pts.inv_norm;
   // Dropped between the bead's bare points: the view's points there that
   // are not among the heights (dropouts), and the spikes bridged.
-  const int32_t view_lo = ViewIndex(p, w, lo), view_hi = ViewIndex(p, w, hi);
+  auto view_index = [&](std::size_t k) {
+    const std::size_t i = SetIndex(p, w, k);
+    return w.mapped ? w.map[i] : static_cast<int32_t>(i);
+  };
+  const int32_t view_lo = view_index(lo), view_hi = view_index(hi);
   g.dropped_points = std::abs(view_hi - view_lo) - 1 - static_cast<int>(hi - lo - 1) +
                      static_cast<int>(SpikesWithin(w, lo + 1, hi - 1));
   g.status = ProfileStatus::kValid;

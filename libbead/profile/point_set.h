@@ -24,11 +24,6 @@ struct PointSet {
 // Grows the workspace only if the view is longer than its capacity.
 PointSet PreparePoints(const ProfileView& view, ProfileWorkspace& workspace);
 
-// Index in the view of the k-th point with finite z the heights stage of
-// the last prepared set took (from workspace.heights_begin; it records how
-// many came before each group of eight).
-int32_t ViewIndex(const PointSet& points, const ProfileWorkspace& workspace, std::size_t k);
-
 // How many of the points [begin, end) have a finite z.
 std::size_t CountFiniteZ(const PointSet& points, std::size_t begin, std::size_t end);
 

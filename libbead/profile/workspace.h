@@ -24,9 +24,9 @@ struct ProfileWorkspace {
   // The points [heights_begin, heights_end) of the set the heights stage
   // took (the bead's search range; heights_begin a multiple of eight).
   std::size_t heights_begin = 0, heights_end = 0;
-  // Per point of the point set: along-line position s and height h, and
-  // the point's x; spikes (indices into them) are bridged in place.
-  std::vector<float> s, h, hx;
+  // Per point of the point set: along-line position s and height h;
+  // spikes (indices into them) are bridged in place.
+  std::vector<float> s, h;
   std::vector<int32_t> spikes;
   std::size_t n_spikes = 0;
   // Scratch for the reference line: its samples and residuals; and where
