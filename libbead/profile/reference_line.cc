@@ -200,7 +200,7 @@ Start SpotStart(const PointSet& p, const AreaRange& rl, const AreaRange& rr, flo
     const AreaRange& r = a == 0 ? rl : rr;
     float* z = zs + a * kSpotSamples;
     float* x = xs + a * kSpotSamples;
-    double x_sum = 0.0;
+    V8 x_sum{};  // float: the start's centre needs no more
     for (std::size_t j = 0; j < kSpots; ++j) {
       const std::size_t at = r.begin + (r.size() - 8) * j / (kSpots - 1);
       // A dropout takes its neighbour's value (pairs of lanes swapped), or
@@ -209,12 +209,13 @@ Start SpotStart(const PointSet& p, const AreaRange& rl, const AreaRange& rr, flo
       const V8 pair = __builtin_shufflevector(spot, spot, 1, 0, 3, 2, 5, 4, 7, 6);
       const V8 filled = Select(spot == spot, spot, pair);
       Store(z + 8 * j, Select(filled == filled, filled, inf));
-      Store(x + 8 * j, Load(p.x + at));
-      x_sum += double(p.x[at]) + p.x[at + 7];
+      const V8 spot_x = Load(p.x + at);
+      Store(x + 8 * j, spot_x);
+      x_sum += spot_x;
     }
     for (std::size_t t = 0; t < 2; ++t)
       Store(triples + 16 * a + 8 * t, vec::Median3(Load(z + 8 * t), Load(z + 8 * (t + 2)), Load(z + 8 * (t + 4))));
-    x_mid[a] = x_sum / (2 * kSpots);
+    x_mid[a] = Sum(x_sum) / kSpotSamples;
     z_mid[a] = vec::SortedMedian<2>(triples + 16 * a);
   }
   Start start;
@@ -256,13 +257,13 @@ Sums InlierSums(const PointSet& p, const AreaRange& left, const AreaRange& right
   const V8 vx0 = Splat(x0), vz0 = Splat(z0), vc = Splat(c), vb = Splat(b), vbw = Splat(bw);
   V8 sx{}, sr{}, sxx{}, sxr{}, srr{};
   Sums sums;
-  auto add = [&](V8 x, V8 z, M8 lane_in, V8& n, M8& finite) {
+  auto add = [&](V8 x, V8 z, M8 lane_in, M8& n, M8& finite) {
     const V8 dx = x - vx0;
     const V8 res = (z - vz0) - vc - vb * dx;
     const M8 in = (Abs(res) <= vbw) & lane_in;
     const V8 idx = Select(in, dx, V8{}), ires = Select(in, res, V8{});
     finite += (z == z) & lane_in;  // lanes are -1 where true
-    n += ToFloat(in);
+    n += in;
     sx += idx;
     sr += ires;
     sxx += idx * idx;
@@ -270,9 +271,9 @@ Sums InlierSums(const PointSet& p, const AreaRange& left, const AreaRange& right
     srr += ires * ires;
   };
   auto area = [&](const AreaRange& r, double& inliers, std::size_t& finite_count) {
-    V8 n{};
-    M8 finite{};
+    M8 n{}, finite{};
     std::size_t i = r.begin;
+#pragma GCC unroll 2
     for (; i + 8 <= r.end; i += 8) add(Load(p.x + i), Load(p.z + i), ~M8{}, n, finite);
     if (i < r.end && r.size() >= 8) {
       // The last eight points, without the lanes already added.
@@ -283,11 +284,11 @@ Sums InlierSums(const PointSet& p, const AreaRange& left, const AreaRange& right
         const float dx = p.x[i] - x0, res = (p.z[i] - z0) - c - b * dx;
         finite[0] -= p.z[i] == p.z[i];
         if (!(std::abs(res) <= bw)) continue;
-        n[0] += 1.0f;
+        n[0] -= 1;
         sx[0] += dx, sr[0] += res, sxx[0] += dx * dx, sxr[0] += dx * res, srr[0] += res * res;
       }
     }
-    inliers = Sum(n);
+    inliers = -SumInt(n);
     finite_count = static_cast<std::size_t>(-SumInt(finite));
   };
   area(left, sums.n_left, sums.finite_left);
