@@ -3,12 +3,13 @@
 // Definitions (all along and perpendicular to the reference line, so a
 // sensor roll does not change them):
 //  - height h of a point: its perpendicular distance above the line;
-//  - the bead is looked for between the reference areas (from a few points
-//    inside one to a few inside the other; nothing beyond them is looked at):
-//    the connected run of points with h above the detection
-//    threshold, max(min_threshold_mm, threshold_sigmas * reference RMS),
-//    whose integral is largest; spikes (one or two points wide) are dropped first and
-//    dropouts up to max_gap_mm long inside it are bridged;
+//  - the bead is looked for between the reference areas (from 16 points
+//    inside one to 16 inside the other; nothing beyond them is looked at):
+//    the connected run of points with h above the detection threshold,
+//    max(min_threshold_mm, threshold_sigmas * reference RMS), whose
+//    integral is largest; spikes (one or two points wide) are first put on
+//    the chord between their neighbours, and dropouts up to max_gap_mm
+//    long inside it are bridged;
 //  - feet: from the bead outward, the points still above the noise floor
 //    max(min_edge_floor_mm, edge_floor_sigmas * reference RMS) belong to
 //    it (a gently sloped side dips below the detection threshold before it
