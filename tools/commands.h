@@ -16,5 +16,6 @@ Run AddFlow(CLI::App& app);
 Run AddCalibrate(CLI::App& app);
 Run AddIdentify(CLI::App& app);
 Run AddExplain(CLI::App& app);
+Run AddImport(CLI::App& app);
 
 }  // namespace bead::tools

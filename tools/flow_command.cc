@@ -5,6 +5,7 @@
 #include "libbead/flow/flow.h"
 #include "libbead/io/flow_csv.h"
 #include "libbead/io/rig_yaml.h"
+#include "libbead/io/vendor_csv.h"
 #include "libbead/profile/measure_block.h"
 #include "tools/commands.h"
 #include "tools/load_profiles.h"
@@ -51,6 +52,10 @@ Run AddFlow(CLI::App& app) {
       throw CLI::RequiredError("--rig, RUN and -o are all needed (or none, for the bundled sample)");
     const Rig rig = ReadRig(args->rig);
     const RunArchive run = LoadRun(args->run);
+    if (EncoderAbsent(run))
+      throw Error(Located(args->run, "/profiles/encoder",
+                          "holds no readings (root attribute encoder=absent: imported without an encoder column); "
+                          "the flow needs the wheel's motion"));
     if (!run.log) throw Error(Located(args->run, "/log", "missing: the flow needs the acquisition log"));
     const ProfileBlock& block = run.profiles;
     const std::vector<BeadGeometry> geometry = MeasureProfiles(

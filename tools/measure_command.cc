@@ -4,6 +4,7 @@
 
 #include "libbead/io/geometry_csv.h"
 #include "libbead/io/rig_yaml.h"
+#include "libbead/io/vendor_csv.h"
 #include "libbead/profile/measure_block.h"
 #include "tools/commands.h"
 #include "tools/load_profiles.h"
@@ -81,6 +82,12 @@ Run AddMeasure(CLI::App& app) {
     for (std::size_t s = 1; s < by_status.size(); ++s)
       if (by_status[s])
         std::printf("  %zu invalid: %s\n", by_status[s], StatusName(static_cast<ProfileStatus>(s)));
+    if (valid == 0 && by_status[static_cast<std::size_t>(ProfileStatus::kNoReference)] > 0)
+      std::printf("  no profile has enough points in the reference areas [%g, %g] and [%g, %g] mm: check the rig's\n"
+                  "  reference_areas_mm against the profiles' x (no area is measured without bare surface)\n",
+                  rig.reference_left.x_min_mm, rig.reference_left.x_max_mm, rig.reference_right.x_min_mm,
+                  rig.reference_right.x_max_mm);
+    if (EncoderAbsent(run)) std::printf("  the archive has no encoder readings: the encoder column holds 0\n");
     return 0;
   };
 }

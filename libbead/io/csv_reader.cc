@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <limits>
 
 #include "libbead/core/error.h"
 
@@ -69,6 +70,10 @@ double CsvReader::Double(std::size_t i, const char* name) const {
   if (f.empty() || ec != std::errc() || end != f.data() + f.size())
     Fail("column " + std::to_string(i + 1) + " (" + name + ") is '" + std::string(f) + "', not a number");
   return v;
+}
+
+float CsvReader::Coordinate(std::size_t i, const char* name) const {
+  return Empty(i) ? std::numeric_limits<float>::quiet_NaN() : static_cast<float>(Double(i, name));
 }
 
 int64_t CsvReader::Int64(std::size_t i, const char* name) const {

@@ -27,6 +27,8 @@ class CsvReader {
   std::string_view Field(std::size_t i) const;
   bool Empty(std::size_t i) const { return Field(i).empty(); }
   double Double(std::size_t i, const char* name) const;
+  // A coordinate: an empty field means no point (NaN).
+  float Coordinate(std::size_t i, const char* name) const;
   int64_t Int64(std::size_t i, const char* name) const;
   [[noreturn]] void Fail(const std::string& what) const;
 

@@ -1,75 +1,20 @@
 #include "libbead/io/profiles_csv.h"
 
-#include <algorithm>
-#include <cmath>
-#include <limits>
 #include <map>
 
 #include "libbead/core/error.h"
 #include "libbead/io/atomic_file.h"
 #include "libbead/io/csv_reader.h"
+#include "libbead/io/profile_block_builder.h"
 
 namespace bead {
 namespace {
 
-constexpr float kNaNf = std::numeric_limits<float>::quiet_NaN();
-
-// Collects profiles of varying length, then pads them into a block.
-class BlockBuilder {
- public:
-  // Adds the point of the row `csv` reads, whose profile columns start at `c`.
-  void AddRow(const CsvReader& csv, std::size_t c) {
-    const int64_t id = csv.Int64(c, "profile");
-    const double t = csv.Double(c + 1, "t_s");
-    const int64_t enc = csv.Int64(c + 2, "encoder");
-    if (profiles_.empty() || id != current_id_) {
-      if (seen_.count(id)) csv.Fail("rows of profile " + std::to_string(id) + " are not together");
-      seen_.insert({id, true});
-      current_id_ = id;
-      profiles_.push_back({t, enc, {}, {}});
-    } else if (t != profiles_.back().t || enc != profiles_.back().encoder) {
-      csv.Fail("profile " + std::to_string(id) + " changes its t_s or encoder between rows");
-    }
-    auto& p = profiles_.back();
-    p.x.push_back(csv.Empty(c + 3) ? kNaNf : static_cast<float>(csv.Double(c + 3, "x_mm")));
-    p.z.push_back(csv.Empty(c + 4) ? kNaNf : static_cast<float>(csv.Double(c + 4, "z_mm")));
-  }
-
-  bool empty() const { return profiles_.empty(); }
-
-  ProfileBlock Build(const std::string& file, const std::string& where) {
-    ProfileBlock b;
-    for (const auto& p : profiles_) b.points = std::max(b.points, p.x.size());
-    b.shared_x = std::all_of(profiles_.begin(), profiles_.end(), [&](const Profile& p) {
-      return p.x.size() == b.points && std::equal(p.x.begin(), p.x.end(), profiles_[0].x.begin(), [](float u, float v) {
-               return u == v || (std::isnan(u) && std::isnan(v));
-             });
-    });
-    if (b.shared_x && !profiles_.empty()) b.x_mm = profiles_[0].x;
-    for (const auto& p : profiles_) {
-      b.t_s.push_back(p.t);
-      b.encoder.push_back(p.encoder);
-      if (!b.shared_x) {
-        b.x_mm.insert(b.x_mm.end(), p.x.begin(), p.x.end());
-        b.x_mm.resize(b.x_mm.size() + (b.points - p.x.size()), kNaNf);
-      }
-      b.z_mm.insert(b.z_mm.end(), p.z.begin(), p.z.end());
-      b.z_mm.resize(b.z_mm.size() + (b.points - p.z.size()), kNaNf);
-    }
-    ValidateProfileBlock(b, file, where);
-    return b;
-  }
-
- private:
-  struct Profile {
-    double t;
-    int64_t encoder;
-    std::vector<float> x, z;
-  };
-  std::vector<Profile> profiles_;
-  std::map<int64_t, bool> seen_;
-  int64_t current_id_ = 0;
-};
+// The spec's profile columns of the row `csv` reads, from column c on.
+void AddProfileRow(ProfileBlockBuilder& builder, const CsvReader& csv, std::size_t c) {
+  builder.Add(csv, csv.Int64(c, "profile"), csv.Double(c + 1, "t_s"), csv.Int64(c + 2, "encoder"),
+              csv.Coordinate(c + 3, "x_mm"), csv.Coordinate(c + 4, "z_mm"));
+}
 
 const std::vector<std::string> kProfileColumns = {"profile", "t_s", "encoder", "x_mm", "z_mm"};
 
@@ -78,8 +23,8 @@ const std::vector<std::string> kProfileColumns = {"profile", "t_s", "encoder", "
 ProfileBlock ReadProfilesCsv(const std::string& path) {
   CsvReader csv(path);
   csv.Header(kProfileColumns, "profiles CSV");
-  BlockBuilder builder;
-  while (csv.Next()) builder.AddRow(csv, 0);
+  ProfileBlockBuilder builder;
+  while (csv.Next()) AddProfileRow(builder, csv, 0);
   if (builder.empty()) throw Error(Located(path, "", "holds no profile rows"));
   return builder.Build(path, "profiles");
 }
@@ -135,7 +80,7 @@ PinScanArchive ReadPinScansCsv(const std::string& path) {
   columns.insert(columns.end(), kProfileColumns.begin(), kProfileColumns.end());
   csv.Header(columns, "pin-scan CSV");
   PinScanArchive pins;
-  std::vector<BlockBuilder> builders;
+  std::vector<ProfileBlockBuilder> builders;
   std::map<int64_t, std::size_t> index;
   int64_t last_scan = -1;
   while (csv.Next()) {
@@ -150,7 +95,7 @@ PinScanArchive ReadPinScansCsv(const std::string& path) {
     } else if (start != pins.scans.back().start_encoder) {
       csv.Fail("scan " + std::to_string(scan) + " changes its start_encoder between rows");
     }
-    builders.back().AddRow(csv, 2);
+    AddProfileRow(builders.back(), csv, 2);
   }
   if (builders.empty()) throw Error(Located(path, "", "holds no pin-scan rows"));
   for (std::size_t k = 0; k < builders.size(); ++k)

@@ -1,0 +1,71 @@
+#include "libbead/io/vendor_csv.h"
+
+#include <cmath>
+#include <filesystem>
+#include <vector>
+
+#include "libbead/core/error.h"
+#include "libbead/io/csv_reader.h"
+#include "libbead/io/profile_block_builder.h"
+
+namespace bead {
+namespace {
+
+// The index of the column named `name` in `header`, naming the columns
+// there are when it is missing or not unique.
+std::size_t ColumnIndex(const CsvReader& csv, const std::vector<std::string>& header, const std::string& name,
+                        const char* role) {
+  std::size_t found = header.size(), count = 0;
+  for (std::size_t i = 0; i < header.size(); ++i)
+    if (header[i] == name) found = i, ++count;
+  if (count == 1) return found;
+  std::string all;
+  for (const auto& h : header) all += (all.empty() ? "" : ", ") + h;
+  csv.Fail(std::string(count == 0 ? "no column '" : "more than one column '") + name + "' for the " + role +
+           " (the header has: " + all + ")");
+}
+
+}  // namespace
+
+VendorImport ReadVendorCsv(const std::string& path, const VendorCsvColumns& c) {
+  if (!(std::isfinite(c.time_scale) && c.time_scale > 0.0))
+    throw Error(Located(path, "", "the time scale must be a positive number"));
+  for (const auto* name : {&c.profile, &c.time, &c.x, &c.z})
+    if (name->empty()) throw Error(Located(path, "", "the profile, time, x and z columns must all be named"));
+  CsvReader csv(path);
+  const std::vector<std::string> header = csv.Header({}, "vendor CSV");
+  const std::size_t i_profile = ColumnIndex(csv, header, c.profile, "profile id");
+  const std::size_t i_time = ColumnIndex(csv, header, c.time, "time");
+  const std::size_t i_x = ColumnIndex(csv, header, c.x, "x");
+  const std::size_t i_z = ColumnIndex(csv, header, c.z, "z");
+  const bool has_encoder = !c.encoder.empty();
+  const std::size_t i_encoder = has_encoder ? ColumnIndex(csv, header, c.encoder, "encoder") : 0;
+  const float sign = c.z_is_distance ? -1.0f : 1.0f;
+
+  VendorImport result;
+  ProfileBlockBuilder builder;
+  int64_t current = 0;
+  double current_t = 0.0;
+  while (csv.Next()) {
+    const int64_t id = csv.Int64(i_profile, c.profile.c_str());
+    if (builder.empty() || id != current) {
+      current = id;
+      current_t = csv.Double(i_time, c.time.c_str()) * c.time_scale;
+    }
+    const int64_t encoder = has_encoder ? csv.Int64(i_encoder, c.encoder.c_str()) : 0;
+    builder.Add(csv, id, current_t, encoder, csv.Coordinate(i_x, c.x.c_str()), sign * csv.Coordinate(i_z, c.z.c_str()));
+    ++result.rows;
+  }
+  if (builder.empty()) throw Error(Located(path, "", "holds no point rows"));
+  result.run.profiles = builder.Build(path, "profiles");
+  result.run.attributes["imported_from"] = std::filesystem::path(path).filename().string();
+  if (!has_encoder) result.run.attributes[kEncoderAttribute] = kEncoderAbsent;
+  return result;
+}
+
+bool EncoderAbsent(const RunArchive& run) {
+  const auto it = run.attributes.find(kEncoderAttribute);
+  return it != run.attributes.end() && it->second == kEncoderAbsent;
+}
+
+}  // namespace bead
