@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
       "  bead calibrate offset --rig /tmp/run/rig.yaml /tmp/run/pins.h5\n"
       "  bead flow --rig /tmp/run/rig.yaml /tmp/run/run.h5 -o flow.csv\n"
       "  bead import VENDOR.csv -o run.h5 --profile-column ... (a profiler's own CSV export)\n"
+      "  bead frames --plane plane.yaml --rate-hz 200 frames/*.png -o run.h5 (camera frames)\n"
       "Run 'bead SUBCOMMAND --help' for each subcommand's inputs and outputs.");
   app.require_subcommand(1);
   std::map<std::string, bead::tools::Run> runs;
@@ -28,6 +29,7 @@ int main(int argc, char** argv) {
   runs["identify"] = bead::tools::AddIdentify(app);
   runs["explain"] = bead::tools::AddExplain(app);
   runs["import"] = bead::tools::AddImport(app);
+  runs["frames"] = bead::tools::AddFrames(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

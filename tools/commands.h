@@ -17,5 +17,6 @@ Run AddCalibrate(CLI::App& app);
 Run AddIdentify(CLI::App& app);
 Run AddExplain(CLI::App& app);
 Run AddImport(CLI::App& app);
+Run AddFrames(CLI::App& app);
 
 }  // namespace bead::tools

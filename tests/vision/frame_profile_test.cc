@@ -15,17 +15,8 @@
 namespace bead::vision {
 namespace {
 
-// A camera looking down at the laser plane, slightly tilted: x = -25 mm at
-// column 0 to +25 mm at column 1250 (0.04 mm/px), z = 6 mm at row 0 down
-// to z = -0.9 mm near row 460 (0.015 mm/px), with a perspective term.
-const cv::Matx33d kTrue(0.04, 0.0004, -25.0,  //
-                        0.0002, -0.015, 6.0,  //
-                        0.0, 4e-6, 1.0);
-
-cv::Point2d Apply(const cv::Matx33d& h, cv::Point2d p) {
-  const double w = h(2, 0) * p.x + h(2, 1) * p.y + h(2, 2);
-  return {(h(0, 0) * p.x + h(0, 1) * p.y + h(0, 2)) / w, (h(1, 0) * p.x + h(1, 1) * p.y + h(1, 2)) / w};
-}
+using test::Apply;
+const cv::Matx33d& kTrue = test::kTiltedCamera;
 
 LaserPlaneMap TrueMap() {
   LaserPlaneMap m;
@@ -78,27 +69,12 @@ TEST(LaserPlaneMap, RejectsTooFewLinedUpOrWrongPoints) {
   EXPECT_NE(message([&] { FitLaserPlaneMap(px, mm); }).find("mm off the fitted map"), std::string::npos);
 }
 
-// The row where column u's pixels meet the outline z = f(x) on the laser
-// plane: g(v) = z(u, v) - f(x(u, v)) falls with v (z falls 0.015 mm a row
-// while x moves 0.0004 mm, against f's slope of at most 1): bisection.
-double StripeRow(int u, const std::function<double(double)>& f) {
-  double lo = 0.0, hi = 470.0;
-  for (int i = 0; i < 60; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    const cv::Point2d p = Apply(kTrue, {static_cast<double>(u), mid});
-    (p.y - f(p.x) > 0.0 ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
-}
-
-// A parabola 12 mm wide and 3 mm high on the surface z = 0 (area
-// 2/3 * 12 * 3 = 24 mm^2), through the camera: the geometry of the frame's
-// profile. Edges err by at most H dx / 2 each (bead_geometry_test.cc) with
+// test::Parabola12x3 (24 mm^2) through the camera: the geometry of the
+// frame's profile. Edges err by at most H dx / 2 each (bead_geometry_test.cc) with
 // dx = 0.04 mm a column; the 8-bit stripe centre errs by at most 0.036 px
 // (stripe_test.cc's bound), 0.015 mm/px, over the 12 mm of the bead.
 TEST(FrameProfile, ParabolicBeadMeasuresAsItsShape) {
-  auto parabola = [](double x) { return std::abs(x) < 6.0 ? 3.0 * (1.0 - x * x / 36.0) : 0.0; };
-  const test::Stripe stripe{[&](int u) { return StripeRow(u, parabola); }, 1.6, 180.0, 12.0};
+  const test::Stripe stripe{[](int u) { return test::StripeRow(u, test::Parabola12x3); }, 1.6, 180.0, 12.0};
   const double dx = 0.04, height = 3.0, width = 12.0;
   for (int depth : {CV_32F, CV_8U}) {
     const cv::Mat frame = test::RenderStripe(470, 1251, stripe, depth);
