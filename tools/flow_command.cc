@@ -5,7 +5,7 @@
 #include "libbead/flow/flow.h"
 #include "libbead/io/flow_csv.h"
 #include "libbead/io/rig_yaml.h"
-#include "libbead/io/vendor_csv.h"
+#include "libbead/io/run_archive.h"
 #include "libbead/profile/measure_block.h"
 #include "tools/commands.h"
 #include "tools/load_profiles.h"

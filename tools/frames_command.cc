@@ -8,7 +8,6 @@
 
 #include "libbead/core/error.h"
 #include "libbead/io/run_archive.h"
-#include "libbead/io/vendor_csv.h"
 #include "libbead/vision/frame_profile.h"
 #include "libbead/vision/laser_plane_yaml.h"
 #include "tools/commands.h"

@@ -43,6 +43,17 @@ struct RunArchive {
   std::map<std::string, std::string> attributes;  // root string attributes
 };
 
+// An archive written without encoder readings (`bead import` of an export
+// without an encoder column, `bead frames`) holds encoder 0 and says so in
+// the root attribute encoder = "absent" (an extension of the spec): what
+// needs the wheel's motion refuses it instead of reading a standstill.
+inline constexpr const char* kEncoderAttribute = "encoder";
+inline constexpr const char* kEncoderAbsent = "absent";
+inline bool EncoderAbsent(const RunArchive& run) {
+  const auto it = run.attributes.find(kEncoderAttribute);
+  return it != run.attributes.end() && it->second == kEncoderAbsent;
+}
+
 struct PinScan {
   int64_t start_encoder = 0;  // counter read with the pin under the nozzle centre
   ProfileBlock profiles;

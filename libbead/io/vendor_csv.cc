@@ -63,9 +63,4 @@ VendorImport ReadVendorCsv(const std::string& path, const VendorCsvColumns& c) {
   return result;
 }
 
-bool EncoderAbsent(const RunArchive& run) {
-  const auto it = run.attributes.find(kEncoderAttribute);
-  return it != run.attributes.end() && it->second == kEncoderAbsent;
-}
-
 }  // namespace bead

@@ -3,8 +3,9 @@
 // which is which; the others are ignored), z either as height or as the
 // distance from the sensor. Read into a run archive of
 // shared/spec/data-formats.md; an export without an encoder column gets
-// encoder 0 and the root attribute encoder = "absent", so what needs the
-// wheel's motion can refuse it instead of reading a standstill.
+// encoder 0 and the root attribute encoder = "absent" (run_archive.h), so
+// what needs the wheel's motion can refuse it instead of reading a
+// standstill.
 #pragma once
 
 #include <cstddef>
@@ -31,10 +32,5 @@ struct VendorImport {
 
 // Throws bead::Error naming the file, the line and the column.
 VendorImport ReadVendorCsv(const std::string& path, const VendorCsvColumns& columns);
-
-// The root attribute an import without encoder readings carries.
-inline constexpr const char* kEncoderAttribute = "encoder";
-inline constexpr const char* kEncoderAbsent = "absent";
-bool EncoderAbsent(const RunArchive& run);
 
 }  // namespace bead

@@ -14,6 +14,7 @@ void FrameProfile(const cv::Mat& frame, const LaserPlaneMap& map, const StripeOp
   for (std::size_t u = 0; u < rows.size(); ++u) {
     if (std::isnan(rows[u])) continue;
     const cv::Point2d p = ToLaserPlane(map, {static_cast<double>(u), rows[u]});
+    if (!(std::isfinite(p.x) && std::isfinite(p.y))) continue;  // the plane's horizon: no point on it
     x_mm[u] = static_cast<float>(p.x);
     z_mm[u] = static_cast<float>(p.y);
   }

@@ -1,7 +1,8 @@
 // A camera frame of the laser stripe as a profile: each column's stripe
 // centre (stripe.h) mapped onto the laser plane (laser_plane.h), one point
-// per image column, in column order; a column without a stripe gives a
-// point with x and z NaN (the profile stages skip it). The result feeds
+// per image column, in column order; a column without a stripe (or whose
+// centre maps to the plane's horizon) gives a point with x and z NaN (the
+// profile stages skip it). The result feeds
 // bead::ProfileProcessor like a profiler's own profile.
 #pragma once
 

@@ -6,7 +6,6 @@
 #include "libbead/io/vendor_csv.h"
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cmath>
 #include <fstream>
@@ -14,7 +13,7 @@
 
 #include "libbead/core/error.h"
 #include "libbead/profile/measure_block.h"
-#include "tests/support/temp_dir.h"
+#include "tests/support/run_cli.h"
 
 namespace bead {
 namespace {
@@ -164,12 +163,7 @@ TEST(VendorCsv, CommandLineImportsMeasuresAndRefusesFlow) {
                   "encoder: {counts_per_rev: 4096, bits: 32, direction: 1}\n"
                   "wheel: {diameter_mm: 254.762}\noffset: {counts: 3000}\n"
                   "sensor: {reference_areas_mm: [[-24, -12], [12, 24]]}\n");
-  auto run = [&](const std::string& args) {
-    const std::string cmd = std::string(BEAD_CLI) + " " + args + " >" + (dir / "out.txt") + " 2>&1";
-    const int status = std::system(cmd.c_str());
-    EXPECT_TRUE(WIFEXITED(status)) << args;
-    return std::make_pair(WEXITSTATUS(status), test::ReadText(dir / "out.txt"));
-  };
+  auto run = [&](const std::string& args) { return test::RunCli(dir, args); };
   const std::string h5 = dir / "layer.h5";
   auto [imported, import_out] = run("import " + kReal + " -o " + h5 +
                                     " --profile-column ScanID --time-column Timestamp --x-column X --z-column Z"

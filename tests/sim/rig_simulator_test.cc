@@ -88,7 +88,9 @@ TEST(RigSimulator, NoUndercutStraightAboveVisibleEqualsTrue) {
   const SimulatedRun undercut = Simulate(c);
   const auto& p = undercut.truth.profiles;
   for (std::size_t k = 0; k < p.t_s.size(); ++k)
-    if (p.area_true_mm2[k] > 0) EXPECT_GT(p.area_visible_mm2[k], p.area_true_mm2[k] * 1.01);
+    if (p.area_true_mm2[k] > 0) {
+      EXPECT_GT(p.area_visible_mm2[k], p.area_true_mm2[k] * 1.01);
+    }
 }
 
 // The pin's widest chord crosses the laser where the offset puts it: the
@@ -157,7 +159,9 @@ TEST(RigSimulator, EffectsChangeWhatTheyShould) {
   const auto& a = run.truth.profiles.area_true_mm2;
   const auto& b = plain.truth.profiles.area_true_mm2;
   for (std::size_t k = 0; k < a.size(); ++k)
-    if (b[k] > 0) EXPECT_NEAR(a[k] / b[k], factor, 1e-9);
+    if (b[k] > 0) {
+      EXPECT_NEAR(a[k] / b[k], factor, 1e-9);
+    }
 }
 
 TEST(RigSimulator, SameSeedSameBytesOtherSeedOtherNoise) {

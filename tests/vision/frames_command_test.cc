@@ -3,7 +3,6 @@
 // points, become a run archive that `bead measure` measures as the bead;
 // unreadable frames and bad plane files are errors naming the file.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <opencv2/imgcodecs.hpp>
 
@@ -11,20 +10,14 @@
 #include <sstream>
 
 #include "libbead/io/csv_reader.h"
-#include "libbead/io/vendor_csv.h"
 #include "libbead/io/run_archive.h"
-#include "tests/support/temp_dir.h"
+#include "tests/support/run_cli.h"
 #include "tests/vision/render_stripe.h"
 
 namespace bead {
 namespace {
 
-std::pair<int, std::string> RunBead(const test::TempDir& dir, const std::string& args) {
-  const std::string cmd = std::string(BEAD_CLI) + " " + args + " >" + (dir / "out.txt") + " 2>&1";
-  const int status = std::system(cmd.c_str());
-  EXPECT_TRUE(WIFEXITED(status)) << args;
-  return {WEXITSTATUS(status), test::ReadText(dir / "out.txt")};
-}
+using test::RunCli;
 
 TEST(FramesCommand, PngFramesMeasureAsTheBead) {
   test::TempDir dir;
@@ -48,7 +41,7 @@ TEST(FramesCommand, PngFramesMeasureAsTheBead) {
     ASSERT_TRUE(cv::imwrite(path, frame));
     frames += " " + path;
   }
-  auto [read, read_out] = RunBead(dir, "frames --plane " + (dir / "plane.yaml") + " --rate-hz 200" + frames + " -o " +
+  auto [read, read_out] = RunCli(dir, "frames --plane " + (dir / "plane.yaml") + " --rate-hz 200" + frames + " -o " +
                                            (dir / "run.h5"));
   ASSERT_EQ(read, 0) << read_out;
   EXPECT_NE(read_out.find("3 frames of 1251 columns: 3753 stripe points"), std::string::npos) << read_out;
@@ -57,7 +50,7 @@ TEST(FramesCommand, PngFramesMeasureAsTheBead) {
   EXPECT_EQ(run.profiles.t_s, (std::vector<double>{0.0, 0.005, 0.010}));
 
   auto [measured, measure_out] =
-      RunBead(dir, "measure --occlusion none --rig " + (dir / "rig.yaml") + " " + (dir / "run.h5") + " -o " +
+      RunCli(dir, "measure --occlusion none --rig " + (dir / "rig.yaml") + " " + (dir / "run.h5") + " -o " +
                        (dir / "g.csv"));
   ASSERT_EQ(measured, 0) << measure_out;
   CsvReader csv(dir / "g.csv");
@@ -79,20 +72,20 @@ TEST(FramesCommand, UnreadableFramesAndBadPlaneFilesNameTheFile) {
   test::WriteText(dir / "not-an-image.png", "profile,t_s\n");
   cv::imwrite(dir / "frame.png", cv::Mat(50, 60, CV_8U, cv::Scalar(0)));
   auto [few, few_out] =
-      RunBead(dir, "frames --plane " + (dir / "plane.yaml") + " --rate-hz 10 " + (dir / "frame.png") + " -o " +
+      RunCli(dir, "frames --plane " + (dir / "plane.yaml") + " --rate-hz 10 " + (dir / "frame.png") + " -o " +
                        (dir / "run.h5"));
   EXPECT_EQ(few, 1);
   EXPECT_NE(few_out.find(dir / "plane.yaml"), std::string::npos) << few_out;
   EXPECT_NE(few_out.find("needs 4 or more"), std::string::npos) << few_out;
   test::WriteText(dir / "plane.yaml", "points:\n  - [0, 0, 0, 0]\n  - [100, 0, 4, 0]\n  - [0, 100, 0, -1.5]\n"
                                       "  - [100, 100, 4, -1.5]\n  - [50, 50, two, 1]\n");
-  auto [bad, bad_out] = RunBead(dir, "frames --plane " + (dir / "plane.yaml") + " --rate-hz 10 " +
+  auto [bad, bad_out] = RunCli(dir, "frames --plane " + (dir / "plane.yaml") + " --rate-hz 10 " +
                                          (dir / "frame.png") + " -o " + (dir / "run.h5"));
   EXPECT_EQ(bad, 1);
   EXPECT_NE(bad_out.find(dir / "plane.yaml" + ": line 6: points"), std::string::npos) << bad_out;
   test::WriteText(dir / "plane.yaml", "points:\n  - [0, 0, 0, 0]\n  - [100, 0, 4, 0]\n  - [0, 100, 0, -1.5]\n"
                                       "  - [100, 100, 4, -1.5]\n");
-  auto [image, image_out] = RunBead(dir, "frames --plane " + (dir / "plane.yaml") + " --rate-hz 10 " +
+  auto [image, image_out] = RunCli(dir, "frames --plane " + (dir / "plane.yaml") + " --rate-hz 10 " +
                                              (dir / "not-an-image.png") + " -o " + (dir / "run.h5"));
   EXPECT_EQ(image, 1);
   EXPECT_NE(image_out.find(dir / "not-an-image.png" + ": not an image"), std::string::npos) << image_out;
