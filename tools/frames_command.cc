@@ -75,8 +75,7 @@ Run AddFrames(CLI::App& app) {
     if (tty) std::fprintf(stderr, "\n");
     run.attributes[kEncoderAttribute] = kEncoderAbsent;
     run.attributes["laser_plane"] = std::filesystem::path(args->plane).filename().string();
-    ValidateProfileBlock(b, args->output, "profiles");
-    WriteRunArchive(args->output, run);
+    WriteRunArchive(args->output, run);  // validates the block
     std::printf("%zu frames of %zu columns: %zu stripe points (%.1f %%); wrote %s\n", b.size(), columns, points,
                 100.0 * static_cast<double>(points) / static_cast<double>(b.size() * columns), args->output.c_str());
     return 0;

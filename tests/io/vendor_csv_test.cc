@@ -13,6 +13,7 @@
 
 #include "libbead/core/error.h"
 #include "libbead/profile/measure_block.h"
+#include "tests/support/expect_rejected.h"
 #include "tests/support/run_cli.h"
 
 namespace bead {
@@ -143,14 +144,7 @@ TEST(VendorCsv, MalformedExportsAreRejectedWithFileLineAndColumn) {
   for (const Case& c : cases) {
     const std::string path = dir / c.name;
     test::WriteText(path, c.text);
-    try {
-      ReadVendorCsv(path, columns);
-      ADD_FAILURE() << c.name << " was accepted";
-    } catch (const Error& e) {
-      const std::string what = e.what();
-      EXPECT_EQ(what.rfind(path + ": ", 0), 0u) << c.name << ": " << what;
-      EXPECT_NE(what.find(c.expect), std::string::npos) << c.name << ": " << what;
-    }
+    test::ExpectRejected(path, c.expect, [&] { ReadVendorCsv(path, columns); });
   }
 }
 
@@ -159,10 +153,7 @@ TEST(VendorCsv, MalformedExportsAreRejectedWithFileLineAndColumn) {
 // flow on it (no encoder readings), each with a message naming the file.
 TEST(VendorCsv, CommandLineImportsMeasuresAndRefusesFlow) {
   test::TempDir dir;
-  test::WriteText(dir / "rig.yaml",
-                  "encoder: {counts_per_rev: 4096, bits: 32, direction: 1}\n"
-                  "wheel: {diameter_mm: 254.762}\noffset: {counts: 3000}\n"
-                  "sensor: {reference_areas_mm: [[-24, -12], [12, 24]]}\n");
+  test::WriteText(dir / "rig.yaml", test::kCliRigYaml);
   auto run = [&](const std::string& args) { return test::RunCli(dir, args); };
   const std::string h5 = dir / "layer.h5";
   auto [imported, import_out] = run("import " + kReal + " -o " + h5 +

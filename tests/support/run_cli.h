@@ -13,6 +13,13 @@
 
 namespace bead::test {
 
+// A rig file for command-line tests: the spec's example rig, the reference
+// areas either side of the bead at [-24, -12] and [12, 24] mm.
+inline const char* const kCliRigYaml =
+    "encoder: {counts_per_rev: 4096, bits: 32, direction: 1}\n"
+    "wheel: {diameter_mm: 254.762}\noffset: {counts: 3000}\n"
+    "sensor: {reference_areas_mm: [[-24, -12], [12, 24]]}\n";
+
 inline std::pair<int, std::string> RunCli(const TempDir& dir, const std::string& args) {
   const std::string cmd = std::string(BEAD_CLI) + " " + args + " >" + (dir / "out.txt") + " 2>&1";
   const int status = std::system(cmd.c_str());

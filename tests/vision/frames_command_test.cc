@@ -29,10 +29,7 @@ TEST(FramesCommand, PngFramesMeasureAsTheBead) {
       plane << "  - [" << u << ", " << v << ", " << std::setprecision(17) << p.x << ", " << p.y << "]\n";
     }
   test::WriteText(dir / "plane.yaml", plane.str());
-  test::WriteText(dir / "rig.yaml",
-                  "encoder: {counts_per_rev: 4096, bits: 32, direction: 1}\n"
-                  "wheel: {diameter_mm: 254.762}\noffset: {counts: 3000}\n"
-                  "sensor: {reference_areas_mm: [[-24, -12], [12, 24]]}\n");
+  test::WriteText(dir / "rig.yaml", test::kCliRigYaml);
   const test::Stripe stripe{[](int u) { return test::StripeRow(u, test::Parabola12x3); }, 1.6, 180.0, 12.0};
   const cv::Mat frame = test::RenderStripe(470, 1251, stripe, CV_8U);
   std::string frames;
@@ -68,25 +65,23 @@ TEST(FramesCommand, PngFramesMeasureAsTheBead) {
 
 TEST(FramesCommand, UnreadableFramesAndBadPlaneFilesNameTheFile) {
   test::TempDir dir;
-  test::WriteText(dir / "plane.yaml", "points:\n  - [0, 0, 0, 0]\n  - [100, 0, 4, 0]\n  - [0, 100, 0, -1.5]\n");
   test::WriteText(dir / "not-an-image.png", "profile,t_s\n");
   cv::imwrite(dir / "frame.png", cv::Mat(50, 60, CV_8U, cv::Scalar(0)));
-  auto [few, few_out] =
-      RunCli(dir, "frames --plane " + (dir / "plane.yaml") + " --rate-hz 10 " + (dir / "frame.png") + " -o " +
-                       (dir / "run.h5"));
+  // `bead frames` on one frame with the plane file `plane`.
+  auto frames = [&](const std::string& plane, const std::string& frame) {
+    test::WriteText(dir / "plane.yaml", plane);
+    return RunCli(dir, "frames --plane " + (dir / "plane.yaml") + " --rate-hz 10 " + (dir / frame) + " -o " +
+                           (dir / "run.h5"));
+  };
+  const std::string three = "points:\n  - [0, 0, 0, 0]\n  - [100, 0, 4, 0]\n  - [0, 100, 0, -1.5]\n";
+  auto [few, few_out] = frames(three, "frame.png");
   EXPECT_EQ(few, 1);
   EXPECT_NE(few_out.find(dir / "plane.yaml"), std::string::npos) << few_out;
   EXPECT_NE(few_out.find("needs 4 or more"), std::string::npos) << few_out;
-  test::WriteText(dir / "plane.yaml", "points:\n  - [0, 0, 0, 0]\n  - [100, 0, 4, 0]\n  - [0, 100, 0, -1.5]\n"
-                                      "  - [100, 100, 4, -1.5]\n  - [50, 50, two, 1]\n");
-  auto [bad, bad_out] = RunCli(dir, "frames --plane " + (dir / "plane.yaml") + " --rate-hz 10 " +
-                                         (dir / "frame.png") + " -o " + (dir / "run.h5"));
+  auto [bad, bad_out] = frames(three + "  - [100, 100, 4, -1.5]\n  - [50, 50, two, 1]\n", "frame.png");
   EXPECT_EQ(bad, 1);
   EXPECT_NE(bad_out.find(dir / "plane.yaml" + ": line 6: points"), std::string::npos) << bad_out;
-  test::WriteText(dir / "plane.yaml", "points:\n  - [0, 0, 0, 0]\n  - [100, 0, 4, 0]\n  - [0, 100, 0, -1.5]\n"
-                                      "  - [100, 100, 4, -1.5]\n");
-  auto [image, image_out] = RunCli(dir, "frames --plane " + (dir / "plane.yaml") + " --rate-hz 10 " +
-                                             (dir / "not-an-image.png") + " -o " + (dir / "run.h5"));
+  auto [image, image_out] = frames(three + "  - [100, 100, 4, -1.5]\n", "not-an-image.png");
   EXPECT_EQ(image, 1);
   EXPECT_NE(image_out.find(dir / "not-an-image.png" + ": not an image"), std::string::npos) << image_out;
   EXPECT_FALSE(std::filesystem::exists(dir / "run.h5"));
