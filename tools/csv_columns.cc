@@ -1,56 +1,109 @@
 #include "tools/csv_columns.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 
 #include "libbead/core/error.h"
 #include "libbead/io/csv_reader.h"
 
 namespace bead::tools {
+namespace {
 
-Series ReadColumns(const std::string& path, const std::string& time, const std::string& input, const std::string& output) {
+// Columns by name (an empty name: the row number as time); rows with a
+// missing or non-numeric value are skipped and counted.
+struct Columns {
+  std::vector<std::vector<double>> v;
+  int skipped = 0;
+};
+
+Columns Read(const std::string& path, const std::vector<std::string>& names, bool first_is_time) {
   CsvReader csv(path);
   const auto header = csv.Header({}, "data CSV with a header row");
   auto find = [&](const std::string& name) -> long {
+    if (name.empty()) return -1;
     for (std::size_t i = 0; i < header.size(); ++i)
       if (header[i] == name) return static_cast<long>(i);
     std::string all;
     for (const auto& h : header) all += (all.empty() ? "" : ", ") + h;
     throw Error(Located(path, "line 1", "no column '" + name + "' (columns: " + all + ")"));
   };
-  const long ti = time.empty() ? -1 : find(time), ui = find(input), yi = find(output);
-  Series s;
+  std::vector<long> cols;
+  for (const auto& n : names) cols.push_back(find(n));
+  Columns out;
+  out.v.resize(names.size());
   long row = 0;
+  std::vector<double> v(names.size());
   while (csv.Next()) {
     ++row;
-    double v[3];
     bool ok = true;
-    const long cols[3] = {ti, ui, yi};
-    for (int k = 0; k < 3; ++k) {
+    for (std::size_t k = 0; k < cols.size() && ok; ++k) {
       if (cols[k] < 0) {
         v[k] = static_cast<double>(row - 1);
         continue;
       }
-      if (static_cast<std::size_t>(cols[k]) >= csv.columns() || csv.Empty(static_cast<std::size_t>(cols[k]))) {
+      const auto c = static_cast<std::size_t>(cols[k]);
+      if (c >= csv.columns() || csv.Empty(c)) {
         ok = false;
         break;
       }
       char* end = nullptr;
-      const std::string f(csv.Field(static_cast<std::size_t>(cols[k])));
+      const std::string f(csv.Field(c));
       v[k] = std::strtod(f.c_str(), &end);
-      ok = ok && end && *end == '\0' && std::isfinite(v[k]);
+      ok = end && *end == '\0' && std::isfinite(v[k]);
     }
     if (!ok) {
-      ++s.skipped;
+      ++out.skipped;
       continue;
     }
-    if (!s.t.empty() && !(v[0] > s.t.back()))
-      csv.Fail("time does not increase (" + std::to_string(s.t.back()) + " then " + std::to_string(v[0]) + ")");
-    s.t.push_back(v[0]);
-    s.u.push_back(v[1]);
-    s.y.push_back(v[2]);
+    if (first_is_time && !out.v[0].empty() && !(v[0] > out.v[0].back()))
+      csv.Fail("time does not increase (" + std::to_string(out.v[0].back()) + " then " + std::to_string(v[0]) + ")");
+    for (std::size_t k = 0; k < v.size(); ++k) out.v[k].push_back(v[k]);
   }
-  if (s.t.size() < 20) throw Error(Located(path, "", "fewer than 20 usable rows"));
+  return out;
+}
+
+}  // namespace
+
+Series ReadColumns(const std::string& path, const std::string& time, const std::string& input, const std::string& output) {
+  return ReadSeries({path, time, input, output, "", ""});
+}
+
+Series ReadSeries(const SeriesSpec& spec) {
+  Series s;
+  if (spec.input_path.empty()) {
+    Columns c = Read(spec.path, {spec.time, spec.input, spec.output}, true);
+    s.t = std::move(c.v[0]);
+    s.u = std::move(c.v[1]);
+    s.y = std::move(c.v[2]);
+    s.skipped = c.skipped;
+  } else {
+    if (spec.time.empty() || spec.input_time.empty())
+      throw Error(Located(spec.input_path, "", "an input on its own clock needs --time and --input-time columns"));
+    Columns out = Read(spec.path, {spec.time, spec.output}, true);
+    Columns in = Read(spec.input_path, {spec.input_time, spec.input}, true);
+    if (in.v[0].empty()) throw Error(Located(spec.input_path, "", "no usable input rows"));
+    s.skipped = out.skipped;
+    int before = 0;
+    for (std::size_t i = 0; i < out.v[0].size(); ++i) {
+      const double t = out.v[0][i];
+      const auto it = std::upper_bound(in.v[0].begin(), in.v[0].end(), t);
+      if (it == in.v[0].begin()) {
+        ++before;
+        continue;
+      }
+      s.t.push_back(t);
+      s.u.push_back(in.v[1][static_cast<std::size_t>(it - in.v[0].begin()) - 1]);
+      s.y.push_back(out.v[1][i]);
+    }
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "input '%s' from %s (%zu rows, %d skipped) held at each of the output's times%s",
+                  spec.input.c_str(), spec.input_path.c_str(), in.v[0].size(), in.skipped,
+                  before ? (", " + std::to_string(before) + " output rows before the first input left out").c_str() : "");
+    s.note = buf;
+  }
+  if (s.t.size() < 20) throw Error(Located(spec.path, "", "fewer than 20 usable rows"));
   return s;
 }
 

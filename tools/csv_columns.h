@@ -1,7 +1,9 @@
-// Three named columns of any CSV with a header row (time, input, output),
-// for the commands that take measured data from anywhere (identify,
-// explain). Rows with an empty or non-numeric field in them are skipped as
-// gaps, and counted; time must increase.
+// Named columns of any CSV with a header row (time, input, output), for the
+// commands that take measured data from anywhere (identify, explain). Rows
+// with an empty or non-numeric field in them are skipped as gaps, and
+// counted; time must increase. The input may come from a file and clock of
+// its own (a power source's log beside a camera's): it is then held at
+// each output time (its last sample at or before it), as such a state is.
 #pragma once
 
 #include <string>
@@ -12,10 +14,17 @@ namespace bead::tools {
 struct Series {
   std::vector<double> t, u, y;
   int skipped = 0;
+  std::string note;  // how the input was joined, when it came from its own file
+};
+
+struct SeriesSpec {
+  std::string path, time, input, output;
+  std::string input_path, input_time;  // the input's own file and time column (empty: in `path`)
 };
 
 // Without a time column, rows are unit-spaced. Throws bead::Error naming
 // the file and line.
 Series ReadColumns(const std::string& path, const std::string& time, const std::string& input, const std::string& output);
+Series ReadSeries(const SeriesSpec& spec);
 
 }  // namespace bead::tools

@@ -20,6 +20,7 @@
 #include "libbead/profile/measure_block.h"
 #include "tools/commands.h"
 #include "tools/csv_columns.h"
+#include "tools/model_json.h"
 #include "tools/load_profiles.h"
 #include "tools/occlusion_step.h"
 
@@ -27,32 +28,6 @@ namespace bead::tools {
 namespace {
 
 using nlohmann::json;
-
-// A model written by `bead identify -o`: num, den (descending powers of s), delay_s.
-model::TransferFunction ReadModel(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(Located(path, "", "cannot open the model file"));
-  json j;
-  try {
-    in >> j;
-  } catch (const json::exception& e) {
-    throw Error(Located(path, "", std::string("not JSON: ") + e.what()));
-  }
-  model::TransferFunction tf;
-  try {
-    tf.num = j.at("num").get<std::vector<double>>();
-    tf.den = j.at("den").get<std::vector<double>>();
-    tf.delay_s = j.value("delay_s", 0.0);
-  } catch (const json::exception& e) {
-    throw Error(Located(path, "", std::string("needs num, den (arrays of numbers) and delay_s: ") + e.what()));
-  }
-  try {
-    tf.Validate();
-  } catch (const Error& e) {
-    throw Error(Located(path, "", e.what()));
-  }
-  return tf;
-}
 
 json ToJson(const explain::Whiteness& w) {
   return {{"lags", w.lags}, {"acf", w.acf}, {"bound", w.bound}, {"outside", w.outside},
@@ -206,7 +181,7 @@ Run AddExplain(CLI::App& app) {
                          const std::string& where, std::string& source) {
       if (!args->model.empty()) {
         source = args->model;
-        return ReadModel(args->model);
+        return ReadModelFile(args->model).tf;
       }
       const model::IdentifiedModel m = model::IdentifyTransferFunction(t, u, y, id);
       if (!m.ok) throw Error(Located(where, "", "no model could be identified: " + m.reason));

@@ -2,115 +2,156 @@
 
 #include <cmath>
 #include <cstdio>
-#include <map>
 #include <optional>
 
 #include "libbead/core/error.h"
 #include "libbead/io/atomic_file.h"
 #include "libbead/model/identify.h"
+#include "libbead/series/process_on.h"
 #include "tools/commands.h"
 #include "tools/csv_columns.h"
+#include "tools/model_json.h"
 
 namespace bead::tools {
-namespace {
 
-std::string Polynomial(const std::vector<double>& c) {
-  std::string out;
-  const int n = static_cast<int>(c.size()) - 1;
-  for (int k = 0; k <= n; ++k) {
-    char buf[64];
-    std::snprintf(buf, sizeof(buf), "%s%.6g%s", k ? " + " : "", c[static_cast<std::size_t>(k)],
-                  n - k == 0 ? "" : (n - k == 1 ? " s" : (" s^" + std::to_string(n - k)).c_str()));
-    out += buf;
-  }
-  return out;
+// --structure: tf (any poles/zeros) or a procest-style process model.
+void ApplyStructure(const std::string& structure, model::IdentifyOptions& o) {
+  if (structure == "tf") return;
+  struct Form {
+    const char* name;
+    int poles, zeros;
+  };
+  static const Form forms[] = {{"P1D", 1, 0}, {"P1DZ", 1, 1}, {"P2D", 2, 0}, {"P2DZ", 2, 1}, {"P3D", 3, 0}, {"P3DZ", 3, 1}};
+  for (const Form& f : forms)
+    if (structure == f.name) {
+      o.poles = f.poles;
+      o.zeros = f.zeros;
+      o.real_poles = true;
+      return;
+    }
+  throw Error("--structure must be tf, P1D, P1DZ, P2D, P2DZ, P3D or P3DZ, got '" + structure + "'");
 }
-
-}  // namespace
 
 Run AddIdentify(CLI::App& app) {
   struct Args {
-    std::string data, input, output, time, delay = "auto", validate, out;
+    std::string data, input, output, time, input_file, input_time, delay = "auto", validate, out, structure = "tf";
     int poles = 2, zeros = 1;
     double max_delay_s = 1.0;
-    bool orders = false;
+    bool orders = false, from_rest = false, keep_off = false;
   };
   auto args = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand("identify", "Identify a transfer function (poles, zeros, delay) from data");
   cmd->footer(
       "In:  any CSV with a header row; --input and --output name its columns, --time the time column\n"
-      "     (seconds; without it, rows are unit-spaced). Rows with an empty field are skipped as gaps;\n"
-      "     the model starts from rest, so give deviations from the operating point.\n"
-      "Out: the model, MATLAB-style fit % on estimation (and validation) data, AIC/AICc/BIC/FPE;\n"
-      "     with --orders the thesis Table 3 (poles 1-3, zeros 0-2), validated on --validate or on\n"
-      "     the second half of DATA; -o a JSON model file (written atomically).\n"
-      "Example:\n"
-      "  bead identify flow.csv --time t_s --input screw_rpm --output flow_mm3_s --poles 2 --zeros 2 -o model.json");
+      "     (seconds; without it, rows are unit-spaced; uneven sampling is fine). Rows with an empty\n"
+      "     field are gaps. The input may come from its own file and clock (--input-file, --input-time):\n"
+      "     it is held at each output time. The record may start mid-process: the operating point (a\n"
+      "     constant term) and each stretch's initial state are estimated, as MATLAB's tfest does with\n"
+      "     InitialCondition 'estimate' (--from-rest: neither). Where the output sits at zero while the\n"
+      "     input does not (the arc or extruder off), the process was off: reported and left out.\n"
+      "     The delay: a profile of the loss at every sample step up to --max-delay-s, its best basins\n"
+      "     refined by output error; two basins the data cannot tell apart are reported.\n"
+      "Out: the model (and its process form K, Tp, Tz, Td for real poles), its operating point, MATLAB-\n"
+      "     style fit % on the data as given (and on --validate), AIC/AICc/BIC/FPE; with --orders the\n"
+      "     thesis Table 3 (poles 1-3, zeros 0-2), validated on --validate or on the second half of\n"
+      "     DATA; -o a JSON model file (written atomically) with the delay profile.\n"
+      "Examples:\n"
+      "  bead identify flow.csv --time t_s --input screw_rpm --output flow_mm3_s --poles 2 --zeros 2 -o model.json\n"
+      "  bead identify width.csv --time t --output w --input-file wfs.csv --input-time t --input wfs --structure P1D");
   cmd->add_option("data", args->data, "Data CSV")->required()->check(CLI::ExistingFile);
   cmd->add_option("--input", args->input, "Input column")->required();
   cmd->add_option("--output", args->output, "Output column")->required();
   cmd->add_option("--time", args->time, "Time column (s)");
+  cmd->add_option("--input-file", args->input_file, "The input's own CSV (its own clock)")->check(CLI::ExistingFile);
+  cmd->add_option("--input-time", args->input_time, "Time column of --input-file (default: --time's name)");
   cmd->add_option("--poles", args->poles, "Number of poles")->capture_default_str()->check(CLI::Range(1, 6));
   cmd->add_option("--zeros", args->zeros, "Number of zeros (<= poles)")->capture_default_str()->check(CLI::Range(0, 6));
+  cmd->add_option("--structure", args->structure, "tf, or a process model: P1D, P1DZ, P2D, P2DZ, P3D, P3DZ")
+      ->capture_default_str();
   cmd->add_option("--delay", args->delay, "Input delay: auto or seconds")->capture_default_str();
   cmd->add_option("--max-delay-s", args->max_delay_s, "Largest delay searched by --delay auto")->capture_default_str();
+  cmd->add_flag("--from-rest", args->from_rest, "No operating point or initial state: the data start from rest at 0");
+  cmd->add_flag("--keep-off", args->keep_off, "Fit the stretches where the process was off too");
   cmd->add_option("--validate", args->validate, "Validation CSV (same columns)")->check(CLI::ExistingFile);
   cmd->add_flag("--orders", args->orders, "Print the order-selection table");
   cmd->add_option("-o,--out", args->out, "Model JSON to write");
   return [args]() {
-    const Series est = ReadColumns(args->data, args->time, args->input, args->output);
+    auto read = [&](const std::string& path) {
+      SeriesSpec spec{path, args->time, args->input, args->output, args->input_file,
+                      args->input_time.empty() ? args->time : args->input_time};
+      return ReadSeries(spec);
+    };
+    const Series est = read(args->data);
     model::IdentifyOptions o;
     o.poles = args->poles;
     o.zeros = args->zeros;
+    ApplyStructure(args->structure, o);
+    if (o.zeros > o.poles) throw Error("--zeros (" + std::to_string(o.zeros) + ") must not exceed --poles");
     o.max_delay_s = args->max_delay_s;
+    o.estimate_offset = o.estimate_initial_state = !args->from_rest;
     if (args->delay != "auto") {
       try {
         o.delay_s = std::stod(args->delay);
       } catch (const std::exception&) {
         throw Error("--delay must be 'auto' or a number of seconds, got '" + args->delay + "'");
       }
+      if (!(*o.delay_s >= 0)) throw Error("--delay must be >= 0 s");
     }
     std::printf("%s: %zu rows (%d skipped as gaps)\n", args->data.c_str(), est.t.size(), est.skipped);
-    const model::IdentifiedModel m = model::IdentifyTransferFunction(est.t, est.u, est.y, o);
+    if (!est.note.empty()) std::printf("%s\n", est.note.c_str());
+    auto stretches = [&](const Series& s, const std::string& path) {
+      ProcessOn on;
+      if (args->keep_off) {
+        on.segments = WholeRecord(s.t.size());
+      } else {
+        on = FindProcessOn(s.t, s.u, s.y);
+        if (!on.excluded.empty()) std::printf("%s: left out of the fit: %s\n", path.c_str(), DescribeExclusions(on.excluded).c_str());
+      }
+      if (on.segments.empty()) throw Error(Located(path, "", "no stretch where the process ran: nothing to fit"));
+      return on;
+    };
+    const ProcessOn on = stretches(est, args->data);
+    const model::IdentifiedModel m = model::IdentifyTransferFunction(est.t, est.u, est.y, o, on.segments);
     if (!m.ok) throw Error(Located(args->data, "", "no model: " + m.reason));
     std::optional<Series> val;
-    if (!args->validate.empty()) val = ReadColumns(args->validate, args->time, args->input, args->output);
-    std::printf("model: (%s) / (%s) * exp(-%.4g s)\n", Polynomial(m.tf.num).c_str(), Polynomial(m.tf.den).c_str(),
-                m.tf.delay_s);
-    std::printf("DC gain %.6g; poles:", m.tf.DcGain());
-    for (std::size_t k = 0; k < m.poles_real.size(); ++k) std::printf(" %.4g%+.4gi", m.poles_real[k], m.poles_imag[k]);
-    std::printf("\nfit on estimation data: %.2f %%\n", m.fit_percent);
+    std::optional<ProcessOn> val_on;
+    if (!args->validate.empty()) {
+      val = read(args->validate);
+      val_on = stretches(*val, args->validate);
+    }
+    PrintModel(m, o);
+    std::printf("fit on estimation data: %.2f %%\n", m.fit_percent);
     double fit_val = NAN;
     if (val) {
-      fit_val = model::ValidateFitPercent(m.tf, val->t, val->u, val->y);
-      std::printf("fit on validation data (%s): %.2f %%\n", args->validate.c_str(), fit_val);
+      fit_val = model::ValidateFitPercent(m.tf, m.offset, val->t, val->u, val->y, val_on->segments);
+      std::printf("fit on validation data (%s, initial state fitted): %.2f %%\n", args->validate.c_str(), fit_val);
     }
     std::printf("AIC %.6g  AICc %.6g  BIC %.6g  FPE %.6g  (%d parameters)\n", m.criteria.aic, m.criteria.aicc,
                 m.criteria.bic, m.criteria.fpe, m.parameters);
     if (args->orders) {
       Series a = est, b = est;
+      std::vector<Segment> sa = on.segments, sb = on.segments;
       if (val) {
         b = *val;
+        sb = val_on->segments;
       } else {  // estimate on the first half, validate on the second
         const std::size_t h = est.t.size() / 2;
         a = {{est.t.begin(), est.t.begin() + h}, {est.u.begin(), est.u.begin() + h}, {est.y.begin(), est.y.begin() + h}};
         b = {{est.t.begin() + h, est.t.end()}, {est.u.begin() + h, est.u.end()}, {est.y.begin() + h, est.y.end()}};
-        const double t0 = b.t.front();
-        for (double& x : b.t) x -= t0;
+        sa.clear();
+        sb.clear();
+        for (const Segment& s : on.segments) {
+          if (s.begin < h) sa.push_back({s.begin, std::min(s.end, h)});
+          if (s.end > h) sb.push_back({std::max(s.begin, h) - h, s.end - h});
+        }
       }
-      std::printf("\n%6s %6s %12s %12s %12s\n", "poles", "zeros", "fit_est_%", "fit_val_%", "AICc");
-      for (const auto& r : model::OrderTable(a.t, a.u, a.y, b.t, b.u, b.y, o))
-        std::printf("%6d %6d %12.2f %12.2f %12.6g\n", r.poles, r.zeros, r.fit_estimation, r.fit_validation, r.aicc);
+      std::printf("\n%6s %6s %12s %12s %12s %10s\n", "poles", "zeros", "fit_est_%", "fit_val_%", "AICc", "delay_s");
+      for (const auto& r : model::OrderTable(a.t, a.u, a.y, b.t, b.u, b.y, o, sa, sb))
+        std::printf("%6d %6d %12.2f %12.2f %12.6g %10.4f\n", r.poles, r.zeros, r.fit_estimation, r.fit_validation, r.aicc,
+                    r.delay_s);
     }
     if (!args->out.empty()) {
-      nlohmann::json j = {{"input", args->input},         {"output", args->output},
-                          {"num", m.tf.num},              {"den", m.tf.den},
-                          {"delay_s", m.tf.delay_s},      {"poles", o.poles},
-                          {"zeros", o.zeros},             {"parameters", m.parameters},
-                          {"fit_estimation_pct", m.fit_percent},
-                          {"aic", m.criteria.aic},        {"aicc", m.criteria.aicc},
-                          {"bic", m.criteria.bic},        {"fpe", m.criteria.fpe},
-                          {"poles_real", m.poles_real},   {"poles_imag", m.poles_imag}};
+      nlohmann::json j = ModelJson(m, o, args->input, args->output, est.t, on.segments, on.excluded);
       if (val) j["fit_validation_pct"] = fit_val;
       AtomicFile file(args->out);
       file.stream() << j.dump(2) << "\n";

@@ -2,264 +2,440 @@
 
 #include <ceres/ceres.h>
 
-#include "libbead/fit/solver_options.h"
-
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <limits>
 
 #include "libbead/core/error.h"
+#include "libbead/fit/solver_options.h"
+#include "libbead/model/projection.h"
 #include "libbead/series/interpolate.h"
 
 namespace bead::model {
 namespace {
 
-TransferFunction FromTheta(const std::vector<double>& theta, int n, int m, double delay) {
-  TransferFunction tf;
-  tf.den.assign(1, 1.0);
-  for (int k = 0; k < n; ++k) tf.den.push_back(theta[static_cast<std::size_t>(k)]);
-  for (int k = 0; k <= m; ++k) tf.num.push_back(theta[static_cast<std::size_t>(n + k)]);
-  tf.delay_s = std::max(0.0, delay);
-  return tf;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+std::vector<std::complex<double>> Roots(const std::vector<double>& den) {
+  const int n = static_cast<int>(den.size()) - 1;
+  std::vector<std::complex<double>> out;
+  if (n < 1) return out;
+  Eigen::MatrixXd companion = Eigen::MatrixXd::Zero(n, n);
+  for (int k = 0; k < n; ++k) companion(0, k) = -den[static_cast<std::size_t>(k + 1)] / den[0];
+  for (int k = 1; k < n; ++k) companion(k, k - 1) = 1.0;
+  const Eigen::VectorXcd r = companion.eigenvalues();
+  for (int k = 0; k < n; ++k) out.push_back(r(k));
+  return out;
 }
 
-// theta = (a1..an, b0..bm) of a monic denominator.
-std::vector<double> ToTheta(const TransferFunction& tf, int n, int m) {
+std::vector<double> FromRoots(const std::vector<std::complex<double>>& roots) {
+  std::vector<std::complex<double>> poly = {1.0};
+  for (const auto& root : roots) {
+    std::vector<std::complex<double>> next(poly.size() + 1, 0.0);
+    for (std::size_t i = 0; i < poly.size(); ++i) next[i] += poly[i], next[i + 1] -= root * poly[i];
+    poly = next;
+  }
+  std::vector<double> den;
+  for (const auto& c : poly) den.push_back(c.real());
+  return den;
+}
+
+// The search's parameters for a denominator: the logs of its coefficients
+// (any transfer function), or the log time constants of real poles (a process
+// model). A start with poles in the right half plane is reflected into the
+// left (as tfest does with its initial estimates); for a process model a
+// complex pair becomes two real poles about its natural frequency.
+std::vector<double> ToSearch(const std::vector<double>& den, bool real_poles) {
+  std::vector<std::complex<double>> roots = Roots(den);
+  const double floor = 1e-6;
+  for (auto& r : roots)
+    if (!(r.real() < 0)) r = {-std::max(std::abs(r.real()), floor), r.imag()};
+  if (!real_poles) {
+    // Log coefficients: every coefficient of a stable polynomial is
+    // positive, and a pole running fast moves them on a log scale.
+    const std::vector<double> stable = FromRoots(roots);
+    std::vector<double> theta;
+    for (std::size_t k = 1; k < stable.size(); ++k) theta.push_back(std::log(std::max(stable[k], 1e-300)));
+    return theta;
+  }
   std::vector<double> theta;
-  for (int k = 1; k <= n; ++k) theta.push_back(tf.den[static_cast<std::size_t>(k)] / tf.den[0]);
-  for (int k = 0; k <= m; ++k) theta.push_back(tf.num[static_cast<std::size_t>(k)] / tf.den[0]);
+  for (std::size_t k = 0; k < roots.size(); ++k) {
+    double p = std::abs(roots[k]);
+    if (std::abs(roots[k].imag()) > 1e-9 * p) p *= roots[k].imag() > 0 ? 0.8 : 1.25;
+    theta.push_back(std::log(1.0 / std::max(p, floor)));
+  }
   return theta;
 }
 
-double Loss(const TransferFunction& tf, const std::vector<double>& t, const std::vector<double>& u,
-            const std::vector<double>& y) {
-  const auto yhat = Simulate(tf, t, u);
-  double ss = 0;
-  for (std::size_t i = 0; i < y.size(); ++i) ss += (y[i] - yhat[i]) * (y[i] - yhat[i]);
-  return std::isfinite(ss) ? ss / y.size() : INFINITY;
-}
-
-bool Stable(const TransferFunction& tf, std::vector<double>* re = nullptr, std::vector<double>* im = nullptr) {
-  const int n = tf.poles();
-  if (n == 0) return true;
-  Eigen::MatrixXd companion = Eigen::MatrixXd::Zero(n, n);
-  for (int k = 0; k < n; ++k) companion(0, k) = -tf.den[static_cast<std::size_t>(k + 1)] / tf.den[0];
-  for (int k = 1; k < n; ++k) companion(k, k - 1) = 1.0;
-  const Eigen::VectorXcd roots = companion.eigenvalues();
-  bool stable = true;
-  for (int k = 0; k < n; ++k) {
-    stable = stable && roots(k).real() < 0;
-    if (re) re->push_back(roots(k).real());
-    if (im) im->push_back(roots(k).imag());
+std::vector<double> FromSearch(const double* theta, int n, bool real_poles) {
+  if (!real_poles) {
+    std::vector<double> den = {1.0};
+    for (int k = 0; k < n; ++k) den.push_back(std::exp(theta[k]));
+    return den;
   }
-  return stable;
+  std::vector<std::complex<double>> roots;
+  for (int k = 0; k < n; ++k) roots.emplace_back(-std::exp(-theta[k]), 0.0);
+  return FromRoots(roots);
 }
 
-// An unstable start made stable the way MATLAB's tfest does its initial
-// estimates: each pole in the right half plane reflected into the left
-// (its real part negated), the monic denominator rebuilt from the poles.
-// Returns false when the start was stable already.
-bool ReflectUnstablePoles(TransferFunction& tf) {
-  std::vector<double> re, im;
-  if (Stable(tf, &re, &im)) return false;
-  std::vector<std::complex<double>> poly = {1.0};
-  for (std::size_t k = 0; k < re.size(); ++k) {
-    const std::complex<double> root(re[k] < 0 ? re[k] : -std::max(std::abs(re[k]), 1e-6), im[k]);
-    std::vector<std::complex<double>> next(poly.size() + 1, 0.0);
-    for (std::size_t i = 0; i < poly.size(); ++i) {
-      next[i] += poly[i];
-      next[i + 1] -= root * poly[i];
+// The projected output error as a Ceres cost with its own central
+// differences: absolute steps (1e-4 in a log coefficient or log time
+// constant, 2 % of a sample step in the delay), because the residual is
+// piecewise smooth in the delay (a kink wherever a switch of the delayed
+// input crosses a sample), which a relative step near 0 s, or one far
+// below the kinks' spacing, turns into noise. One-sided at the delay's bounds.
+class OutputError : public ceres::CostFunction {
+ public:
+  OutputError(const ProjectionProblem& problem, int n, bool real_poles, std::optional<double> fixed_delay, double dt,
+              double lo, double hi)
+      : problem_(problem), n_(n), real_poles_(real_poles), fixed_delay_(fixed_delay), step_delay_(0.02 * dt), lo_(lo), hi_(hi) {
+    mutable_parameter_block_sizes()->push_back(n);
+    if (!fixed_delay) mutable_parameter_block_sizes()->push_back(1);
+    set_num_residuals(static_cast<int>(problem.rows.size()));
+  }
+
+  bool Evaluate(double const* const* params, double* residuals, double** jacobians) const override {
+    std::vector<double> theta(params[0], params[0] + n_);
+    const double delay = fixed_delay_ ? *fixed_delay_ : params[1][0];
+    if (!Residual(theta, delay, residuals)) return false;
+    if (!jacobians) return true;
+    const std::size_t R = problem_.rows.size();
+    std::vector<double> plus(R), minus(R);
+    if (jacobians[0]) {
+      for (int k = 0; k < n_; ++k) {
+        const double h = 1e-4;
+        std::vector<double> tp = theta, tm = theta;
+        tp[static_cast<std::size_t>(k)] += h;
+        tm[static_cast<std::size_t>(k)] -= h;
+        const bool ok_p = Residual(tp, delay, plus.data()), ok_m = Residual(tm, delay, minus.data());
+        if (!ok_p && !ok_m) return false;
+        for (std::size_t r = 0; r < R; ++r)
+          jacobians[0][r * static_cast<std::size_t>(n_) + static_cast<std::size_t>(k)] =
+              ok_p && ok_m ? (plus[r] - minus[r]) / (2 * h) : ok_p ? (plus[r] - residuals[r]) / h : (residuals[r] - minus[r]) / h;
+      }
     }
-    poly = next;
-  }
-  const double lead = tf.den[0];
-  for (std::size_t i = 0; i < tf.den.size(); ++i) tf.den[i] = lead * poly[i].real();
-  return true;
-}
-
-// Young's state-variable filter: linear least squares for the coefficients.
-std::optional<std::vector<double>> SvfStart(const std::vector<double>& t, const std::vector<double>& u,
-                                            const std::vector<double>& y, int n, int m, double delay, double lambda,
-                                            double dt) {
-  const std::size_t N = t.size();
-  // Filter F(s) = lambda^(n+1) / (s + lambda)^(n+1), and s^k F(s), k <= n:
-  // one order above the model, so even s^n F(s) falls off at high frequency
-  // and the held samples' staircase does not leak into the derivatives.
-  std::vector<double> den = {1.0};
-  for (int k = 0; k <= n; ++k) {
-    std::vector<double> next(den.size() + 1, 0.0);
-    for (std::size_t i = 0; i < den.size(); ++i) {
-      next[i] += den[i];
-      next[i + 1] += lambda * den[i];
+    if (!fixed_delay_ && jacobians[1]) {
+      const double dp = std::min(delay + step_delay_, hi_), dm = std::max(delay - step_delay_, lo_);
+      if (!(dp > dm)) {
+        std::fill(jacobians[1], jacobians[1] + R, 0.0);
+        return true;
+      }
+      if (!Residual(theta, dp, plus.data()) || !Residual(theta, dm, minus.data())) return false;
+      for (std::size_t r = 0; r < R; ++r) jacobians[1][r] = (plus[r] - minus[r]) / (dp - dm);
     }
-    den = next;
-  }
-  auto filtered = [&](const std::vector<double>& x, int k, double d) {
-    std::vector<double> num(static_cast<std::size_t>(k) + 1, 0.0);
-    num[0] = std::pow(lambda, n + 1);
-    return Simulate(TransferFunction{num, den, d}, t, x);
-  };
-  std::vector<std::vector<double>> yf, uf;
-  for (int k = 0; k <= n; ++k) yf.push_back(filtered(y, k, 0.0));
-  // Held between samples, y lags the continuous output by about dt / 2;
-  // the input is truly held. Delaying the input's filters by dt / 2 as well
-  // keeps the two consistent.
-  for (int k = 0; k <= m; ++k) uf.push_back(filtered(u, k, delay + dt / 2));
-  // s^n y = -a1 s^(n-1) y - ... - an y + b0 s^m u + ... + bm u
-  Eigen::MatrixXd a(N, n + m + 1);
-  Eigen::VectorXd b(N);
-  for (std::size_t i = 0; i < N; ++i) {
-    for (int k = 0; k < n; ++k) a(static_cast<long>(i), k) = -yf[static_cast<std::size_t>(n - 1 - k)][i];
-    for (int k = 0; k <= m; ++k) a(static_cast<long>(i), n + k) = uf[static_cast<std::size_t>(m - k)][i];
-    b(static_cast<long>(i)) = yf[static_cast<std::size_t>(n)][i];
-  }
-  const Eigen::VectorXd theta = a.colPivHouseholderQr().solve(b);
-  if (!theta.allFinite()) return std::nullopt;
-  return std::vector<double>(theta.data(), theta.data() + theta.size());
-}
-
-// y - simulated y for the coefficients in params[0], at a fixed delay.
-struct SimulationError {
-  const std::vector<double>& t;
-  const std::vector<double>& u;
-  const std::vector<double>& y;
-  int n, m;
-  double delay;
-  bool operator()(double const* const* params, double* residuals) const {
-    const std::vector<double> theta(params[0], params[0] + n + m + 1);
-    const auto yhat = Simulate(FromTheta(theta, n, m, delay), t, u);
-    for (std::size_t i = 0; i < y.size(); ++i) residuals[i] = y[i] - yhat[i];
     return true;
   }
+
+ private:
+  bool Residual(const std::vector<double>& theta, double delay, double* residuals) const {
+    const std::vector<double> den = FromSearch(theta.data(), n_, real_poles_);
+    if (!HurwitzStable(den)) return false;
+    const Projection pr = Project(problem_, den, std::max(0.0, delay), true);
+    if (!pr.ok) return false;
+    std::copy(pr.residual.begin(), pr.residual.end(), residuals);
+    return true;
+  }
+
+  const ProjectionProblem& problem_;
+  int n_;
+  bool real_poles_;
+  std::optional<double> fixed_delay_;
+  double step_delay_, lo_, hi_;
 };
+
+struct Refined {
+  std::vector<double> den;
+  double delay = 0.0, loss = kInf;
+};
+
+Refined Refine(const ProjectionProblem& problem, const IdentifyOptions& o, std::vector<double> theta, double delay,
+               double lo, double hi, double dt) {
+  const int n = o.poles;
+  auto* cost = new OutputError(problem, n, o.real_poles, o.delay_s, dt, lo, hi);
+  std::vector<double*> blocks = {theta.data()};
+  if (!o.delay_s) blocks.push_back(&delay);
+  ceres::Problem cp;
+  cp.AddResidualBlock(cost, nullptr, blocks);
+  // No bounds on the delay (Ceres meets a bound by a projected line search
+  // that stalls here): a negative trial is read as 0 s, and the result is
+  // held to the range after.
+  ceres::Solver::Options so = fit::QuietDenseOptions(o.max_iterations);
+  so.initial_trust_region_radius = 1e2;
+  so.function_tolerance = 1e-9;
+  ceres::Solver::Summary summary;
+  ceres::Solve(so, &cp, &summary);
+  Refined r;
+  r.den = FromSearch(theta.data(), n, o.real_poles);
+  r.delay = o.delay_s ? *o.delay_s : std::clamp(delay, lo, hi);
+  if (!HurwitzStable(r.den)) return r;
+  const Projection pr = Project(problem, r.den, r.delay);
+  if (pr.ok) r.loss = pr.sse / static_cast<double>(problem.rows.size());
+  return r;
+}
+
+// Lag-one correlation of a residual: its effective sample count is
+// N (1 - rho) / (1 + rho).
+double EffectiveFraction(const std::vector<double>& e) {
+  double c0 = 0, c1 = 0;
+  for (std::size_t i = 0; i < e.size(); ++i) {
+    c0 += e[i] * e[i];
+    if (i) c1 += e[i] * e[i - 1];
+  }
+  const double rho = std::clamp(c0 > 0 ? c1 / c0 : 0.0, 0.0, 0.99);
+  return (1 - rho) / (1 + rho);
+}
+
+ProcessForm ToProcessForm(const TransferFunction& tf) {
+  ProcessForm f;
+  f.K = tf.DcGain();
+  f.Td_s = tf.delay_s;
+  f.valid = true;
+  for (const auto& r : Roots(tf.den)) {
+    if (std::abs(r.imag()) > 1e-9 * std::abs(r) || !(r.real() < 0)) f.valid = false;
+    f.Tp_s.push_back(-1.0 / r.real());
+  }
+  f.Tz_s = std::numeric_limits<double>::quiet_NaN();
+  const int m = tf.zeros();
+  if (m == 0) f.Tz_s = 0.0;
+  if (m == 1 && tf.num.back() != 0.0) f.Tz_s = tf.num[tf.num.size() - 2] / tf.num.back();
+  if (m > 1) f.valid = false;
+  return f;
+}
+
+ProjectionProblem MakeProblem(const std::vector<double>& t, const std::vector<double>& u, const std::vector<double>& y,
+                              const std::vector<Segment>& segments, int zeros, bool offset, bool initial_state) {
+  ProjectionProblem p;
+  p.t = &t;
+  p.u = &u;
+  p.y = &y;
+  p.segments = segments.empty() ? WholeRecord(t.size()) : segments;
+  p.zeros = zeros;
+  p.offset = offset;
+  p.initial_state = initial_state;
+  for (const Segment& s : p.segments)
+    for (std::size_t i = s.begin; i < std::min(s.end, t.size()); ++i)
+      if (std::isfinite(y[i])) p.rows.push_back(i);
+  return p;
+}
 
 }  // namespace
 
 IdentifiedModel IdentifyTransferFunction(const std::vector<double>& t, const std::vector<double>& u,
-                                         const std::vector<double>& y, const IdentifyOptions& o) {
+                                         const std::vector<double>& y, const IdentifyOptions& o,
+                                         const std::vector<Segment>& segments) {
   IdentifiedModel out;
   const int n = o.poles, m = o.zeros;
-  if (n < 1 || m < 0 || m > n) {
-    out.reason = "need poles >= 1 and 0 <= zeros <= poles";
+  if (n < 1 || n > 7 || m < 0 || m > n) {
+    out.reason = "need 1 to 7 poles and 0 <= zeros <= poles";
     return out;
   }
-  if (t.size() != u.size() || t.size() != y.size() || t.size() < static_cast<std::size_t>(4 * (n + m + 2))) {
-    out.reason = "too few samples for this model";
+  if (t.size() != u.size() || t.size() != y.size()) {
+    out.reason = "time, input and output lengths differ";
+    return out;
+  }
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (!std::isfinite(t[i]) || !std::isfinite(u[i]) || (i && !(t[i] > t[i - 1]))) {
+      out.reason = "time must increase and time and input be finite (sample " + std::to_string(i) + ")";
+      return out;
+    }
+  const ProjectionProblem problem = MakeProblem(t, u, y, segments, m, o.estimate_offset, o.estimate_initial_state);
+  const int linear = (m + 1) + (o.estimate_offset ? 1 : 0) +
+                     (o.estimate_initial_state ? n * static_cast<int>(problem.segments.size()) : 0);
+  if (problem.rows.size() < static_cast<std::size_t>(4 * (n + linear + 1))) {
+    out.reason = "too few samples (" + std::to_string(problem.rows.size()) + ") for this model";
     return out;
   }
   const double dt = MedianStep(t);
   const double lambda = o.filter_rad_s > 0 ? o.filter_rad_s : 2 * M_PI / (20 * dt);
+  const SvfSignals svf = FilterForSvf(problem, n, lambda, dt);
 
-  // Delay grid, each scored by its SVF start's simulation error.
-  std::vector<double> delays;
-  if (o.delay_s)
-    delays.push_back(*o.delay_s);
-  else
-    for (int k = 0; k < o.delay_grid; ++k) delays.push_back(o.max_delay_s * k / std::max(1, o.delay_grid - 1));
-  // Score each grid delay by its SVF start; refine the best few (the loss
-  // is multi-modal in the delay and the SVF start is biased by noise).
-  struct Candidate {
-    double loss, delay;
-    std::vector<double> theta;
-  };
-  std::vector<Candidate> candidates;
-  for (double d : delays) {
-    const auto theta = SvfStart(t, u, y, n, m, d, lambda, dt);
-    if (!theta) continue;
-    TransferFunction tf = FromTheta(*theta, n, m, d);
-    std::vector<double> start = *theta;
-    if (ReflectUnstablePoles(tf)) start = ToTheta(tf, n, m);
-    if (!Stable(tf)) continue;
-    candidates.push_back({Loss(tf, t, u, y), d, start});
+  // 1. The delay profile: the linear fit at every step of delay.
+  DelayProfile& profile = out.delay_profile;
+  if (o.delay_s) {
+    profile.delay_s = {*o.delay_s};
+  } else {
+    const int steps = std::max(1, std::min(o.max_profile_points, static_cast<int>(std::floor(o.max_delay_s / dt))));
+    for (int k = 0; k <= steps; ++k) profile.delay_s.push_back(o.max_delay_s * k / steps);
   }
-  if (candidates.empty()) {
-    out.reason = "no stable starting model (try other orders, or a fixed --delay)";
+  std::vector<std::vector<double>> starts;
+  for (double d : profile.delay_s) {
+    const auto est = SvfDenominator(problem, svf, d);
+    profile.loss.push_back(est ? est.value().equation_loss : kInf);
+    starts.push_back(est ? ToSearch(est->den, o.real_poles) : std::vector<double>{});
+  }
+  // 2. Basins: local minima of the profile, each spanning to the maxima
+  // beside it; the best few (by the output error of their start) refined
+  // within their span.
+  struct Basin {
+    std::size_t at;
+    double lo, hi, start_loss;
+  };
+  std::vector<Basin> basins;
+  const std::size_t K = profile.loss.size();
+  const auto& L = profile.loss;
+  for (std::size_t k = 0; k < K; ++k) {
+    if (!std::isfinite(L[k]) || starts[k].empty()) continue;
+    if ((k > 0 && L[k] > L[k - 1]) || (k + 1 < K && L[k] > L[k + 1])) continue;
+    if (k > 0 && L[k] == L[k - 1] && !basins.empty() && basins.back().at + 1 == k) continue;  // a flat floor: once
+    std::size_t a = k, b = k;
+    while (a > 0 && std::isfinite(L[a - 1]) && L[a - 1] >= L[a]) --a;
+    while (b + 1 < K && std::isfinite(L[b + 1]) && L[b + 1] >= L[b]) ++b;
+    basins.push_back({k, profile.delay_s[a], profile.delay_s[b], kInf});
+  }
+  if (basins.empty()) {
+    out.reason = "no linear start at any delay (try other orders, or a fixed --delay)";
     return out;
   }
-  std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) { return a.loss < b.loss; });
-  candidates.resize(std::min<std::size_t>(candidates.size(), 3));
-  // Output error at a fixed delay, from a start; returns the loss (inf: unusable).
-  auto refit = [&](std::vector<double>& theta, double delay) {
-    auto* cost = new ceres::DynamicNumericDiffCostFunction<SimulationError, ceres::CENTRAL>(
-        new SimulationError{t, u, y, n, m, delay});
-    cost->AddParameterBlock(n + m + 1);
-    cost->SetNumResiduals(static_cast<int>(y.size()));
-    ceres::Problem problem;
-    problem.AddResidualBlock(cost, nullptr, theta.data());
-    const ceres::Solver::Options so = fit::QuietDenseOptions(o.max_iterations);
-    ceres::Solver::Summary summary;
-    ceres::Solve(so, &problem, &summary);
-    const TransferFunction tf = FromTheta(theta, n, m, delay);
-    if (!summary.IsSolutionUsable() || !Stable(tf)) return static_cast<double>(INFINITY);
-    return Loss(tf, t, u, y);
-  };
-  double refined_loss = candidates[0].loss;
-  std::vector<double> best_theta = candidates[0].theta;
-  double best_delay = candidates[0].delay;
-  for (const Candidate& c : candidates) {
-    std::vector<double> theta = c.theta;
-    const double loss = refit(theta, c.delay);
-    if (loss < refined_loss) refined_loss = loss, best_theta = theta, best_delay = c.delay;
+  std::sort(basins.begin(), basins.end(), [&](const Basin& x, const Basin& y) { return L[x.at] < L[y.at]; });
+  basins.resize(std::min<std::size_t>(basins.size(), static_cast<std::size_t>(2 * o.basins)));
+  for (Basin& b : basins) {
+    const std::vector<double> den = FromSearch(starts[b.at].data(), n, o.real_poles);
+    const Projection pr = Project(problem, den, profile.delay_s[b.at]);
+    if (pr.ok) b.start_loss = pr.sse / static_cast<double>(problem.rows.size());
   }
-  if (!o.delay_s) {
-    // The loss is sharp in the delay: golden-section search over +-1 sample
-    // (bounded by [0, max_delay]), the coefficients re-fitted at each trial.
-    const double phi = (std::sqrt(5.0) - 1) / 2;
-    double a = std::max(0.0, best_delay - dt), b = std::min(o.max_delay_s, best_delay + dt);
-    auto trial = [&](double d, std::vector<double>& theta) {
-      theta = best_theta;
-      return refit(theta, d);
-    };
-    std::vector<double> t1, t2;
-    double x1 = b - phi * (b - a), x2 = a + phi * (b - a);
-    double f1 = trial(x1, t1), f2 = trial(x2, t2);
-    for (int it = 0; it < 12; ++it) {
-      if (f1 < f2) {
-        b = x2, x2 = x1, f2 = f1, t2 = t1;
-        x1 = b - phi * (b - a);
-        f1 = trial(x1, t1);
-      } else {
-        a = x1, x1 = x2, f1 = f2, t1 = t2;
-        x2 = a + phi * (b - a);
-        f2 = trial(x2, t2);
-      }
-    }
-    if (std::min(f1, f2) < refined_loss) {
-      refined_loss = std::min(f1, f2);
-      best_delay = f1 < f2 ? x1 : x2;
-      best_theta = f1 < f2 ? t1 : t2;
+  std::sort(basins.begin(), basins.end(), [](const Basin& x, const Basin& y) { return x.start_loss < y.start_loss; });
+  Refined best;
+  for (std::size_t idx = 0; idx < basins.size() && idx < static_cast<std::size_t>(o.basins); ++idx) {
+    const Basin& b = basins[idx];
+    if (!std::isfinite(b.start_loss)) continue;
+    // Bounded by the searched range only: the linear fit's profile is
+    // biased by noise, so the output-error optimum may lie past its basin.
+    const Refined r = Refine(problem, o, starts[b.at], profile.delay_s[b.at], 0.0, o.delay_s ? *o.delay_s : o.max_delay_s, dt);
+    profile.basins.push_back({r.delay, L[b.at], r.loss});
+    if (r.loss < best.loss) best = r;
+  }
+  std::sort(profile.basins.begin(), profile.basins.end(),
+            [](const DelayBasin& a, const DelayBasin& b) { return a.refined_loss < b.refined_loss; });
+  if (!std::isfinite(best.loss)) {
+    out.reason = "output-error refinement found no stable model (try other orders, or a fixed --delay)";
+    return out;
+  }
+  // 3. The model, and whether a second basin fits as well.
+  const Projection pr = Project(problem, best.den, best.delay, true, true);
+  out.tf = TransferFunction{pr.num, best.den, best.delay};
+  out.offset = pr.offset;
+  out.initial_state = pr.free_response;
+  out.prediction = pr.prediction;
+  double umean = 0;
+  for (std::size_t i : problem.rows) umean += u[i];
+  out.input_level = umean / static_cast<double>(problem.rows.size());
+  out.output_level = out.offset + out.tf.DcGain() * out.input_level;
+  for (const auto& r : Roots(out.tf.den)) out.poles_real.push_back(r.real()), out.poles_imag.push_back(r.imag());
+  if (o.real_poles || (n <= 2 && m <= 1)) out.process = ToProcessForm(out.tf);
+  out.parameters = n + linear + (o.delay_s ? 0 : 1);
+  out.fit_percent = FitPercent(y, out.prediction);
+  out.criteria = CriteriaFromResiduals(pr.residual, out.parameters);
+  if (profile.basins.size() > 1 && std::isfinite(profile.basins[1].refined_loss)) {
+    const double n_eff = static_cast<double>(problem.rows.size()) * EffectiveFraction(pr.residual);
+    const double l1 = profile.basins[0].refined_loss, l2 = profile.basins[1].refined_loss;
+    // Likelihood ratio of the two basins with the residual's effective
+    // sample count, against chi-square(1) at 95 % (3.84).
+    const double lr = n_eff * std::log(l2 / l1);
+    const double grid_step = profile.delay_s.size() > 1 ? profile.delay_s[1] - profile.delay_s[0] : dt;
+    if (lr < 3.84 && std::abs(profile.basins[1].delay_s - profile.basins[0].delay_s) > 1.5 * grid_step) {
+      profile.ambiguous = true;
+      char buf[200];
+      std::snprintf(buf, sizeof buf,
+                    "two delay basins fit alike: %.4g s and %.4g s (loss %.4g vs %.4g); the data do not decide "
+                    "between them",
+                    profile.basins[0].delay_s, profile.basins[1].delay_s, l1, l2);
+      profile.note = buf;
     }
   }
-  const TransferFunction refined = FromTheta(best_theta, n, m, best_delay);
-  out.tf = refined;
-  Stable(out.tf, &out.poles_real, &out.poles_imag);
-  out.parameters = n + m + 1 + (o.delay_s ? 0 : 1);
-  const auto yhat = Simulate(out.tf, t, u);
-  out.fit_percent = FitPercent(y, yhat);
-  std::vector<double> e(y.size());
-  for (std::size_t i = 0; i < y.size(); ++i) e[i] = y[i] - yhat[i];
-  out.criteria = CriteriaFromResiduals(e, out.parameters);
   out.ok = true;
   return out;
 }
 
-double ValidateFitPercent(const TransferFunction& tf, const std::vector<double>& t, const std::vector<double>& u,
-                          const std::vector<double>& y) {
-  return FitPercent(y, Simulate(tf, t, u));
+std::vector<double> Predict(const TransferFunction& tf, double offset, const std::vector<double>& t,
+                            const std::vector<double>& u, const std::vector<double>& y,
+                            const std::vector<Segment>& segments_in) {
+  tf.Validate();
+  const std::vector<Segment> segments = segments_in.empty() ? WholeRecord(t.size()) : segments_in;
+  std::vector<double> den = tf.den, num = tf.num;
+  for (double& c : num) c /= tf.den[0];
+  for (double& c : den) c /= tf.den[0];
+  const int n = static_cast<int>(den.size()) - 1;
+  std::vector<double> out(t.size(), std::numeric_limits<double>::quiet_NaN());
+  if (n == 0) {
+    for (const Segment& s : segments)
+      for (std::size_t i = s.begin; i < s.end; ++i)
+        out[i] = offset + num.back() * InterpolateLinear(t, u, t[i] - tf.delay_s);
+    return out;
+  }
+  const int m = static_cast<int>(num.size()) - 1;
+  auto forced = [&](const StateResponses& r, std::size_t i) {
+    double v = 0;
+    for (int k = 0; k <= m; ++k) {
+      const double c = num[static_cast<std::size_t>(m - k)];
+      if (k < n) {
+        v += c * r.state[static_cast<std::size_t>(k)][i];
+      } else {
+        double w = r.delayed[i];
+        for (int j = 0; j < n; ++j) w -= den[static_cast<std::size_t>(n - j)] * r.state[static_cast<std::size_t>(j)][i];
+        v += c * w;
+      }
+    }
+    return v;
+  };
+  if (y.empty()) {
+    // Each segment in steady state at its first input: the response to the
+    // input less that level, from rest, plus the level's steady output.
+    for (const Segment& s : segments) {
+      if (s.begin >= s.end) continue;
+      std::vector<double> w(u.size(), 0.0);
+      for (std::size_t i = s.begin; i < u.size(); ++i) w[i] = u[i] - u[s.begin];
+      const StateResponses r = ComputeStateResponses(den, tf.delay_s, t, w, {s});
+      for (std::size_t i = s.begin; i < s.end; ++i) out[i] = offset + tf.DcGain() * u[s.begin] + forced(r, i);
+    }
+    return out;
+  }
+  // The initial states fitted to y by least squares, the model fixed.
+  const StateResponses r = ComputeStateResponses(den, tf.delay_s, t, u, segments);
+  for (const Segment& s : segments) {
+    std::vector<std::size_t> rows;
+    for (std::size_t i = s.begin; i < s.end; ++i)
+      if (std::isfinite(y[i])) rows.push_back(i);
+    Eigen::VectorXd x0 = Eigen::VectorXd::Zero(n);
+    if (rows.size() > static_cast<std::size_t>(2 * n)) {
+      Eigen::MatrixXd a(static_cast<Eigen::Index>(rows.size()), n);
+      Eigen::VectorXd b(static_cast<Eigen::Index>(rows.size()));
+      for (std::size_t k = 0; k < rows.size(); ++k) {
+        for (int j = 0; j < n; ++j) a(static_cast<Eigen::Index>(k), j) = r.free[static_cast<std::size_t>(j)][rows[k]];
+        b(static_cast<Eigen::Index>(k)) = y[rows[k]] - offset - forced(r, rows[k]);
+      }
+      const Eigen::VectorXd sol = a.colPivHouseholderQr().solve(b);
+      if (sol.allFinite()) x0 = sol;
+    }
+    for (std::size_t i = s.begin; i < s.end; ++i) {
+      double v = offset + forced(r, i);
+      for (int j = 0; j < n; ++j) v += x0(j) * r.free[static_cast<std::size_t>(j)][i];
+      out[i] = v;
+    }
+  }
+  return out;
+}
+
+double ValidateFitPercent(const TransferFunction& tf, double offset, const std::vector<double>& t,
+                          const std::vector<double>& u, const std::vector<double>& y,
+                          const std::vector<Segment>& segments) {
+  return FitPercent(y, Predict(tf, offset, t, u, y, segments));
 }
 
 std::vector<OrderRow> OrderTable(const std::vector<double>& t, const std::vector<double>& u, const std::vector<double>& y,
                                  const std::vector<double>& tv, const std::vector<double>& uv,
-                                 const std::vector<double>& yv, IdentifyOptions o) {
+                                 const std::vector<double>& yv, IdentifyOptions o, const std::vector<Segment>& segments,
+                                 const std::vector<Segment>& validation_segments) {
   std::vector<OrderRow> rows;
   for (int p = 1; p <= 3; ++p)
     for (int z = 0; z <= std::min(p, 2); ++z) {  // thesis Table 3: (1,0) (1,1) (2,0) (2,1) (2,2) (3,0) (3,1) (3,2)
       o.poles = p;
       o.zeros = z;
-      const IdentifiedModel mdl = IdentifyTransferFunction(t, u, y, o);
-      rows.push_back({p, z, mdl.ok ? mdl.fit_percent : NAN, mdl.ok ? ValidateFitPercent(mdl.tf, tv, uv, yv) : NAN,
-                      mdl.ok ? mdl.criteria.aicc : NAN, mdl.ok});
+      const IdentifiedModel mdl = IdentifyTransferFunction(t, u, y, o, segments);
+      rows.push_back({p, z, mdl.ok ? mdl.fit_percent : NAN,
+                      mdl.ok ? ValidateFitPercent(mdl.tf, mdl.offset, tv, uv, yv, validation_segments) : NAN,
+                      mdl.ok ? mdl.criteria.aicc : NAN, mdl.ok ? mdl.tf.delay_s : NAN, mdl.ok});
     }
   return rows;
 }

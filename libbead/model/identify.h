@@ -1,17 +1,28 @@
 // Identification of a continuous-time transfer function with n poles, m
-// zeros and an input delay from sampled input/output data (even or uneven
-// sampling), by output-error least squares:
-//  1. a linear start from a state-variable filter: both signals filtered
-//     by lambda^n / (s + lambda)^n and their derivatives (s^k times that),
-//     then the coefficients of s^n y + a1 s^(n-1) y + ... = b0 s^m u + ...
-//     by least squares (Young's SVF);
-//  2. the delay: the loss is multi-modal in it, so a grid over
-//     [0, max_delay], scoring each SVF start by its simulated output;
-//  3. Ceres refines all coefficients and the delay on the simulation error
-//     (y - simulated y), numeric derivatives;
-//  4. only stable models (all poles in the left half plane) are accepted.
-// The denominator is monic (s^n + ...); parameters np = n + m + 1 (+1 for
-// an estimated delay).
+// zeros, an input delay, an operating point and an initial state from
+// sampled input/output data (even or uneven sampling, stretches where the
+// process was off left out), by output error:
+//
+//   y(t) = offset + N(s) / A(s) u(t - delay) + (free response of the
+//          initial state of each segment) + e(t)
+//
+// as MATLAB's tfest does with InitialCondition 'estimate' and procest with
+// an offset: a record that starts mid-process is the normal case.
+//  1. The delay profile: at every sample step of delay in [0, max_delay], a
+//     linear fit by Young's state-variable filter (signals filtered by
+//     lambda^(n+1) / (s + lambda)^(n+1), the equation
+//     s^n y + a1 s^(n-1) y + ... = b0 s^m u + ... + c solved by least
+//     squares), scored by its output error with the numerator, offset and
+//     initial states re-solved (below). The loss against delay is kept.
+//  2. The best few basins of that curve are refined by output error over
+//     the denominator and the delay (Ceres), the numerator, offset and
+//     initial states solved by linear least squares at every trial
+//     (variable projection: Golub & Pereyra, SIAM J. Numer. Anal. 10, 1973).
+//  3. Only stable models are accepted; the best refined basin wins, and
+//     two basins whose losses the data cannot tell apart are reported.
+// Structures: any transfer function (poles 1-7, zeros <= poles), or a
+// process model with real poles (MATLAB procest P1D, P2D, P1DZ, P2DZ, ...):
+// K (1 + Tz s) / ((1 + Tp1 s)(1 + Tp2 s)) e^(-Td s).
 #pragma once
 
 #include <optional>
@@ -19,6 +30,7 @@
 #include <vector>
 
 #include "libbead/model/fit_metrics.h"
+#include "libbead/model/lti_response.h"
 #include "libbead/model/transfer_function.h"
 
 namespace bead::model {
@@ -26,39 +38,82 @@ namespace bead::model {
 struct IdentifyOptions {
   int poles = 2;
   int zeros = 1;
-  std::optional<double> delay_s;  // fixed; none: estimated
+  bool real_poles = false;           // a process model: poles real, reported as time constants
+  std::optional<double> delay_s;     // fixed; none: estimated
   double max_delay_s = 1.0;
-  int delay_grid = 41;
-  double filter_rad_s = 0.0;      // SVF lambda; 0: from the sampling (2 pi / (20 dt))
-  int max_iterations = 100;
+  bool estimate_offset = true;       // the operating point (a constant term)
+  bool estimate_initial_state = true;  // else each segment starts from rest
+  double filter_rad_s = 0.0;         // SVF lambda; 0: from the sampling (2 pi / (20 dt))
+  int max_iterations = 50;
+  int basins = 3;                    // delay basins refined by output error
+  int max_profile_points = 250;      // delay profile resolution: a sample step, or coarser above this
+};
+
+struct DelayBasin {
+  double delay_s = 0.0;       // where the refinement ended
+  double profile_loss = 0.0;  // the linear fit's loss at the basin's grid point
+  double refined_loss = 0.0;  // output-error loss after refinement (inf: failed)
+};
+
+struct DelayProfile {
+  std::vector<double> delay_s, loss;  // the linear fit's output-error loss (mean square) at each delay
+  std::vector<DelayBasin> basins;     // refined, best first
+  bool ambiguous = false;             // the second basin fits as well as the best, within the noise
+  std::string note;                   // what to say about it, if anything
+};
+
+struct ProcessForm {  // K (1 + Tz s) / prod (1 + Tp_k s) e^(-Td s); NaN where not applicable
+  double K = 0.0, Tz_s = 0.0, Td_s = 0.0;
+  std::vector<double> Tp_s;
+  bool valid = false;  // every pole real and negative, every zero real
 };
 
 struct IdentifiedModel {
   bool ok = false;
   std::string reason;
   TransferFunction tf;
-  int parameters = 0;
-  double fit_percent = 0;
+  double offset = 0.0;        // the constant term: y = offset + G(s) u
+  double input_level = 0.0;   // operating point: the mean input over the fitted samples ...
+  double output_level = 0.0;  // ... and the output the model holds there (offset + K input_level)
+  std::vector<std::vector<double>> initial_state;  // per segment, canonical-form state at its first sample
+  int parameters = 0;         // counted in the criteria: poles, zeros + 1, offset, delay, initial states
+  double fit_percent = 0;     // on the fitted samples, as given (not deviations)
   InformationCriteria criteria;
   std::vector<double> poles_real, poles_imag;
+  ProcessForm process;
+  DelayProfile delay_profile;
+  std::vector<double> prediction;  // at every sample (NaN outside the segments)
 };
 
+// `segments` (default: the whole record) are the stretches fitted; the
+// input record u is used whole as the input's history.
 IdentifiedModel IdentifyTransferFunction(const std::vector<double>& t, const std::vector<double>& u,
-                                         const std::vector<double>& y, const IdentifyOptions& options);
+                                         const std::vector<double>& y, const IdentifyOptions& options,
+                                         const std::vector<Segment>& segments = {});
 
-// Fit % of a model on other data (MATLAB compare).
-double ValidateFitPercent(const TransferFunction& tf, const std::vector<double>& t, const std::vector<double>& u,
-                          const std::vector<double>& y);
+// The model's output on other data: offset + G(s) u, with each segment's
+// initial state fitted to y when y is given (as MATLAB's compare does by
+// default), else each segment in steady state at its first input.
+std::vector<double> Predict(const TransferFunction& tf, double offset, const std::vector<double>& t,
+                            const std::vector<double>& u, const std::vector<double>& y,
+                            const std::vector<Segment>& segments = {});
+
+// Fit % of a model on other data (MATLAB compare, initial state estimated).
+double ValidateFitPercent(const TransferFunction& tf, double offset, const std::vector<double>& t,
+                          const std::vector<double>& u, const std::vector<double>& y,
+                          const std::vector<Segment>& segments = {});
 
 // Thesis Table 3: poles 1-3, zeros 0-2 (zeros <= poles), estimated on one
 // data set and validated on another.
 struct OrderRow {
   int poles, zeros;
-  double fit_estimation, fit_validation, aicc;
+  double fit_estimation, fit_validation, aicc, delay_s;
   bool ok;
 };
 std::vector<OrderRow> OrderTable(const std::vector<double>& t, const std::vector<double>& u, const std::vector<double>& y,
                                  const std::vector<double>& tv, const std::vector<double>& uv,
-                                 const std::vector<double>& yv, IdentifyOptions options);
+                                 const std::vector<double>& yv, IdentifyOptions options,
+                                 const std::vector<Segment>& segments = {},
+                                 const std::vector<Segment>& validation_segments = {});
 
 }  // namespace bead::model

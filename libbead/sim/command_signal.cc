@@ -16,7 +16,12 @@ double StepsAt(const std::vector<double>& levels, const std::vector<double>& dur
   return levels.back();
 }
 
-std::vector<double> CommandSeries(const CommandConfig& c, double dt, std::size_t n, std::mt19937_64& rng) {
+double BaseLevel(const CommandConfig& c) {
+  return c.kind == CommandConfig::Kind::kSteps && !c.levels_v.empty() ? c.levels_v.front() : c.base_v;
+}
+
+std::vector<double> CommandSeries(const CommandConfig& c, double dt, std::size_t n, std::mt19937_64& rng, double t0,
+                                  bool warm) {
   std::vector<double> u(n, 0.0);
   std::normal_distribution<double> gauss(0.0, 1.0);
   unsigned lfsr = 0x1FF & static_cast<unsigned>(rng() | 1u);  // PRBS9: x^9 + x^5 + 1
@@ -25,9 +30,13 @@ std::vector<double> CommandSeries(const CommandConfig& c, double dt, std::size_t
   // Scales the first-order filtered white noise to unit variance.
   const double gain = std::sqrt((1 + alpha) / (1 - alpha));
   for (std::size_t i = 0; i < n; ++i) {
-    const double t = static_cast<double>(i) * dt;
+    const double t = t0 + static_cast<double>(i) * dt;
     filtered = alpha * filtered + (1 - alpha) * gauss(rng);
-    if (t < c.start_s || (c.stop_s >= 0 && t >= c.stop_s)) continue;
+    if (c.stop_s >= 0 && t >= c.stop_s) continue;
+    if (t < c.start_s) {
+      if (warm) u[i] = BaseLevel(c);
+      continue;
+    }
     switch (c.kind) {
       case CommandConfig::Kind::kConstant: u[i] = c.base_v; break;
       case CommandConfig::Kind::kSteps: u[i] = StepsAt(c.levels_v, c.durations_s, t - c.start_s); break;

@@ -42,9 +42,11 @@ double At(const std::vector<double>& y, double index) {
 // The wheel, extruder and their histories on the fine time grid.
 struct Timeline {
   double dt = 0;
+  double t0 = 0;  // time of the first sample (before 0 for a warm start)
   std::vector<double> command_v, wheel_cmd_v, rpm, flow, angle, speed, area;
 
-  double Index(double t) const { return t / dt; }
+  double Index(double t) const { return (t - t0) / dt; }
+  double Time(double index) const { return t0 + index * dt; }
   // First fractional index where the (non-decreasing) angle reaches `a`; -1 when before the start.
   double IndexOfAngle(double a) const {
     if (a < angle.front()) return -1.0;
@@ -60,8 +62,19 @@ struct Timeline {
 Timeline RunDynamics(const SimConfig& c, std::mt19937_64& rng) {
   Timeline tl;
   tl.dt = c.dt_s;
-  const std::size_t n = static_cast<std::size_t>(std::ceil(c.duration_s / c.dt_s)) + 1;
-  tl.command_v = CommandSeries(c.extruder.command, c.dt_s, n, rng);
+  const double radius = c.rig.wheel_diameter_mm / 2;
+  if (c.warm_start) {
+    // Long enough for the material under the laser at t = 0 to have been
+    // laid in steady state: the wheel's travel from nozzle to laser at its
+    // starting speed, and a second more.
+    const double omega0 = c.wheel.mode == WheelConfig::Mode::kConstant
+                              ? c.wheel.surface_speed_mm_s / radius
+                              : std::max(0.05, c.wheel.gain_rpm_per_v * StepsAt(c.wheel.cmd_levels_v, c.wheel.cmd_durations_s, 0.0) * kTwoPi / 60.0);
+    const double travel = kTwoPi * c.rig.offset_counts / c.rig.encoder.counts_per_rev / omega0;
+    tl.t0 = -c.dt_s * std::ceil((travel + 1.0 + c.wheel.tau_s * 10) / c.dt_s);
+  }
+  const std::size_t n = static_cast<std::size_t>(std::ceil((c.duration_s - tl.t0) / c.dt_s)) + 1;
+  tl.command_v = CommandSeries(c.extruder.command, c.dt_s, n, rng, tl.t0, c.warm_start);
   tl.wheel_cmd_v.assign(n, 0.0);
   tl.rpm.assign(n, 0.0);
   tl.flow.assign(n, 0.0);
@@ -85,18 +98,29 @@ Timeline RunDynamics(const SimConfig& c, std::mt19937_64& rng) {
   const auto lag = [&](double delay) { return static_cast<std::size_t>(std::llround(delay / c.dt_s)); };
   const std::size_t rpm_lag = lag(c.extruder.voltage_to_rpm.delay_s), flow_lag = lag(c.extruder.rpm_to_flow.delay_s);
   const std::size_t wheel_lag = lag(c.wheel.delay_s);
+  double wheel_rpm = c.wheel.mode == WheelConfig::Mode::kConstant ? c.wheel.surface_speed_mm_s / radius * 60.0 / kTwoPi : 0.0;
+  double rpm_before = 0.0, wheel_cmd_before = 0.0;  // inputs before the first sample (delays)
+  if (c.warm_start) {
+    // Extruder and wheel in steady state at their first commands.
+    const double v0 = tl.command_v.front();
+    rpm_before = c.extruder.voltage_to_rpm.DcGain() * v0;
+    to_rpm.Reset(v0);
+    to_flow.Reset(rpm_before);
+    if (c.wheel.mode == WheelConfig::Mode::kCommanded) {
+      wheel_cmd_before = StepsAt(c.wheel.cmd_levels_v, c.wheel.cmd_durations_s, 0.0);
+      wheel_rpm = c.wheel.gain_rpm_per_v * wheel_cmd_before;
+    }
+  }
   std::normal_distribution<double> gauss(0.0, 1.0);
   const double noise_alpha = std::exp(-c.dt_s / 0.2);
   const double noise_gain = std::sqrt((1 + noise_alpha) / (1 - noise_alpha));
   double flow_noise = 0.0;
-  const double radius = c.rig.wheel_diameter_mm / 2;
-  double wheel_rpm = c.wheel.mode == WheelConfig::Mode::kConstant ? c.wheel.surface_speed_mm_s / radius * 60.0 / kTwoPi : 0.0;
 
   for (std::size_t i = 0; i < n; ++i) {
-    const double t = static_cast<double>(i) * c.dt_s;
-    const double u_rpm = i >= rpm_lag ? tl.command_v[i - rpm_lag] : 0.0;
+    const double t = tl.Time(static_cast<double>(i));
+    const double u_rpm = i >= rpm_lag ? tl.command_v[i - rpm_lag] : (c.warm_start ? tl.command_v.front() : 0.0);
     tl.rpm[i] = std::max(0.0, to_rpm.Step(u_rpm) + c.extruder.rpm_noise * gauss(rng));
-    const double u_flow = i >= flow_lag ? tl.rpm[i - flow_lag] : 0.0;
+    const double u_flow = i >= flow_lag ? tl.rpm[i - flow_lag] : rpm_before;
     flow_noise = noise_alpha * flow_noise + (1 - noise_alpha) * gauss(rng);
     tl.flow[i] = std::max(0.0, to_flow.Step(u_flow) * (1.0 + c.extruder.flow_noise_frac * noise_gain * flow_noise));
 
@@ -112,7 +136,7 @@ Timeline RunDynamics(const SimConfig& c, std::mt19937_64& rng) {
         break;
     }
     if (c.wheel.mode != WheelConfig::Mode::kConstant) {
-      const double v_in = i >= wheel_lag ? tl.wheel_cmd_v[i - wheel_lag] : 0.0;
+      const double v_in = i >= wheel_lag ? tl.wheel_cmd_v[i - wheel_lag] : wheel_cmd_before;
       const double a = std::exp(-c.dt_s / c.wheel.tau_s);
       wheel_rpm = a * wheel_rpm + (1 - a) * c.wheel.gain_rpm_per_v * v_in;
     }
@@ -195,7 +219,7 @@ void SimulateProfiles(const SimConfig& c, const Timeline& tl, std::mt19937_64& r
     const double ie = tl.IndexOfAngle(angle - offset_angle);
     double area = 0.0, t_e = kNaN, center = 0.0;
     if (ie >= 0.0) {
-      t_e = ie * c.dt_s;
+      t_e = tl.Time(ie);
       area = At(tl.area, ie);
       if (c.effects.shrink_frac > 0)  // cooling between nozzle and laser
         area *= 1.0 - c.effects.shrink_frac * (1.0 - std::exp(-(t - t_e) / c.effects.shrink_tau_s));
@@ -252,8 +276,9 @@ void SimulateLog(const SimConfig& c, const Timeline& tl, std::mt19937_64& rng, S
     flow.screw_rpm.push_back(At(tl.rpm, i));
   }
   out.run.log = std::move(log);
-  double volume = 0.0;
-  for (std::size_t i = 1; i < tl.flow.size(); ++i) volume += 0.5 * (tl.flow[i] + tl.flow[i - 1]) * c.dt_s;
+  double volume = 0.0;  // laid during the record, t >= 0
+  for (std::size_t i = 1; i < tl.flow.size(); ++i)
+    if (tl.Time(static_cast<double>(i - 1)) >= -1e-12) volume += 0.5 * (tl.flow[i] + tl.flow[i - 1]) * c.dt_s;
   out.truth.total_volume_mm3 = volume;
 }
 

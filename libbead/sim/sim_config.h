@@ -20,7 +20,7 @@ struct CommandConfig {
   std::vector<double> durations_s = {1.0, 4.0, 4.0, 4.0, 4.0, 3.0};  // ... held this long (repeats)
   double amplitude_v = 0.8;            // PRBS +-amplitude; Gaussian standard deviation
   double bit_time_s = 0.5;             // PRBS bit length; Gaussian correlation time
-  double start_s = 0.5;                // command is 0 V before this (extruder off)
+  double start_s = 0.5;                // command is 0 V before this (extruder off; base level with warm_start)
   double stop_s = -1.0;                // command is 0 V after this (< 0: end of run)
 };
 
@@ -99,6 +99,10 @@ struct SimConfig {
   uint64_t seed = 1;
   double duration_s = 20.0;
   double dt_s = 0.0005;      // inner integration step
+  // The run is a cut from a longer session: it begins in steady state at
+  // the command's base level (before start_s the command holds that level,
+  // not 0 V), the wheel already turning, bead already under the laser.
+  bool warm_start = false;
   double log_rate_hz = 500.0;
   Rig rig;                   // what the rig really is (offset: the true offset)
   ExtruderConfig extruder;

@@ -1,5 +1,5 @@
 // YAML reading of SimConfig. Layout (every key optional):
-//   seed, duration_s, dt_s, log_rate_hz,
+//   seed, duration_s, dt_s, log_rate_hz, warm_start,
 //   rig: {name, counts_per_rev, bits, direction, diameter_mm, offset_counts,
 //         reference_areas_mm, laser_origin_mm},
 //   extruder: {command: {kind, base_v, levels_v, durations_s, amplitude_v, bit_time_s, start_s, stop_s},
@@ -134,7 +134,7 @@ class Reader {
 
 void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
   if (!root.IsMap()) r.Fail(root, "", "a simulation config must be a YAML mapping");
-  const std::set<std::string> top = {"seed", "duration_s", "dt_s", "log_rate_hz", "rig", "extruder", "wheel",
+  const std::set<std::string> top = {"seed", "duration_s", "dt_s", "log_rate_hz", "warm_start", "rig", "extruder", "wheel",
                                      "encoder", "bead", "sensor", "pins", "effects"};
   for (const auto& kv : root)
     if (!top.count(kv.first.as<std::string>())) r.Fail(kv.first, kv.first.as<std::string>(), "unknown key (misspelt?)");
@@ -142,6 +142,7 @@ void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
   r.Get(root, "", "duration_s", c.duration_s, 0.1, 36000);
   r.Get(root, "", "dt_s", c.dt_s, 1e-5, 0.01);
   r.Get(root, "", "log_rate_hz", c.log_rate_hz, 1, 100000);
+  r.GetBool(root, "", "warm_start", c.warm_start);
 
   const YAML::Node rig = r.Section(root, "rig", {"name", "counts_per_rev", "bits", "direction", "diameter_mm",
                                                   "offset_counts", "reference_areas_mm", "laser_origin_mm"});

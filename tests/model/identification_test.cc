@@ -122,7 +122,7 @@ TEST(Identify, RecoversThesisEq22FromNoisyData) {
   const IdentifiedModel m = IdentifyTransferFunction(est.t, est.u, est.y, o);
   ASSERT_TRUE(m.ok) << m.reason;
   EXPECT_GE(m.fit_percent, 98.5);
-  EXPECT_GE(ValidateFitPercent(m.tf, val.t, val.u, val.y), 98.5);
+  EXPECT_GE(ValidateFitPercent(m.tf, m.offset, val.t, val.u, val.y), 98.5);
   EXPECT_NEAR(m.tf.DcGain(), 905.3 / 47.52, 0.005 * 905.3 / 47.52);
   EXPECT_NEAR(m.tf.delay_s, 0.15, 0.01);
   for (double re : m.poles_real) EXPECT_LT(re, 0.0);

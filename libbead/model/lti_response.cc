@@ -1,0 +1,231 @@
+#include "libbead/model/lti_response.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include "libbead/core/error.h"
+
+namespace bead::model {
+namespace {
+
+constexpr int kMax = 8;  // states + 1
+
+// exp(A h) = E and integral_0^h exp(A s) ds B = G for the companion A and
+// B = e_(N-1): the Taylor series of the scaled step (|A h| / 2^s <= 1/2,
+// terms until they fall below 1e-17 of the sum), squared back s times
+// (E(2h) = E E, G(2h) = E G + G). With B = e_(N-1), the term of G is the
+// last column of the previous term of E, times h / k.
+template <int N>
+struct StepMatrices {
+  std::array<double, N * N> E;  // row-major
+  std::array<double, N> G;
+};
+
+template <int N>
+StepMatrices<N> TaylorStep(const std::array<double, N * N>& A, double h) {
+  double norm = 0;
+  for (int c = 0; c < N; ++c) {
+    double col = 0;
+    for (int r = 0; r < N; ++r) col += std::abs(A[static_cast<std::size_t>(r * N + c)]);
+    norm = std::max(norm, col);
+  }
+  norm = std::max(norm * h, h);  // the input column's own length
+  int squarings = norm > 0.5 ? static_cast<int>(std::ceil(std::log2(norm / 0.5))) : 0;
+  const double hs = std::ldexp(h, -squarings);
+  std::array<double, N * N> Ah;
+  for (std::size_t k = 0; k < Ah.size(); ++k) Ah[k] = A[k] * hs;
+  StepMatrices<N> out;
+  std::array<double, N * N> term{};
+  for (int k = 0; k < N; ++k) term[static_cast<std::size_t>(k * N + k)] = 1.0;
+  out.E = term;
+  out.G.fill(0.0);
+  for (int k = 1; k <= 20; ++k) {
+    // G += (previous term) B h / k; term <- term A h / k.
+    double largest = 0;
+    for (int r = 0; r < N; ++r) {
+      const double g = term[static_cast<std::size_t>(r * N + N - 1)] * hs / k;
+      out.G[static_cast<std::size_t>(r)] += g;
+      largest = std::max(largest, std::abs(g));
+    }
+    std::array<double, N * N> next{};
+    for (int r = 0; r < N; ++r)
+      for (int c = 0; c < N; ++c) {
+        double acc = 0;
+        for (int m = 0; m < N; ++m) acc += term[static_cast<std::size_t>(r * N + m)] * Ah[static_cast<std::size_t>(m * N + c)];
+        next[static_cast<std::size_t>(r * N + c)] = acc / k;
+      }
+    term = next;
+    for (std::size_t q = 0; q < term.size(); ++q) {
+      out.E[q] += term[q];
+      largest = std::max(largest, std::abs(term[q]));
+    }
+    if (largest < 1e-17) break;
+  }
+  for (int s = 0; s < squarings; ++s) {
+    std::array<double, N * N> E2{};
+    std::array<double, N> G2{};
+    for (int r = 0; r < N; ++r) {
+      double g = out.G[static_cast<std::size_t>(r)];
+      for (int m = 0; m < N; ++m) g += out.E[static_cast<std::size_t>(r * N + m)] * out.G[static_cast<std::size_t>(m)];
+      G2[static_cast<std::size_t>(r)] = g;
+      for (int c = 0; c < N; ++c) {
+        double acc = 0;
+        for (int m = 0; m < N; ++m) acc += out.E[static_cast<std::size_t>(r * N + m)] * out.E[static_cast<std::size_t>(m * N + c)];
+        E2[static_cast<std::size_t>(r * N + c)] = acc;
+      }
+    }
+    out.E = E2;
+    out.G = G2;
+  }
+  return out;
+}
+
+// The two step lengths an evenly sampled record alternates between (a
+// fractional delay splits each step in two), remembered to the picosecond.
+template <int N>
+class StepCache {
+ public:
+  explicit StepCache(const std::array<double, N * N>& A) : A_(A) {}
+  const StepMatrices<N>& Get(double h) {
+    const auto key = static_cast<int64_t>(std::llround(h * 1e12));
+    for (int k = 0; k < 2; ++k)
+      if (used_[k] && keys_[k] == key) return steps_[k];
+    const int slot = next_++ & 1;
+    keys_[slot] = key;
+    used_[slot] = true;
+    steps_[slot] = TaylorStep<N>(A_, h);
+    return steps_[slot];
+  }
+
+ private:
+  std::array<double, N * N> A_;
+  std::array<int64_t, 2> keys_{};
+  std::array<bool, 2> used_{};
+  std::array<StepMatrices<N>, 2> steps_;
+  int next_ = 0;
+};
+
+}  // namespace
+
+bool HurwitzStable(const std::vector<double>& den) {
+  const int n = static_cast<int>(den.size()) - 1;
+  for (double c : den)
+    if (!std::isfinite(c)) return false;
+  if (n <= 0) return true;
+  if (n == 1) return den[1] > 0;
+  if (n == 2) return den[1] > 0 && den[2] > 0;
+  Eigen::MatrixXd companion = Eigen::MatrixXd::Zero(n, n);
+  for (int k = 0; k < n; ++k) companion(0, k) = -den[static_cast<std::size_t>(k + 1)] / den[0];
+  for (int k = 1; k < n; ++k) companion(k, k - 1) = 1.0;
+  const Eigen::VectorXcd roots = companion.eigenvalues();
+  for (int k = 0; k < n; ++k)
+    if (!(roots(k).real() < 0)) return false;
+  return true;
+}
+
+namespace {
+
+// The walk over one segment for n = N states, in fixed-size arithmetic.
+template <int N>
+void WalkSegment(StepCache<N>& cache, double d, const std::vector<double>& t, const std::vector<double>& u,
+                 const Segment& seg, StateResponses& r) {
+  const std::size_t size = t.size();
+  auto switch_at = [&](long j) { return t[static_cast<std::size_t>(j)] + d; };
+  double tau = t[seg.begin];
+  long j = static_cast<long>(std::upper_bound(t.begin(), t.end(), tau - d) - t.begin()) - 1;
+  while (j + 1 < static_cast<long>(size) && switch_at(j + 1) <= tau) ++j;
+  while (j >= 0 && switch_at(j) > tau) --j;
+  std::array<double, N> x{};
+  std::array<double, N * N> F{};  // row-major
+  for (int k = 0; k < N; ++k) F[static_cast<std::size_t>(k * N + k)] = 1.0;
+  std::array<double*, N> state, free;
+  for (int k = 0; k < N; ++k) state[static_cast<std::size_t>(k)] = r.state[static_cast<std::size_t>(k)].data(),
+                              free[static_cast<std::size_t>(k)] = r.free[static_cast<std::size_t>(k)].data();
+  for (std::size_t i = seg.begin; i < seg.end; ++i) {
+    for (int k = 0; k < N; ++k) {
+      state[static_cast<std::size_t>(k)][i] = x[static_cast<std::size_t>(k)];
+      free[static_cast<std::size_t>(k)][i] = F[static_cast<std::size_t>(k)];
+    }
+    r.delayed[i] = u[static_cast<std::size_t>(std::max(j, 0L))];
+    if (i + 1 == seg.end) break;
+    const double to = t[i + 1];
+    while (tau < to) {
+      const double v = u[static_cast<std::size_t>(std::max(j, 0L))];
+      double until = to;
+      bool switches = false;
+      if (j + 1 < static_cast<long>(size) && switch_at(j + 1) < to) until = switch_at(j + 1), switches = true;
+      const double h = until - tau;
+      if (h > 0) {
+        const StepMatrices<N>& step = cache.Get(h);
+        const auto& E = step.E;
+        const auto& G = step.G;
+        std::array<double, N> nx;
+        std::array<double, N * N> nF{};
+        for (int a = 0; a < N; ++a) {
+          double acc = G[static_cast<std::size_t>(a)] * v;
+          for (int b = 0; b < N; ++b) acc += E[static_cast<std::size_t>(a * N + b)] * x[static_cast<std::size_t>(b)];
+          nx[static_cast<std::size_t>(a)] = acc;
+        }
+        // Only the first row of exp(A t) is kept; it moves as F <- F E
+        // (exp(A (t + h)) = exp(A t) exp(A h)).
+        for (int b = 0; b < N; ++b) {
+          double acc = 0;
+          for (int c = 0; c < N; ++c) acc += F[static_cast<std::size_t>(c)] * E[static_cast<std::size_t>(c * N + b)];
+          nF[static_cast<std::size_t>(b)] = acc;
+        }
+        x = nx;
+        for (int b = 0; b < N; ++b) F[static_cast<std::size_t>(b)] = nF[static_cast<std::size_t>(b)];
+      }
+      tau = until;
+      if (switches) ++j;
+      while (j + 1 < static_cast<long>(size) && switch_at(j + 1) <= tau) ++j;
+    }
+    tau = to;
+  }
+}
+
+// Controllable canonical form: x_k' = x_(k+1), x_(n-1)' = -sum a_(n-j) x_j + u.
+template <int N>
+void Walk(const std::vector<double>& den, double d, const std::vector<double>& t, const std::vector<double>& u,
+          const std::vector<Segment>& segments, StateResponses& r) {
+  std::array<double, N * N> A{};
+  for (int k = 0; k + 1 < N; ++k) A[static_cast<std::size_t>(k * N + k + 1)] = 1.0;
+  for (int j = 0; j < N; ++j) A[static_cast<std::size_t>((N - 1) * N + j)] = -den[static_cast<std::size_t>(N - j)] / den[0];
+  StepCache<N> cache(A);
+  for (const Segment& seg : segments)
+    if (seg.begin < seg.end && seg.end <= t.size()) WalkSegment<N>(cache, d, t, u, seg, r);
+}
+
+}  // namespace
+
+StateResponses ComputeStateResponses(const std::vector<double>& den, double delay_s, const std::vector<double>& t,
+                                     const std::vector<double>& u, const std::vector<Segment>& segments) {
+  const int n = static_cast<int>(den.size()) - 1;
+  if (n < 1 || n >= kMax) throw Error("transfer function: 1 to 7 poles supported");
+  if (t.size() != u.size()) throw Error("state responses: time and input lengths differ");
+  const std::size_t N = t.size();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  StateResponses r;
+  r.n = n;
+  r.state.assign(static_cast<std::size_t>(n), std::vector<double>(N, nan));
+  r.free.assign(static_cast<std::size_t>(n), std::vector<double>(N, nan));
+  r.delayed.assign(N, nan);
+  if (N == 0) return r;
+  const double d = std::max(0.0, delay_s);
+  switch (n) {
+    case 1: Walk<1>(den, d, t, u, segments, r); break;
+    case 2: Walk<2>(den, d, t, u, segments, r); break;
+    case 3: Walk<3>(den, d, t, u, segments, r); break;
+    case 4: Walk<4>(den, d, t, u, segments, r); break;
+    case 5: Walk<5>(den, d, t, u, segments, r); break;
+    case 6: Walk<6>(den, d, t, u, segments, r); break;
+    default: Walk<7>(den, d, t, u, segments, r); break;
+  }
+  return r;
+}
+
+}  // namespace bead::model

@@ -1,0 +1,110 @@
+#include "libbead/series/process_on.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "libbead/series/interpolate.h"
+
+namespace bead {
+namespace {
+
+double Percentile95Abs(const std::vector<double>& v) {
+  std::vector<double> a;
+  for (double x : v)
+    if (std::isfinite(x)) a.push_back(std::abs(x));
+  if (a.empty()) return 0.0;
+  const std::size_t k = static_cast<std::size_t>(0.95 * static_cast<double>(a.size() - 1));
+  std::nth_element(a.begin(), a.begin() + static_cast<long>(k), a.end());
+  return a[k];
+}
+
+}  // namespace
+
+ProcessOn FindProcessOn(const std::vector<double>& t, const std::vector<double>& u, const std::vector<double>& y,
+                        const ProcessOnOptions& o) {
+  ProcessOn out;
+  const std::size_t n = t.size();
+  if (n == 0) return out;
+  const double step = n > 1 ? MedianStep(t) : 1.0;
+  const double y_scale = Percentile95Abs(y), u_scale = Percentile95Abs(u);
+  double y_min = INFINITY;
+  for (double v : y)
+    if (std::isfinite(v)) y_min = std::min(y_min, v);
+  const bool floor_at_zero = y_scale > 0 && y_min >= -o.zero_fraction * y_scale;
+  // Each sample: usable (finite y, process on) or not, and why not.
+  std::vector<char> off(n, 0);
+  if (floor_at_zero) {
+    std::size_t i = 0;
+    while (i < n) {
+      auto at_zero = [&](std::size_t k) {
+        return std::isfinite(y[k]) && std::abs(y[k]) <= o.zero_fraction * y_scale &&
+               std::abs(u[k]) > o.zero_fraction * u_scale;
+      };
+      if (!at_zero(i)) {
+        ++i;
+        continue;
+      }
+      std::size_t j = i;
+      while (j < n && at_zero(j)) ++j;
+      if (j - i >= static_cast<std::size_t>(o.min_off_samples)) std::fill(off.begin() + static_cast<long>(i), off.begin() + static_cast<long>(j), 1);
+      i = j;
+    }
+  }
+  auto exclude = [&](double a, double b, const char* why) {
+    if (!out.excluded.empty() && out.excluded.back().reason == why && a - out.excluded.back().t_end_s <= o.gap_steps * step)
+      out.excluded.back().t_end_s = b;
+    else
+      out.excluded.push_back({a, b, why});
+  };
+  std::size_t begin = n;  // start of the open segment
+  std::size_t last_ok = n;
+  auto close = [&](std::size_t end) {
+    if (begin >= n) return;
+    if (end - begin >= static_cast<std::size_t>(o.min_segment_samples)) {
+      out.segments.push_back({begin, end});
+      out.fitted_samples += end - begin;
+    } else {
+      exclude(t[begin], t[end - 1], "too short to fit");
+    }
+    begin = n;
+  };
+  std::size_t off_start = n;
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool usable = std::isfinite(y[i]) && !off[i];
+    if (off[i]) {
+      if (off_start == n) off_start = i;
+    } else if (off_start != n) {
+      exclude(t[off_start], t[i - 1], "process off");
+      off_start = n;
+    }
+    if (!usable) continue;
+    if (last_ok < n && t[i] - t[last_ok] > o.gap_steps * step) {
+      close(last_ok + 1);
+      if (std::none_of(off.begin() + static_cast<long>(last_ok), off.begin() + static_cast<long>(i), [](char c) { return c != 0; }))
+        exclude(t[last_ok], t[i], "no samples");
+    } else if (last_ok < n && i > last_ok + 1 &&
+               std::any_of(off.begin() + static_cast<long>(last_ok + 1), off.begin() + static_cast<long>(i), [](char c) { return c != 0; })) {
+      close(last_ok + 1);
+    }
+    if (begin == n) begin = i;
+    last_ok = i;
+  }
+  if (off_start != n) exclude(t[off_start], t[n - 1], "process off");
+  if (last_ok < n) close(last_ok + 1);
+  std::sort(out.excluded.begin(), out.excluded.end(),
+            [](const Exclusion& a, const Exclusion& b) { return a.t_begin_s < b.t_begin_s; });
+  return out;
+}
+
+std::string DescribeExclusions(const std::vector<Exclusion>& excluded) {
+  std::string s;
+  for (const Exclusion& e : excluded) {
+    char buf[128];
+    std::snprintf(buf, sizeof buf, "%s%s %.2f-%.2f s", s.empty() ? "" : "; ", e.reason.c_str(), e.t_begin_s, e.t_end_s);
+    s += buf;
+  }
+  return s;
+}
+
+}  // namespace bead
