@@ -5,6 +5,9 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <string>
+
+#include "libbead/model/identify.h"
 
 namespace bead::tools {
 
@@ -18,5 +21,9 @@ Run AddIdentify(CLI::App& app);
 Run AddExplain(CLI::App& app);
 Run AddImport(CLI::App& app);
 Run AddFrames(CLI::App& app);
+
+// --structure of identify and explain: tf, or a process model (P1D, P1DZ,
+// P2D, P2DZ, P3D, P3DZ: real poles, as MATLAB's procest). Throws bead::Error.
+void ApplyStructure(const std::string& structure, model::IdentifyOptions& options);
 
 }  // namespace bead::tools

@@ -10,11 +10,16 @@
 #include <optional>
 
 #include "libbead/core/error.h"
+#include "calibration/pin_offset.h"
+#include "libbead/explain/corrected_flow.h"
 #include "libbead/explain/explain_loop.h"
 #include "libbead/explain/model_series.h"
 #include "libbead/explain/run_series.h"
 #include "libbead/flow/flow.h"
 #include "libbead/io/atomic_file.h"
+#include "libbead/io/flow_csv.h"
+#include "libbead/io/run_archive.h"
+#include "libbead/series/process_on.h"
 #include "libbead/io/rig_yaml.h"
 #include "libbead/model/identify.h"
 #include "libbead/profile/measure_block.h"
@@ -44,22 +49,28 @@ json ToJson(const explain::Spectrum& s) {
 }
 json Finite(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
-json ReportJson(const explain::ExplainReport& r, const model::TransferFunction& tf, const std::string& model_source) {
+json Parameters(const std::vector<explain::FittedParameter>& ps) {
+  json params = json::object();
+  for (const auto& p : ps) params[p.name] = {{"value", p.value}, {"ci95", Finite(p.ci95)}};
+  return params;
+}
+
+json ReportJson(const explain::ExplainReport& r, const model::TransferFunction& tf, double offset,
+                const std::string& model_source) {
   json effects = json::array();
-  for (const auto& e : r.effects_added) {
-    json params = json::object();
-    for (const auto& p : e.parameters) params[p.name] = {{"value", p.value}, {"ci95", Finite(p.ci95)}};
+  for (const auto& e : r.effects_added)
     effects.push_back({{"name", e.name},
                        {"description", e.description},
                        {"tracks", e.tracks},
-                       {"parameters", params},
+                       {"parameters", Parameters(e.parameters)},
                        {"fit_before_pct", e.fit_before_pct},
                        {"fit_after_pct", e.fit_after_pct},
                        {"rms_before", e.rms_before},
                        {"rms_after", e.rms_after},
                        {"bic_drop", e.bic_drop},
                        {"heldout_f", e.heldout_f}});
-  }
+  json base = json::object();
+  for (const auto& e : r.base_refit) base[e.name] = Parameters(e.parameters);
   json unexplained = json::array();
   for (const auto& u : r.unexplained)
     unexplained.push_back({{"what", u.what},
@@ -70,12 +81,23 @@ json ReportJson(const explain::ExplainReport& r, const model::TransferFunction& 
   json candidates = json::array();
   for (const auto& c : r.candidates)
     candidates.push_back({{"round", c.round}, {"name", c.name}, {"bic_drop", c.bic_drop}, {"heldout_f", c.heldout_f},
-                          {"surrogate_f", Finite(c.surrogate_f)}, {"accepted", c.accepted}});
-  return {{"model", {{"num", tf.num}, {"den", tf.den}, {"delay_s", tf.delay_s}, {"source", model_source}}},
+                          {"surrogate_f", Finite(c.surrogate_f)}, {"guarded_f", Finite(c.guarded_f)},
+                          {"accepted", c.accepted}});
+  return {{"model",
+           {{"num", tf.num}, {"den", tf.den}, {"delay_s", tf.delay_s}, {"operating_point", {{"offset", offset}}},
+            {"source", model_source}}},
           {"fit_before_pct", r.before.fit_pct},
           {"fit_after_pct", r.after.fit_pct},
           {"rms_before", r.before.rms},
           {"rms_after", r.after.rms},
+          {"base_refit", base},
+          {"base_model",
+           {{"tested", r.base.tested},
+            {"misspecified", r.base.misspecified},
+            {"dynamics_correction_heldout_f", r.base.heldout_f},
+            {"threshold_f", r.base.threshold},
+            {"heldout_rms_before", r.base.rms_before},
+            {"heldout_rms_with_correction", r.base.rms_after}}},
           {"effects_added", effects},
           {"unexplained", unexplained},
           {"diagnostics",
@@ -88,10 +110,24 @@ json ReportJson(const explain::ExplainReport& r, const model::TransferFunction& 
 }
 
 void PrintReport(const explain::ExplainReport& r, const std::string& unit) {
-  std::printf("\nbefore: fit %.2f %%, RMS error %.4g %s; residual %s (chi2 %.1f, 99 %% limit %.1f), %s the input\n",
+  std::printf("\nthe model as given: fit %.2f %%, RMS error %.4g %s; residual %s (chi2 %.1f, 99 %% limit %.1f), %s the input\n",
               r.before.fit_pct, r.before.rms, unit.c_str(), r.before.whiteness.white ? "white" : "not white",
               r.before.whiteness.chi2, r.before.whiteness.chi2_limit,
               r.before.input.independent ? "independent of" : "correlated with");
+  std::string refit;
+  for (const auto& e : r.base_refit)
+    for (const auto& p : e.parameters) {
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "%s%s %s=%.4g+-%.2g", refit.empty() ? "" : ",", e.name.c_str(), p.name.c_str(),
+                    p.value, p.ci95);
+      refit += buf;
+    }
+  std::printf("base model refitted with every candidate:%s\n", refit.c_str());
+  if (r.base.misspecified)
+    std::printf("warning: the base model's dynamics are misspecified: a linear correction of them lowers the held-out "
+                "RMS %.4g -> %.4g (F %.1f > %.1f); re-identify it (more poles or zeros, another delay). Effects are "
+                "only added beyond that correction.\n",
+                r.base.rms_before, r.base.rms_after, r.base.heldout_f, r.base.threshold);
   std::printf("\n%-32s %-44s %9s %9s %11s %11s\n", "effect", "parameters (95 % interval)", "fit_bef_%", "fit_aft_%",
               "rms_before", "rms_after");
   if (r.effects_added.empty()) std::printf("%-32s\n", "(none added)");
@@ -123,34 +159,41 @@ void Write(const std::string& path, const json& j) {
 
 Run AddExplain(CLI::App& app) {
   struct Args {
-    std::string rig, data, model, out, input, output, time, validate, occlusion = "pooled";
+    std::string rig, data, model, out, input, output, time, input_file, input_time, validate, pins, flow_out,
+        structure = "tf", occlusion = "pooled";
     int poles = 2, zeros = 2;
     double max_delay_s = 1.0, alpha = 0.01;
     int max_effects = 5;
+    bool keep_off = false;
   };
   auto args = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand("explain", "Find what the model lacks: residual diagnostics and effects added");
   cmd->footer(
-      "Run mode:  bead explain --rig RIG.yaml RUN.h5 [--model model.json] [--validate OTHER.h5] -o explain.json\n"
+      "Run mode:  bead explain --rig RIG.yaml RUN.h5 [--model model.json] [--validate OTHER.h5] [--pins PINS.h5]\n"
+      "           [--flow-out corrected.csv] -o explain.json\n"
       "  measures the run, computes the flow Q = v A (bead flow), takes the model of flow from screw\n"
-      "  RPM (--model, from `bead identify -o`; else identified on this run), then adds, one at a time,\n"
-      "  the effects that lower the BIC and pass a held-out test: encoder offset, time shift, changing\n"
-      "  delay, once/twice per revolution of the wheel or screw, cooling shrink, height dependence,\n"
-      "  drift, level-dependent gain and lag (and scale, bias with --model); with --validate another run\n"
-      "  of the same rig is the held-out data. Reports the encoder offset the run\n"
-      "  itself implies, with its 95 % interval, beside the rig file's; and the profile time stamps\n"
-      "  against the log (a sensor latency).\n"
+      "  RPM (--model, from `bead identify -o`; else identified on this run, operating point and initial\n"
+      "  state estimated), then adds, one at a time, the effects that lower the BIC and pass a held-out\n"
+      "  test: encoder offset, changing delay, once/twice per revolution of the wheel or screw, cooling\n"
+      "  shrink, height dependence, drift, build-up, level-dependent gain and lag. The base model's gain,\n"
+      "  operating point and delay are refitted with and without every candidate, and a candidate must\n"
+      "  also beat a linear correction of the base model's dynamics, so a wrong base model cannot buy an\n"
+      "  effect (the report says when the base model is misspecified). With --validate another run of\n"
+      "  the same rig is the held-out data. Reports the encoder offset the run itself implies, from a\n"
+      "  profile of the fit over the offset with its 95 % interval, beside the rig file's and the pin\n"
+      "  scans' (--pins); the profile time stamps against the log (a sensor latency); and with\n"
+      "  --flow-out the flow CSV with the kept effects that act on the measurement undone (offset\n"
+      "  re-aligned, a wheel's once-per-revolution speed error removed, shrinkage added back).\n"
       "CSV mode:  bead explain DATA.csv --input COL --output COL [--time COL] [--validate OTHER.csv]\n"
-      "  the same loop on any measured series (uneven sampling, gaps where the process was off), with\n"
-      "  drift, saturating build-up, level-dependent gain and lag (a time constant changing with level),\n"
-      "  time shift and changing delay; --validate\n"
-      "  makes another run the held-out data (an effect must improve it).\n"
+      "  the same loop on any measured series (uneven sampling, gaps, a start mid-process; stretches where\n"
+      "  the output sits at zero while the input does not are reported as process off and left out);\n"
+      "  --input-file/--input-time take the input from its own file and clock, held at the output's times.\n"
       "Out: a table (effect, parameters, fit % and RMS before and after), what stays unexplained, and\n"
-      "  -o explain.json with effects_added, unexplained, offset_from_run_counts,\n"
-      "  offset_from_run_ci95_counts, rig_offset_counts, diagnostics and spectrum.\n"
+      "  -o explain.json with effects_added, base_refit, base_model, unexplained, offset_from_run_counts,\n"
+      "  offset_from_run_ci95_counts, offset_profile, rig_offset_counts, diagnostics and spectrum.\n"
       "Examples:\n"
       "  bead explain --rig testdata/sample/rig.yaml testdata/sample/run.h5 -o explain.json\n"
-      "  bead explain weld.csv --time t_s --input wire_feed --output width_mm -o explain.json");
+      "  bead explain width.csv --time t --output w --input-file wfs.csv --input-time t --input wfs -o explain.json");
   cmd->add_option("data", args->data, "RUN.h5 (with --rig) or DATA.csv")->required()->check(CLI::ExistingFile);
   cmd->add_option("--rig", args->rig, "Rig file (YAML): run mode")->check(CLI::ExistingFile);
   cmd->add_option("--model", args->model, "Model JSON (bead identify -o); else identified on the data")
@@ -158,10 +201,19 @@ Run AddExplain(CLI::App& app) {
   cmd->add_option("--input", args->input, "CSV mode: input column");
   cmd->add_option("--output", args->output, "CSV mode: output column");
   cmd->add_option("--time", args->time, "CSV mode: time column (s)");
+  cmd->add_option("--input-file", args->input_file, "CSV mode: the input's own CSV (its own clock)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--input-time", args->input_time, "CSV mode: time column of --input-file (default: --time's name)");
+  cmd->add_flag("--keep-off", args->keep_off, "CSV mode: explain the stretches where the process was off too");
   cmd->add_option("--validate", args->validate, "Another run (same rig, or same columns): the held-out data")
       ->check(CLI::ExistingFile);
+  cmd->add_option("--pins", args->pins, "Run mode: pin scans of this rig, to compare the offsets")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--flow-out", args->flow_out, "Run mode: the corrected flow CSV to write (atomically)");
   cmd->add_option("--poles", args->poles, "Identified model: poles")->capture_default_str()->check(CLI::Range(1, 6));
   cmd->add_option("--zeros", args->zeros, "Identified model: zeros")->capture_default_str()->check(CLI::Range(0, 6));
+  cmd->add_option("--structure", args->structure, "Identified model: tf, or P1D, P1DZ, P2D, P2DZ, P3D, P3DZ")
+      ->capture_default_str();
   cmd->add_option("--max-delay-s", args->max_delay_s, "Identified model: largest delay searched")->capture_default_str();
   cmd->add_option("--alpha", args->alpha, "Significance level of the held-out test")->capture_default_str()
       ->check(CLI::Range(1e-6, 0.2));
@@ -172,23 +224,35 @@ Run AddExplain(CLI::App& app) {
     explain::ExplainOptions options;
     options.alpha = args->alpha;
     options.max_effects = args->max_effects;
-    options.catalogue.model_given = !args->model.empty();
     model::IdentifyOptions id;
     id.poles = args->poles;
     id.zeros = std::min(args->zeros, args->poles);
+    ApplyStructure(args->structure, id);
     id.max_delay_s = args->max_delay_s;
+    struct Model {
+      model::TransferFunction tf;
+      double offset = 0.0;
+      std::string source;
+    };
     auto model_for = [&](const std::vector<double>& t, const std::vector<double>& u, const std::vector<double>& y,
-                         const std::string& where, std::string& source) {
+                         const std::vector<Segment>& segments, const std::string& where) {
+      Model m;
       if (!args->model.empty()) {
-        source = args->model;
-        return ReadModelFile(args->model).tf;
+        const ModelFile f = ReadModelFile(args->model);
+        m.tf = f.tf;
+        m.offset = f.offset;
+        m.source = args->model;
+        return m;
       }
-      const model::IdentifiedModel m = model::IdentifyTransferFunction(t, u, y, id);
-      if (!m.ok) throw Error(Located(where, "", "no model could be identified: " + m.reason));
-      source = "identified on " + where + " (" + std::to_string(id.poles) + " poles, " + std::to_string(id.zeros) +
-               " zeros)";
-      std::printf("model identified: fit %.2f %%, delay %.3f s\n", m.fit_percent, m.tf.delay_s);
-      return m.tf;
+      const model::IdentifiedModel im = model::IdentifyTransferFunction(t, u, y, id, segments);
+      if (!im.ok) throw Error(Located(where, "", "no model could be identified: " + im.reason));
+      m.tf = im.tf;
+      m.offset = im.offset;
+      m.source = "identified on " + where + " (" + std::to_string(id.poles) + " poles, " + std::to_string(id.zeros) +
+                 " zeros, operating point and initial state estimated)";
+      std::printf("model identified: fit %.2f %%, delay %.3f s\n", im.fit_percent, im.tf.delay_s);
+      if (im.delay_profile.ambiguous) std::printf("warning: %s\n", im.delay_profile.note.c_str());
+      return m;
     };
 
     if (!args->rig.empty()) {
@@ -197,6 +261,7 @@ Run AddExplain(CLI::App& app) {
       struct Measured {
         RunArchive run;
         std::vector<BeadGeometry> geometry;
+        OcclusionColumns occlusion;
         FlowResult flow;
         std::vector<double> t, u, y;  // valid samples
       };
@@ -207,18 +272,17 @@ Run AddExplain(CLI::App& app) {
         const ProfileBlock& block = m->run.profiles;
         m->geometry = MeasureProfiles(
             block.size(), [&](std::size_t i) { return block.view(i); }, rig.reference_left, rig.reference_right, {});
-        const OcclusionColumns occ = RunOcclusion(args->occlusion, rig, block, m->geometry);
-        m->flow = ComputeFlow(rig, block, m->geometry, *m->run.log, {}, occ.corrected, occ.sigma);
+        m->occlusion = RunOcclusion(args->occlusion, rig, block, m->geometry);
+        m->flow = ComputeFlow(rig, block, m->geometry, *m->run.log, {}, m->occlusion.corrected, m->occlusion.sigma);
         for (const auto& s : m->flow.samples)
           if (s.valid) m->t.push_back(s.t_s), m->u.push_back(s.screw_rpm), m->y.push_back(s.flow_mm3_s);
         if (m->t.size() < 50) throw Error(Located(path, "", "fewer than 50 profiles with a flow: nothing to explain"));
         return m;
       };
       const auto main_run = measure(args->data);
-      std::string source;
-      const model::TransferFunction tf = model_for(main_run->t, main_run->u, main_run->y, args->data, source);
+      const Model mdl = model_for(main_run->t, main_run->u, main_run->y, {}, args->data);
       auto series_of = [&](const Measured& m) {
-        return explain::MakeRunSeries(rig, m.run.profiles, m.geometry, *m.run.log, m.flow, tf);
+        return explain::MakeRunSeries(rig, m.run.profiles, m.geometry, *m.run.log, m.flow, mdl.tf, mdl.offset);
       };
       const explain::RunSeries series = series_of(*main_run);
       std::optional<explain::RunSeries> other;
@@ -232,43 +296,104 @@ Run AddExplain(CLI::App& app) {
       std::printf("%s: %zu samples of flow in extrusion time; explaining...\n", args->data.c_str(), series.data.size());
       const explain::ExplainReport r = explain::Explain(series.data, options);
       PrintReport(r, "mm^3/s");
+      const explain::ShiftProfile& sp = r.shift_profile;
       const double offset = rig.offset_counts + r.position_shift_counts;
-      std::printf("encoder offset from the run: %.1f +- %.1f counts (95 %%); rig file: %.1f counts\n", offset,
-                  r.position_shift_ci95_counts, rig.offset_counts);
+      std::printf("encoder offset from the run: %.1f counts, 95 %% interval %.1f to %.1f%s%s; rig file: %.1f counts\n",
+                  offset, rig.offset_counts + sp.lo, rig.offset_counts + sp.hi,
+                  sp.lo_at_edge || sp.hi_at_edge ? " (reaches the searched range: the run does not pin it" : "",
+                  sp.lo_at_edge || sp.hi_at_edge ? "; at a constant wheel speed the offset trades against the delay)" : "",
+                  rig.offset_counts);
       std::printf("profile time stamps against the log: %+.4f +- %.4f s (a sensor latency shows here)\n",
                   series.timestamp_offset_s, series.timestamp_offset_ci95_s);
-      json j = ReportJson(r, tf, source);
+      json j = ReportJson(r, mdl.tf, mdl.offset, mdl.source);
       j["mode"] = "run";
       j["offset_from_run_counts"] = offset;
-      j["offset_from_run_ci95_counts"] = Finite(r.position_shift_ci95_counts);
+      j["offset_from_run_ci95_counts"] = r.position_shift_ci95_counts;
+      j["offset_profile"] = {{"offset_counts", json::array()},
+                             {"sse", sp.sse},
+                             {"ci95_low_counts", rig.offset_counts + sp.lo},
+                             {"ci95_high_counts", rig.offset_counts + sp.hi},
+                             {"low_at_search_edge", sp.lo_at_edge},
+                             {"high_at_search_edge", sp.hi_at_edge}};
+      for (double g : sp.shift_counts) j["offset_profile"]["offset_counts"].push_back(rig.offset_counts + g);
       j["rig_offset_counts"] = rig.offset_counts;
       j["diagnostics"]["timestamp_offset_s"] = series.timestamp_offset_s;
       j["diagnostics"]["timestamp_offset_ci95_s"] = series.timestamp_offset_ci95_s;
+      if (!args->pins.empty()) {
+        const calibration::OffsetCalibration cal = calibration::CalibrateOffset(rig, ReadPinScanArchive(args->pins));
+        if (!cal.ok) throw Error(Located(args->pins, "", "cannot calibrate: " + cal.reason));
+        const double diff = offset - cal.offset_counts;
+        const double combined = std::hypot(r.position_shift_ci95_counts, cal.ci95_counts);
+        std::printf("pin scans (%s): %.1f +- %.1f counts; the run's offset differs by %+.1f counts (%s)\n",
+                    args->pins.c_str(), cal.offset_counts, cal.ci95_counts, diff,
+                    std::abs(diff) <= combined ? "they agree within their 95 % intervals" : "they DISAGREE");
+        j["pin_offset_counts"] = cal.offset_counts;
+        j["pin_offset_ci95_counts"] = cal.ci95_counts;
+        j["offsets_agree"] = std::abs(diff) <= combined;
+      }
+      if (!args->flow_out.empty()) {
+        const explain::CorrectedFlow cf =
+            explain::CorrectFlow(rig, main_run->run.profiles, main_run->geometry, *main_run->run.log,
+                                 main_run->occlusion.corrected, main_run->occlusion.sigma, r, mdl.tf, mdl.offset);
+        WriteFlowCsv(args->flow_out, cf.flow);
+        std::string undone;
+        for (const auto& u : cf.undone) undone += (undone.empty() ? "" : ", ") + u;
+        std::printf("corrected flow: %s undone (offset %.1f counts); RMS against the model %.4g -> %.4g mm^3/s; "
+                    "total volume %.1f mm^3\nwrote %s\n",
+                    undone.empty() ? "nothing to undo (no kept effect acts on the measurement)" : undone.c_str(),
+                    cf.offset_counts, cf.rms_before, cf.rms_after, cf.flow.total_volume_mm3, args->flow_out.c_str());
+        j["corrected_flow"] = {{"path", args->flow_out},   {"undone", cf.undone},
+                               {"offset_counts", cf.offset_counts}, {"rms_before", cf.rms_before},
+                               {"rms_after", cf.rms_after}, {"total_volume_mm3", cf.flow.total_volume_mm3}};
+      }
       Write(args->out, j);
       return 0;
     }
 
     if (args->input.empty() || args->output.empty())
       throw CLI::RequiredError("CSV mode needs --input and --output (run mode needs --rig)");
-    const Series s = ReadColumns(args->data, args->time, args->input, args->output);
+    if (!args->flow_out.empty() || !args->pins.empty())
+      throw CLI::ValidationError("--flow-out and --pins", "are for run mode (--rig)");
+    auto read = [&](const std::string& path) {
+      return ReadSeries({path, args->time, args->input, args->output, args->input_file,
+                         args->input_time.empty() ? args->time : args->input_time});
+    };
+    auto stretches = [&](const Series& s, const std::string& path) {
+      ProcessOn on;
+      if (args->keep_off) {
+        on.segments = WholeRecord(s.t.size());
+      } else {
+        on = FindProcessOn(s.t, s.u, s.y);
+        if (!on.excluded.empty())
+          std::printf("%s: left out: %s\n", path.c_str(), DescribeExclusions(on.excluded).c_str());
+      }
+      if (on.segments.empty()) throw Error(Located(path, "", "no stretch where the process ran: nothing to explain"));
+      return on;
+    };
+    const Series s = read(args->data);
     std::printf("%s: %zu rows (%d skipped as gaps)\n", args->data.c_str(), s.t.size(), s.skipped);
-    std::string source;
-    const model::TransferFunction tf = model_for(s.t, s.u, s.y, args->data, source);
-    const explain::SeriesData data = explain::ModelSeries(s.t, s.u, s.y, tf, args->output);
+    if (!s.note.empty()) std::printf("%s\n", s.note.c_str());
+    const ProcessOn on = stretches(s, args->data);
+    const Model mdl = model_for(s.t, s.u, s.y, on.segments, args->data);
+    const explain::SeriesData data = explain::ModelSeries(s.t, s.u, s.y, mdl.tf, mdl.offset, on.segments, args->output);
     std::optional<explain::SeriesData> other;
     if (!args->validate.empty()) {
-      const Series v = ReadColumns(args->validate, args->time, args->input, args->output);
-      other = explain::ModelSeries(v.t, v.u, v.y, tf, args->output);
+      const Series v = read(args->validate);
+      const ProcessOn von = stretches(v, args->validate);
+      other = explain::ModelSeries(v.t, v.u, v.y, mdl.tf, mdl.offset, von.segments, args->output);
       options.validation = &*other;
       std::printf("held-out data: %s (%zu rows)\n", args->validate.c_str(), v.t.size());
     }
     const explain::ExplainReport r = explain::Explain(data, options);
     PrintReport(r, args->output);
-    json j = ReportJson(r, tf, source);
+    json j = ReportJson(r, mdl.tf, mdl.offset, mdl.source);
     j["mode"] = "csv";
     j["offset_from_run_counts"] = nullptr;  // no wheel in a plain series
     j["offset_from_run_ci95_counts"] = nullptr;
     j["rig_offset_counts"] = nullptr;
+    json left = json::array();
+    for (const auto& e : on.excluded) left.push_back({{"t_begin_s", e.t_begin_s}, {"t_end_s", e.t_end_s}, {"reason", e.reason}});
+    j["excluded"] = left;
     Write(args->out, j);
     return 0;
   };

@@ -55,6 +55,7 @@ std::vector<std::vector<double>> Effect::Columns(const SeriesData& d, const doub
     cols.push_back(std::move(s));
     return cols;
   }
+  if (feature == "dynamics") return d.dynamics;
   std::vector<double> c(n, 0.0);
   if (feature == "scale" || feature == "bias") {
     std::fill(c.begin(), c.end(), 1.0);
@@ -120,11 +121,6 @@ std::vector<Effect> Catalogue(const SeriesData& d, const CatalogueOptions& o) {
     out.push_back(e);
   }
   if (d.shifted || d.base_delayed) {
-    Effect e = Make("time_shift", "measurement and model misaligned in time (latency, a wrong delay)", K::kDelay,
-                    "delay");
-    e.nonlinear = {"shift_s"};
-    e.grid = {Linspace(-o.delay_range_s, o.delay_range_s, 41)};
-    out.push_back(e);
     Effect f = Make("delay_drift", "the delay changes over the record", K::kDelayDrift, "delay_drift");
     f.nonlinear = {"delay_change_s"};
     f.grid = {Linspace(-o.delay_range_s, o.delay_range_s, 41)};
@@ -179,15 +175,34 @@ std::vector<Effect> Catalogue(const SeriesData& d, const CatalogueOptions& o) {
   Effect level = Make("level_gain", "the gain changes with the operating level", K::kMultiplicative, "level");
   level.linear = {"rel_per_sd_level"};
   out.push_back(level);
-  if (o.model_given) {
-    Effect s = Make("scale", "the model's gain is off by a factor", K::kMultiplicative, "scale");
-    s.linear = {"rel"};
-    out.push_back(s);
-    Effect b = Make("bias", "a constant offset", K::kAdditive, "bias");
-    b.linear = {"value_" + d.y_unit};
-    out.push_back(b);
+  return out;
+}
+
+std::vector<Effect> BaseRefit(const SeriesData& d, const CatalogueOptions& o) {
+  using K = Effect::Kind;
+  std::vector<Effect> out;
+  Effect s = Make("gain", "the base model's gain, refitted (a factor on its prediction)", K::kMultiplicative, "scale");
+  s.linear = {"rel"};
+  out.push_back(s);
+  Effect b = Make("operating_point", "the base model's operating point, refitted (a constant)", K::kAdditive, "bias");
+  b.linear = {"value_" + d.y_unit};
+  out.push_back(b);
+  if (d.shifted || d.base_delayed) {
+    Effect e = Make("delay", "the base model's delay, refitted (measurement and model shifted in time)", K::kDelay,
+                    "delay");
+    e.nonlinear = {"shift_s"};
+    e.grid = {Linspace(-o.delay_range_s, o.delay_range_s, 41)};
+    out.push_back(e);
   }
   return out;
+}
+
+Effect DynamicsCorrection(const SeriesData& d) {
+  Effect e = Make(d.dynamics.empty() ? "" : "dynamics_correction",
+                  "a linear correction of the base model's dynamics (filters of its input)", Effect::Kind::kAdditive,
+                  "dynamics");
+  for (std::size_t k = 0; k < d.dynamics.size(); ++k) e.linear.push_back("c" + std::to_string(k));
+  return e;
 }
 
 }  // namespace bead::explain

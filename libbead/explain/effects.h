@@ -36,12 +36,11 @@ struct Effect {
   // Which catalogued feature it is built from (set by the catalogue).
   int part = -1;      // index into data.parts for periodic terms
   int harmonic = 1;
-  std::string feature;  // "scale", "bias", "drift", "time_to_laser", "height", "buildup", "level"
+  std::string feature;  // "scale", "bias", "drift", "time_to_laser", "height", "buildup", "level", "dynamics"
 };
 
 struct CatalogueOptions {
   bool has_wheel = false;        // position shifts make sense
-  bool model_given = false;      // scale and bias are not already fitted
   double position_range_counts = 0.0;  // offset search +- this
   double delay_range_s = 0.5;
 };
@@ -50,5 +49,14 @@ struct CatalogueOptions {
 // phase is known and which turns at least twice in the record, a
 // time-to-laser term only when that time varies, and so on.
 std::vector<Effect> Catalogue(const SeriesData& data, const CatalogueOptions& options);
+
+// The base model's own parameters, refitted with every candidate and never
+// reported as effects: its gain (a factor), its operating point (a
+// constant) and its delay (a time shift, where the data can be shifted).
+std::vector<Effect> BaseRefit(const SeriesData& data, const CatalogueOptions& options);
+
+// A linear correction of the base model's dynamics (SeriesData::dynamics);
+// empty name when the data carries no such columns.
+Effect DynamicsCorrection(const SeriesData& data);
 
 }  // namespace bead::explain

@@ -1,281 +1,24 @@
 #include "libbead/explain/explain_loop.h"
 
-#include <ceres/ceres.h>
-#include <glog/logging.h>
-
-#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 
 #include "libbead/core/error.h"
-#include "libbead/fit/solver_options.h"
+#include "libbead/explain/effect_fit.h"
 #include "libbead/model/fit_metrics.h"
 
 namespace bead::explain {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-struct Active {
-  Effect effect;
-  std::vector<double> params;  // nonlinear..., linear...
-  std::size_t nl() const { return effect.nonlinear.size(); }
-};
-using Set = std::vector<Active>;
-
-std::size_t ParameterCount(const Set& set) {
-  std::size_t p = 0;
-  for (const Active& a : set) p += a.params.size();
-  return p;
-}
-
-bool HasNonlinear(const Set& set) {
-  for (const Active& a : set)
-    if (a.nl() > 0) return true;
-  return false;
-}
-
-// y and base under the set's shifts.
-void Shifted(const SeriesData& d, const Set& set, std::vector<double>& y, std::vector<double>& base) {
-  double shift = 0;
-  std::vector<double> delay(d.size(), 0.0);
-  bool delayed = false;
-  for (const Active& a : set) {
-    shift += a.effect.PositionShift(a.params.data());
-    if (a.effect.IsDelay()) {
-      a.effect.AddDelay(d, a.params.data(), delay);
-      delayed = true;
-    }
-  }
-  if (shift == 0.0 && !delayed) {
-    y = d.y;
-    base = d.base;
-  } else if (d.shifted) {
-    d.shifted(shift, delay, y, base);
-  } else {
-    y = d.y;
-    base = d.base_delayed(delay);
-  }
-}
-
-// Measured (possibly shifted) y and the set's prediction.
-void Evaluate(const SeriesData& d, const Set& set, std::vector<double>& y, std::vector<double>& pred) {
-  std::vector<double> base;
-  Shifted(d, set, y, base);
-  const std::size_t n = d.size();
-  std::vector<double> mult(n, 1.0), add(n, 0.0);
-  for (const Active& a : set) {
-    const auto cols = a.effect.Columns(d, a.params.data());
-    for (std::size_t j = 0; j < cols.size(); ++j) {
-      const double c = a.params[a.nl() + j];
-      auto& target = a.effect.kind == Effect::Kind::kMultiplicative ? mult : add;
-      for (std::size_t i = 0; i < n; ++i) target[i] += c * cols[j][i];
-    }
-  }
-  pred.resize(n);
-  for (std::size_t i = 0; i < n; ++i) pred[i] = base[i] * mult[i] + add[i];
-}
-
-std::vector<double> Residual(const SeriesData& d, const Set& set) {
-  std::vector<double> y, pred;
-  Evaluate(d, set, y, pred);
-  for (std::size_t i = 0; i < y.size(); ++i) y[i] -= pred[i];
-  return y;
-}
-
-double Sse(const std::vector<double>& r, const std::vector<std::size_t>& rows) {
-  double s = 0;
-  for (std::size_t i : rows)
-    if (std::isfinite(r[i])) s += r[i] * r[i];
-  return s;
-}
-
-// The linear parameters for the current nonlinear ones, by least squares on
-// `rows`; returns the design matrix (its columns: the linear parameters in
-// order), which depends on the nonlinear parameters only.
-Eigen::MatrixXd SolveLinear(const SeriesData& d, Set& set, const std::vector<std::size_t>& rows) {
-  std::vector<double> y, base;
-  Shifted(d, set, y, base);
-  std::vector<std::vector<double>> columns;
-  std::vector<std::pair<std::size_t, std::size_t>> where;  // (effect, linear index)
-  for (std::size_t e = 0; e < set.size(); ++e) {
-    auto cols = set[e].effect.Columns(d, set[e].params.data());
-    for (std::size_t j = 0; j < cols.size(); ++j) {
-      if (set[e].effect.kind == Effect::Kind::kMultiplicative)
-        for (std::size_t i = 0; i < cols[j].size(); ++i) cols[j][i] *= base[i];
-      columns.push_back(std::move(cols[j]));
-      where.push_back({e, j});
-    }
-  }
-  if (columns.empty()) return {};
-  Eigen::MatrixXd a(rows.size(), columns.size());
-  Eigen::VectorXd b(rows.size());
-  for (std::size_t r = 0; r < rows.size(); ++r) {
-    const std::size_t i = rows[r];
-    b(r) = y[i] - base[i];
-    for (std::size_t c = 0; c < columns.size(); ++c) a(r, c) = columns[c][i];
-  }
-  const Eigen::VectorXd x = a.colPivHouseholderQr().solve(b);
-  for (std::size_t c = 0; c < columns.size(); ++c) set[where[c].first].params[set[where[c].first].nl() + where[c].second] = x(c);
-  return a;
-}
-
-struct CostFunctor {
-  const SeriesData& data;
-  Set shape;
-  const std::vector<std::size_t>& rows;
-  bool operator()(double const* const* params, double* residuals) const {
-    Set set = shape;
-    for (std::size_t e = 0; e < set.size(); ++e)
-      for (std::size_t k = 0; k < set[e].params.size(); ++k) set[e].params[k] = params[e][k];
-    const std::vector<double> r = Residual(data, set);
-    for (std::size_t k = 0; k < rows.size(); ++k) residuals[k] = std::isfinite(r[rows[k]]) ? r[rows[k]] : 0.0;
-    return true;
-  }
-};
-
-struct Uncertainty {
-  bool ok = false;
-  std::vector<std::vector<double>> sd;  // per effect, per parameter
-};
-
-// Joint refinement of every parameter (Ceres, central differences); with
-// `uncertainty`, the 95 % half-widths as described in explain_loop.h.
-void Refine(const SeriesData& d, Set& set, const std::vector<std::size_t>& rows, Uncertainty* uncertainty) {
-  if (set.empty()) return;
-  if (HasNonlinear(set)) {
-    ceres::Problem problem;
-    auto* cost = new ceres::DynamicNumericDiffCostFunction<CostFunctor, ceres::CENTRAL>(new CostFunctor{d, set, rows});
-    std::vector<double*> blocks;
-    for (Active& a : set) {
-      cost->AddParameterBlock(static_cast<int>(a.params.size()));
-      blocks.push_back(a.params.data());
-    }
-    cost->SetNumResiduals(static_cast<int>(rows.size()));
-    problem.AddResidualBlock(cost, nullptr, blocks);
-    // A nonlinear parameter stays within its search grid (a time constant
-    // the data cannot pin would run off to infinity).
-    for (std::size_t e = 0; e < set.size(); ++e)
-      for (std::size_t k = 0; k < set[e].nl(); ++k) {
-        const auto& grid = set[e].effect.grid[k];
-        problem.SetParameterLowerBound(blocks[e], static_cast<int>(k), grid.front());
-        problem.SetParameterUpperBound(blocks[e], static_cast<int>(k), grid.back());
-      }
-    ceres::Solver::Summary summary;
-    ceres::Solve(fit::QuietDenseOptions(30), &problem, &summary);
-    if (!uncertainty) return;
-    ceres::Covariance::Options co;
-    co.algorithm_type = ceres::DENSE_SVD;
-    std::vector<std::pair<const double*, const double*>> pairs;
-    for (double* b : blocks) pairs.push_back({b, b});
-    // Standard deviations from the covariance blocks; parameters [0, held)
-    // of an effect were held (unbounded), or all of them when it is `fixed`.
-    auto collect = [&](ceres::Covariance& cov, bool nonlinear_held, const std::vector<bool>& fixed) {
-      uncertainty->sd.clear();
-      for (std::size_t e = 0; e < set.size(); ++e) {
-        const std::size_t m = set[e].params.size();
-        std::vector<double> sd(m, kInf);
-        if (!fixed[e]) {
-          std::vector<double> c(m * m);  // in the ambient space, also with a manifold
-          cov.GetCovarianceBlock(blocks[e], blocks[e], c.data());
-          for (std::size_t k = nonlinear_held ? set[e].nl() : 0; k < m; ++k) sd[k] = std::sqrt(std::max(c[k * m + k], 0.0));
-        }
-        uncertainty->sd.push_back(sd);
-      }
-      uncertainty->ok = true;
-    };
-    {
-      // A rank-deficient covariance is an expected outcome here (handled
-      // below); keep Ceres from logging it as an error.
-      const int level = FLAGS_minloglevel;
-      FLAGS_minloglevel = google::GLOG_FATAL;
-      ceres::Covariance cov(co);
-      const bool computed = cov.Compute(pairs, &problem);
-      FLAGS_minloglevel = level;
-      if (computed) {
-        collect(cov, false, std::vector<bool>(set.size(), false));
-        return;
-      }
-    }
-    // Some nonlinear parameter is not identified by the data: its interval
-    // is unbounded, and the others' are computed with it held.
-    std::vector<bool> held(set.size(), false);
-    std::vector<std::pair<const double*, const double*>> kept;
-    for (std::size_t e = 0; e < set.size(); ++e) {
-      const int nl = static_cast<int>(set[e].nl()), m = static_cast<int>(set[e].params.size());
-      if (nl == 0) {
-        kept.push_back({blocks[e], blocks[e]});
-      } else if (nl == m) {
-        problem.SetParameterBlockConstant(blocks[e]);
-        held[e] = true;
-      } else {
-        std::vector<int> fixed;
-        for (int k = 0; k < nl; ++k) fixed.push_back(k);
-        problem.SetManifold(blocks[e], new ceres::SubsetManifold(m, fixed));
-        kept.push_back({blocks[e], blocks[e]});
-      }
-    }
-    ceres::Covariance cov(co);
-    if (cov.Compute(kept, &problem)) collect(cov, true, held);
-    return;
-  }
-  const Eigen::MatrixXd a = SolveLinear(d, set, rows);
-  if (!uncertainty || a.cols() == 0) return;
-  // Linear: (A^T A)^-1 directly.
-  const Eigen::MatrixXd ata = a.transpose() * a;
-  Eigen::FullPivLU<Eigen::MatrixXd> lu(ata);
-  if (!lu.isInvertible()) return;
-  const Eigen::MatrixXd inv = lu.inverse();
-  uncertainty->sd.clear();
-  std::size_t c = 0;
-  for (const Active& act : set) {
-    std::vector<double> sd(act.params.size(), 0.0);
-    for (std::size_t k = act.nl(); k < act.params.size(); ++k, ++c) sd[k] = std::sqrt(std::max(inv(c, c), 0.0));
-    uncertainty->sd.push_back(sd);
-  }
-  uncertainty->ok = true;
-}
-
-// The newest effect's nonlinear start from its grid (linear ones solved at
-// each point), then everything refined together.
-void Fit(const SeriesData& d, Set& set, const std::vector<std::size_t>& rows) {
-  Active& last = set.back();
-  if (last.nl() == 1) {
-    double best = kInf, best_value = 0.0;
-    for (double v : last.effect.grid[0]) {
-      set.back().params[0] = v;
-      SolveLinear(d, set, rows);
-      const double s = Sse(Residual(d, set), rows);
-      if (s < best) best = s, best_value = v;
-    }
-    set.back().params[0] = best_value;
-    SolveLinear(d, set, rows);
-  }
-  Refine(d, set, rows, nullptr);
-}
+using Set = EffectSet;
 
 double Bic(double sse, std::size_t n, std::size_t p) {
   const double nn = static_cast<double>(n);
   return nn * std::log(std::max(sse, 1e-300) / nn) + static_cast<double>(p) * std::log(nn);
-}
-
-double LagOneCorrelation(const std::vector<double>& r) {
-  double m = 0, c0 = 0, c1 = 0;
-  std::size_t n = 0;
-  for (double x : r)
-    if (std::isfinite(x)) m += x, ++n;
-  if (n < 3) return 0.0;
-  m /= static_cast<double>(n);
-  double prev = std::numeric_limits<double>::quiet_NaN();
-  for (double x : r) {
-    if (!std::isfinite(x)) continue;
-    c0 += (x - m) * (x - m);
-    if (std::isfinite(prev)) c1 += (x - m) * (prev - m);
-    prev = x;
-  }
-  return c0 > 0 ? c1 / c0 : 0.0;
 }
 
 // Time blocks: every sample's block index, `blocks` of equal duration.
@@ -337,8 +80,8 @@ double LargestSurrogateF(const SeriesData& d, const SeriesData& v, bool separate
       Effect e = effect;
       e.part = static_cast<int>(ds.parts.size()) - 1;
       Set trial = current;
-      trial.push_back(Active{e, std::vector<double>(e.linear.size(), 0.0)});
-      Fit(ds, trial, estimation);
+      trial.push_back(Activate(e));
+      Fit(ds, trial, estimation, current.size());
       largest = std::max(largest, HeldOutF(vs, current, trial, held_out, trial.back().params.size()));
     }
   }
@@ -359,9 +102,9 @@ double FitOf(const SeriesData& d, const Set& set) {
   return model::FitPercent(y, pred);
 }
 
-// The factor from Ceres's (J^T J)^-1 to parameter standard deviations: the
-// residual's standard deviation, times sqrt(N / N_eff) for its lag-one
-// correlation (N_eff = N (1 - rho) / (1 + rho)).
+// The residual's standard deviation, times sqrt(N / N_eff) for its lag-one
+// correlation (N_eff = N (1 - rho) / (1 + rho)): the scale of the
+// parameters' standard deviations.
 double Inflation(const SeriesData& d, const Set& set, const std::vector<std::size_t>& rows) {
   const std::vector<double> r = Residual(d, set);
   const double dof = std::max(1.0, static_cast<double>(rows.size()) - static_cast<double>(ParameterCount(set)));
@@ -380,22 +123,118 @@ Diagnosis Diagnose(const SeriesData& d, const Set& set, const ExplainOptions& o)
   return g;
 }
 
-std::vector<FittedParameter> Parameters(const Active& a, const Uncertainty& u, std::size_t index, double inflate) {
+std::vector<FittedParameter> Parameters(const Active& a, const std::vector<double>& sd) {
   std::vector<FittedParameter> out;
   const std::size_t nl = a.nl();
   for (std::size_t k = 0; k < a.params.size(); ++k) {
     const std::string& name = k < nl ? a.effect.nonlinear[k] : a.effect.linear[k - nl];
-    const double sd = u.ok ? u.sd[index][k] * inflate : kInf;
-    out.push_back({name, a.params[k], 1.96 * sd});
+    out.push_back({name, a.params[k], 1.96 * sd[k]});
   }
   if (a.effect.part >= 0 && a.params.size() == 2) {
     // Amplitude and phase of c cos + s sin, with first-order uncertainties.
     const double c = a.params[0], s = a.params[1], amp = std::hypot(c, s);
-    const double sd = u.ok ? std::hypot(u.sd[index][0], u.sd[index][1]) / std::sqrt(2.0) * inflate : kInf;
-    out.push_back({"amplitude_rel", amp, 1.96 * sd});
-    out.push_back({"phase_rad", std::atan2(s, c), amp > 0 ? 1.96 * sd / amp : kInf});
+    const double sd_amp = std::hypot(sd[0], sd[1]) / std::sqrt(2.0);
+    out.push_back({"amplitude_rel", amp, 1.96 * sd_amp});
+    out.push_back({"phase_rad", std::atan2(s, c), amp > 0 ? 1.96 * sd_amp / amp : kInf});
   }
   return out;
+}
+
+AddedEffect Describe(const Active& a, const std::vector<double>& sd) {
+  AddedEffect e;
+  e.name = a.effect.name;
+  e.description = a.effect.description;
+  e.tracks = a.effect.tracks;
+  e.parameters = Parameters(a, sd);
+  return e;
+}
+
+// The held-out test of `candidate` against `null`, both fitted on the
+// estimation rows: BIC drop there and held-out F.
+struct Test {
+  double bic_drop = 0, f = 0;
+  Set fitted;
+};
+// `joint`: every nonlinear parameter refitted with the candidate's (the
+// base model's delay too); else only the candidate's own (a screening).
+Test TryEffect(const SeriesData& d, const SeriesData& v, const Set& null, const Effect& candidate,
+               const std::vector<std::size_t>& estimation, const std::vector<std::size_t>& held_out, bool joint) {
+  Test t;
+  t.fitted = null;
+  t.fitted.push_back(Activate(candidate));
+  Fit(d, t.fitted, estimation, joint ? 0 : null.size());
+  const double bic_null = Bic(Sse(Residual(d, null), estimation), estimation.size(), ParameterCount(null));
+  t.bic_drop = bic_null - Bic(Sse(Residual(d, t.fitted), estimation), estimation.size(), ParameterCount(t.fitted));
+  t.f = HeldOutF(v, null, t.fitted, held_out, t.fitted.back().params.size());
+  return t;
+}
+
+// The fit against the wheel-position shift: at each shift of a grid over
+// the searched range the rest refitted (continuing from the neighbour);
+// the interval where the SSE stays within SSE_min (1 + chi2_1(0.95) / N_eff).
+ShiftProfile ProfileShift(const SeriesData& d, const Set& current, const Effect& shift_effect,
+                          const std::vector<std::size_t>& rows) {
+  ShiftProfile p;
+  // Everything but a position shift, refitted at each shift held.
+  Set walking;
+  for (const Active& a : current)
+    if (a.effect.kind != Effect::Kind::kPositionShift) walking.push_back(a);
+  const std::vector<double>& grid = shift_effect.grid[0];
+  p.shift_counts = grid;
+  std::vector<std::vector<double>> residuals(grid.size());
+  // From the middle (the rig file's offset) outward, each shift continuing
+  // from its neighbour's values.
+  const std::size_t mid = static_cast<std::size_t>(std::min_element(grid.begin(), grid.end(), [](double a, double b) {
+                                                     return std::abs(a) < std::abs(b);
+                                                   }) - grid.begin());
+  const Set start = walking;
+  for (int dir : {+1, -1}) {
+    walking = start;
+    for (long k = static_cast<long>(mid); k >= 0 && k < static_cast<long>(grid.size()); k += dir) {
+      if (dir < 0 && k == static_cast<long>(mid)) continue;
+      const double g = grid[static_cast<std::size_t>(k)];
+      SeriesData held = d;
+      const auto hook = d.shifted;
+      held.shifted = [hook, g](double counts, const std::vector<double>& delay, std::vector<double>& y,
+                               std::vector<double>& base) { hook(counts + g, delay, y, base); };
+      Refine(held, walking, rows, 10);
+      residuals[static_cast<std::size_t>(k)] = Residual(held, walking);
+    }
+  }
+  // Compared over the samples every shift keeps (a shift pushes some out
+  // of the record at its ends, and those need not fit like the rest).
+  std::vector<std::size_t> common;
+  for (std::size_t i : rows)
+    if (std::all_of(residuals.begin(), residuals.end(), [i](const std::vector<double>& r) { return std::isfinite(r[i]); }))
+      common.push_back(i);
+  if (common.size() < rows.size() / 2) common = rows;  // too few in common: each its own, scaled
+  double best_sse = kInf;
+  std::vector<double> best_residual;
+  for (std::size_t k = 0; k < residuals.size(); ++k) {
+    p.sse.push_back(Sse(residuals[k], common));
+    if (p.sse.back() < best_sse) best_sse = p.sse.back(), p.best = p.shift_counts[k], best_residual = residuals[k];
+  }
+  std::vector<double> used;
+  for (std::size_t i : common) used.push_back(best_residual[i]);
+  const double rho = std::clamp(LagOneCorrelation(used), 0.0, 0.99);
+  const double n_eff = static_cast<double>(common.size()) * (1 - rho) / (1 + rho);
+  const double limit = best_sse * (1.0 + 3.841 / std::max(n_eff, 1.0));
+  const std::size_t ib = static_cast<std::size_t>(std::find(p.shift_counts.begin(), p.shift_counts.end(), p.best) - p.shift_counts.begin());
+  // The outermost shifts within the limit (a flat profile, with the
+  // refits' own scatter on it, is not cut short at its first bump).
+  std::size_t a = ib, b = ib;
+  for (std::size_t k = 0; k < p.sse.size(); ++k)
+    if (p.sse[k] <= limit) a = std::min(a, k), b = std::max(b, k);
+  auto cross = [&](std::size_t inside, std::size_t outside) {
+    const double s0 = p.sse[inside], s1 = p.sse[outside];
+    const double f = s1 > s0 ? (limit - s0) / (s1 - s0) : 0.0;
+    return p.shift_counts[inside] + f * (p.shift_counts[outside] - p.shift_counts[inside]);
+  };
+  p.lo_at_edge = a == 0;
+  p.hi_at_edge = b + 1 == p.sse.size();
+  p.lo = p.lo_at_edge ? p.shift_counts.front() : cross(a, a - 1);
+  p.hi = p.hi_at_edge ? p.shift_counts.back() : cross(b, b + 1);
+  return p;
 }
 
 }  // namespace
@@ -421,38 +260,74 @@ ExplainReport Explain(const SeriesData& d, const ExplainOptions& o) {
   }
 
   const std::vector<Effect> catalogue = Catalogue(d, o.catalogue);
+  // The base model at its best: gain, operating point and delay refitted.
   Set current;
-  report.before = Diagnose(d, current, o);
+  for (const Effect& e : BaseRefit(d, o.catalogue)) current.push_back(Activate(e));
+  const std::size_t base_terms = current.size();
+  report.before = Diagnose(d, Set{}, o);
+  {
+    Set est = current;
+    for (std::size_t k = 0; k < est.size(); ++k) {
+      Set partial(est.begin(), est.begin() + static_cast<long>(k + 1));
+      Fit(d, partial, all);
+      for (std::size_t j = 0; j <= k; ++j) est[j].params = partial[j].params;
+    }
+    current = est;
+  }
+  const Effect dynamics = DynamicsCorrection(d);
 
   std::vector<bool> used(catalogue.size(), false);
   for (int round = 0; round < o.max_effects; ++round) {
     Set current_est = current;
-    Refine(d, current_est, estimation, nullptr);
-    const double bic_now = Bic(Sse(Residual(d, current_est), estimation), estimation.size(), ParameterCount(current_est));
+    Refine(d, current_est, estimation);
+    const auto candidates_left = static_cast<std::size_t>(std::count(used.begin(), used.end(), false));
+    // Every candidate of the round is a test: Bonferroni keeps the chance
+    // of adding a false one in a round at alpha.
+    const double level = 1.0 - o.alpha / static_cast<double>(std::max<std::size_t>(candidates_left, 1));
+    // The guard: the base with a linear correction of its dynamics.
+    Set guard_null = current_est;
+    bool guard = !dynamics.name.empty();
+    if (guard) {
+      const Test g = TryEffect(d, validation, current_est, dynamics, estimation, held_out, true);
+      guard_null = g.fitted;
+      if (round == 0) {
+        const std::size_t p = dynamics.linear.size();
+        report.base.tested = true;
+        report.base.heldout_f = g.f;
+        report.base.threshold = ChiSquareQuantile(1.0 - o.alpha, static_cast<int>(p)) / static_cast<double>(p);
+        report.base.misspecified = g.f > report.base.threshold && g.bic_drop > 0;
+        const double n = static_cast<double>(held_out.size());
+        report.base.rms_before = std::sqrt(Sse(Residual(validation, current_est), held_out) / n);
+        report.base.rms_after = std::sqrt(Sse(Residual(validation, g.fitted), held_out) / n);
+      }
+    }
     int best = -1;
     double best_drop = 0.0, best_t = 0.0;
-    const auto candidates_left = static_cast<std::size_t>(std::count(used.begin(), used.end(), false));
     Set best_set;
     for (std::size_t c = 0; c < catalogue.size(); ++c) {
       if (used[c]) continue;
-      Set trial = current_est;
-      Active a{catalogue[c], std::vector<double>(catalogue[c].nonlinear.size() + catalogue[c].linear.size(), 0.0)};
-      trial.push_back(a);
-      Fit(d, trial, estimation);
-      const double drop = bic_now - Bic(Sse(Residual(d, trial), estimation), estimation.size(), ParameterCount(trial));
-      const std::size_t p_new = trial.back().params.size();
-      const double t = HeldOutF(validation, current_est, trial, held_out, p_new);
-      // Every candidate of the round is a test: Bonferroni keeps the chance
-      // of adding a false one in a round at alpha.
-      const double level = 1.0 - o.alpha / static_cast<double>(candidates_left);
-      bool ok = drop > 0 && t > ChiSquareQuantile(level, static_cast<int>(p_new)) / static_cast<double>(p_new);
-      double surrogate = NAN;
+      // Screened with the base model's delay held; what passes is fitted
+      // jointly with it and tested again.
+      Test t = TryEffect(d, validation, current_est, catalogue[c], estimation, held_out, false);
+      const std::size_t p_new = t.fitted.back().params.size();
+      const double critical = ChiSquareQuantile(level, static_cast<int>(p_new)) / static_cast<double>(p_new);
+      bool ok = t.bic_drop > 0 && t.f > critical;
+      if (ok) {
+        t = TryEffect(d, validation, current_est, catalogue[c], estimation, held_out, true);
+        ok = t.bic_drop > 0 && t.f > critical;
+      }
+      double surrogate = NAN, guarded = NAN;
+      if (ok && guard) {
+        const Test tg = TryEffect(d, validation, guard_null, catalogue[c], estimation, held_out, true);
+        guarded = tg.f;
+        ok = tg.f > critical;
+      }
       if (ok && catalogue[c].part >= 0) {
         surrogate = LargestSurrogateF(d, validation, o.validation != nullptr, current_est, catalogue[c], estimation, held_out);
-        ok = t > surrogate;
+        ok = t.f > surrogate;
       }
-      report.candidates.push_back({round, catalogue[c].name, drop, t, surrogate, false});
-      if (ok && drop > best_drop) best = static_cast<int>(c), best_drop = drop, best_t = t, best_set = trial;
+      report.candidates.push_back({round, catalogue[c].name, t.bic_drop, t.f, surrogate, guarded, false});
+      if (ok && t.bic_drop > best_drop) best = static_cast<int>(c), best_drop = t.bic_drop, best_t = t.f, best_set = t.fitted;
     }
     if (best < 0) break;
     for (auto& cand : report.candidates)
@@ -461,53 +336,47 @@ ExplainReport Explain(const SeriesData& d, const ExplainOptions& o) {
 
     // Refit on the whole record, from the estimation-half values.
     Set after = best_set;
-    Uncertainty u;
-    Refine(d, after, all, &u);
-    const std::vector<double> r_before = Residual(d, current), r_after = Residual(d, after);
-    const double inflate = Inflation(d, after, all);
+    Refine(d, after, all);
     AddedEffect added;
-    const Active& a = after.back();
-    added.name = a.effect.name;
-    added.description = a.effect.description;
-    added.tracks = a.effect.tracks;
-    added.parameters = Parameters(a, u, after.size() - 1, inflate);
+    added.name = after.back().effect.name;
+    added.description = after.back().effect.description;
+    added.tracks = after.back().effect.tracks;
     added.fit_before_pct = FitOf(d, current);
     added.fit_after_pct = FitOf(d, after);
-    added.rms_before = Rms(r_before);
-    added.rms_after = Rms(r_after);
+    added.rms_before = Rms(Residual(d, current));
+    added.rms_after = Rms(Residual(d, after));
     added.bic_drop = best_drop;
     added.heldout_f = best_t;
     report.effects_added.push_back(added);
     current = after;
   }
-  // Report the kept effects' parameters from the final joint fit.
-  if (!current.empty()) {
-    Uncertainty u;
-    Refine(d, current, all, &u);
-    const double inflate = Inflation(d, current, all);
-    for (std::size_t e = 0; e < current.size(); ++e)
-      report.effects_added[e].parameters = Parameters(current[e], u, e, inflate);
+  // Every parameter from the final joint fit, with its interval.
+  Refine(d, current, all);
+  {
+    const auto sd = ParameterSd(d, current, all, Inflation(d, current, all));
+    for (std::size_t e = 0; e < current.size(); ++e) {
+      if (e < base_terms) {
+        report.base_refit.push_back(Describe(current[e], sd[e]));
+      } else {
+        report.effects_added[e - base_terms].parameters = Describe(current[e], sd[e]).parameters;
+      }
+    }
   }
 
-  // The wheel-position shift that best aligns the data, with its interval.
+  for (const Active& a : current) {
+    report.final_effects.push_back(a.effect);
+    report.final_params.push_back(a.params);
+  }
+  report.base_terms = base_terms;
+
+  // The wheel-position shift that best aligns the data, profiled.
   for (const Effect& e : catalogue) {
-    if (e.kind != Effect::Kind::kPositionShift) continue;
-    Set trial = current;
-    bool present = false;
-    for (const Active& a : trial) present |= a.effect.kind == Effect::Kind::kPositionShift;
-    if (!present) {
-      trial.push_back(Active{e, {0.0}});
-      Fit(d, trial, all);
-    }
-    Uncertainty u;
-    Refine(d, trial, all, &u);
-    const double inflate = Inflation(d, trial, all);
-    for (std::size_t k = 0; k < trial.size(); ++k) {
-      if (trial[k].effect.kind != Effect::Kind::kPositionShift) continue;
-      report.position_shift_estimated = true;
-      report.position_shift_counts = trial[k].params[0];
-      report.position_shift_ci95_counts = u.ok ? 1.96 * u.sd[k][0] * inflate : kInf;
-    }
+    if (e.kind != Effect::Kind::kPositionShift || !d.shifted) continue;
+    report.shift_profile = ProfileShift(d, current, e, all);
+    report.position_shift_estimated = true;
+    report.position_shift_counts = report.shift_profile.best;
+    report.position_shift_ci95_counts =
+        std::max(report.shift_profile.hi - report.shift_profile.best, report.shift_profile.best - report.shift_profile.lo);
   }
 
   report.after = Diagnose(d, current, o);

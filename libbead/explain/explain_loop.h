@@ -1,6 +1,9 @@
 // The loop that closes the model: diagnose the residual, try every effect
 // of the catalogue the data supports, keep the one that helps most, and
-// repeat. No overfitting: an effect is kept only when
+// repeat. The base model's gain, operating point and delay are refitted
+// with every candidate and without it (they are never effects), so an
+// effect must beat the base model at its best. No overfitting: an effect
+// is kept only when
 //  1. fitted on the estimation half of the record (every other of
 //     `blocks` time blocks; the whole record when another run is the
 //     held-out data) it lowers the BIC there, and
@@ -11,7 +14,12 @@
 //     candidates tried in the round (Bonferroni: at most alpha of adding a
 //     false effect per round); a
 //     periodic term must also beat the same term fitted to its part turning
-//     at other rates (surrogates, which a coloured residual fits too).
+//     at other rates (surrogates, which a coloured residual fits too);
+//  3. it passes the same held-out test against the base model with a
+//     linear correction of its dynamics (SeriesData::dynamics) added to
+//     both sides: what a better linear model would explain is not an
+//     effect. When that correction is itself significant the base model is
+//     misspecified, and the report says so.
 // Kept effects are refitted on the whole record for the report, each
 // parameter with a 95 % interval from the Ceres covariance, scaled by the
 // residual variance and by N / N_eff for the residual's lag-one correlation.
@@ -47,6 +55,7 @@ struct Candidate {  // every effect tried in a round, for the diagnostics
   std::string name;
   double bic_drop = 0, heldout_f = 0;
   double surrogate_f = 0;  // periodic terms: the largest surrogate's F (NaN: not tried)
+  double guarded_f = 0;    // F against the base with its dynamics corrected (NaN: not tried)
   bool accepted = false;
 };
 
@@ -75,15 +84,40 @@ struct ExplainOptions {
   const SeriesData* validation = nullptr;  // another run: held-out data instead of the blocks
 };
 
+// The base model's dynamics against a linear correction of them.
+struct BaseAdequacy {
+  bool tested = false;
+  double heldout_f = 0.0, threshold = 0.0;  // the correction's held-out F and the level it had to beat
+  double rms_before = 0.0, rms_after = 0.0;  // held-out RMS without and with the correction
+  bool misspecified = false;
+};
+
+// The fit against the wheel-position shift, everything else refitted at
+// each shift: its minimum and where it rises by the 95 % chi-square
+// quantile over the residual's effective sample count.
+struct ShiftProfile {
+  std::vector<double> shift_counts, sse;
+  double best = 0.0, lo = 0.0, hi = 0.0;  // 95 % interval [lo, hi]
+  bool lo_at_edge = false, hi_at_edge = false;  // the interval reaches the searched range there
+};
+
 struct ExplainReport {
   std::vector<AddedEffect> effects_added;
+  std::vector<AddedEffect> base_refit;  // the base model's gain, operating point and delay, refitted
+  BaseAdequacy base;
+  ShiftProfile shift_profile;
   std::vector<Candidate> candidates;
   std::vector<Unexplained> unexplained;
   Diagnosis before, after;  // the base model alone, and with the effects kept
   // The wheel-position shift that best aligns the data (whether or not it
   // was kept as an effect), with its 95 % interval; NaN without a wheel.
-  double position_shift_counts = 0, position_shift_ci95_counts = 0;
+  double position_shift_counts = 0, position_shift_ci95_counts = 0;  // half-width: the larger side
   bool position_shift_estimated = false;
+  // The final set, for re-evaluating it on other data (corrected_flow.h):
+  // the base model's refit terms first (base_terms of them), then the effects kept.
+  std::vector<Effect> final_effects;
+  std::vector<std::vector<double>> final_params;
+  std::size_t base_terms = 0;
 };
 
 ExplainReport Explain(const SeriesData& data, const ExplainOptions& options = {});

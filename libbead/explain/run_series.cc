@@ -6,6 +6,8 @@
 #include <numbers>
 
 #include "libbead/flow/extrusion_time.h"
+#include "libbead/model/identify.h"
+#include "libbead/model/lti_response.h"
 #include "libbead/profile/median.h"
 #include "libbead/series/encoder.h"
 #include "libbead/series/interpolate.h"
@@ -25,12 +27,13 @@ struct RunState {
 
 RunSeries MakeRunSeries(const Rig& rig, const ProfileBlock& profiles, const std::vector<BeadGeometry>& geometry,
                         const AcquisitionLog& log, const FlowResult& flow, const model::TransferFunction& tf,
-                        const FlowOptions& flow_options) {
+                        double model_offset, const FlowOptions& flow_options) {
   auto st = std::make_shared<RunState>();
   st->log_t = log.t_s;
   st->log_counts = UnwrapEncoder(log.encoder, rig.encoder, log.t_s).counts;
   st->speed = SurfaceSpeed(rig, st->log_t, st->log_counts, flow_options);
-  st->model_flow = model::Simulate(tf, log.t_s, log.screw_rpm);
+  st->model_flow = model::Predict(tf, model_offset, log.t_s, log.screw_rpm, {});
+  const auto basis = model::FilterBasis(tf.den, tf.delay_s, log.t_s, log.screw_rpm, WholeRecord(log.size()));
   st->finder = std::make_unique<ExtrusionTimeFinder>(st->log_t, st->log_counts);
   st->offset = rig.offset_counts;
   // The screw's angle: the integral of its speed.
@@ -42,7 +45,9 @@ RunSeries MakeRunSeries(const Rig& rig, const ProfileBlock& profiles, const std:
   RunSeries out;
   SeriesData& d = out.data;
   d.y_unit = "mm3_s";
+  d.dynamics.resize(basis.size());
   RotatingPart wheel{"wheel", {}}, screw_part{"screw", {}};
+  std::vector<double> measured_height;
   std::vector<double> latency;
   for (std::size_t k = 0; k < flow.samples.size(); ++k) {
     const FlowSample& s = flow.samples[k];
@@ -57,15 +62,31 @@ RunSeries MakeRunSeries(const Rig& rig, const ProfileBlock& profiles, const std:
     d.u.push_back(s.screw_rpm);
     d.y.push_back(s.flow_mm3_s);
     d.base.push_back(InterpolateLinear(st->log_t, st->model_flow, s.t_s));
+    for (std::size_t b = 0; b < basis.size(); ++b) d.dynamics[b].push_back(InterpolateLinear(st->log_t, basis[b], s.t_s));
     wheel.angle_rad.push_back(CountsToAngleRad(p_k - rig.offset_counts, rig.encoder));
     screw_part.angle_rad.push_back(InterpolateLinear(log.t_s, screw, s.t_s));
     d.time_to_laser_s.push_back(t_k - s.t_s);
-    d.height_mm.push_back(geometry[k].height_mm);
+    measured_height.push_back(geometry[k].height_mm);
     // When did the log's encoder read this profile's count?
     const double t_at = st->finder->Find(t_k + 1.0, p_k);
     if (std::isfinite(t_at)) latency.push_back(t_k - t_at);
   }
   d.parts = {wheel, screw_part};
+  // The height the model implies, not the one measured: a measured height
+  // carries the measured flow's own deviations, and a term in it would
+  // explain the output by itself. The run's own height-area relation
+  // (height = c sqrt(area), c the median ratio) applied to the model's area
+  // (its flow over the surface speed).
+  {
+    std::vector<double> ratio;
+    for (std::size_t i = 0; i < measured_height.size(); ++i)
+      if (st->area[i] > 0 && measured_height[i] > 0) ratio.push_back(measured_height[i] / std::sqrt(st->area[i]));
+    const double c = ratio.empty() ? 0.0 : MedianInPlace(ratio.data(), ratio.size());
+    for (std::size_t i = 0; i < d.size(); ++i) {
+      const double v = InterpolateLinear(st->log_t, st->speed, d.t[i]);
+      d.height_mm.push_back(c * std::sqrt(std::max(d.base[i], 0.0) / std::max(v, 1e-9)));
+    }
+  }
   if (!latency.empty()) {
     std::vector<double> dev(latency.size());
     const double med = MedianInPlace(latency.data(), latency.size());

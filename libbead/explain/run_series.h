@@ -1,6 +1,9 @@
 // SeriesData for a run of the rig: the measured flow Q = v A of each
 // profile in extrusion time (flow.h) against a model of the flow from the
-// screw speed, simulated on the log's times. What the run lets us
+// screw speed (y = offset + G(s) rpm), simulated on the log's times from
+// steady state at the log's first screw speed (a run cut from a longer
+// session is in steady state or near it; the refitted operating point and
+// gain take up the rest). What the run lets us
 // reconstruct rides along: the wheel's angle where the bead was laid and
 // the screw's angle (integral of its speed) - the rotating parts -, the
 // time from laying to measuring, the bead's height. Moving the data in
@@ -31,6 +34,6 @@ struct RunSeries {
 
 RunSeries MakeRunSeries(const Rig& rig, const ProfileBlock& profiles, const std::vector<BeadGeometry>& geometry,
                         const AcquisitionLog& log, const FlowResult& flow, const model::TransferFunction& rpm_to_flow,
-                        const FlowOptions& flow_options = {});
+                        double model_offset = 0.0, const FlowOptions& flow_options = {});
 
 }  // namespace bead::explain

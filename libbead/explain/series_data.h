@@ -23,8 +23,14 @@ struct SeriesData {
   std::string y_unit = "";            // for the report
   std::vector<RotatingPart> parts;
   std::vector<double> time_to_laser_s;  // empty when not known
-  std::vector<double> height_mm;        // empty when not known
+  std::vector<double> height_mm;        // the bead height the model implies (never the measured one); empty: not known
   std::vector<double> segment_time_s;   // time since the process (re)started
+  // The model's input through a basis of linear filters (the states of
+  // 1 / (s + p)^K and the input itself, p from the model's own poles): any
+  // linear correction of the model's dynamics is a combination of these.
+  // The explain loop holds every candidate against it, so an effect that
+  // only buys a wrong base model's misfit is not added.
+  std::vector<std::vector<double>> dynamics;
   // y and base with the extrusion times moved by `counts` of wheel position
   // and the model input delayed by extra_delay_s[i] more; empty function
   // when the data has no wheel (then only the delay applies, through

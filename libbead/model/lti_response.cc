@@ -229,3 +229,31 @@ StateResponses ComputeStateResponses(const std::vector<double>& den, double dela
 }
 
 }  // namespace bead::model
+
+namespace bead::model {
+
+std::vector<std::vector<double>> FilterBasis(const std::vector<double>& den, double delay_s, const std::vector<double>& t,
+                                             const std::vector<double>& u, const std::vector<Segment>& segments, int K) {
+  const int n = static_cast<int>(den.size()) - 1;
+  double p = 1.0;
+  if (n > 0 && den[0] != 0.0 && den.back() != 0.0) p = std::pow(std::abs(den.back() / den[0]), 1.0 / n);
+  if (!std::isfinite(p) || p <= 0) p = 1.0;
+  std::vector<double> bank = {1.0};
+  for (int k = 0; k < K; ++k) {
+    std::vector<double> next(bank.size() + 1, 0.0);
+    for (std::size_t i = 0; i < bank.size(); ++i) next[i] += bank[i], next[i + 1] += p * bank[i];
+    bank = next;
+  }
+  const StateResponses r = ComputeStateResponses(bank, delay_s, t, u, segments);
+  std::vector<std::vector<double>> out;
+  const double gain = std::pow(p, K);  // unit DC gain for the first state
+  for (int k = 0; k < K; ++k) {
+    std::vector<double> c = r.state[static_cast<std::size_t>(k)];
+    for (double& v : c) v *= gain / std::pow(p, k);
+    out.push_back(std::move(c));
+  }
+  out.push_back(r.delayed);
+  return out;
+}
+
+}  // namespace bead::model

@@ -45,3 +45,15 @@ StateResponses ComputeStateResponses(const std::vector<double>& den, double dela
 bool HurwitzStable(const std::vector<double>& den);
 
 }  // namespace bead::model
+
+namespace bead::model {
+
+// A basis of linear filters of the input: the states of 1 / (s + p)^K
+// (p: the geometric mean of the magnitudes of `den`'s roots, the model's
+// own band) applied to the input delayed by `delay_s`, and that delayed
+// input itself. Any strictly proper correction with poles at p, plus a
+// direct term, is a combination of these K + 1 series.
+std::vector<std::vector<double>> FilterBasis(const std::vector<double>& den, double delay_s, const std::vector<double>& t,
+                                             const std::vector<double>& u, const std::vector<Segment>& segments, int K = 4);
+
+}  // namespace bead::model

@@ -1,0 +1,254 @@
+#include "libbead/explain/effect_fit.h"
+
+#include <ceres/ceres.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "libbead/fit/solver_options.h"
+
+namespace bead::explain {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// y and base under the set's shifts.
+void Shifted(const SeriesData& d, const EffectSet& set, std::vector<double>& y, std::vector<double>& base) {
+  double shift = 0;
+  std::vector<double> delay(d.size(), 0.0);
+  bool delayed = false;
+  for (const Active& a : set) {
+    shift += a.effect.PositionShift(a.params.data());
+    if (a.effect.IsDelay()) {
+      a.effect.AddDelay(d, a.params.data(), delay);
+      delayed = true;
+    }
+  }
+  if (shift == 0.0 && !delayed) {
+    y = d.y;
+    base = d.base;
+  } else if (d.shifted) {
+    d.shifted(shift, delay, y, base);
+  } else {
+    y = d.y;
+    base = d.base_delayed(delay);
+  }
+}
+
+// Where each effect's nonlinear parameters sit (effect, index).
+std::vector<std::pair<std::size_t, std::size_t>> NonlinearSlots(const EffectSet& set, std::size_t first_free) {
+  std::vector<std::pair<std::size_t, std::size_t>> slots;
+  for (std::size_t e = first_free; e < set.size(); ++e)
+    for (std::size_t k = 0; k < set[e].nl(); ++k) slots.push_back({e, k});
+  return slots;
+}
+
+struct ProjectedCost {
+  const SeriesData& data;
+  EffectSet shape;
+  const std::vector<std::size_t>& rows;
+  std::vector<std::pair<std::size_t, std::size_t>> slots;
+  bool operator()(double const* const* params, double* residuals) const {
+    EffectSet set = shape;
+    for (std::size_t s = 0; s < slots.size(); ++s) set[slots[s].first].params[slots[s].second] = params[0][s];
+    SolveLinear(data, set, rows);
+    const std::vector<double> r = Residual(data, set);
+    for (std::size_t k = 0; k < rows.size(); ++k) residuals[k] = std::isfinite(r[rows[k]]) ? r[rows[k]] : 0.0;
+    return true;
+  }
+};
+
+}  // namespace
+
+Active Activate(const Effect& e) { return Active{e, std::vector<double>(e.nonlinear.size() + e.linear.size(), 0.0)}; }
+
+std::size_t ParameterCount(const EffectSet& set) {
+  std::size_t p = 0;
+  for (const Active& a : set) p += a.params.size();
+  return p;
+}
+
+void Evaluate(const SeriesData& d, const EffectSet& set, std::vector<double>& y, std::vector<double>& pred) {
+  std::vector<double> base;
+  Shifted(d, set, y, base);
+  const std::size_t n = d.size();
+  std::vector<double> mult(n, 1.0), add(n, 0.0);
+  for (const Active& a : set) {
+    const auto cols = a.effect.Columns(d, a.params.data());
+    for (std::size_t j = 0; j < cols.size(); ++j) {
+      const double c = a.params[a.nl() + j];
+      auto& target = a.effect.kind == Effect::Kind::kMultiplicative ? mult : add;
+      for (std::size_t i = 0; i < n; ++i) target[i] += c * cols[j][i];
+    }
+  }
+  pred.resize(n);
+  for (std::size_t i = 0; i < n; ++i) pred[i] = base[i] * mult[i] + add[i];
+}
+
+std::vector<double> Residual(const SeriesData& d, const EffectSet& set) {
+  std::vector<double> y, pred;
+  Evaluate(d, set, y, pred);
+  for (std::size_t i = 0; i < y.size(); ++i) y[i] -= pred[i];
+  return y;
+}
+
+double Sse(const std::vector<double>& r, const std::vector<std::size_t>& rows) {
+  double s = 0;
+  std::size_t finite = 0;
+  for (std::size_t i : rows)
+    if (std::isfinite(r[i])) s += r[i] * r[i], ++finite;
+  // Scaled to all the rows: a shift that pushes samples out of the record
+  // (no extrusion time) must not look better for having fewer of them.
+  return finite ? s * static_cast<double>(rows.size()) / static_cast<double>(finite) : 0.0;
+}
+
+void SolveLinear(const SeriesData& d, EffectSet& set, const std::vector<std::size_t>& rows) {
+  std::vector<double> y, base;
+  Shifted(d, set, y, base);
+  std::vector<std::vector<double>> columns;
+  std::vector<std::pair<std::size_t, std::size_t>> where;  // (effect, linear index)
+  for (std::size_t e = 0; e < set.size(); ++e) {
+    auto cols = set[e].effect.Columns(d, set[e].params.data());
+    for (std::size_t j = 0; j < cols.size(); ++j) {
+      if (set[e].effect.kind == Effect::Kind::kMultiplicative)
+        for (std::size_t i = 0; i < cols[j].size(); ++i) cols[j][i] *= base[i];
+      columns.push_back(std::move(cols[j]));
+      where.push_back({e, j});
+    }
+  }
+  if (columns.empty()) return;
+  std::vector<std::size_t> ok;
+  for (std::size_t i : rows)
+    if (std::isfinite(y[i]) && std::isfinite(base[i])) ok.push_back(i);
+  Eigen::MatrixXd a(ok.size(), columns.size());
+  Eigen::VectorXd b(ok.size());
+  for (std::size_t r = 0; r < ok.size(); ++r) {
+    b(static_cast<Eigen::Index>(r)) = y[ok[r]] - base[ok[r]];
+    for (std::size_t c = 0; c < columns.size(); ++c)
+      a(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = columns[c][ok[r]];
+  }
+  Eigen::VectorXd scale(a.cols());
+  for (Eigen::Index c = 0; c < a.cols(); ++c) {
+    const double norm = a.col(c).norm();
+    scale(c) = norm > 0 ? 1.0 / norm : 1.0;
+    a.col(c) *= scale(c);
+  }
+  const Eigen::VectorXd x = a.colPivHouseholderQr().solve(b).cwiseProduct(scale);
+  for (std::size_t c = 0; c < columns.size(); ++c)
+    set[where[c].first].params[set[where[c].first].nl() + where[c].second] = std::isfinite(x(static_cast<Eigen::Index>(c))) ? x(static_cast<Eigen::Index>(c)) : 0.0;
+}
+
+void Refine(const SeriesData& d, EffectSet& set, const std::vector<std::size_t>& rows, int max_iterations,
+            std::size_t first_free) {
+  if (set.empty()) return;
+  const auto slots = NonlinearSlots(set, first_free);
+  if (slots.empty()) {
+    SolveLinear(d, set, rows);
+    return;
+  }
+  std::vector<double> x;
+  for (const auto& [e, k] : slots) x.push_back(set[e].params[k]);
+  auto* cost = new ceres::DynamicNumericDiffCostFunction<ProjectedCost, ceres::CENTRAL>(new ProjectedCost{d, set, rows, slots});
+  cost->AddParameterBlock(static_cast<int>(x.size()));
+  cost->SetNumResiduals(static_cast<int>(rows.size()));
+  ceres::Problem problem;
+  problem.AddResidualBlock(cost, nullptr, x.data());
+  // A nonlinear parameter stays within its search grid (a time constant
+  // the data cannot pin would run off to infinity).
+  for (std::size_t s = 0; s < slots.size(); ++s) {
+    const auto& grid = set[slots[s].first].effect.grid[slots[s].second];
+    problem.SetParameterLowerBound(x.data(), static_cast<int>(s), grid.front());
+    problem.SetParameterUpperBound(x.data(), static_cast<int>(s), grid.back());
+  }
+  ceres::Solver::Summary summary;
+  ceres::Solve(fit::QuietDenseOptions(max_iterations), &problem, &summary);
+  for (std::size_t s = 0; s < slots.size(); ++s) set[slots[s].first].params[slots[s].second] = x[s];
+  SolveLinear(d, set, rows);
+}
+
+void Fit(const SeriesData& d, EffectSet& set, const std::vector<std::size_t>& rows, std::size_t first_free) {
+  Active& last = set.back();
+  if (last.nl() == 1) {
+    double best = kInf, best_value = 0.0;
+    for (double v : last.effect.grid[0]) {
+      set.back().params[0] = v;
+      SolveLinear(d, set, rows);
+      const double s = Sse(Residual(d, set), rows);
+      if (s < best) best = s, best_value = v;
+    }
+    set.back().params[0] = best_value;
+  }
+  Refine(d, set, rows, 30, first_free);
+}
+
+std::vector<std::vector<double>> ParameterSd(const SeriesData& d, const EffectSet& set,
+                                             const std::vector<std::size_t>& rows, double sigma) {
+  // Central differences of the residual in every parameter (linear ones
+  // not re-solved: this is the Jacobian of the whole set).
+  std::vector<std::pair<std::size_t, std::size_t>> all;
+  for (std::size_t e = 0; e < set.size(); ++e)
+    for (std::size_t k = 0; k < set[e].params.size(); ++k) all.push_back({e, k});
+  const std::size_t P = all.size();
+  Eigen::MatrixXd J(rows.size(), P);
+  for (std::size_t c = 0; c < P; ++c) {
+    const auto [e, k] = all[c];
+    EffectSet plus = set, minus = set;
+    const double v = set[e].params[k];
+    double h = 1e-5 * std::max(std::abs(v), 1e-3);
+    if (k < set[e].nl()) {
+      const auto& grid = set[e].effect.grid[k];
+      h = 1e-3 * (grid.back() - grid.front());
+    }
+    plus[e].params[k] = v + h;
+    minus[e].params[k] = v - h;
+    const std::vector<double> rp = Residual(d, plus), rm = Residual(d, minus);
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+      const double a = rp[rows[r]], b = rm[rows[r]];
+      J(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = std::isfinite(a) && std::isfinite(b) ? (a - b) / (2 * h) : 0.0;
+    }
+  }
+  Eigen::MatrixXd H = J.transpose() * J;
+  Eigen::VectorXd scale(static_cast<Eigen::Index>(P));
+  for (Eigen::Index i = 0; i < H.rows(); ++i) scale(i) = H(i, i) > 0 ? 1.0 / std::sqrt(H(i, i)) : 0.0;
+  H = scale.asDiagonal() * H * scale.asDiagonal();
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(H);
+  const Eigen::VectorXd lambda = eig.eigenvalues();
+  const Eigen::MatrixXd V = eig.eigenvectors();
+  const double tol = 1e-10 * std::max(lambda.maxCoeff(), 1e-300);
+  std::vector<std::vector<double>> sd;
+  for (const Active& a : set) sd.emplace_back(a.params.size(), 0.0);
+  for (std::size_t c = 0; c < P; ++c) {
+    double var = 0, null_weight = 0;
+    for (Eigen::Index j = 0; j < lambda.size(); ++j) {
+      const double v = V(static_cast<Eigen::Index>(c), j);
+      if (lambda(j) > tol)
+        var += v * v / lambda(j);
+      else
+        null_weight += v * v;
+    }
+    const double s = scale(static_cast<Eigen::Index>(c));
+    sd[all[c].first][all[c].second] = (null_weight > 0.01 || s == 0.0) ? kInf : sigma * std::sqrt(var) * s;
+  }
+  return sd;
+}
+
+double LagOneCorrelation(const std::vector<double>& r) {
+  double m = 0, c0 = 0, c1 = 0;
+  std::size_t n = 0;
+  for (double x : r)
+    if (std::isfinite(x)) m += x, ++n;
+  if (n < 3) return 0.0;
+  m /= static_cast<double>(n);
+  double prev = std::numeric_limits<double>::quiet_NaN();
+  for (double x : r) {
+    if (!std::isfinite(x)) continue;
+    c0 += (x - m) * (x - m);
+    if (std::isfinite(prev)) c1 += (x - m) * (prev - m);
+    prev = x;
+  }
+  return c0 > 0 ? c1 / c0 : 0.0;
+}
+
+}  // namespace bead::explain
