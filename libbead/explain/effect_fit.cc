@@ -8,14 +8,17 @@
 #include <limits>
 
 #include "libbead/fit/solver_options.h"
+#include "libbead/series/interpolate.h"
 
 namespace bead::explain {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// y and base under the set's shifts.
-void Shifted(const SeriesData& d, const EffectSet& set, std::vector<double>& y, std::vector<double>& base) {
+// y and base under the set's shifts; the base's free responses
+// (SeriesData::initial) delayed with it.
+void Shifted(const SeriesData& d, const EffectSet& set, std::vector<double>& y, std::vector<double>& base,
+             std::vector<std::vector<double>>* initial = nullptr) {
   double shift = 0;
   std::vector<double> delay(d.size(), 0.0);
   bool delayed = false;
@@ -25,6 +28,12 @@ void Shifted(const SeriesData& d, const EffectSet& set, std::vector<double>& y, 
       a.effect.AddDelay(d, a.params.data(), delay);
       delayed = true;
     }
+  }
+  if (initial) {
+    *initial = d.initial;
+    if (delayed)
+      for (std::size_t c = 0; c < initial->size(); ++c)
+        for (std::size_t i = 0; i < d.size(); ++i) (*initial)[c][i] = InterpolateLinear(d.t, d.initial[c], d.t[i] - delay[i]);
   }
   if (shift == 0.0 && !delayed) {
     y = d.y;
@@ -72,11 +81,12 @@ std::size_t ParameterCount(const EffectSet& set) {
 
 void Evaluate(const SeriesData& d, const EffectSet& set, std::vector<double>& y, std::vector<double>& pred) {
   std::vector<double> base;
-  Shifted(d, set, y, base);
+  std::vector<std::vector<double>> initial;
+  Shifted(d, set, y, base, &initial);
   const std::size_t n = d.size();
   std::vector<double> mult(n, 1.0), add(n, 0.0);
   for (const Active& a : set) {
-    const auto cols = a.effect.Columns(d, a.params.data());
+    const auto cols = a.effect.feature == "initial" ? initial : a.effect.Columns(d, a.params.data());
     for (std::size_t j = 0; j < cols.size(); ++j) {
       const double c = a.params[a.nl() + j];
       auto& target = a.effect.kind == Effect::Kind::kMultiplicative ? mult : add;
@@ -106,11 +116,12 @@ double Sse(const std::vector<double>& r, const std::vector<std::size_t>& rows) {
 
 void SolveLinear(const SeriesData& d, EffectSet& set, const std::vector<std::size_t>& rows) {
   std::vector<double> y, base;
-  Shifted(d, set, y, base);
+  std::vector<std::vector<double>> initial;
+  Shifted(d, set, y, base, &initial);
   std::vector<std::vector<double>> columns;
   std::vector<std::pair<std::size_t, std::size_t>> where;  // (effect, linear index)
   for (std::size_t e = 0; e < set.size(); ++e) {
-    auto cols = set[e].effect.Columns(d, set[e].params.data());
+    auto cols = set[e].effect.feature == "initial" ? initial : set[e].effect.Columns(d, set[e].params.data());
     for (std::size_t j = 0; j < cols.size(); ++j) {
       if (set[e].effect.kind == Effect::Kind::kMultiplicative)
         for (std::size_t i = 0; i < cols[j].size(); ++i) cols[j][i] *= base[i];
@@ -138,6 +149,31 @@ void SolveLinear(const SeriesData& d, EffectSet& set, const std::vector<std::siz
   const Eigen::VectorXd x = a.colPivHouseholderQr().solve(b).cwiseProduct(scale);
   for (std::size_t c = 0; c < columns.size(); ++c)
     set[where[c].first].params[set[where[c].first].nl() + where[c].second] = std::isfinite(x(static_cast<Eigen::Index>(c))) ? x(static_cast<Eigen::Index>(c)) : 0.0;
+}
+
+void SolveLinearOf(const SeriesData& d, EffectSet& set, const std::vector<std::size_t>& rows, const std::string& feature) {
+  for (std::size_t e = 0; e < set.size(); ++e) {
+    if (set[e].effect.feature != feature || set[e].effect.kind != Effect::Kind::kAdditive) continue;
+    for (std::size_t k = set[e].nl(); k < set[e].params.size(); ++k) set[e].params[k] = 0.0;
+    const std::vector<double> r = Residual(d, set);  // without the effect
+    std::vector<double> y, base;
+    std::vector<std::vector<double>> initial;
+    Shifted(d, set, y, base, &initial);
+    const auto cols = feature == "initial" ? initial : set[e].effect.Columns(d, set[e].params.data());
+    std::vector<std::size_t> ok;
+    for (std::size_t i : rows)
+      if (std::isfinite(r[i])) ok.push_back(i);
+    if (cols.empty() || ok.empty()) continue;
+    Eigen::MatrixXd a(ok.size(), cols.size());
+    Eigen::VectorXd b(ok.size());
+    for (std::size_t q = 0; q < ok.size(); ++q) {
+      b(static_cast<Eigen::Index>(q)) = r[ok[q]];
+      for (std::size_t c = 0; c < cols.size(); ++c) a(static_cast<Eigen::Index>(q), static_cast<Eigen::Index>(c)) = cols[c][ok[q]];
+    }
+    const Eigen::VectorXd x = a.colPivHouseholderQr().solve(b);
+    for (std::size_t c = 0; c < cols.size(); ++c)
+      set[e].params[set[e].nl() + c] = std::isfinite(x(static_cast<Eigen::Index>(c))) ? x(static_cast<Eigen::Index>(c)) : 0.0;
+  }
 }
 
 void Refine(const SeriesData& d, EffectSet& set, const std::vector<std::size_t>& rows, int max_iterations,

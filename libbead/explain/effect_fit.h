@@ -39,6 +39,11 @@ void Refine(const SeriesData& d, EffectSet& set, const std::vector<std::size_t>&
 // The linear parameters alone, for the nonlinear ones held.
 void SolveLinear(const SeriesData& d, EffectSet& set, const std::vector<std::size_t>& rows);
 
+// The linear parameters of the additive effects built from `feature`
+// alone, the rest held (an initial state is local: the held-out test
+// re-solves it on the held-out samples for both sides).
+void SolveLinearOf(const SeriesData& d, EffectSet& set, const std::vector<std::size_t>& rows, const std::string& feature);
+
 // Standard deviations per effect and parameter, scaled by `sigma` (the
 // residual's standard deviation, inflated for its correlation).
 std::vector<std::vector<double>> ParameterSd(const SeriesData& d, const EffectSet& set,

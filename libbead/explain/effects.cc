@@ -56,6 +56,7 @@ std::vector<std::vector<double>> Effect::Columns(const SeriesData& d, const doub
     return cols;
   }
   if (feature == "dynamics") return d.dynamics;
+  if (feature == "initial") return d.initial;
   std::vector<double> c(n, 0.0);
   if (feature == "scale" || feature == "bias") {
     std::fill(c.begin(), c.end(), 1.0);
@@ -187,6 +188,12 @@ std::vector<Effect> BaseRefit(const SeriesData& d, const CatalogueOptions& o) {
   Effect b = Make("operating_point", "the base model's operating point, refitted (a constant)", K::kAdditive, "bias");
   b.linear = {"value_" + d.y_unit};
   out.push_back(b);
+  if (!d.initial.empty()) {
+    Effect e = Make("initial_state", "the base model's initial state in each stretch, refitted (its free response)",
+                    K::kAdditive, "initial");
+    for (std::size_t k = 0; k < d.initial.size(); ++k) e.linear.push_back("free_" + std::to_string(k));
+    out.push_back(e);
+  }
   if (d.shifted || d.base_delayed) {
     Effect e = Make("delay", "the base model's delay, refitted (measurement and model shifted in time)", K::kDelay,
                     "delay");

@@ -41,7 +41,12 @@ std::vector<std::vector<std::size_t>> Blocks(const std::vector<double>& t, int b
 // effect makes the held-out error larger, not smaller).
 double HeldOutF(const SeriesData& v, const Set& before, const Set& after, const std::vector<std::size_t>& rows,
                 std::size_t added_parameters) {
-  const std::vector<double> rb = Residual(v, before), ra = Residual(v, after);
+  // Each side's initial states (local to the start of a stretch, which a
+  // held-out block may hold alone) re-solved on the held-out samples.
+  Set b = before, a = after;
+  SolveLinearOf(v, b, rows, "initial");
+  SolveLinearOf(v, a, rows, "initial");
+  const std::vector<double> rb = Residual(v, b), ra = Residual(v, a);
   const double sse_b = Sse(rb, rows), sse_a = Sse(ra, rows);
   std::vector<double> left;
   for (std::size_t i : rows) left.push_back(ra[i]);

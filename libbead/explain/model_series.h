@@ -1,7 +1,8 @@
 // SeriesData for measured data from anywhere: time, input and output
 // columns (uneven sampling and gaps allowed) against a transfer function
 // with its operating point (y = offset + G(s) u), predicted on the data's
-// own times with each stretch's initial state fitted to the data. Only the
+// own times, each stretch from steady state at its first input, with the
+// model's free responses beside it (its initial state, refitted in the loop). Only the
 // samples inside `segments` (where the process ran, series/process_on.h)
 // are explained; the input's whole record drives the model. The time since
 // each stretch began feeds the build-up term.

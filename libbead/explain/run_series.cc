@@ -33,7 +33,11 @@ RunSeries MakeRunSeries(const Rig& rig, const ProfileBlock& profiles, const std:
   st->log_counts = UnwrapEncoder(log.encoder, rig.encoder, log.t_s).counts;
   st->speed = SurfaceSpeed(rig, st->log_t, st->log_counts, flow_options);
   st->model_flow = model::Predict(tf, model_offset, log.t_s, log.screw_rpm, {});
-  const auto basis = model::FilterBasis(tf.den, tf.delay_s, log.t_s, log.screw_rpm, WholeRecord(log.size()));
+  std::vector<double> den = tf.den;
+  for (double& c : den) c /= tf.den[0];
+  const auto basis = model::FilterBasis(den, tf.delay_s, log.t_s, log.screw_rpm, WholeRecord(log.size()));
+  const model::StateResponses free = model::ComputeStateResponses(den, tf.delay_s, log.t_s, log.screw_rpm,
+                                                                  WholeRecord(log.size()));
   st->finder = std::make_unique<ExtrusionTimeFinder>(st->log_t, st->log_counts);
   st->offset = rig.offset_counts;
   // The screw's angle: the integral of its speed.
@@ -46,6 +50,7 @@ RunSeries MakeRunSeries(const Rig& rig, const ProfileBlock& profiles, const std:
   SeriesData& d = out.data;
   d.y_unit = "mm3_s";
   d.dynamics.resize(basis.size());
+  d.initial.resize(free.free.size());
   RotatingPart wheel{"wheel", {}}, screw_part{"screw", {}};
   std::vector<double> measured_height;
   std::vector<double> latency;
@@ -63,6 +68,7 @@ RunSeries MakeRunSeries(const Rig& rig, const ProfileBlock& profiles, const std:
     d.y.push_back(s.flow_mm3_s);
     d.base.push_back(InterpolateLinear(st->log_t, st->model_flow, s.t_s));
     for (std::size_t b = 0; b < basis.size(); ++b) d.dynamics[b].push_back(InterpolateLinear(st->log_t, basis[b], s.t_s));
+    for (std::size_t b = 0; b < free.free.size(); ++b) d.initial[b].push_back(InterpolateLinear(st->log_t, free.free[b], s.t_s));
     wheel.angle_rad.push_back(CountsToAngleRad(p_k - rig.offset_counts, rig.encoder));
     screw_part.angle_rad.push_back(InterpolateLinear(log.t_s, screw, s.t_s));
     d.time_to_laser_s.push_back(t_k - s.t_s);

@@ -31,6 +31,10 @@ struct SeriesData {
   // The explain loop holds every candidate against it, so an effect that
   // only buys a wrong base model's misfit is not added.
   std::vector<std::vector<double>> dynamics;
+  // The model's free responses from each stretch's start (n per stretch,
+  // zero outside it): the base model's initial state, refitted with every
+  // candidate like its gain and operating point.
+  std::vector<std::vector<double>> initial;
   // y and base with the extrusion times moved by `counts` of wheel position
   // and the model input delayed by extra_delay_s[i] more; empty function
   // when the data has no wheel (then only the delay applies, through

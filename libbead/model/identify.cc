@@ -204,8 +204,12 @@ ProcessForm ToProcessForm(const TransferFunction& tf) {
   return f;
 }
 
+// The fitted rows: inside the segments, y finite, and past the first
+// `skip_s` of each segment (its output there depends on input from before
+// the segment, which the record does not hold).
 ProjectionProblem MakeProblem(const std::vector<double>& t, const std::vector<double>& u, const std::vector<double>& y,
-                              const std::vector<Segment>& segments, int zeros, bool offset, bool initial_state) {
+                              const std::vector<Segment>& segments, int zeros, bool offset, bool initial_state,
+                              double skip_s) {
   ProjectionProblem p;
   p.t = &t;
   p.u = &u;
@@ -216,7 +220,7 @@ ProjectionProblem MakeProblem(const std::vector<double>& t, const std::vector<do
   p.initial_state = initial_state;
   for (const Segment& s : p.segments)
     for (std::size_t i = s.begin; i < std::min(s.end, t.size()); ++i)
-      if (std::isfinite(y[i])) p.rows.push_back(i);
+      if (std::isfinite(y[i]) && t[i] >= t[s.begin] + skip_s) p.rows.push_back(i);
   return p;
 }
 
@@ -240,7 +244,11 @@ IdentifiedModel IdentifyTransferFunction(const std::vector<double>& t, const std
       out.reason = "time must increase and time and input be finite (sample " + std::to_string(i) + ")";
       return out;
     }
-  const ProjectionProblem problem = MakeProblem(t, u, y, segments, m, o.estimate_offset, o.estimate_initial_state);
+  // With a state estimated, the first delay-bound of each stretch is left
+  // out; from rest, the input before the record is 0 and nothing is.
+  const double skip = o.estimate_initial_state ? (o.delay_s ? *o.delay_s : o.max_delay_s) : 0.0;
+  const ProjectionProblem problem =
+      MakeProblem(t, u, y, segments, m, o.estimate_offset, o.estimate_initial_state, skip);
   const int linear = (m + 1) + (o.estimate_offset ? 1 : 0) +
                      (o.estimate_initial_state ? n * static_cast<int>(problem.segments.size()) : 0);
   if (problem.rows.size() < static_cast<std::size_t>(4 * (n + linear + 1))) {
@@ -260,10 +268,36 @@ IdentifiedModel IdentifyTransferFunction(const std::vector<double>& t, const std
     for (int k = 0; k <= steps; ++k) profile.delay_s.push_back(o.max_delay_s * k / steps);
   }
   std::vector<std::vector<double>> starts;
-  for (double d : profile.delay_s) {
-    const auto est = SvfDenominator(problem, svf, d);
-    profile.loss.push_back(est ? est.value().equation_loss : kInf);
-    starts.push_back(est ? ToSearch(est->den, o.real_poles) : std::vector<double>{});
+  auto run_profile = [&](const SvfSignals& filtered) {
+    profile.loss.clear();
+    starts.clear();
+    for (double d : profile.delay_s) {
+      const auto est = SvfDenominator(problem, filtered, d);
+      profile.loss.push_back(est ? est.value().equation_loss : kInf);
+      starts.push_back(est ? ToSearch(est->den, o.real_poles) : std::vector<double>{});
+    }
+  };
+  run_profile(svf);
+  // Young's filter works best near the system's own band: a second pass
+  // with lambda at twice the fastest pole the first pass found at its best
+  // delay (when the user gave no lambda), within [lambda / 10, lambda];
+  // kept only where it gives a start at some delay.
+  if (o.filter_rad_s <= 0) {
+    const auto best_k = static_cast<std::size_t>(std::min_element(profile.loss.begin(), profile.loss.end()) - profile.loss.begin());
+    if (!starts[best_k].empty()) {
+      double fastest = 0;
+      for (const auto& r : Roots(FromSearch(starts[best_k].data(), n, o.real_poles))) fastest = std::max(fastest, std::abs(r));
+      const double lambda2 = std::clamp(2.0 * fastest, lambda / 10, lambda);
+      if (std::isfinite(lambda2) && lambda2 < 0.8 * lambda) {
+        const auto first_loss = profile.loss;
+        const auto first_starts = starts;
+        run_profile(FilterForSvf(problem, n, lambda2, dt));
+        if (std::none_of(profile.loss.begin(), profile.loss.end(), [](double l) { return std::isfinite(l); })) {
+          profile.loss = first_loss;
+          starts = first_starts;
+        }
+      }
+    }
   }
   // 2. Basins: local minima of the profile, each spanning to the maxima
   // beside it; the best few (by the output error of their start) refined
@@ -325,7 +359,12 @@ IdentifiedModel IdentifyTransferFunction(const std::vector<double>& t, const std
   for (const auto& r : Roots(out.tf.den)) out.poles_real.push_back(r.real()), out.poles_imag.push_back(r.imag());
   if (o.real_poles || (n <= 2 && m <= 1)) out.process = ToProcessForm(out.tf);
   out.parameters = n + linear + (o.delay_s ? 0 : 1);
-  out.fit_percent = FitPercent(y, out.prediction);
+  {
+    std::vector<double> yr, pr_rows;
+    for (std::size_t i : problem.rows) yr.push_back(y[i]), pr_rows.push_back(out.prediction[i]);
+    out.fit_percent = FitPercent(yr, pr_rows);
+    out.fitted_samples = problem.rows.size();
+  }
   out.criteria = CriteriaFromResiduals(pr.residual, out.parameters);
   if (profile.basins.size() > 1 && std::isfinite(profile.basins[1].refined_loss)) {
     const double n_eff = static_cast<double>(problem.rows.size()) * EffectiveFraction(pr.residual);

@@ -78,6 +78,7 @@ struct IdentifiedModel {
   std::vector<std::vector<double>> initial_state;  // per segment, canonical-form state at its first sample
   int parameters = 0;         // counted in the criteria: poles, zeros + 1, offset, delay, initial states
   double fit_percent = 0;     // on the fitted samples, as given (not deviations)
+  std::size_t fitted_samples = 0;
   InformationCriteria criteria;
   std::vector<double> poles_real, poles_imag;
   ProcessForm process;
@@ -86,7 +87,10 @@ struct IdentifiedModel {
 };
 
 // `segments` (default: the whole record) are the stretches fitted; the
-// input record u is used whole as the input's history.
+// input record u is used whole as the input's history. With the initial
+// state estimated, each stretch's first max_delay_s (or the fixed delay)
+// is left out of the fit: the output there depends on input from before
+// the stretch. Without it (from rest), the input before the record is 0.
 IdentifiedModel IdentifyTransferFunction(const std::vector<double>& t, const std::vector<double>& u,
                                          const std::vector<double>& y, const IdentifyOptions& options,
                                          const std::vector<Segment>& segments = {});

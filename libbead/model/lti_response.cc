@@ -132,7 +132,7 @@ namespace {
 // The walk over one segment for n = N states, in fixed-size arithmetic.
 template <int N>
 void WalkSegment(StepCache<N>& cache, double d, const std::vector<double>& t, const std::vector<double>& u,
-                 const Segment& seg, StateResponses& r) {
+                 const Segment& seg, double before, StateResponses& r) {
   const std::size_t size = t.size();
   auto switch_at = [&](long j) { return t[static_cast<std::size_t>(j)] + d; };
   double tau = t[seg.begin];
@@ -150,11 +150,11 @@ void WalkSegment(StepCache<N>& cache, double d, const std::vector<double>& t, co
       state[static_cast<std::size_t>(k)][i] = x[static_cast<std::size_t>(k)];
       free[static_cast<std::size_t>(k)][i] = F[static_cast<std::size_t>(k)];
     }
-    r.delayed[i] = u[static_cast<std::size_t>(std::max(j, 0L))];
+    r.delayed[i] = j >= 0 ? u[static_cast<std::size_t>(j)] : before;
     if (i + 1 == seg.end) break;
     const double to = t[i + 1];
     while (tau < to) {
-      const double v = u[static_cast<std::size_t>(std::max(j, 0L))];
+      const double v = j >= 0 ? u[static_cast<std::size_t>(j)] : before;
       double until = to;
       bool switches = false;
       if (j + 1 < static_cast<long>(size) && switch_at(j + 1) < to) until = switch_at(j + 1), switches = true;
@@ -191,19 +191,20 @@ void WalkSegment(StepCache<N>& cache, double d, const std::vector<double>& t, co
 // Controllable canonical form: x_k' = x_(k+1), x_(n-1)' = -sum a_(n-j) x_j + u.
 template <int N>
 void Walk(const std::vector<double>& den, double d, const std::vector<double>& t, const std::vector<double>& u,
-          const std::vector<Segment>& segments, StateResponses& r) {
+          const std::vector<Segment>& segments, double before, StateResponses& r) {
   std::array<double, N * N> A{};
   for (int k = 0; k + 1 < N; ++k) A[static_cast<std::size_t>(k * N + k + 1)] = 1.0;
   for (int j = 0; j < N; ++j) A[static_cast<std::size_t>((N - 1) * N + j)] = -den[static_cast<std::size_t>(N - j)] / den[0];
   StepCache<N> cache(A);
   for (const Segment& seg : segments)
-    if (seg.begin < seg.end && seg.end <= t.size()) WalkSegment<N>(cache, d, t, u, seg, r);
+    if (seg.begin < seg.end && seg.end <= t.size()) WalkSegment<N>(cache, d, t, u, seg, before, r);
 }
 
 }  // namespace
 
 StateResponses ComputeStateResponses(const std::vector<double>& den, double delay_s, const std::vector<double>& t,
-                                     const std::vector<double>& u, const std::vector<Segment>& segments) {
+                                     const std::vector<double>& u, const std::vector<Segment>& segments,
+                                     std::optional<double> before_in) {
   const int n = static_cast<int>(den.size()) - 1;
   if (n < 1 || n >= kMax) throw Error("transfer function: 1 to 7 poles supported");
   if (t.size() != u.size()) throw Error("state responses: time and input lengths differ");
@@ -216,14 +217,15 @@ StateResponses ComputeStateResponses(const std::vector<double>& den, double dela
   r.delayed.assign(N, nan);
   if (N == 0) return r;
   const double d = std::max(0.0, delay_s);
+  const double before = before_in ? *before_in : u.front();
   switch (n) {
-    case 1: Walk<1>(den, d, t, u, segments, r); break;
-    case 2: Walk<2>(den, d, t, u, segments, r); break;
-    case 3: Walk<3>(den, d, t, u, segments, r); break;
-    case 4: Walk<4>(den, d, t, u, segments, r); break;
-    case 5: Walk<5>(den, d, t, u, segments, r); break;
-    case 6: Walk<6>(den, d, t, u, segments, r); break;
-    default: Walk<7>(den, d, t, u, segments, r); break;
+    case 1: Walk<1>(den, d, t, u, segments, before, r); break;
+    case 2: Walk<2>(den, d, t, u, segments, before, r); break;
+    case 3: Walk<3>(den, d, t, u, segments, before, r); break;
+    case 4: Walk<4>(den, d, t, u, segments, before, r); break;
+    case 5: Walk<5>(den, d, t, u, segments, before, r); break;
+    case 6: Walk<6>(den, d, t, u, segments, before, r); break;
+    default: Walk<7>(den, d, t, u, segments, before, r); break;
   }
   return r;
 }
@@ -244,15 +246,23 @@ std::vector<std::vector<double>> FilterBasis(const std::vector<double>& den, dou
     for (std::size_t i = 0; i < bank.size(); ++i) next[i] += bank[i], next[i + 1] += p * bank[i];
     bank = next;
   }
-  const StateResponses r = ComputeStateResponses(bank, delay_s, t, u, segments);
-  std::vector<std::vector<double>> out;
+  // Each stretch in steady state at its first input, as the base model is:
+  // the response to the input less that level, from rest, plus the level's
+  // steady state (1 / p^K in the first state, 0 in the others).
+  std::vector<std::vector<double>> out(static_cast<std::size_t>(K + 1), std::vector<double>(t.size(), 0.0));
   const double gain = std::pow(p, K);  // unit DC gain for the first state
-  for (int k = 0; k < K; ++k) {
-    std::vector<double> c = r.state[static_cast<std::size_t>(k)];
-    for (double& v : c) v *= gain / std::pow(p, k);
-    out.push_back(std::move(c));
+  for (const Segment& s : segments) {
+    if (s.begin >= s.end) continue;
+    std::vector<double> w(u.size(), 0.0);
+    for (std::size_t i = s.begin; i < u.size(); ++i) w[i] = u[i] - u[s.begin];
+    const StateResponses r = ComputeStateResponses(bank, delay_s, t, w, {s}, 0.0);
+    for (std::size_t i = s.begin; i < s.end; ++i) {
+      for (int k = 0; k < K; ++k)
+        out[static_cast<std::size_t>(k)][i] =
+            (r.state[static_cast<std::size_t>(k)][i] + (k == 0 ? u[s.begin] / gain : 0.0)) * gain / std::pow(p, k);
+      out[static_cast<std::size_t>(K)][i] = r.delayed[i] + u[s.begin];
+    }
   }
-  out.push_back(r.delayed);
   return out;
 }
 

@@ -17,11 +17,13 @@
 // Exact for any sampling: between samples the state moves by the matrix
 // exponential of the step, the input switching where the delayed input
 // does (inside a sample interval for a fractional delay). The input before
-// the first sample is taken as the first sample's value (the record starts
-// in the middle of the process; the initial state covers the rest).
+// the first sample is `before` when given (0 for a record from rest), else
+// the first sample's value (a record that starts in the middle of the
+// process; the initial state covers the rest).
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "libbead/core/segment.h"
@@ -38,7 +40,8 @@ struct StateResponses {
 // `den` monic, descending powers of s (den[0] == 1); t increasing; the
 // whole input record u (also outside the segments: the input's history).
 StateResponses ComputeStateResponses(const std::vector<double>& den, double delay_s, const std::vector<double>& t,
-                                     const std::vector<double>& u, const std::vector<Segment>& segments);
+                                     const std::vector<double>& u, const std::vector<Segment>& segments,
+                                     std::optional<double> before = std::nullopt);
 
 // True when every root of the monic `den` has a negative real part
 // (Routh-Hurwitz for n <= 2, eigenvalues of the companion matrix above).

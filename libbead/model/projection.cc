@@ -59,7 +59,8 @@ Projection Project(const ProjectionProblem& p, const std::vector<double>& den, d
                    bool want_prediction) {
   Projection out;
   const int n = static_cast<int>(den.size()) - 1, m = p.zeros;
-  const StateResponses r = ComputeStateResponses(den, delay_s, *p.t, *p.u, p.segments);
+  const StateResponses r = ComputeStateResponses(den, delay_s, *p.t, *p.u, p.segments,
+                                                 p.initial_state ? std::nullopt : std::optional<double>(0.0));
   // Which segment each row belongs to.
   const std::size_t S = p.segments.size();
   const int free_cols = p.initial_state ? n * static_cast<int>(S) : 0;
@@ -160,7 +161,10 @@ std::optional<SvfEstimate> SvfDenominator(const ProjectionProblem& p, const SvfS
   const int n = s.n, m = s.m;
   // Rows past the filters' start-up (and the delay) in each segment.
   const double settle = 6.0 * (n + 1) / s.lambda + delay_s;
-  const int cols = n + m + 2;
+  // A constant per segment: each segment's output is taken less its own
+  // first value (FilterForSvf), so each has its own constant.
+  const int S = static_cast<int>(p.segments.size());
+  const int cols = n + m + 1 + S;
   const std::vector<double>& t = *p.t;
   NormalEquations ne(cols);
   std::vector<double> row(static_cast<std::size_t>(cols));
@@ -168,7 +172,7 @@ std::optional<SvfEstimate> SvfDenominator(const ProjectionProblem& p, const SvfS
   // s^n y = -a1 s^(n-1) y - ... - an y + b0 s^m u + ... + bm u + c;
   // the input read dt / 2 later: held between samples, y lags the
   // continuous output by about half a step, the input is truly held.
-  auto fill = [&](std::size_t i) {
+  auto fill = [&](std::size_t i, std::size_t segment) {
     for (int k = 0; k < n; ++k) row[static_cast<std::size_t>(k)] = -s.yf[static_cast<std::size_t>(n - 1 - k)][i];
     const double at = t[i] - delay_s - s.half_step;
     while (j + 1 < t.size() && t[j + 1] <= at) ++j;  // rows in time order: the pointer only moves on
@@ -177,17 +181,19 @@ std::optional<SvfEstimate> SvfDenominator(const ProjectionProblem& p, const SvfS
       const auto& uf = s.uf[static_cast<std::size_t>(m - k)];
       row[static_cast<std::size_t>(n + k)] = at <= t[0] ? uf[0] : uf[j] + f * ((j + 1 < t.size() ? uf[j + 1] : uf[j]) - uf[j]);
     }
-    row[static_cast<std::size_t>(cols - 1)] = 1.0;
+    for (int k = 0; k < S; ++k) row[static_cast<std::size_t>(n + m + 1 + k)] = k == static_cast<int>(segment) ? 1.0 : 0.0;
   };
-  std::vector<std::size_t> rows;
+  std::vector<std::size_t> rows, row_segment;
   for (std::size_t i : p.rows) {
     while (seg + 1 < p.segments.size() && i >= p.segments[seg].end) ++seg;
     if (t[i] - t[p.segments[seg].begin] < settle) continue;
     rows.push_back(i);
+    row_segment.push_back(seg);
   }
   if (static_cast<int>(rows.size()) <= 2 * cols) return std::nullopt;
-  for (std::size_t i : rows) {
-    fill(i);
+  for (std::size_t q = 0; q < rows.size(); ++q) {
+    const std::size_t i = rows[q];
+    fill(i, row_segment[q]);
     ne.Add(row.data(), s.yf[static_cast<std::size_t>(n)][i]);
     ++used;
   }
@@ -198,8 +204,9 @@ std::optional<SvfEstimate> SvfDenominator(const ProjectionProblem& p, const SvfS
   for (int k = 0; k < n; ++k) out.den.push_back((*x)(k));
   double sse = 0;
   j = 0;
-  for (std::size_t i : rows) {
-    fill(i);
+  for (std::size_t q = 0; q < rows.size(); ++q) {
+    const std::size_t i = rows[q];
+    fill(i, row_segment[q]);
     double e = s.yf[static_cast<std::size_t>(n)][i];
     for (int c = 0; c < cols; ++c) e -= row[static_cast<std::size_t>(c)] * (*x)(c);
     sse += e * e;

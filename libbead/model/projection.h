@@ -21,7 +21,7 @@ struct ProjectionProblem {
   std::vector<std::size_t> rows;  // fitted samples: inside the segments, y finite
   int zeros = 0;
   bool offset = true;
-  bool initial_state = true;
+  bool initial_state = true;  // else: from rest, the input 0 before the record
 };
 
 struct Projection {

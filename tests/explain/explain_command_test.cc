@@ -9,6 +9,8 @@
 #include <random>
 
 #include "libbead/explain/model_series.h"
+#include "libbead/model/identify.h"
+#include "libbead/series/process_on.h"
 #include "tests/support/temp_dir.h"
 
 namespace bead::explain {
@@ -52,10 +54,11 @@ void WriteWeldCsv(const std::string& path, unsigned seed) {
     t.push_back(x);
     u.push_back(value);
   }
-  const SeriesData d = ModelSeries(t, u, std::vector<double>(t.size(), 0.0), {{0.5}, {0.3, 1.0}, 0.1});
+  const std::vector<double> base = model::Predict({{0.5}, {0.3, 1.0}, 0.1}, 0.0, t, u, {},
+                                                  FindProcessOn(t, u, std::vector<double>(t.size(), 1.0)).segments);
   std::string csv = "time_s,wire_feed_m_min,width_mm,operator\n";
   for (std::size_t i = 0; i < t.size(); ++i) {
-    const double width = d.base[i] + 0.25 * (t[i] - 25.0) / 25.0 + noise(rng);
+    const double width = base[i] + 0.25 * (t[i] - 25.0) / 25.0 + noise(rng);
     csv += std::to_string(t[i]) + "," + std::to_string(u[i]) + "," + (i % 50 == 7 ? "" : std::to_string(width)) + ",anna\n";
   }
   test::WriteText(path, csv);

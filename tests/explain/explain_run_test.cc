@@ -57,9 +57,9 @@ std::unique_ptr<Pipeline> RunPipeline(const sim::SimConfig& c) {
   return p;
 }
 
-// The calibration run's model, identified once.
-const model::TransferFunction& CalibrationModel() {
-  static const model::TransferFunction tf = [] {
+// The calibration run's model (with its operating point), identified once.
+const model::IdentifiedModel& CalibrationModel() {
+  static const model::IdentifiedModel model = [] {
     const auto p = RunPipeline(Base(900));
     std::vector<double> t, u, y;
     for (const auto& s : p->flow.samples)
@@ -69,9 +69,9 @@ const model::TransferFunction& CalibrationModel() {
     o.zeros = 2;
     const auto m = model::IdentifyTransferFunction(t, u, y, o);
     EXPECT_TRUE(m.ok) << m.reason;
-    return m.tf;
+    return m;
   }();
-  return tf;
+  return model;
 }
 
 struct Outcome {
@@ -85,10 +85,9 @@ Outcome ExplainRun(const sim::SimConfig& c) {
   o.run = RunPipeline(c);
   const Rig& rig = o.run->sim.rig_file;
   o.series = MakeRunSeries(rig, o.run->sim.run.profiles, o.run->geometry, *o.run->sim.run.log, o.run->flow,
-                           CalibrationModel());
+                           CalibrationModel().tf, CalibrationModel().offset);
   ExplainOptions options;
   options.catalogue.has_wheel = true;
-  options.catalogue.model_given = true;
   options.catalogue.position_range_counts = rig.encoder.counts_per_rev / 20.0;
   o.report = Explain(o.series.data, options);
   return o;
