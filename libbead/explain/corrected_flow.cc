@@ -8,7 +8,12 @@
 namespace bead::explain {
 namespace {
 
-double RmsAgainst(const SeriesData& d, const EffectSet& base) {
+// The model refitted (its gain, operating point, delay, initial state and
+// the process's own effects) to this flow, and the RMS left.
+double RmsAgainst(const SeriesData& d, EffectSet base) {
+  std::vector<std::size_t> all(d.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+  Refine(d, base, all);
   std::vector<double> y, pred;
   Evaluate(d, base, y, pred);
   double s = 0;
@@ -44,6 +49,14 @@ CorrectedFlow CorrectFlow(const Rig& rig, const ProfileBlock& profiles, const st
       else
         kept.push_back(a);
     }
+  }
+  // The offset: where the run's own profile excludes the rig file's offset
+  // (0 outside its 95 % interval, neither end at the searched range), the
+  // profile's best, whether or not the held-out test kept the effect.
+  const ShiftProfile& sp = report.shift_profile;
+  if (shift == 0.0 && report.position_shift_estimated && !sp.lo_at_edge && !sp.hi_at_edge && (sp.lo > 0 || sp.hi < 0)) {
+    shift = sp.best;
+    out.undone.push_back("encoder_offset (the run's profile excludes the rig file's)");
   }
   const FlowResult before = ComputeFlow(rig, profiles, geometry, log, {}, corrected_area, corrected_sigma);
   const RunSeries series_before = MakeRunSeries(rig, profiles, geometry, log, before, model, model_offset);

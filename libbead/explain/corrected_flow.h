@@ -1,7 +1,8 @@
 // Closing the loop on the data: the run's flow with the effects explain
 // kept that act on the measurement (not on the process) undone.
 //  - encoder_offset: the flow recomputed with the offset the run implies
-//    (the rig file's plus the shift found);
+//    (the rig file's plus the shift found), when the effect was kept or the
+//    run's offset profile excludes the rig file's offset;
 //  - once/twice per revolution of the wheel: the surface speed at the
 //    nozzle divided by the term (an eccentric wheel's speed error);
 //  - cooling_shrink: the area divided by (1 - shrink at its time to laser),
@@ -29,8 +30,8 @@ struct CorrectedFlow {
   FlowResult flow;
   double offset_counts = 0.0;       // the offset the flow was computed with
   std::vector<std::string> undone;  // the effects undone
-  // RMS of flow - the model (the base refitted, with the process's own
-  // effects), mm^3/s, over the samples both have, before and after.
+  // RMS of flow - the model (the base and the process's own effects,
+  // refitted to each flow), mm^3/s, before and after.
   double rms_before = 0.0, rms_after = 0.0;
 };
 
