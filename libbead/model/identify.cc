@@ -47,11 +47,15 @@ std::vector<double> FromRoots(const std::vector<std::complex<double>>& roots) {
 // model). A start with poles in the right half plane is reflected into the
 // left (as tfest does with its initial estimates); for a process model a
 // complex pair becomes two real poles about its natural frequency.
-std::vector<double> ToSearch(const std::vector<double>& den, bool real_poles) {
+// A pole slower than `slowest` (1 / the longest stretch) is put there: its
+// free response would be a ramp the initial state could use as drift.
+std::vector<double> ToSearch(const std::vector<double>& den, bool real_poles, double slowest) {
   std::vector<std::complex<double>> roots = Roots(den);
-  const double floor = 1e-6;
-  for (auto& r : roots)
+  const double floor = std::max(1e-6, slowest);
+  for (auto& r : roots) {
     if (!(r.real() < 0)) r = {-std::max(std::abs(r.real()), floor), r.imag()};
+    if (std::abs(r) < floor) r *= floor / std::max(std::abs(r), 1e-300);
+  }
   if (!real_poles) {
     // Log coefficients: every coefficient of a stable polynomial is
     // positive, and a pole running fast moves them on a log scale.
@@ -80,17 +84,18 @@ std::vector<double> FromSearch(const double* theta, int n, bool real_poles) {
   return FromRoots(roots);
 }
 
-// The projected output error as a Ceres cost with its own central
-// differences: absolute steps (1e-4 in a log coefficient or log time
-// constant, 2 % of a sample step in the delay), because the residual is
+// The projected output error as a Ceres cost with its own differences:
+// absolute steps (forward, 1e-5 in a log coefficient or log time constant;
+// central, 2 % of a sample step in the delay), because the residual is
 // piecewise smooth in the delay (a kink wherever a switch of the delayed
 // input crosses a sample), which a relative step near 0 s, or one far
 // below the kinks' spacing, turns into noise. One-sided at the delay's bounds.
 class OutputError : public ceres::CostFunction {
  public:
   OutputError(const ProjectionProblem& problem, int n, bool real_poles, std::optional<double> fixed_delay, double dt,
-              double lo, double hi)
-      : problem_(problem), n_(n), real_poles_(real_poles), fixed_delay_(fixed_delay), step_delay_(0.02 * dt), lo_(lo), hi_(hi) {
+              double lo, double hi, double slowest)
+      : problem_(problem), n_(n), real_poles_(real_poles), fixed_delay_(fixed_delay), step_delay_(0.02 * dt), lo_(lo),
+        hi_(hi), slowest_(slowest) {
     mutable_parameter_block_sizes()->push_back(n);
     if (!fixed_delay) mutable_parameter_block_sizes()->push_back(1);
     set_num_residuals(static_cast<int>(problem.rows.size()));
@@ -104,16 +109,20 @@ class OutputError : public ceres::CostFunction {
     const std::size_t R = problem_.rows.size();
     std::vector<double> plus(R), minus(R);
     if (jacobians[0]) {
+      // Forward differences (the residual is smooth in these; one
+      // projection each), backward where the forward trial is unstable.
       for (int k = 0; k < n_; ++k) {
-        const double h = 1e-4;
-        std::vector<double> tp = theta, tm = theta;
+        const double h = 1e-5;
+        std::vector<double> tp = theta;
         tp[static_cast<std::size_t>(k)] += h;
-        tm[static_cast<std::size_t>(k)] -= h;
-        const bool ok_p = Residual(tp, delay, plus.data()), ok_m = Residual(tm, delay, minus.data());
-        if (!ok_p && !ok_m) return false;
+        bool forward = Residual(tp, delay, plus.data());
+        if (!forward) {
+          tp[static_cast<std::size_t>(k)] -= 2 * h;
+          if (!Residual(tp, delay, plus.data())) return false;
+        }
+        const double step = forward ? h : -h;
         for (std::size_t r = 0; r < R; ++r)
-          jacobians[0][r * static_cast<std::size_t>(n_) + static_cast<std::size_t>(k)] =
-              ok_p && ok_m ? (plus[r] - minus[r]) / (2 * h) : ok_p ? (plus[r] - residuals[r]) / h : (residuals[r] - minus[r]) / h;
+          jacobians[0][r * static_cast<std::size_t>(n_) + static_cast<std::size_t>(k)] = (plus[r] - residuals[r]) / step;
       }
     }
     if (!fixed_delay_ && jacobians[1]) {
@@ -132,6 +141,9 @@ class OutputError : public ceres::CostFunction {
   bool Residual(const std::vector<double>& theta, double delay, double* residuals) const {
     const std::vector<double> den = FromSearch(theta.data(), n_, real_poles_);
     if (!HurwitzStable(den)) return false;
+    // No pole slower than the longest stretch resolves (see ToSearch).
+    for (const auto& r : Roots(den))
+      if (std::abs(r) < 0.5 * slowest_) return false;
     const Projection pr = Project(problem_, den, std::max(0.0, delay), true);
     if (!pr.ok) return false;
     std::copy(pr.residual.begin(), pr.residual.end(), residuals);
@@ -142,18 +154,18 @@ class OutputError : public ceres::CostFunction {
   int n_;
   bool real_poles_;
   std::optional<double> fixed_delay_;
-  double step_delay_, lo_, hi_;
+  double step_delay_, lo_, hi_, slowest_;
 };
 
 struct Refined {
-  std::vector<double> den;
+  std::vector<double> den, theta;
   double delay = 0.0, loss = kInf;
 };
 
 Refined Refine(const ProjectionProblem& problem, const IdentifyOptions& o, std::vector<double> theta, double delay,
-               double lo, double hi, double dt) {
+               double lo, double hi, double dt, double slowest) {
   const int n = o.poles;
-  auto* cost = new OutputError(problem, n, o.real_poles, o.delay_s, dt, lo, hi);
+  auto* cost = new OutputError(problem, n, o.real_poles, o.delay_s, dt, lo, hi, slowest);
   std::vector<double*> blocks = {theta.data()};
   if (!o.delay_s) blocks.push_back(&delay);
   ceres::Problem cp;
@@ -167,6 +179,7 @@ Refined Refine(const ProjectionProblem& problem, const IdentifyOptions& o, std::
   ceres::Solver::Summary summary;
   ceres::Solve(so, &cp, &summary);
   Refined r;
+  r.theta = theta;
   r.den = FromSearch(theta.data(), n, o.real_poles);
   r.delay = o.delay_s ? *o.delay_s : std::clamp(delay, lo, hi);
   if (!HurwitzStable(r.den)) return r;
@@ -257,6 +270,12 @@ IdentifiedModel IdentifyTransferFunction(const std::vector<double>& t, const std
   }
   const double dt = MedianStep(t);
   const double lambda = o.filter_rad_s > 0 ? o.filter_rad_s : 2 * M_PI / (20 * dt);
+  // The slowest pole the data can tell from the initial state's drift: one
+  // time constant across the longest stretch.
+  double longest = 0;
+  for (const Segment& s : problem.segments)
+    if (s.end > s.begin) longest = std::max(longest, t[s.end - 1] - t[s.begin]);
+  const double slowest = longest > 0 ? 1.0 / longest : 0.0;
   const SvfSignals svf = FilterForSvf(problem, n, lambda, dt);
 
   // 1. The delay profile: the linear fit at every step of delay.
@@ -274,7 +293,7 @@ IdentifiedModel IdentifyTransferFunction(const std::vector<double>& t, const std
     for (double d : profile.delay_s) {
       const auto est = SvfDenominator(problem, filtered, d);
       profile.loss.push_back(est ? est.value().equation_loss : kInf);
-      starts.push_back(est ? ToSearch(est->den, o.real_poles) : std::vector<double>{});
+      starts.push_back(est ? ToSearch(est->den, o.real_poles, slowest) : std::vector<double>{});
     }
   };
   run_profile(svf);
@@ -324,10 +343,31 @@ IdentifiedModel IdentifyTransferFunction(const std::vector<double>& t, const std
   }
   std::sort(basins.begin(), basins.end(), [&](const Basin& x, const Basin& y) { return L[x.at] < L[y.at]; });
   basins.resize(std::min<std::size_t>(basins.size(), static_cast<std::size_t>(2 * o.basins)));
+  // Each basin's start: the filter's denominator, or, when one scores
+  // better by output error, one with every pole at a single frequency from
+  // a log grid between the slowest pole the stretches resolve and a tenth
+  // of the sampling rate (the filter's start can sit in a worse optimum,
+  // e.g. a slow pole standing in for drift).
+  std::vector<std::vector<double>> grid_dens;
+  {
+    const double lo_p = std::max(2.0 * slowest, 1e-3), hi_p = 2 * M_PI / (10 * dt);
+    for (int k = 0; k < 8 && hi_p > lo_p; ++k) {
+      const double p = lo_p * std::pow(hi_p / lo_p, k / 7.0);
+      std::vector<std::complex<double>> roots;
+      for (int j = 0; j < n; ++j) roots.emplace_back(-p * (1.0 + 0.1 * j), 0.0);
+      grid_dens.push_back(FromRoots(roots));
+    }
+  }
   for (Basin& b : basins) {
-    const std::vector<double> den = FromSearch(starts[b.at].data(), n, o.real_poles);
-    const Projection pr = Project(problem, den, profile.delay_s[b.at]);
-    if (pr.ok) b.start_loss = pr.sse / static_cast<double>(problem.rows.size());
+    auto score = [&](const std::vector<double>& den) {
+      const Projection pr = Project(problem, den, profile.delay_s[b.at]);
+      return pr.ok ? pr.sse / static_cast<double>(problem.rows.size()) : kInf;
+    };
+    b.start_loss = score(FromSearch(starts[b.at].data(), n, o.real_poles));
+    for (const auto& den : grid_dens) {
+      const double l = score(den);
+      if (l < b.start_loss) b.start_loss = l, starts[b.at] = ToSearch(den, o.real_poles, slowest);
+    }
   }
   std::sort(basins.begin(), basins.end(), [](const Basin& x, const Basin& y) { return x.start_loss < y.start_loss; });
   Refined best;
@@ -336,9 +376,51 @@ IdentifiedModel IdentifyTransferFunction(const std::vector<double>& t, const std
     if (!std::isfinite(b.start_loss)) continue;
     // Bounded by the searched range only: the linear fit's profile is
     // biased by noise, so the output-error optimum may lie past its basin.
-    const Refined r = Refine(problem, o, starts[b.at], profile.delay_s[b.at], 0.0, o.delay_s ? *o.delay_s : o.max_delay_s, dt);
+    const double hi = o.delay_s ? *o.delay_s : o.max_delay_s;
+    // The joint search only has to reach the basin's optimum's neighbourhood
+    // (the best is polished below): at most 15 iterations.
+    IdentifyOptions joint = o;
+    joint.max_iterations = std::min(o.max_iterations, 15);
+    const Refined r = Refine(problem, joint, starts[b.at], profile.delay_s[b.at], 0.0, hi, dt, slowest);
     profile.basins.push_back({r.delay, L[b.at], r.loss});
     if (r.loss < best.loss) best = r;
+  }
+  // The joint search over denominator and delay can stop with a poor
+  // denominator (its steps in the delay cross kinks); the best basin is
+  // polished: the denominator refitted with the delay held, then the delay
+  // by golden section over +-1 sample, the denominator refitted at each.
+  if (!o.delay_s && std::isfinite(best.loss)) {
+    IdentifyOptions held = o;
+    auto at = [&](double d, const std::vector<double>& theta) {
+      held.delay_s = d;
+      return Refine(problem, held, theta, d, d, d, dt, slowest);
+    };
+    Refined polished = at(best.delay, best.theta);
+    if (polished.loss < best.loss) best = polished;
+    const double phi = (std::sqrt(5.0) - 1) / 2;
+    double a = std::max(0.0, best.delay - dt), b = std::min(o.max_delay_s, best.delay + dt);
+    double x1 = b - phi * (b - a), x2 = a + phi * (b - a);
+    Refined f1 = at(x1, best.theta), f2 = at(x2, best.theta);
+    for (int it = 0; it < 6; ++it) {
+      if (f1.loss < f2.loss) {
+        b = x2, x2 = x1, f2 = f1;
+        x1 = b - phi * (b - a);
+        f1 = at(x1, f2.theta);
+      } else {
+        a = x1, x1 = x2, f1 = f2;
+        x2 = a + phi * (b - a);
+        f2 = at(x2, f1.theta);
+      }
+    }
+    for (const Refined& r : {f1, f2})
+      if (r.loss < best.loss) best = r;
+    // The basin it came from now ends where the polish did.
+    const auto basin = std::min_element(profile.basins.begin(), profile.basins.end(),
+                                         [](const DelayBasin& x, const DelayBasin& y) { return x.refined_loss < y.refined_loss; });
+    if (basin != profile.basins.end() && best.loss < basin->refined_loss) {
+      basin->delay_s = best.delay;
+      basin->refined_loss = best.loss;
+    }
   }
   std::sort(profile.basins.begin(), profile.basins.end(),
             [](const DelayBasin& a, const DelayBasin& b) { return a.refined_loss < b.refined_loss; });

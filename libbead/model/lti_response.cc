@@ -84,12 +84,60 @@ StepMatrices<N> TaylorStep(const std::array<double, N * N>& A, double h) {
   return out;
 }
 
+// A short step r (|A r| small): E = I + Ar (I + Ar/2 (I + Ar/3 (I + Ar/4))),
+// G = r (I + Ar/2 (I + Ar/3 (I + Ar/4 (I + Ar/5)))) e_(N-1), by Horner;
+// the first term left out is (A r)^5 / 120.
+template <int N>
+StepMatrices<N> ShortStep(const std::array<double, N * N>& A, double r) {
+  std::array<double, N * N> Ar;
+  for (std::size_t k = 0; k < Ar.size(); ++k) Ar[k] = A[k] * r;
+  std::array<double, N * N> M{};  // Horner accumulator for E
+  for (int i = 0; i < N; ++i) M[static_cast<std::size_t>(i * N + i)] = 1.0;
+  for (int d = 4; d >= 1; --d) {
+    std::array<double, N * N> next{};
+    for (int i = 0; i < N; ++i)
+      for (int j = 0; j < N; ++j) {
+        double acc = 0;
+        for (int m = 0; m < N; ++m) acc += Ar[static_cast<std::size_t>(i * N + m)] * M[static_cast<std::size_t>(m * N + j)];
+        next[static_cast<std::size_t>(i * N + j)] = (i == j ? 1.0 : 0.0) + acc / d;
+      }
+    M = next;
+  }
+  std::array<double, N> w{};
+  w[N - 1] = 1.0;
+  for (int d = 5; d >= 2; --d) {
+    std::array<double, N> next{};
+    for (int i = 0; i < N; ++i) {
+      double acc = 0;
+      for (int m = 0; m < N; ++m) acc += Ar[static_cast<std::size_t>(i * N + m)] * w[static_cast<std::size_t>(m)];
+      next[static_cast<std::size_t>(i)] = (i == N - 1 ? 1.0 : 0.0) + acc / d;
+    }
+    w = next;
+  }
+  StepMatrices<N> out;
+  out.E = M;
+  for (int i = 0; i < N; ++i) out.G[static_cast<std::size_t>(i)] = r * w[static_cast<std::size_t>(i)];
+  return out;
+}
+
 // The two step lengths an evenly sampled record alternates between (a
 // fractional delay splits each step in two), remembered to the picosecond.
+// Any other step h is composed from a grid of q = mean step / 64 (computed
+// when first used): h = k q + r with |r| <= q / 2, E(h) = E(k q) E(r),
+// G(h) = G(k q) + E(k q) G(r), the short step by ShortStep where |A r| is
+// below 1e-2 (its error then below 1e-12). Other steps are computed whole.
 template <int N>
 class StepCache {
  public:
-  explicit StepCache(const std::array<double, N * N>& A) : A_(A) {}
+  StepCache(const std::array<double, N * N>& A, double mean_step) : A_(A), q_(mean_step / 64) {
+    double norm = 0;  // the largest column sum of |A|
+    for (int c = 0; c < N; ++c) {
+      double col = 0;
+      for (int r = 0; r < N; ++r) col += std::abs(A[static_cast<std::size_t>(r * N + c)]);
+      norm = std::max(norm, col);
+    }
+    short_ok_ = norm * q_ / 2 < 1e-2;
+  }
   const StepMatrices<N>& Get(double h) {
     const auto key = static_cast<int64_t>(std::llround(h * 1e12));
     for (int k = 0; k < 2; ++k)
@@ -97,12 +145,38 @@ class StepCache {
     const int slot = next_++ & 1;
     keys_[slot] = key;
     used_[slot] = true;
-    steps_[slot] = TaylorStep<N>(A_, h);
+    steps_[slot] = Compose(h);
     return steps_[slot];
   }
 
  private:
+  StepMatrices<N> Compose(double h) {
+    const double k_real = q_ > 0 ? std::round(h / q_) : 0.0;
+    if (!(q_ > 0) || !short_ok_ || k_real > 64 * 6 || k_real < 1) return TaylorStep<N>(A_, h);
+    const auto k = static_cast<std::size_t>(k_real);
+    if (grid_.size() <= k) grid_.resize(k + 1), done_.resize(k + 1, false);
+    if (!done_[k]) grid_[k] = TaylorStep<N>(A_, static_cast<double>(k) * q_), done_[k] = true;
+    const StepMatrices<N>& g = grid_[k];
+    const StepMatrices<N> r = ShortStep<N>(A_, h - static_cast<double>(k) * q_);
+    StepMatrices<N> out;
+    for (int a = 0; a < N; ++a) {
+      double gsum = g.G[static_cast<std::size_t>(a)];
+      for (int m = 0; m < N; ++m) gsum += g.E[static_cast<std::size_t>(a * N + m)] * r.G[static_cast<std::size_t>(m)];
+      out.G[static_cast<std::size_t>(a)] = gsum;
+      for (int c = 0; c < N; ++c) {
+        double acc = 0;
+        for (int m = 0; m < N; ++m) acc += g.E[static_cast<std::size_t>(a * N + m)] * r.E[static_cast<std::size_t>(m * N + c)];
+        out.E[static_cast<std::size_t>(a * N + c)] = acc;
+      }
+    }
+    return out;
+  }
+
   std::array<double, N * N> A_;
+  double q_;
+  bool short_ok_ = false;
+  std::vector<StepMatrices<N>> grid_;
+  std::vector<bool> done_;
   std::array<int64_t, 2> keys_{};
   std::array<bool, 2> used_{};
   std::array<StepMatrices<N>, 2> steps_;
@@ -195,7 +269,8 @@ void Walk(const std::vector<double>& den, double d, const std::vector<double>& t
   std::array<double, N * N> A{};
   for (int k = 0; k + 1 < N; ++k) A[static_cast<std::size_t>(k * N + k + 1)] = 1.0;
   for (int j = 0; j < N; ++j) A[static_cast<std::size_t>((N - 1) * N + j)] = -den[static_cast<std::size_t>(N - j)] / den[0];
-  StepCache<N> cache(A);
+  const double mean_step = t.size() > 1 ? (t.back() - t.front()) / static_cast<double>(t.size() - 1) : 0.0;
+  StepCache<N> cache(A, mean_step);
   for (const Segment& seg : segments)
     if (seg.begin < seg.end && seg.end <= t.size()) WalkSegment<N>(cache, d, t, u, seg, before, r);
 }

@@ -74,35 +74,34 @@ std::vector<double> Simulate(const TransferFunction& tf, const std::vector<doubl
   const int n = static_cast<int>(ss.A.rows());
   std::vector<double> y(t.size(), 0.0);
   if (t.empty()) return y;
-  // Held input u(t) = u[k] on [t[k], t[k+1]); delayed input u(t - delay).
+  // Held input u(t) = u[k] on [t[k], t[k+1]); the delayed input switches
+  // to u[j] at s[j] = t[j] + delay, compared as such (subtracting the delay
+  // from a time that is itself t[j] + delay can round below t[j]).
+  std::vector<double> s(t.size());
+  for (std::size_t j = 0; j < t.size(); ++j) s[j] = t[j] + tf.delay_s;
   auto held = [&](double time) {
-    if (time < t.front()) return 0.0;
-    const auto it = std::upper_bound(t.begin(), t.end(), time);
-    return u[static_cast<std::size_t>(it - t.begin()) - 1];
+    const auto it = std::upper_bound(s.begin(), s.end(), time);
+    return it == s.begin() ? 0.0 : u[static_cast<std::size_t>(it - s.begin()) - 1];
   };
   Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
-  std::map<long long, DiscreteStateSpace> cache;  // by dt in ns, for even sampling
+  std::map<double, DiscreteStateSpace> cache;  // by the exact step, for even sampling
   auto discrete = [&](double dt) -> const DiscreteStateSpace& {
-    const long long key = std::llround(dt * 1e9);
-    auto it = cache.find(key);
-    if (it == cache.end()) it = cache.emplace(key, DiscretizeZoh(ss, dt)).first;
+    auto it = cache.find(dt);
+    if (it == cache.end()) it = cache.emplace(dt, DiscretizeZoh(ss, dt)).first;
     return it->second;
   };
   for (std::size_t k = 0; k < t.size(); ++k) {
-    const double uk = held(t[k] - tf.delay_s);
+    const double uk = held(t[k]);
     y[k] = (n ? (ss.C * x)(0) : 0.0) + ss.D * uk;
     if (k + 1 == t.size()) break;
     // Integrate to t[k+1], splitting where the delayed input switches.
     double from = t[k];
     const double to = t[k + 1];
     while (from < to) {
-      const double u_now = held(from - tf.delay_s);
+      const double u_now = held(from);
       // Next switch of the delayed input after `from`.
-      const double src = from - tf.delay_s;
-      const auto it = std::upper_bound(t.begin(), t.end(), src);
-      double next = it == t.end() ? to : *it + tf.delay_s;
-      if (next <= from) next = to;
-      const double until = std::min(next, to);
+      const auto it = std::upper_bound(s.begin(), s.end(), from);
+      const double until = it == s.end() ? to : std::min(*it, to);
       if (n) {
         const DiscreteStateSpace& d = discrete(until - from);
         x = d.Ad * x + d.Bd * u_now;
