@@ -107,4 +107,14 @@ Series ReadSeries(const SeriesSpec& spec) {
   return s;
 }
 
+void CheckValidationInput(const std::string& input_file, const std::string& validate,
+                          const std::string& validate_input_file) {
+  if (!validate_input_file.empty() && validate.empty())
+    throw Error("--validate-input-file is the input of the --validate run: give --validate too");
+  if (!validate_input_file.empty() && input_file.empty())
+    throw Error("--validate-input-file needs --input-file (the estimation run's input in its own file)");
+  if (!validate.empty() && !input_file.empty() && validate_input_file.empty())
+    throw Error("--validate " + validate + " with --input-file needs --validate-input-file (that run's own input CSV)");
+}
+
 }  // namespace bead::tools

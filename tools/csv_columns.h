@@ -27,4 +27,9 @@ struct SeriesSpec {
 Series ReadColumns(const std::string& path, const std::string& time, const std::string& input, const std::string& output);
 Series ReadSeries(const SeriesSpec& spec);
 
+// A validation run beside an input in its own file needs its own input
+// file too (else it would be paired with the estimation run's input).
+void CheckValidationInput(const std::string& input_file, const std::string& validate,
+                          const std::string& validate_input_file);
+
 }  // namespace bead::tools

@@ -118,7 +118,7 @@ void PrintReport(const explain::ExplainReport& r, const std::string& unit) {
   for (const auto& e : r.base_refit)
     for (const auto& p : e.parameters) {
       char buf[96];
-      std::snprintf(buf, sizeof buf, "%s%s %s=%.4g+-%.2g", refit.empty() ? "" : ",", e.name.c_str(), p.name.c_str(),
+      std::snprintf(buf, sizeof buf, "%s%s %s = %.4g +- %.2g", refit.empty() ? " " : ", ", e.name.c_str(), p.name.c_str(),
                     p.value, p.ci95);
       refit += buf;
     }
@@ -159,7 +159,7 @@ void Write(const std::string& path, const json& j) {
 
 Run AddExplain(CLI::App& app) {
   struct Args {
-    std::string rig, data, model, out, input, output, time, input_file, input_time, validate, pins, flow_out,
+    std::string rig, data, model, out, input, output, time, input_file, input_time, validate, validate_input_file, pins, flow_out,
         structure = "tf", occlusion = "pooled";
     int poles = 2, zeros = 2;
     double max_delay_s = 1.0, alpha = 0.01;
@@ -206,6 +206,9 @@ Run AddExplain(CLI::App& app) {
   cmd->add_option("--input-time", args->input_time, "CSV mode: time column of --input-file (default: --time's name)");
   cmd->add_flag("--keep-off", args->keep_off, "CSV mode: explain the stretches where the process was off too");
   cmd->add_option("--validate", args->validate, "Another run (same rig, or same columns): the held-out data")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--validate-input-file", args->validate_input_file,
+                  "CSV mode, with --input-file: the held-out run's own input CSV")
       ->check(CLI::ExistingFile);
   cmd->add_option("--pins", args->pins, "Run mode: pin scans of this rig, to compare the offsets")
       ->check(CLI::ExistingFile);
@@ -354,8 +357,10 @@ Run AddExplain(CLI::App& app) {
       throw CLI::RequiredError("CSV mode needs --input and --output (run mode needs --rig)");
     if (!args->flow_out.empty() || !args->pins.empty())
       throw CLI::ValidationError("--flow-out and --pins", "are for run mode (--rig)");
+    CheckValidationInput(args->input_file, args->validate, args->validate_input_file);
     auto read = [&](const std::string& path) {
-      return ReadSeries({path, args->time, args->input, args->output, args->input_file,
+      return ReadSeries({path, args->time, args->input, args->output,
+                         path == args->data ? args->input_file : args->validate_input_file,
                          args->input_time.empty() ? args->time : args->input_time});
     };
     auto stretches = [&](const Series& s, const std::string& path) {

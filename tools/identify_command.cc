@@ -34,7 +34,7 @@ void ApplyStructure(const std::string& structure, model::IdentifyOptions& o) {
 
 Run AddIdentify(CLI::App& app) {
   struct Args {
-    std::string data, input, output, time, input_file, input_time, delay = "auto", validate, out, structure = "tf";
+    std::string data, input, output, time, input_file, input_time, delay = "auto", validate, validate_input_file, out, structure = "tf";
     int poles = 2, zeros = 1;
     double max_delay_s = 1.0;
     bool orders = false, from_rest = false, keep_off = false;
@@ -48,7 +48,8 @@ Run AddIdentify(CLI::App& app) {
       "     it is held at each output time. The record may start mid-process: the operating point (a\n"
       "     constant term) and each stretch's initial state are estimated, as MATLAB's tfest does with\n"
       "     InitialCondition 'estimate' (--from-rest: neither). Where the output sits at zero while the\n"
-      "     input does not (the arc or extruder off), the process was off: reported and left out.\n"
+      "     input does not (the arc or extruder off), the process was off: reported and left out;\n"
+      "     where the output then grows from zero the process started there, from rest.\n"
       "     The delay: a profile of the loss at every sample step up to --max-delay-s, its best basins\n"
       "     refined by output error; two basins the data cannot tell apart are reported.\n"
       "Out: the model (and its process form K, Tp, Tz, Td for real poles), its operating point, MATLAB-\n"
@@ -73,11 +74,16 @@ Run AddIdentify(CLI::App& app) {
   cmd->add_flag("--from-rest", args->from_rest, "No operating point or initial state: the data start from rest at 0");
   cmd->add_flag("--keep-off", args->keep_off, "Fit the stretches where the process was off too");
   cmd->add_option("--validate", args->validate, "Validation CSV (same columns)")->check(CLI::ExistingFile);
+  cmd->add_option("--validate-input-file", args->validate_input_file,
+                  "With --input-file: the validation run's own input CSV")
+      ->check(CLI::ExistingFile);
   cmd->add_flag("--orders", args->orders, "Print the order-selection table");
   cmd->add_option("-o,--out", args->out, "Model JSON to write");
   return [args]() {
+    CheckValidationInput(args->input_file, args->validate, args->validate_input_file);
     auto read = [&](const std::string& path) {
-      SeriesSpec spec{path, args->time, args->input, args->output, args->input_file,
+      SeriesSpec spec{path, args->time, args->input, args->output,
+                      path == args->data ? args->input_file : args->validate_input_file,
                       args->input_time.empty() ? args->time : args->input_time};
       return ReadSeries(spec);
     };
@@ -136,13 +142,14 @@ Run AddIdentify(CLI::App& app) {
         sb = val_on->segments;
       } else {  // estimate on the first half, validate on the second
         const std::size_t h = est.t.size() / 2;
-        a = {{est.t.begin(), est.t.begin() + h}, {est.u.begin(), est.u.begin() + h}, {est.y.begin(), est.y.begin() + h}};
-        b = {{est.t.begin() + h, est.t.end()}, {est.u.begin() + h, est.u.end()}, {est.y.begin() + h, est.y.end()}};
+        a = {{est.t.begin(), est.t.begin() + h}, {est.u.begin(), est.u.begin() + h}, {est.y.begin(), est.y.begin() + h}, 0, {}};
+        b = {{est.t.begin() + h, est.t.end()}, {est.u.begin() + h, est.u.end()}, {est.y.begin() + h, est.y.end()}, 0, {}};
         sa.clear();
         sb.clear();
         for (const Segment& s : on.segments) {
-          if (s.begin < h) sa.push_back({s.begin, std::min(s.end, h)});
-          if (s.end > h) sb.push_back({std::max(s.begin, h) - h, s.end - h});
+          if (s.begin < h) sa.push_back({s.begin, std::min(s.end, h), s.process_starts});
+          // A stretch cut at the half goes on mid-process in the second half.
+          if (s.end > h) sb.push_back({std::max(s.begin, h) - h, s.end - h, s.begin >= h && s.process_starts});
         }
       }
       std::printf("\n%6s %6s %12s %12s %12s %10s\n", "poles", "zeros", "fit_est_%", "fit_val_%", "AICc", "delay_s");

@@ -68,7 +68,9 @@ json ModelJson(const model::IdentifiedModel& m, const model::IdentifyOptions& o,
   for (double l : m.delay_profile.loss) loss.push_back(Finite(l));
   json initial = json::array();
   for (std::size_t s = 0; s < m.initial_state.size() && s < segments.size(); ++s)
-    initial.push_back({{"t_s", t[segments[s].begin]}, {"free_response", m.initial_state[s]}});
+    initial.push_back({{"t_s", t[segments[s].begin]},
+                       {"from", segments[s].process_starts ? "rest: the process started" : "estimated"},
+                       {"free_response", m.initial_state[s]}});
   json left_out = json::array();
   for (const auto& e : excluded) left_out.push_back({{"t_begin_s", e.t_begin_s}, {"t_end_s", e.t_end_s}, {"reason", e.reason}});
   json j = {{"format", "bead model 2"},

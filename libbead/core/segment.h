@@ -10,6 +10,13 @@ namespace bead {
 
 struct Segment {
   std::size_t begin = 0, end = 0;
+  // The process started at the first sample (the stretch follows one where
+  // it was off: the arc or the extruder off, no material yet). Its state
+  // was at rest there and the input acted only from then on, so nothing
+  // about the stretch's start is unknown: no initial state is estimated
+  // and no sample is left out. Otherwise (the record's first sample, or
+  // after a gap in the record) the state is the process's own, unknown.
+  bool process_starts = false;
 };
 
 // One segment covering every sample.

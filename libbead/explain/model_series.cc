@@ -1,6 +1,7 @@
 #include "libbead/explain/model_series.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <memory>
 
@@ -26,7 +27,13 @@ SeriesData ModelSeries(const std::vector<double>& t, const std::vector<double>& 
   SeriesData d;
   d.y_unit = y_unit;
   d.dynamics.resize(basis.size());
-  d.initial.resize(n * segments.size());
+  // Initial-state columns for the stretches whose start is unknown (not
+  // where the process started: that one starts from rest).
+  std::vector<std::size_t> first_column(segments.size(), SIZE_MAX);
+  std::size_t columns = 0;
+  for (std::size_t si = 0; si < segments.size(); ++si)
+    if (!segments[si].process_starts) first_column[si] = columns, columns += n;
+  d.initial.resize(columns);
   for (std::size_t si = 0; si < segments.size(); ++si) {
     const Segment& s = segments[si];
     for (std::size_t i = s.begin; i < s.end; ++i) {
@@ -38,7 +45,8 @@ SeriesData ModelSeries(const std::vector<double>& t, const std::vector<double>& 
       d.segment_time_s.push_back(t[i] - t[s.begin]);
       for (std::size_t k = 0; k < basis.size(); ++k) d.dynamics[k].push_back(basis[k][i]);
       for (std::size_t c = 0; c < d.initial.size(); ++c)
-        d.initial[c].push_back(c / n == si ? free.free[c % n][i] : 0.0);
+        d.initial[c].push_back(c >= first_column[si] && c < first_column[si] + n ? free.free[c - first_column[si]][i]
+                                                                                  : 0.0);
     }
   }
   // A delayed input: the same prediction read earlier (the model is time

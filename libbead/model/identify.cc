@@ -219,7 +219,8 @@ ProcessForm ToProcessForm(const TransferFunction& tf) {
 
 // The fitted rows: inside the segments, y finite, and past the first
 // `skip_s` of each segment (its output there depends on input from before
-// the segment, which the record does not hold).
+// the segment, which the record does not hold), except where the process
+// started at the segment's first sample (nothing acted before it).
 ProjectionProblem MakeProblem(const std::vector<double>& t, const std::vector<double>& u, const std::vector<double>& y,
                               const std::vector<Segment>& segments, int zeros, bool offset, bool initial_state,
                               double skip_s) {
@@ -233,7 +234,7 @@ ProjectionProblem MakeProblem(const std::vector<double>& t, const std::vector<do
   p.initial_state = initial_state;
   for (const Segment& s : p.segments)
     for (std::size_t i = s.begin; i < std::min(s.end, t.size()); ++i)
-      if (std::isfinite(y[i]) && t[i] >= t[s.begin] + skip_s) p.rows.push_back(i);
+      if (std::isfinite(y[i]) && (s.process_starts || t[i] >= t[s.begin] + skip_s)) p.rows.push_back(i);
   return p;
 }
 
@@ -262,8 +263,9 @@ IdentifiedModel IdentifyTransferFunction(const std::vector<double>& t, const std
   const double skip = o.estimate_initial_state ? (o.delay_s ? *o.delay_s : o.max_delay_s) : 0.0;
   const ProjectionProblem problem =
       MakeProblem(t, u, y, segments, m, o.estimate_offset, o.estimate_initial_state, skip);
-  const int linear = (m + 1) + (o.estimate_offset ? 1 : 0) +
-                     (o.estimate_initial_state ? n * static_cast<int>(problem.segments.size()) : 0);
+  int estimated_states = 0;
+  for (const Segment& s : problem.segments) estimated_states += o.estimate_initial_state && !s.process_starts ? n : 0;
+  const int linear = (m + 1) + (o.estimate_offset ? 1 : 0) + estimated_states;
   if (problem.rows.size() < static_cast<std::size_t>(4 * (n + linear + 1))) {
     out.reason = "too few samples (" + std::to_string(problem.rows.size()) + ") for this model";
     return out;
@@ -424,6 +426,13 @@ IdentifiedModel IdentifyTransferFunction(const std::vector<double>& t, const std
   }
   std::sort(profile.basins.begin(), profile.basins.end(),
             [](const DelayBasin& a, const DelayBasin& b) { return a.refined_loss < b.refined_loss; });
+  // Basins whose refinements ended within a sample of a better one's are
+  // that one: reported once.
+  std::vector<DelayBasin> distinct;
+  for (const DelayBasin& b : profile.basins)
+    if (std::none_of(distinct.begin(), distinct.end(), [&](const DelayBasin& k) { return std::abs(k.delay_s - b.delay_s) < dt; }))
+      distinct.push_back(b);
+  profile.basins = distinct;
   if (!std::isfinite(best.loss)) {
     out.reason = "output-error refinement found no stable model (try other orders, or a fixed --delay)";
     return out;
@@ -503,12 +512,16 @@ std::vector<double> Predict(const TransferFunction& tf, double offset, const std
   if (y.empty()) {
     // Each segment in steady state at its first input: the response to the
     // input less that level, from rest, plus the level's steady output.
+    // A segment where the process started: at rest at its first sample,
+    // driven from then by the delayed input (which may date from before the
+    // start: the record holds it).
     for (const Segment& s : segments) {
       if (s.begin >= s.end) continue;
+      const double level = s.process_starts ? 0.0 : u[s.begin];
       std::vector<double> w(u.size(), 0.0);
-      for (std::size_t i = s.begin; i < u.size(); ++i) w[i] = u[i] - u[s.begin];
+      for (std::size_t i = s.process_starts ? 0 : s.begin; i < u.size(); ++i) w[i] = u[i] - level;
       const StateResponses r = ComputeStateResponses(den, tf.delay_s, t, w, {s});
-      for (std::size_t i = s.begin; i < s.end; ++i) out[i] = offset + tf.DcGain() * u[s.begin] + forced(r, i);
+      for (std::size_t i = s.begin; i < s.end; ++i) out[i] = offset + tf.DcGain() * level + forced(r, i);
     }
     return out;
   }
@@ -519,7 +532,7 @@ std::vector<double> Predict(const TransferFunction& tf, double offset, const std
     for (std::size_t i = s.begin; i < s.end; ++i)
       if (std::isfinite(y[i])) rows.push_back(i);
     Eigen::VectorXd x0 = Eigen::VectorXd::Zero(n);
-    if (rows.size() > static_cast<std::size_t>(2 * n)) {
+    if (!s.process_starts && rows.size() > static_cast<std::size_t>(2 * n)) {
       Eigen::MatrixXd a(static_cast<Eigen::Index>(rows.size()), n);
       Eigen::VectorXd b(static_cast<Eigen::Index>(rows.size()));
       for (std::size_t k = 0; k < rows.size(); ++k) {

@@ -63,7 +63,12 @@ Projection Project(const ProjectionProblem& p, const std::vector<double>& den, d
                                                  p.initial_state ? std::nullopt : std::optional<double>(0.0));
   // Which segment each row belongs to.
   const std::size_t S = p.segments.size();
-  const int free_cols = p.initial_state ? n * static_cast<int>(S) : 0;
+  // Each segment's first free-response column, or -1 where the segment
+  // starts from rest (the process started there, or --from-rest).
+  std::vector<int> free_at(S, -1);
+  int free_cols = 0;
+  for (std::size_t s = 0; s < S; ++s)
+    if (p.initial_state && !p.segments[s].process_starts) free_at[s] = (m + 1) + free_cols, free_cols += n;
   const int cols = (m + 1) + free_cols + (p.offset ? 1 : 0);
   if (p.rows.size() <= static_cast<std::size_t>(cols)) return out;
   auto forced = [&](int k, std::size_t i) {
@@ -77,8 +82,8 @@ Projection Project(const ProjectionProblem& p, const std::vector<double>& den, d
   auto fill = [&](std::size_t i, std::size_t seg) {
     std::fill(row.begin(), row.end(), 0.0);
     for (int k = 0; k <= m; ++k) row[static_cast<std::size_t>(k)] = forced(m - k, i);  // num in descending powers
-    if (p.initial_state)
-      for (int k = 0; k < n; ++k) row[static_cast<std::size_t>(m + 1 + static_cast<int>(seg) * n + k)] = r.free[static_cast<std::size_t>(k)][i];
+    if (free_at[seg] >= 0)
+      for (int k = 0; k < n; ++k) row[static_cast<std::size_t>(free_at[seg] + k)] = r.free[static_cast<std::size_t>(k)][i];
     if (p.offset) row[static_cast<std::size_t>(cols - 1)] = 1.0;
   };
   NormalEquations ne(cols);
@@ -95,8 +100,8 @@ Projection Project(const ProjectionProblem& p, const std::vector<double>& den, d
   out.offset = p.offset ? x(cols - 1) : 0.0;
   if (p.initial_state)
     for (std::size_t s = 0; s < S; ++s)
-      out.free_response.emplace_back(x.data() + m + 1 + static_cast<long>(s) * n,
-                                     x.data() + m + 1 + static_cast<long>(s + 1) * n);
+      out.free_response.push_back(free_at[s] < 0 ? std::vector<double>(static_cast<std::size_t>(n), 0.0)
+                                                 : std::vector<double>(x.data() + free_at[s], x.data() + free_at[s] + n));
   auto predict = [&](std::size_t i, std::size_t s) {
     fill(i, s);
     double v = 0;

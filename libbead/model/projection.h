@@ -28,7 +28,8 @@ struct Projection {
   bool ok = false;
   std::vector<double> num;         // descending powers of s
   double offset = 0.0;
-  // Per segment: the free response's value and first n-1 derivatives at
+  // Per segment (zeros where it starts from rest, Segment::process_starts):
+  // the free response's value and first n-1 derivatives at
   // the segment's first sample (in the canonical form of lti_response.h the
   // free output is e_0' exp(A t) gamma, and e_0' A^k = e_k' for k < n).
   std::vector<std::vector<double>> free_response;

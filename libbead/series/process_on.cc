@@ -19,6 +19,16 @@ double Percentile95Abs(const std::vector<double>& v) {
   return a[k];
 }
 
+// The stretch's first output closer to zero than `fraction` of its median.
+bool RisesFromZero(const std::vector<double>& y, std::size_t begin, std::size_t end, double fraction) {
+  std::vector<double> a;
+  for (std::size_t i = begin; i < end; ++i)
+    if (std::isfinite(y[i])) a.push_back(std::abs(y[i]));
+  if (a.empty() || !std::isfinite(y[begin])) return false;
+  std::nth_element(a.begin(), a.begin() + static_cast<long>(a.size() / 2), a.end());
+  return std::abs(y[begin]) < fraction * a[a.size() / 2];
+}
+
 }  // namespace
 
 ProcessOn FindProcessOn(const std::vector<double>& t, const std::vector<double>& u, const std::vector<double>& y,
@@ -58,11 +68,24 @@ ProcessOn FindProcessOn(const std::vector<double>& t, const std::vector<double>&
       out.excluded.push_back({a, b, why});
   };
   std::size_t begin = n;  // start of the open segment
+  bool begin_after_off = false;
   std::size_t last_ok = n;
   auto close = [&](std::size_t end) {
     if (begin >= n) return;
     if (end - begin >= static_cast<std::size_t>(o.min_segment_samples)) {
-      out.segments.push_back({begin, end});
+      if (begin_after_off && RisesFromZero(y, begin, end, o.start_fraction)) {
+        // At rest at the last sample the output read zero: the stretch takes
+        // that sample (its model output is the rest it shows) from the
+        // process-off one before it.
+        if (begin >= 2 && off[begin - 2]) {
+          for (Exclusion& e : out.excluded)
+            if (e.t_end_s == t[begin - 1] && e.reason == "process off") e.t_end_s = t[begin - 2];
+          --begin;
+        }
+        out.segments.push_back({begin, end, true});
+      } else {
+        out.segments.push_back({begin, end, false});
+      }
       out.fitted_samples += end - begin;
     } else {
       exclude(t[begin], t[end - 1], "too short to fit");
@@ -87,7 +110,10 @@ ProcessOn FindProcessOn(const std::vector<double>& t, const std::vector<double>&
                std::any_of(off.begin() + static_cast<long>(last_ok + 1), off.begin() + static_cast<long>(i), [](char c) { return c != 0; })) {
       close(last_ok + 1);
     }
-    if (begin == n) begin = i;
+    if (begin == n) {
+      begin = i;
+      begin_after_off = i > 0 && off[i - 1];
+    }
     last_ok = i;
   }
   if (off_start != n) exclude(t[off_start], t[n - 1], "process off");

@@ -9,6 +9,13 @@
 //    floor at zero (a width, an area, a flow: nothing below
 //    -zero_fraction of that scale); an input also at zero is rest, which a
 //    model from rest predicts, so it stays.
+// A stretch that follows a process-off one and whose output rises from its
+// zero floor (the first sample closer to zero than `start_fraction` of the
+// stretch's median output, as a bead's width grows from nothing when the
+// arc strikes) is where the process started: Segment::process_starts, its
+// state at rest. One whose output jumps straight back to its level was
+// running all along (the output read zero, the process did not stop): its
+// state is estimated like any stretch's.
 #pragma once
 
 #include <string>
@@ -28,6 +35,7 @@ struct ProcessOnOptions {
   double zero_fraction = 0.02;
   int min_off_samples = 3;
   int min_segment_samples = 10;  // shorter stretches are left out too ("too short to fit")
+  double start_fraction = 0.5;   // "closer to the off level than to the running one"
 };
 
 struct ProcessOn {
