@@ -1,7 +1,5 @@
 #include "libbead/model/identify.h"
 
-#include <ceres/ceres.h>
-
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -9,7 +7,7 @@
 #include <limits>
 
 #include "libbead/core/error.h"
-#include "libbead/fit/solver_options.h"
+#include "libbead/model/output_error.h"
 #include "libbead/model/projection.h"
 #include "libbead/series/interpolate.h"
 
@@ -17,176 +15,6 @@ namespace bead::model {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-std::vector<std::complex<double>> Roots(const std::vector<double>& den) {
-  const int n = static_cast<int>(den.size()) - 1;
-  std::vector<std::complex<double>> out;
-  if (n < 1) return out;
-  Eigen::MatrixXd companion = Eigen::MatrixXd::Zero(n, n);
-  for (int k = 0; k < n; ++k) companion(0, k) = -den[static_cast<std::size_t>(k + 1)] / den[0];
-  for (int k = 1; k < n; ++k) companion(k, k - 1) = 1.0;
-  const Eigen::VectorXcd r = companion.eigenvalues();
-  for (int k = 0; k < n; ++k) out.push_back(r(k));
-  return out;
-}
-
-std::vector<double> FromRoots(const std::vector<std::complex<double>>& roots) {
-  std::vector<std::complex<double>> poly = {1.0};
-  for (const auto& root : roots) {
-    std::vector<std::complex<double>> next(poly.size() + 1, 0.0);
-    for (std::size_t i = 0; i < poly.size(); ++i) next[i] += poly[i], next[i + 1] -= root * poly[i];
-    poly = next;
-  }
-  std::vector<double> den;
-  for (const auto& c : poly) den.push_back(c.real());
-  return den;
-}
-
-// The search's parameters for a denominator: the logs of its coefficients
-// (any transfer function), or the log time constants of real poles (a process
-// model). A start with poles in the right half plane is reflected into the
-// left (as tfest does with its initial estimates); for a process model a
-// complex pair becomes two real poles about its natural frequency.
-// A pole slower than `slowest` (1 / the longest stretch) is put there: its
-// free response would be a ramp the initial state could use as drift.
-std::vector<double> ToSearch(const std::vector<double>& den, bool real_poles, double slowest) {
-  std::vector<std::complex<double>> roots = Roots(den);
-  const double floor = std::max(1e-6, slowest);
-  for (auto& r : roots) {
-    if (!(r.real() < 0)) r = {-std::max(std::abs(r.real()), floor), r.imag()};
-    if (std::abs(r) < floor) r *= floor / std::max(std::abs(r), 1e-300);
-  }
-  if (!real_poles) {
-    // Log coefficients: every coefficient of a stable polynomial is
-    // positive, and a pole running fast moves them on a log scale.
-    const std::vector<double> stable = FromRoots(roots);
-    std::vector<double> theta;
-    for (std::size_t k = 1; k < stable.size(); ++k) theta.push_back(std::log(std::max(stable[k], 1e-300)));
-    return theta;
-  }
-  std::vector<double> theta;
-  for (std::size_t k = 0; k < roots.size(); ++k) {
-    double p = std::abs(roots[k]);
-    if (std::abs(roots[k].imag()) > 1e-9 * p) p *= roots[k].imag() > 0 ? 0.8 : 1.25;
-    theta.push_back(std::log(1.0 / std::max(p, floor)));
-  }
-  return theta;
-}
-
-std::vector<double> FromSearch(const double* theta, int n, bool real_poles) {
-  if (!real_poles) {
-    std::vector<double> den = {1.0};
-    for (int k = 0; k < n; ++k) den.push_back(std::exp(theta[k]));
-    return den;
-  }
-  std::vector<std::complex<double>> roots;
-  for (int k = 0; k < n; ++k) roots.emplace_back(-std::exp(-theta[k]), 0.0);
-  return FromRoots(roots);
-}
-
-// The projected output error as a Ceres cost with its own differences:
-// absolute steps (forward, 1e-5 in a log coefficient or log time constant;
-// central, 2 % of a sample step in the delay), because the residual is
-// piecewise smooth in the delay (a kink wherever a switch of the delayed
-// input crosses a sample), which a relative step near 0 s, or one far
-// below the kinks' spacing, turns into noise. One-sided at the delay's bounds.
-class OutputError : public ceres::CostFunction {
- public:
-  OutputError(const ProjectionProblem& problem, int n, bool real_poles, std::optional<double> fixed_delay, double dt,
-              double lo, double hi, double slowest)
-      : problem_(problem), n_(n), real_poles_(real_poles), fixed_delay_(fixed_delay), step_delay_(0.02 * dt), lo_(lo),
-        hi_(hi), slowest_(slowest) {
-    mutable_parameter_block_sizes()->push_back(n);
-    if (!fixed_delay) mutable_parameter_block_sizes()->push_back(1);
-    set_num_residuals(static_cast<int>(problem.rows.size()));
-  }
-
-  bool Evaluate(double const* const* params, double* residuals, double** jacobians) const override {
-    std::vector<double> theta(params[0], params[0] + n_);
-    const double delay = fixed_delay_ ? *fixed_delay_ : params[1][0];
-    if (!Residual(theta, delay, residuals)) return false;
-    if (!jacobians) return true;
-    const std::size_t R = problem_.rows.size();
-    std::vector<double> plus(R), minus(R);
-    if (jacobians[0]) {
-      // Forward differences (the residual is smooth in these; one
-      // projection each), backward where the forward trial is unstable.
-      for (int k = 0; k < n_; ++k) {
-        const double h = 1e-5;
-        std::vector<double> tp = theta;
-        tp[static_cast<std::size_t>(k)] += h;
-        bool forward = Residual(tp, delay, plus.data());
-        if (!forward) {
-          tp[static_cast<std::size_t>(k)] -= 2 * h;
-          if (!Residual(tp, delay, plus.data())) return false;
-        }
-        const double step = forward ? h : -h;
-        for (std::size_t r = 0; r < R; ++r)
-          jacobians[0][r * static_cast<std::size_t>(n_) + static_cast<std::size_t>(k)] = (plus[r] - residuals[r]) / step;
-      }
-    }
-    if (!fixed_delay_ && jacobians[1]) {
-      const double dp = std::min(delay + step_delay_, hi_), dm = std::max(delay - step_delay_, lo_);
-      if (!(dp > dm)) {
-        std::fill(jacobians[1], jacobians[1] + R, 0.0);
-        return true;
-      }
-      if (!Residual(theta, dp, plus.data()) || !Residual(theta, dm, minus.data())) return false;
-      for (std::size_t r = 0; r < R; ++r) jacobians[1][r] = (plus[r] - minus[r]) / (dp - dm);
-    }
-    return true;
-  }
-
- private:
-  bool Residual(const std::vector<double>& theta, double delay, double* residuals) const {
-    const std::vector<double> den = FromSearch(theta.data(), n_, real_poles_);
-    if (!HurwitzStable(den)) return false;
-    // No pole slower than the longest stretch resolves (see ToSearch).
-    for (const auto& r : Roots(den))
-      if (std::abs(r) < 0.5 * slowest_) return false;
-    const Projection pr = Project(problem_, den, std::max(0.0, delay), true);
-    if (!pr.ok) return false;
-    std::copy(pr.residual.begin(), pr.residual.end(), residuals);
-    return true;
-  }
-
-  const ProjectionProblem& problem_;
-  int n_;
-  bool real_poles_;
-  std::optional<double> fixed_delay_;
-  double step_delay_, lo_, hi_, slowest_;
-};
-
-struct Refined {
-  std::vector<double> den, theta;
-  double delay = 0.0, loss = kInf;
-};
-
-Refined Refine(const ProjectionProblem& problem, const IdentifyOptions& o, std::vector<double> theta, double delay,
-               double lo, double hi, double dt, double slowest) {
-  const int n = o.poles;
-  auto* cost = new OutputError(problem, n, o.real_poles, o.delay_s, dt, lo, hi, slowest);
-  std::vector<double*> blocks = {theta.data()};
-  if (!o.delay_s) blocks.push_back(&delay);
-  ceres::Problem cp;
-  cp.AddResidualBlock(cost, nullptr, blocks);
-  // No bounds on the delay (Ceres meets a bound by a projected line search
-  // that stalls here): a negative trial is read as 0 s, and the result is
-  // held to the range after.
-  ceres::Solver::Options so = fit::QuietDenseOptions(o.max_iterations);
-  so.initial_trust_region_radius = 1e2;
-  so.function_tolerance = 1e-9;
-  ceres::Solver::Summary summary;
-  ceres::Solve(so, &cp, &summary);
-  Refined r;
-  r.theta = theta;
-  r.den = FromSearch(theta.data(), n, o.real_poles);
-  r.delay = o.delay_s ? *o.delay_s : std::clamp(delay, lo, hi);
-  if (!HurwitzStable(r.den)) return r;
-  const Projection pr = Project(problem, r.den, r.delay);
-  if (pr.ok) r.loss = pr.sse / static_cast<double>(problem.rows.size());
-  return r;
-}
 
 // Lag-one correlation of a residual: its effective sample count is
 // N (1 - rho) / (1 + rho).
@@ -476,85 +304,6 @@ IdentifiedModel IdentifyTransferFunction(const std::vector<double>& t, const std
   }
   out.ok = true;
   return out;
-}
-
-std::vector<double> Predict(const TransferFunction& tf, double offset, const std::vector<double>& t,
-                            const std::vector<double>& u, const std::vector<double>& y,
-                            const std::vector<Segment>& segments_in) {
-  tf.Validate();
-  const std::vector<Segment> segments = segments_in.empty() ? WholeRecord(t.size()) : segments_in;
-  std::vector<double> den = tf.den, num = tf.num;
-  for (double& c : num) c /= tf.den[0];
-  for (double& c : den) c /= tf.den[0];
-  const int n = static_cast<int>(den.size()) - 1;
-  std::vector<double> out(t.size(), std::numeric_limits<double>::quiet_NaN());
-  if (n == 0) {
-    for (const Segment& s : segments)
-      for (std::size_t i = s.begin; i < s.end; ++i)
-        out[i] = offset + num.back() * InterpolateLinear(t, u, t[i] - tf.delay_s);
-    return out;
-  }
-  const int m = static_cast<int>(num.size()) - 1;
-  auto forced = [&](const StateResponses& r, std::size_t i) {
-    double v = 0;
-    for (int k = 0; k <= m; ++k) {
-      const double c = num[static_cast<std::size_t>(m - k)];
-      if (k < n) {
-        v += c * r.state[static_cast<std::size_t>(k)][i];
-      } else {
-        double w = r.delayed[i];
-        for (int j = 0; j < n; ++j) w -= den[static_cast<std::size_t>(n - j)] * r.state[static_cast<std::size_t>(j)][i];
-        v += c * w;
-      }
-    }
-    return v;
-  };
-  if (y.empty()) {
-    // Each segment in steady state at its first input: the response to the
-    // input less that level, from rest, plus the level's steady output.
-    // A segment where the process started: at rest at its first sample,
-    // driven from then by the delayed input (which may date from before the
-    // start: the record holds it).
-    for (const Segment& s : segments) {
-      if (s.begin >= s.end) continue;
-      const double level = s.process_starts ? 0.0 : u[s.begin];
-      std::vector<double> w(u.size(), 0.0);
-      for (std::size_t i = s.process_starts ? 0 : s.begin; i < u.size(); ++i) w[i] = u[i] - level;
-      const StateResponses r = ComputeStateResponses(den, tf.delay_s, t, w, {s});
-      for (std::size_t i = s.begin; i < s.end; ++i) out[i] = offset + tf.DcGain() * level + forced(r, i);
-    }
-    return out;
-  }
-  // The initial states fitted to y by least squares, the model fixed.
-  const StateResponses r = ComputeStateResponses(den, tf.delay_s, t, u, segments);
-  for (const Segment& s : segments) {
-    std::vector<std::size_t> rows;
-    for (std::size_t i = s.begin; i < s.end; ++i)
-      if (std::isfinite(y[i])) rows.push_back(i);
-    Eigen::VectorXd x0 = Eigen::VectorXd::Zero(n);
-    if (!s.process_starts && rows.size() > static_cast<std::size_t>(2 * n)) {
-      Eigen::MatrixXd a(static_cast<Eigen::Index>(rows.size()), n);
-      Eigen::VectorXd b(static_cast<Eigen::Index>(rows.size()));
-      for (std::size_t k = 0; k < rows.size(); ++k) {
-        for (int j = 0; j < n; ++j) a(static_cast<Eigen::Index>(k), j) = r.free[static_cast<std::size_t>(j)][rows[k]];
-        b(static_cast<Eigen::Index>(k)) = y[rows[k]] - offset - forced(r, rows[k]);
-      }
-      const Eigen::VectorXd sol = a.colPivHouseholderQr().solve(b);
-      if (sol.allFinite()) x0 = sol;
-    }
-    for (std::size_t i = s.begin; i < s.end; ++i) {
-      double v = offset + forced(r, i);
-      for (int j = 0; j < n; ++j) v += x0(j) * r.free[static_cast<std::size_t>(j)][i];
-      out[i] = v;
-    }
-  }
-  return out;
-}
-
-double ValidateFitPercent(const TransferFunction& tf, double offset, const std::vector<double>& t,
-                          const std::vector<double>& u, const std::vector<double>& y,
-                          const std::vector<Segment>& segments) {
-  return FitPercent(y, Predict(tf, offset, t, u, y, segments));
 }
 
 std::vector<OrderRow> OrderTable(const std::vector<double>& t, const std::vector<double>& u, const std::vector<double>& y,

@@ -31,6 +31,7 @@
 
 #include "libbead/model/fit_metrics.h"
 #include "libbead/model/lti_response.h"
+#include "libbead/model/predict.h"
 #include "libbead/model/transfer_function.h"
 
 namespace bead::model {
@@ -94,18 +95,6 @@ struct IdentifiedModel {
 IdentifiedModel IdentifyTransferFunction(const std::vector<double>& t, const std::vector<double>& u,
                                          const std::vector<double>& y, const IdentifyOptions& options,
                                          const std::vector<Segment>& segments = {});
-
-// The model's output on other data: offset + G(s) u, with each segment's
-// initial state fitted to y when y is given (as MATLAB's compare does by
-// default), else each segment in steady state at its first input.
-std::vector<double> Predict(const TransferFunction& tf, double offset, const std::vector<double>& t,
-                            const std::vector<double>& u, const std::vector<double>& y,
-                            const std::vector<Segment>& segments = {});
-
-// Fit % of a model on other data (MATLAB compare, initial state estimated).
-double ValidateFitPercent(const TransferFunction& tf, double offset, const std::vector<double>& t,
-                          const std::vector<double>& u, const std::vector<double>& y,
-                          const std::vector<Segment>& segments = {});
 
 // Thesis Table 3: poles 1-3, zeros 0-2 (zeros <= poles), estimated on one
 // data set and validated on another.
