@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "calibration/student_t.h"
 #include "libbead/profile/median.h"
@@ -175,7 +176,21 @@ OffsetCalibration CalibrateOffset(const Rig& rig, const PinScanArchive& pins, co
   double ss = 0.0;
   for (double x : kept) ss += (x - cal.offset_counts) * (x - cal.offset_counts);
   cal.sd_counts = std::sqrt(ss / (cal.used - 1));
-  cal.ci95_counts = StudentT975(cal.used - 1) * cal.sd_counts / std::sqrt(static_cast<double>(cal.used));
+  std::vector<double> kept_ses;
+  for (const PinScanFit& f : cal.scans)
+    if (f.ok && !f.outlier) kept_ses.push_back(f.center_se_counts);
+  const double fit_se = MedianInPlace(kept_ses.data(), kept_ses.size());
+  double per_scan = cal.sd_counts;
+  if (cal.sd_counts < fit_se) {
+    per_scan = fit_se;
+    char buf[256];
+    std::snprintf(buf, sizeof buf,
+                  "the scans agree more closely (sd %.3g counts) than each one's fit allows (standard error %.3g "
+                  "counts): are some of them the same scan? The interval uses the fit error.",
+                  cal.sd_counts, fit_se);
+    cal.note = buf;
+  }
+  cal.ci95_counts = StudentT975(cal.used - 1) * per_scan / std::sqrt(static_cast<double>(cal.used));
   cal.offset_mm = cal.offset_counts * rig.MmPerCount();
   cal.ci95_mm = cal.ci95_counts * rig.MmPerCount();
   cal.ok = true;

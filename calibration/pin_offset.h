@@ -12,7 +12,11 @@
 // Pooling: a scan is an outlier when its c0 lies more than 3.5 robust
 // standard deviations (1.4826 MAD, floored at three times the scans' median
 // fit standard error) from the median of all scans. The offset is the mean
-// of the others, with the 95 % interval t_{0.975, n-1} s / sqrt(n).
+// of the others, with the 95 % interval t_{0.975, n-1} s / sqrt(n), where
+// s is never below the scans' median fit standard error: a scan's centre is
+// not known better than its own fit says, so scans that agree more closely
+// than that (identical scans, one scan copied) do not shrink the interval
+// to nothing; the calibration says so in `note`.
 #pragma once
 
 #include <cstdint>
@@ -56,6 +60,7 @@ struct OffsetCalibration {
   int total = 0;
   bool ok = false;
   std::string reason;
+  std::string note;  // what is odd but not fatal (scans closer than their fit errors)
 };
 
 PinScanFit FitPinScan(const Rig& rig, const PinScan& scan, const OffsetOptions& options = {});

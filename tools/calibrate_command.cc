@@ -50,6 +50,7 @@ Run AddCalibrate(CLI::App& app) {
     if (!cal.ok) throw Error(Located(args->pins, "", "cannot calibrate: " + cal.reason));
     std::printf("offset: %.2f counts = %.3f mm +- %.2f counts (%.3f mm, 95 %%); scan spread %.2f counts (%.3f mm)\n",
                 cal.offset_counts, cal.offset_mm, cal.ci95_counts, cal.ci95_mm, cal.sd_counts, cal.sd_counts * mpc);
+    if (!cal.note.empty()) std::printf("warning: %s: %s\n", args->pins.c_str(), cal.note.c_str());
     const double rig_offset = rig.rig.offset_counts;
     if (std::abs(rig_offset - cal.offset_counts) > cal.ci95_counts)
       std::printf("warning: the rig file's offset, %.2f counts, lies outside this interval (%.2f counts away): "

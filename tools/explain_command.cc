@@ -277,6 +277,7 @@ Run AddExplain(CLI::App& app) {
             block.size(), [&](std::size_t i) { return block.view(i); }, rig.reference_left, rig.reference_right, {});
         m->occlusion = RunOcclusion(args->occlusion, rig, block, m->geometry);
         m->flow = ComputeFlow(rig, block, m->geometry, *m->run.log, {}, m->occlusion.corrected, m->occlusion.sigma);
+        for (const std::string& w : m->flow.warnings) std::fprintf(stderr, "warning: %s: %s\n", path.c_str(), w.c_str());
         for (const auto& s : m->flow.samples)
           if (s.valid) m->t.push_back(s.t_s), m->u.push_back(s.screw_rpm), m->y.push_back(s.flow_mm3_s);
         if (m->t.size() < 50) throw Error(Located(path, "", "fewer than 50 profiles with a flow: nothing to explain"));

@@ -57,6 +57,10 @@ Run AddFlow(CLI::App& app) {
                           "holds no readings (root attribute encoder=absent: imported without an encoder column); "
                           "the flow needs the wheel's motion"));
     if (!run.log) throw Error(Located(args->run, "/log", "missing: the flow needs the acquisition log"));
+    if (run.log->size() < 3)
+      throw Error(Located(args->run, "/log/t_s",
+                          "holds " + std::to_string(run.log->size()) +
+                              " sample(s): the wheel's speed needs at least 3 (is the log cut short?)"));
     const ProfileBlock& block = run.profiles;
     const std::vector<BeadGeometry> geometry = MeasureProfiles(
         block.size(), [&](std::size_t i) { return block.view(i); }, rig.reference_left, rig.reference_right,
@@ -69,6 +73,7 @@ Run AddFlow(CLI::App& app) {
     std::printf("%s: %zu profiles, %zu with flow; %d area outliers, %d speed outliers, %d encoder reads repaired\n",
                 args->run.c_str(), flow.samples.size(), valid, flow.area_outliers, flow.speed_outliers,
                 flow.encoder_repairs);
+    for (const std::string& w : flow.warnings) std::fprintf(stderr, "warning: %s: %s\n", args->run.c_str(), w.c_str());
     std::printf("total volume: %.1f mm^3 (%s area)\n", flow.total_volume_mm3,
                 args->occlusion == "none" ? "measured" : "occlusion-corrected");
     std::printf("wrote %s\n", args->output.c_str());

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "libbead/core/error.h"
 #include "libbead/flow/extrusion_time.h"
@@ -49,11 +51,47 @@ double AreaSigmaFloor(const std::vector<BeadGeometry>& geometry) {
   return sigmas.empty() ? 0.0 : MedianInPlace(sigmas.data(), sigmas.size());
 }
 
+namespace {
+
+void Warn(const ProfileBlock& profiles, const std::vector<BeadGeometry>& geometry, const AcquisitionLog& log,
+          const std::vector<double>& counts, FlowResult& r) {
+  const std::size_t n = profiles.size();
+  char buf[320];
+  std::size_t outside = 0, beads = 0, valid = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    outside += !(profiles.t_s[k] >= log.t_s.front() && profiles.t_s[k] <= log.t_s.back());
+    beads += geometry[k].valid();
+    valid += r.samples[k].valid;
+  }
+  if (outside > 0 && n > 0) {
+    std::snprintf(buf, sizeof buf,
+                  "%zu of %zu profiles lie outside the acquisition log's time span (log %.3f to %.3f s, profiles "
+                  "%.3f to %.3f s): they have no flow; are the two on one clock?",
+                  outside, n, log.t_s.front(), log.t_s.back(), profiles.t_s.front(), profiles.t_s.back());
+    r.warnings.emplace_back(buf);
+  }
+  double lo = counts.front(), hi = counts.front();
+  for (double c : counts) lo = std::min(lo, c), hi = std::max(hi, c);
+  if (hi - lo < 1.0) {
+    std::snprintf(buf, sizeof buf,
+                  "the wheel never moved (the encoder reads %.0f counts throughout the log): no material was carried "
+                  "to the laser, so the flow is not measured",
+                  lo);
+    r.warnings.emplace_back(buf);
+  }
+  if (n > 0 && beads == 0) r.warnings.emplace_back("no profile holds a measurable bead: every area is missing or zero");
+  if (n > 0 && valid == 0) r.warnings.emplace_back("no sample has a flow: the total volume is not a measurement");
+}
+
+}  // namespace
+
 FlowResult ComputeFlow(const Rig& rig, const ProfileBlock& profiles, const std::vector<BeadGeometry>& geometry,
                        const AcquisitionLog& log, const FlowOptions& o, const std::vector<double>& corrected,
                        const std::vector<double>& corrected_sigma) {
   if (geometry.size() != profiles.size()) throw Error("flow: one geometry per profile is needed");
-  if (log.size() < 3) throw Error("flow: the run has no acquisition log (/log), so no wheel speed");
+  if (log.size() < 3)
+    throw Error("flow: the acquisition log holds " + std::to_string(log.size()) +
+                " sample(s); the wheel's speed needs at least 3");
   FlowResult r;
   const EncoderTrack track = UnwrapEncoder(log.encoder, rig.encoder, log.t_s);
   r.encoder_repairs = track.missed_reads + track.glitches;
@@ -102,6 +140,7 @@ FlowResult ComputeFlow(const Rig& rig, const ProfileBlock& profiles, const std::
     s.screw_rpm = InterpolateLinear(log.t_s.data(), log.screw_rpm.data(), log.size(), s.t_s);
     s.valid = std::isfinite(s.t_s) && std::isfinite(s.flow_mm3_s);
   }
+  Warn(profiles, geometry, log, track.counts, r);
   // Volume: trapezoids over extrusion time between valid samples, gaps bridged.
   const FlowSample* last = nullptr;
   for (const FlowSample& s : r.samples) {

@@ -57,6 +57,10 @@ struct FlowResult {
   int area_outliers = 0;
   int speed_outliers = 0;
   int encoder_repairs = 0;
+  // What is odd about the run, in words (the flow is still computed): the
+  // profiles outside the log's time span, a wheel that never moved, no
+  // bead anywhere, no sample with a flow at all.
+  std::vector<std::string> warnings;
 };
 
 // The Hampel sigma floor for the area series: the median area_sigma_mm2 of

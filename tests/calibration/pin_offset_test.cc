@@ -88,5 +88,22 @@ TEST(PinOffset, CommandLine) {
   EXPECT_NEAR(ReadRig(dir / "new.yaml").offset_counts, offset, 0.005);
 }
 
+// Six copies of one scan: the scatter is zero, but each scan's centre is
+// known only to its fit's standard error, so the interval is that error's
+// t-interval (never zero width) and the calibration says the scans agree
+// more closely than they can.
+TEST(PinOffset, IdenticalScansDoNotShrinkTheIntervalToNothing) {
+  sim::SimulatedRun run = sim::Simulate(PinsOnly(7));
+  for (auto& scan : run.pins.scans) scan = run.pins.scans[0];
+  const OffsetCalibration cal = CalibrateOffset(run.rig_file, run.pins);
+  ASSERT_TRUE(cal.ok) << cal.reason;
+  EXPECT_EQ(cal.used, 6);
+  EXPECT_EQ(cal.sd_counts, 0.0);
+  const double se = cal.scans[0].center_se_counts;
+  ASSERT_GT(se, 0.0);
+  EXPECT_NEAR(cal.ci95_counts, 2.5706 * se / std::sqrt(6.0), 1e-3 * se);  // t_{0.975, 5}
+  EXPECT_NE(cal.note.find("the same scan"), std::string::npos) << cal.note;
+}
+
 }  // namespace
 }  // namespace bead::calibration

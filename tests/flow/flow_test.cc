@@ -229,5 +229,46 @@ TEST(FlowCommand, WritesTheSpecCsvAndSaysWhatIsMissing) {
       << test::ReadText(dir / "err.txt");
 }
 
+// What is odd but not broken runs to the end and says so: a log of one
+// sample is an error naming the dataset; a log on another clock, and a
+// wheel that never turned, give a flow CSV and a warning in words.
+TEST(FlowCommand, OddRunsWarnAndBrokenLogsFail) {
+  test::TempDir dir;
+  sim::SimConfig c = NoUndercut();
+  c.duration_s = 2;
+  const sim::SimulatedRun run = sim::Simulate(c);
+  sim::WriteSimulatedRun(dir / "run", run);
+  auto flow = [&](const RunArchive& r, const std::string& name) {
+    WriteRunArchive(dir / (name + ".h5"), r);
+    const std::string cmd = std::string(BEAD_CLI) + " flow --rig " + (dir / "run/rig.yaml") + " " +
+                            (dir / (name + ".h5")) + " -o " + (dir / (name + ".csv")) + " > " + (dir / "out.txt") +
+                            " 2>&1";
+    const int status = std::system(cmd.c_str());
+    return std::make_pair(status, test::ReadText(dir / "out.txt"));
+  };
+  RunArchive one = run.run;
+  one.log->t_s.resize(1), one.log->encoder.resize(1), one.log->screw_rpm.resize(1);
+  one.log->extruder_cmd_v.clear(), one.log->wheel_cmd_v.clear();
+  auto [status, out] = flow(one, "one");
+  EXPECT_NE(status, 0);
+  EXPECT_NE(out.find("one.h5: /log/t_s: holds 1 sample(s)"), std::string::npos) << out;
+  RunArchive apart = run.run;
+  for (double& t : apart.log->t_s) t += 1000.0;
+  std::tie(status, out) = flow(apart, "apart");
+  EXPECT_EQ(status, 0) << out;
+  EXPECT_NE(out.find("outside the acquisition log's time span"), std::string::npos) << out;
+  EXPECT_NE(out.find("no sample has a flow"), std::string::npos) << out;
+  RunArchive still = run.run;
+  for (auto& e : still.log->encoder) e = still.log->encoder.front();
+  for (auto& e : still.profiles.encoder) e = still.log->encoder.front();
+  std::tie(status, out) = flow(still, "still");
+  EXPECT_EQ(status, 0) << out;
+  EXPECT_NE(out.find("the wheel never moved"), std::string::npos) << out;
+  // The clean run warns of nothing.
+  std::tie(status, out) = flow(run.run, "clean");
+  EXPECT_EQ(status, 0) << out;
+  EXPECT_EQ(out.find("warning"), std::string::npos) << out;
+}
+
 }  // namespace
 }  // namespace bead
