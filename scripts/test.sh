@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Builds libbead and runs the whole test suite: once optimised, once under
-# AddressSanitizer + UndefinedBehaviorSanitizer (set BEAD_SKIP_SANITIZE=1
-# to skip that second pass while iterating).
+# AddressSanitizer + UndefinedBehaviorSanitizer; then the tests that run
+# threads under ThreadSanitizer, and every fuzz target for 20 s
+# (scripts/fuzz.sh). BEAD_SKIP_SANITIZE=1, BEAD_SKIP_TSAN=1 and
+# BEAD_SKIP_FUZZ=1 skip those passes while iterating.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc)
@@ -18,4 +20,17 @@ if [ "${BEAD_SKIP_SANITIZE:-0}" != "1" ]; then
   cmake --build build-asan -j "$jobs"
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir build-asan --output-on-failure -j "$jobs"
+fi
+
+if [ "${BEAD_SKIP_TSAN:-0}" != "1" ]; then
+  # Only what runs threads: the block measurement (bead measure, flow and
+  # explain measure through it).
+  cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" \
+    -DBEAD_TSAN=ON -DBEAD_BUILD_BENCH=OFF >/dev/null
+  cmake --build build-tsan -j "$jobs" --target profile_tests
+  TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 build-tsan/tests/profile_tests --gtest_filter='MeasureProfiles.*'
+fi
+
+if [ "${BEAD_SKIP_FUZZ:-0}" != "1" ]; then
+  bash scripts/fuzz.sh "${BEAD_FUZZ_SECONDS:-20}"
 fi

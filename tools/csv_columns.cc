@@ -16,6 +16,7 @@ namespace {
 struct Columns {
   std::vector<std::vector<double>> v;
   int skipped = 0;
+  std::string first_skip;  // "line 5, column 'w': 'N/A'"
 };
 
 Columns Read(const std::string& path, const std::vector<std::string>& names, bool first_is_time) {
@@ -46,12 +47,17 @@ Columns Read(const std::string& path, const std::vector<std::string>& names, boo
       const auto c = static_cast<std::size_t>(cols[k]);
       if (c >= csv.columns() || csv.Empty(c)) {
         ok = false;
+        if (out.first_skip.empty())
+          out.first_skip = "line " + std::to_string(row + 1) + ", column '" + names[k] + "': empty";
         break;
       }
       char* end = nullptr;
       const std::string f(csv.Field(c));
       v[k] = std::strtod(f.c_str(), &end);
       ok = end && *end == '\0' && std::isfinite(v[k]);
+      if (!ok && out.first_skip.empty())
+        out.first_skip = "line " + std::to_string(row + 1) + ", column '" + names[k] + "': '" + f.substr(0, 40) +
+                         "' is not a finite number";
     }
     if (!ok) {
       ++out.skipped;
@@ -78,6 +84,7 @@ Series ReadSeries(const SeriesSpec& spec) {
     s.u = std::move(c.v[1]);
     s.y = std::move(c.v[2]);
     s.skipped = c.skipped;
+    s.first_skip = c.first_skip;
   } else {
     if (spec.time.empty() || spec.input_time.empty())
       throw Error(Located(spec.input_path, "", "an input on its own clock needs --time and --input-time columns"));
@@ -85,6 +92,7 @@ Series ReadSeries(const SeriesSpec& spec) {
     Columns in = Read(spec.input_path, {spec.input_time, spec.input}, true);
     if (in.v[0].empty()) throw Error(Located(spec.input_path, "", "no usable input rows"));
     s.skipped = out.skipped;
+    s.first_skip = out.first_skip;
     int before = 0;
     for (std::size_t i = 0; i < out.v[0].size(); ++i) {
       const double t = out.v[0][i];
@@ -103,7 +111,11 @@ Series ReadSeries(const SeriesSpec& spec) {
                   before ? (", " + std::to_string(before) + " output rows before the first input left out").c_str() : "");
     s.note = buf;
   }
-  if (s.t.size() < 20) throw Error(Located(spec.path, "", "fewer than 20 usable rows"));
+  if (s.t.size() < 20)
+    throw Error(Located(spec.path, "", "fewer than 20 usable rows (" + std::to_string(s.t.size()) + ")" +
+                                           (s.skipped ? "; " + std::to_string(s.skipped) +
+                                                            " skipped, the first at " + s.first_skip
+                                                      : std::string())));
   return s;
 }
 

@@ -14,6 +14,7 @@ namespace bead::tools {
 struct Series {
   std::vector<double> t, u, y;
   int skipped = 0;
+  std::string first_skip;  // where and why the first skipped row was skipped
   std::string note;  // how the input was joined, when it came from its own file
 };
 

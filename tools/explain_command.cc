@@ -377,7 +377,8 @@ Run AddExplain(CLI::App& app) {
       return on;
     };
     const Series s = read(args->data);
-    std::printf("%s: %zu rows (%d skipped as gaps)\n", args->data.c_str(), s.t.size(), s.skipped);
+    std::printf("%s: %zu rows (%d skipped as gaps%s%s)\n", args->data.c_str(), s.t.size(), s.skipped,
+                s.skipped ? "; the first at " : "", s.first_skip.c_str());
     if (!s.note.empty()) std::printf("%s\n", s.note.c_str());
     const ProcessOn on = stretches(s, args->data);
     const Model mdl = model_for(s.t, s.u, s.y, on.segments, args->data);

@@ -103,7 +103,8 @@ Run AddIdentify(CLI::App& app) {
       }
       if (!(*o.delay_s >= 0)) throw Error("--delay must be >= 0 s");
     }
-    std::printf("%s: %zu rows (%d skipped as gaps)\n", args->data.c_str(), est.t.size(), est.skipped);
+    std::printf("%s: %zu rows (%d skipped as gaps%s%s)\n", args->data.c_str(), est.t.size(), est.skipped,
+                est.skipped ? "; the first at " : "", est.first_skip.c_str());
     if (!est.note.empty()) std::printf("%s\n", est.note.c_str());
     auto stretches = [&](const Series& s, const std::string& path) {
       ProcessOn on;
@@ -142,8 +143,8 @@ Run AddIdentify(CLI::App& app) {
         sb = val_on->segments;
       } else {  // estimate on the first half, validate on the second
         const std::size_t h = est.t.size() / 2;
-        a = {{est.t.begin(), est.t.begin() + h}, {est.u.begin(), est.u.begin() + h}, {est.y.begin(), est.y.begin() + h}, 0, {}};
-        b = {{est.t.begin() + h, est.t.end()}, {est.u.begin() + h, est.u.end()}, {est.y.begin() + h, est.y.end()}, 0, {}};
+        a = {{est.t.begin(), est.t.begin() + h}, {est.u.begin(), est.u.begin() + h}, {est.y.begin(), est.y.begin() + h}, 0, {}, {}};
+        b = {{est.t.begin() + h, est.t.end()}, {est.u.begin() + h, est.u.end()}, {est.y.begin() + h, est.y.end()}, 0, {}, {}};
         sa.clear();
         sb.clear();
         for (const Segment& s : on.segments) {

@@ -1,0 +1,78 @@
+// Bad input to every command: exit status 1 and one line naming the file,
+// the place in it and what is wrong (never a crash, never a success with
+// nothing in it); what is odd but usable runs to the end with a warning.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "libbead/sim/rig_simulator.h"
+#include "libbead/sim/sim_writer.h"
+#include "tests/support/run_cli.h"
+
+namespace bead {
+namespace {
+
+struct Case {
+  std::string args;                  // after `bead`, with {} for the test's folder
+  std::vector<std::string> expect;   // each part of the output
+};
+
+std::string Fill(std::string s, const std::string& dir) {
+  for (std::size_t at; (at = s.find("{}")) != std::string::npos;) s.replace(at, 2, dir);
+  return s;
+}
+
+TEST(CommandErrors, EachCommandNamesTheFileAndThePlace) {
+  test::TempDir dir;
+  std::string rows = "t,u,y\n";
+  for (int i = 0; i < 30; ++i) rows += std::to_string(0.1 * i) + ",1," + (i == 3 ? "N/A" : "x") + "\n";
+  test::WriteText(dir / "text.csv", rows);
+  std::string good = "t,u,y\n";
+  for (int i = 0; i < 60; ++i) good += std::to_string(0.1 * i) + "," + std::to_string(i / 10 % 2) + "," + std::to_string(i / 10 % 2) + "\n";
+  test::WriteText(dir / "good.csv", good);
+  test::WriteText(dir / "broken.json", "{\"num\": [1]");
+  test::WriteText(dir / "vendor.csv", "Layer,ScanID\n1,2\n");
+  test::WriteText(dir / "plane.yaml", "points:\n  - [1, 2, 3]\n");
+  test::WriteText(dir / "good_plane.yaml",
+                  "points:\n  - [102.5, 388.0, -20.0, 0.0]\n  - [880.0, 391.5, 20.0, 0.0]\n"
+                  "  - [110.0, 120.0, -20.0, 30.0]\n  - [872.0, 118.0, 20.0, 30.0]\n");
+  test::WriteText(dir / "frame.png", "not an image");
+  test::WriteText(dir / "sim.yaml", "seed: x\n");
+  test::WriteText(dir / "rig.yaml", "encoder: {counts_per_rev: -5, bits: 32, direction: 1}\n");
+  sim::SimConfig c;
+  c.duration_s = 0.1;
+  c.sensor.points = 40;
+  c.pins.scans = 2;
+  sim::WriteSimulatedRun(dir / "run", sim::Simulate(c));
+  const std::vector<Case> cases = {
+      {"identify {}/text.csv --time t --input u --output y",
+       {"text.csv: fewer than 20 usable rows", "line 2, column 'y': 'x' is not a finite number"}},
+      {"identify {}/good.csv --time t --input u --output nope", {"good.csv: line 1: no column 'nope'"}},
+      {"explain {}/good.csv --time t --input u --output y --model {}/broken.json -o {}/e.json",
+       {"broken.json", "not JSON"}},
+      {"identify {}/good.csv --time t --input u --output y --input-file {}/good.csv --validate {}/good.csv",
+       {"needs --validate-input-file"}},
+      {"import {}/vendor.csv -o {}/r.h5 --profile-column ScanID --time-column Timestamp --x-column X --z-column Z",
+       {"vendor.csv: line 1: no column 'Timestamp'"}},
+      {"frames --plane {}/plane.yaml --rate-hz 10 {}/frame.png -o {}/f.h5",
+       {"plane.yaml: line 2: points: each entry must be [u, v, x_mm, z_mm]"}},
+      {"frames --plane {}/good_plane.yaml --rate-hz 10 {}/frame.png -o {}/f.h5",
+       {"frame.png: not an image OpenCV can read"}},
+      {"simulate {}/sim.yaml -o {}/simout", {"sim.yaml: line 1: seed: must be a number"}},
+      {"calibrate offset --rig {}/run/rig.yaml {}/run/run.h5", {"run.h5: /scans: missing group"}},
+      {"flow --rig {}/rig.yaml {}/run/run.h5 -o {}/flow.csv", {"rig.yaml", "counts_per_rev"}},
+      {"measure --rig {}/run/rig.yaml {}/good.csv -o {}/g.csv", {"good.csv"}},
+  };
+  for (const Case& k : cases) {
+    const auto [status, out] = test::RunCli(dir, Fill(k.args, dir / ""));
+    EXPECT_EQ(status, 1) << k.args << "\n" << out;
+    for (const std::string& e : k.expect) EXPECT_NE(out.find(e), std::string::npos) << k.args << "\n" << out;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "e.json"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "f.h5"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "flow.csv"));
+}
+
+}  // namespace
+}  // namespace bead
