@@ -77,6 +77,29 @@ bool File::Exists(const std::string& object) const {
   }
 }
 
+// A dataset's declared shape against what the file stores for it, before
+// anything is allocated: a damaged header can declare 10^18 values. Without
+// filters the values take their full size on disk; with them (deflate) at
+// most about 1032 times less (zlib's bound on the deflate ratio), so more
+// than 1100 times the stored bytes (+1 MiB) is refused.
+void File::CheckStoredSize(hid_t ds, hid_t type, const std::vector<hsize_t>& dims, const std::string& dataset) const {
+  const double limit = 4e9;  // values: far beyond any run (16 GB as float32)
+  double total = 1;
+  for (hsize_t d : dims) total *= static_cast<double>(d);
+  if (total > limit)
+    throw Error(Located(name_, dataset, "declares " + Shape(dims) + " values: damaged, or beyond what libbead reads"));
+  const double bytes = total * static_cast<double>(H5Tget_size(type));
+  const double stored = static_cast<double>(H5Dget_storage_size(ds));
+  Handle dcpl(H5Dget_create_plist(ds), H5Pclose);
+  const int filters = dcpl.valid() ? H5Pget_nfilters(dcpl.get()) : 0;
+  const double room = filters > 0 ? 1100.0 * stored + 1048576.0 : stored;
+  if (total > 0 && bytes > room)
+    throw Error(Located(name_, dataset,
+                        "declares " + Shape(dims) + " values (" + std::to_string(static_cast<long long>(bytes)) +
+                            " bytes) but the file stores " + std::to_string(static_cast<long long>(stored)) +
+                            " bytes for it: truncated or damaged"));
+}
+
 template <typename T>
 Array<T> File::Read(const std::string& dataset, std::initializer_list<int> ranks, Kind kind,
                     hid_t mem_type) const {
@@ -97,6 +120,7 @@ Array<T> File::Read(const std::string& dataset, std::initializer_list<int> ranks
   Array<T> out;
   out.dims.resize(static_cast<std::size_t>(rank));
   H5Sget_simple_extent_dims(space.get(), out.dims.data(), nullptr);
+  CheckStoredSize(ds.get(), type.get(), out.dims, dataset);
   hsize_t total = 1;
   for (hsize_t d : out.dims) total *= d;
   out.data.resize(total);

@@ -79,6 +79,7 @@ class File {
  private:
   template <typename T>
   Array<T> Read(const std::string& dataset, std::initializer_list<int> ranks, Kind kind, hid_t mem_type) const;
+  void CheckStoredSize(hid_t ds, hid_t type, const std::vector<hsize_t>& dims, const std::string& dataset) const;
   template <typename T>
   void WriteImpl(const std::string& dataset, const std::vector<T>& data, const std::vector<hsize_t>& dims,
                  hid_t file_type, hid_t mem_type);

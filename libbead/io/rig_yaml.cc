@@ -45,6 +45,9 @@ class RigParser {
   long Integer(const YAML::Node& node, const std::string& key) const {
     const double v = Number(node, key);
     if (v != std::floor(v)) Fail(node, key, "must be a whole number, got '" + node.Scalar() + "'");
+    // Beyond +-2^53 a double no longer holds every whole number (and a long
+    // not every double): no counter or bit count of a rig is that large.
+    if (std::abs(v) > 9007199254740992.0) Fail(node, key, "is out of range, got '" + node.Scalar() + "'");
     return static_cast<long>(v);
   }
 
