@@ -36,13 +36,19 @@ class Reader {
     throw Error(Located(file_, place, what));
   }
 
+  // A key or a name: plain text (a YAML sequence or mapping there is an error).
+  std::string Text(const YAML::Node& n, const std::string& key) const {
+    if (!n.IsScalar()) Fail(n, key, "must be plain text");
+    return n.Scalar();
+  }
+
   // Section `key` of `parent`, checking its keys are among `known`.
   YAML::Node Section(const YAML::Node& parent, const std::string& key, std::set<std::string> known) const {
     YAML::Node s = parent[key];
     if (!s.IsDefined() || s.IsNull()) return YAML::Node(YAML::NodeType::Undefined);
     if (!s.IsMap()) Fail(s, key, "must be a mapping");
     for (const auto& kv : s) {
-      const std::string k = kv.first.as<std::string>();
+      const std::string k = Text(kv.first, key + ".<key>");
       if (!known.count(k)) Fail(kv.first, key + "." + k, "unknown key (misspelt?)");
     }
     return s;
@@ -103,7 +109,7 @@ class Reader {
   void GetEnum(const YAML::Node& sec, const std::string& path, const std::string& key, E& out,
                const std::vector<std::pair<std::string, E>>& names) const {
     if (!sec.IsDefined() || !sec[key].IsDefined()) return;
-    const std::string v = sec[key].as<std::string>();
+    const std::string v = Text(sec[key], path + key);
     std::string all;
     for (const auto& [name, value] : names) {
       if (name == v) {
@@ -137,7 +143,7 @@ void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
   const std::set<std::string> top = {"seed", "duration_s", "dt_s", "log_rate_hz", "warm_start", "rig", "extruder", "wheel",
                                      "encoder", "bead", "sensor", "pins", "effects"};
   for (const auto& kv : root)
-    if (!top.count(kv.first.as<std::string>())) r.Fail(kv.first, kv.first.as<std::string>(), "unknown key (misspelt?)");
+    if (const std::string k = r.Text(kv.first, "<key>"); !top.count(k)) r.Fail(kv.first, k, "unknown key (misspelt?)");
   r.GetInt(root, "", "seed", c.seed, 0, 9.0e15);
   r.Get(root, "", "duration_s", c.duration_s, 0.1, 36000);
   r.Get(root, "", "dt_s", c.dt_s, 1e-5, 0.01);
@@ -147,7 +153,7 @@ void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
   const YAML::Node rig = r.Section(root, "rig", {"name", "counts_per_rev", "bits", "direction", "diameter_mm",
                                                   "offset_counts", "reference_areas_mm", "laser_origin_mm"});
   if (rig.IsDefined()) {
-    if (rig["name"].IsDefined()) c.rig.name = rig["name"].as<std::string>();
+    if (rig["name"].IsDefined()) c.rig.name = r.Text(rig["name"], "rig.name");
     r.Get(rig, "rig.", "counts_per_rev", c.rig.encoder.counts_per_rev, 1, 1e9);
     r.GetInt(rig, "rig.", "bits", c.rig.encoder.bits, 0, 64);
     r.GetInt(rig, "rig.", "direction", c.rig.encoder.direction, -1, 1);
@@ -270,7 +276,11 @@ SimConfig ParseSimConfig(const std::string& text, const std::string& name) {
   const YAML::Node root = ParseYamlText(text, name);
   SimConfig c;
   if (root.IsNull()) return c;
-  Parse(root, Reader(name), c);
+  try {
+    Parse(root, Reader(name), c);
+  } catch (const YAML::Exception& e) {  // what the checks above did not foresee still names the file
+    throw Error(Located(name, "line " + std::to_string(e.mark.line + 1), e.msg));
+  }
   return c;
 }
 

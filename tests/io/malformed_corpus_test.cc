@@ -12,6 +12,7 @@
 #include "libbead/io/profiles_csv.h"
 #include "libbead/io/rig_yaml.h"
 #include "libbead/io/run_archive.h"
+#include "libbead/sim/sim_config.h"
 #include "tests/support/expect_rejected.h"
 #include "tests/support/run_cli.h"
 
@@ -136,6 +137,8 @@ TEST(MalformedCorpus, FuzzFindingsStayFixed) {
                        [&] { ReadRunArchive(d + "huge_type.h5"); });
   test::ExpectRejected(d + "huge_integer.yaml", "encoder.bits: is out of range",
                        [&] { ReadRigFile(d + "huge_integer.yaml"); });
+  test::ExpectRejected(d + "sim_sequence_key.yaml", "line 3: pins.<key>: must be plain text",
+                       [&] { sim::ReadSimConfig(d + "sim_sequence_key.yaml"); });
 }
 
 }  // namespace
