@@ -27,7 +27,7 @@ cmake --build build-fuzz -j "$(nproc)" --target "${targets[@]/%/_fuzz}"
 # kept and reported, not counted as libbead's).
 classify() {
   local frame
-  frame=$(grep -E '^ +#[0-9]+ ' "$1" | grep -v -E '__interceptor_|__asan|__sanitizer|__lsan|__ubsan|libclang_rt|fuzzer::| in malloc| in calloc| in realloc| in operator new' | head -1)
+  frame=$(grep -E '^ +#[0-9]+ ' "$1" | grep -v -E '__interceptor_|__asan|__sanitizer|__lsan|__ubsan|libclang_rt|fuzzer::|libc\.so| in malloc| in calloc| in realloc| in operator new' | head -1)
   case "$frame" in *libhdf5*) echo libhdf5 ;; *) echo ours ;; esac
 }
 
