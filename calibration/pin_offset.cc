@@ -158,12 +158,13 @@ OffsetCalibration CalibrateOffset(const Rig& rig, const PinScanArchive& pins, co
   const double robust_sigma =
       std::max(1.4826 * MedianInPlace(dev.data(), dev.size()), 3.0 * MedianInPlace(ses.data(), ses.size()));
   double sum = 0.0;
-  std::vector<double> kept;
+  std::vector<double> kept, kept_ses;
   for (PinScanFit& s : cal.scans) {
     if (!s.ok) continue;
     s.outlier = std::abs(s.center_counts - med) > options.outlier_sigmas * robust_sigma;
     if (!s.outlier) {
       kept.push_back(s.center_counts);
+      kept_ses.push_back(s.center_se_counts);
       sum += s.center_counts;
     }
   }
@@ -176,9 +177,6 @@ OffsetCalibration CalibrateOffset(const Rig& rig, const PinScanArchive& pins, co
   double ss = 0.0;
   for (double x : kept) ss += (x - cal.offset_counts) * (x - cal.offset_counts);
   cal.sd_counts = std::sqrt(ss / (cal.used - 1));
-  std::vector<double> kept_ses;
-  for (const PinScanFit& f : cal.scans)
-    if (f.ok && !f.outlier) kept_ses.push_back(f.center_se_counts);
   const double fit_se = MedianInPlace(kept_ses.data(), kept_ses.size());
   double per_scan = cal.sd_counts;
   if (cal.sd_counts < fit_se) {

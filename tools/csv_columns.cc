@@ -119,6 +119,19 @@ Series ReadSeries(const SeriesSpec& spec) {
   return s;
 }
 
+ProcessOn SeriesStretches(const Series& s, const std::string& path, bool keep_off, const std::string& purpose) {
+  ProcessOn on;
+  if (keep_off) {
+    on.segments = WholeRecord(s.t.size());
+  } else {
+    on = FindProcessOn(s.t, s.u, s.y);
+    if (!on.excluded.empty())
+      std::printf("%s: left out of the fit: %s\n", path.c_str(), DescribeExclusions(on.excluded).c_str());
+  }
+  if (on.segments.empty()) throw Error(Located(path, "", "no stretch where the process ran: nothing to " + purpose));
+  return on;
+}
+
 void CheckValidationInput(const std::string& input_file, const std::string& validate,
                           const std::string& validate_input_file) {
   if (!validate_input_file.empty() && validate.empty())

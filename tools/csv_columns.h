@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "libbead/series/process_on.h"
+
 namespace bead::tools {
 
 struct Series {
@@ -27,6 +29,12 @@ struct SeriesSpec {
 // the file and line.
 Series ReadColumns(const std::string& path, const std::string& time, const std::string& input, const std::string& output);
 Series ReadSeries(const SeriesSpec& spec);
+
+// The stretches of `s` to fit (the whole record with keep_off), what was
+// left out printed on stdout ("PATH: left out of the fit: process off
+// ..."); no stretch at all is an error naming the file (`purpose`: what
+// there is then nothing to do, "fit", "explain").
+ProcessOn SeriesStretches(const Series& s, const std::string& path, bool keep_off, const std::string& purpose);
 
 // A validation run beside an input in its own file needs its own input
 // file too (else it would be paired with the estimation run's input).

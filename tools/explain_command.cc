@@ -271,7 +271,7 @@ Run AddExplain(CLI::App& app) {
       auto measure = [&](const std::string& path) {
         auto m = std::make_unique<Measured>();
         m->run = LoadRun(path);
-        if (!m->run.log) throw Error(Located(path, "/log", "missing: explain needs the acquisition log"));
+        RequireMotion(m->run, path, "explain");
         const ProfileBlock& block = m->run.profiles;
         m->geometry = MeasureProfiles(
             block.size(), [&](std::size_t i) { return block.view(i); }, rig.reference_left, rig.reference_right, {});
@@ -365,16 +365,7 @@ Run AddExplain(CLI::App& app) {
                          args->input_time.empty() ? args->time : args->input_time});
     };
     auto stretches = [&](const Series& s, const std::string& path) {
-      ProcessOn on;
-      if (args->keep_off) {
-        on.segments = WholeRecord(s.t.size());
-      } else {
-        on = FindProcessOn(s.t, s.u, s.y);
-        if (!on.excluded.empty())
-          std::printf("%s: left out: %s\n", path.c_str(), DescribeExclusions(on.excluded).c_str());
-      }
-      if (on.segments.empty()) throw Error(Located(path, "", "no stretch where the process ran: nothing to explain"));
-      return on;
+      return SeriesStretches(s, path, args->keep_off, "explain");
     };
     const Series s = read(args->data);
     std::printf("%s: %zu rows (%d skipped as gaps%s%s)\n", args->data.c_str(), s.t.size(), s.skipped,

@@ -52,15 +52,7 @@ Run AddFlow(CLI::App& app) {
       throw CLI::RequiredError("--rig, RUN and -o are all needed (or none, for the bundled sample)");
     const Rig rig = ReadRig(args->rig);
     const RunArchive run = LoadRun(args->run);
-    if (EncoderAbsent(run))
-      throw Error(Located(args->run, "/profiles/encoder",
-                          "holds no readings (root attribute encoder=absent: imported without an encoder column); "
-                          "the flow needs the wheel's motion"));
-    if (!run.log) throw Error(Located(args->run, "/log", "missing: the flow needs the acquisition log"));
-    if (run.log->size() < 3)
-      throw Error(Located(args->run, "/log/t_s",
-                          "holds " + std::to_string(run.log->size()) +
-                              " sample(s): the wheel's speed needs at least 3 (is the log cut short?)"));
+    RequireMotion(run, args->run, "the flow");
     const ProfileBlock& block = run.profiles;
     const std::vector<BeadGeometry> geometry = MeasureProfiles(
         block.size(), [&](std::size_t i) { return block.view(i); }, rig.reference_left, rig.reference_right,

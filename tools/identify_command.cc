@@ -107,15 +107,7 @@ Run AddIdentify(CLI::App& app) {
                 est.skipped ? "; the first at " : "", est.first_skip.c_str());
     if (!est.note.empty()) std::printf("%s\n", est.note.c_str());
     auto stretches = [&](const Series& s, const std::string& path) {
-      ProcessOn on;
-      if (args->keep_off) {
-        on.segments = WholeRecord(s.t.size());
-      } else {
-        on = FindProcessOn(s.t, s.u, s.y);
-        if (!on.excluded.empty()) std::printf("%s: left out of the fit: %s\n", path.c_str(), DescribeExclusions(on.excluded).c_str());
-      }
-      if (on.segments.empty()) throw Error(Located(path, "", "no stretch where the process ran: nothing to fit"));
-      return on;
+      return SeriesStretches(s, path, args->keep_off, "fit");
     };
     const ProcessOn on = stretches(est, args->data);
     const model::IdentifiedModel m = model::IdentifyTransferFunction(est.t, est.u, est.y, o, on.segments);

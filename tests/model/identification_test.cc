@@ -82,6 +82,7 @@ TEST(StepIdentification, RefusesAFlatResponse) {
 
 #include "libbead/model/identify.h"
 #include "libbead/series/process_on.h"
+#include "tests/support/random_steps.h"
 
 namespace bead::model {
 namespace {
@@ -204,16 +205,9 @@ TEST(Identify, RecordStartingMidProcessGetsItsOperatingPointAndInitialState) {
 // the profile at every sample step finds the true basin, to a sample.
 TEST(Identify, DelayBasinIsFoundOnTheProfile) {
   std::mt19937_64 rng(21);
-  std::uniform_real_distribution<double> level(1.0, 3.0);
   std::normal_distribution<double> noise(0.0, 0.01);
   const TransferFunction truth{{2.0}, {0.25, 1.0}, 0.62};
-  std::vector<double> t, u;
-  double v = 2.0;
-  for (int i = 0; i < 3000; ++i) {
-    if (i % 15 == 0) v = level(rng);
-    t.push_back(0.02 * i);
-    u.push_back(v);
-  }
+  const auto [t, u] = test::RandomSteps(rng, 1.0, 3.0, 3000, 15, 0.02);
   std::vector<double> y = Simulate(truth, t, u);
   for (double& x : y) x += noise(rng);
   IdentifyOptions o;
@@ -269,16 +263,9 @@ TEST(Identify, ProcessModelP2DOnUnevenSampling) {
 // give a worse model.
 TEST(Identify, ProcessOffStretchIsFoundAndLeftOut) {
   std::mt19937_64 rng(41);
-  std::uniform_real_distribution<double> level(2.0, 6.0);
   std::normal_distribution<double> noise(0.0, 0.02);
   const TransferFunction truth{{1.2}, {0.5, 1.0}, 0.1};
-  std::vector<double> t, u;
-  double v = 4.0;
-  for (int i = 0; i < 3000; ++i) {
-    if (i % 40 == 0) v = level(rng);
-    t.push_back(0.02 * i);
-    u.push_back(v);
-  }
+  const auto [t, u] = test::RandomSteps(rng, 2.0, 6.0, 3000, 40, 0.02);
   std::vector<double> y = Simulate(truth, t, u);
   for (std::size_t i = 0; i < y.size(); ++i) y[i] = (t[i] >= 25.0 && t[i] < 31.0) ? 0.0 : y[i] + noise(rng);
   // The data start from rest, so the first 0.1 s (the delay: the input on,

@@ -10,6 +10,7 @@
 #include <random>
 
 #include "libbead/model/identify.h"
+#include "tests/support/random_steps.h"
 #include "tests/support/run_cli.h"
 
 namespace bead::model {
@@ -19,15 +20,8 @@ namespace {
 // from rest) every 0.04 s; the wire feed in steps on its own 4 ms clock.
 void WriteRun(const test::TempDir& dir, const std::string& name, unsigned seed) {
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> level(3.0, 7.0);
   std::normal_distribution<double> noise(0.0, 0.02);
-  std::vector<double> tu, u;
-  double v = 5.0;
-  for (int i = 0; i <= 10000; ++i) {
-    if (i % 300 == 0) v = level(rng);
-    tu.push_back(0.004 * i);
-    u.push_back(v);
-  }
+  const auto [tu, u] = test::RandomSteps(rng, 3.0, 7.0, 10001, 300, 0.004);
   std::vector<double> ty, uy;
   for (int i = 0; i < 1000; ++i) {
     ty.push_back(0.04 * i);

@@ -8,6 +8,7 @@
 
 #include "libbead/model/identify.h"
 #include "libbead/series/process_on.h"
+#include "tests/support/random_steps.h"
 
 namespace bead::model {
 namespace {
@@ -42,15 +43,8 @@ std::vector<double> FirstOrderFromRest(double K, double T, double Td, const std:
 TEST(ProcessStart, ArcStrikesAreStepResponsesFromRest) {
   const double K = 1.2, T = 0.5, Td = 0.1;
   std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> level(2.0, 6.0);
   std::normal_distribution<double> noise(0.0, 0.02);
-  std::vector<double> t, u;
-  double v = 4.0;
-  for (int i = 0; i < 3000; ++i) {
-    if (i % 150 == 0) v = level(rng);
-    t.push_back(0.02 * i);
-    u.push_back(v);
-  }
+  const auto [t, u] = test::RandomSteps(rng, 2.0, 6.0, 3000, 150, 0.02);
   const std::vector<double> a = FirstOrderFromRest(K, T, Td, t, u, 5.0, 30.0);
   const std::vector<double> b = FirstOrderFromRest(K, T, Td, t, u, 34.0, 60.0);
   std::vector<double> y(t.size());
