@@ -10,7 +10,7 @@
 #include <cstdio>
 
 #include "calibration/student_t.h"
-#include "libbead/profile/median.h"
+#include "libbead/core/median.h"
 #include "libbead/series/encoder.h"
 
 namespace bead::calibration {

@@ -8,7 +8,7 @@
 #include "libbead/flow/extrusion_time.h"
 #include "libbead/model/identify.h"
 #include "libbead/model/lti_response.h"
-#include "libbead/profile/median.h"
+#include "libbead/core/median.h"
 #include "libbead/series/encoder.h"
 #include "libbead/series/interpolate.h"
 

@@ -16,7 +16,7 @@
 #include "libbead/core/rig.h"
 #include "libbead/explain/series_data.h"
 #include "libbead/flow/flow.h"
-#include "libbead/io/run_archive.h"
+#include "libbead/core/run_data.h"
 #include "libbead/model/transfer_function.h"
 #include "libbead/profile/bead_geometry.h"
 

@@ -7,7 +7,7 @@
 
 #include "libbead/core/error.h"
 #include "libbead/flow/extrusion_time.h"
-#include "libbead/profile/median.h"
+#include "libbead/core/median.h"
 #include "libbead/series/encoder.h"
 #include "libbead/series/hampel.h"
 #include "libbead/series/interpolate.h"

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "libbead/core/rig.h"
-#include "libbead/io/run_archive.h"
+#include "libbead/core/run_data.h"
 #include "libbead/profile/bead_geometry.h"
 
 namespace bead {

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "libbead/flow/extrusion_time.h"
-#include "libbead/profile/median.h"
+#include "libbead/core/median.h"
 #include "libbead/series/hampel.h"
 #include "libbead/series/interpolate.h"
 #include "libbead/series/savgol.h"

@@ -76,16 +76,6 @@ void WriteBlock(h5::File& f, const std::string& group, const ProfileBlock& b) {
 
 }  // namespace
 
-ProfileView ProfileBlock::view(std::size_t i) const {
-  ProfileView v;
-  v.x_mm = shared_x ? std::span<const float>(x_mm.data(), points)
-                    : std::span<const float>(x_mm.data() + i * points, points);
-  v.z_mm = std::span<const float>(z_mm.data() + i * points, points);
-  v.t_s = t_s[i];
-  v.encoder = encoder[i];
-  return v;
-}
-
 void ValidateProfileBlock(const ProfileBlock& b, const std::string& file, const std::string& where) {
   const std::string t_name = Join(where, "t_s");
   CheckLength(b.encoder.size(), b.size(), file, Join(where, "encoder"), t_name);

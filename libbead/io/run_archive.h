@@ -11,31 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "libbead/profile/profile.h"
+#include "libbead/core/run_data.h"
 
 namespace bead {
-
-// N profiles of P points each (profiles with fewer points pad with NaN).
-struct ProfileBlock {
-  std::vector<double> t_s;       // [N]
-  std::vector<int64_t> encoder;  // [N]
-  std::vector<float> x_mm;       // [P] when shared_x, else [N * P]
-  std::vector<float> z_mm;       // [N * P]
-  std::size_t points = 0;        // P
-  bool shared_x = true;
-
-  std::size_t size() const { return t_s.size(); }
-  ProfileView view(std::size_t i) const;
-};
-
-struct AcquisitionLog {
-  std::vector<double> t_s;
-  std::vector<int64_t> encoder;
-  std::vector<double> screw_rpm;
-  std::vector<double> extruder_cmd_v;  // empty when absent
-  std::vector<double> wheel_cmd_v;     // empty when absent
-  std::size_t size() const { return t_s.size(); }
-};
 
 struct RunArchive {
   ProfileBlock profiles;

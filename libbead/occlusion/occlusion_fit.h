@@ -23,7 +23,7 @@
 
 #include "libbead/core/rig.h"
 #include "libbead/profile/bead_geometry.h"
-#include "libbead/profile/profile.h"
+#include "libbead/core/profile_view.h"
 
 namespace bead::occlusion {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <map>
 
-#include "libbead/profile/median.h"
+#include "libbead/core/median.h"
 
 namespace bead::occlusion {
 

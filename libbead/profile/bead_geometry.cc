@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <cstring>
 
-#include "libbead/profile/median.h"
+#include "libbead/core/median.h"
 #include "libbead/profile/kernel.h"
 #include "libbead/profile/vec8.h"
 

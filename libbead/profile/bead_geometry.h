@@ -32,7 +32,7 @@
 
 #include "libbead/core/rig.h"
 #include "libbead/profile/point_set.h"
-#include "libbead/profile/profile.h"
+#include "libbead/core/profile_view.h"
 #include "libbead/profile/reference_line.h"
 #include "libbead/profile/workspace.h"
 

@@ -14,7 +14,7 @@
 #include "libbead/core/rig.h"
 #include "libbead/profile/bead_geometry.h"
 #include "libbead/profile/point_set.h"
-#include "libbead/profile/profile.h"
+#include "libbead/core/profile_view.h"
 #include "libbead/profile/profile_processor.h"
 #include "libbead/profile/reference_line.h"
 #include "libbead/profile/workspace.h"

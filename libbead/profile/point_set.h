@@ -10,7 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "libbead/profile/profile.h"
+#include "libbead/core/profile_view.h"
 #include "libbead/profile/workspace.h"
 
 namespace bead {

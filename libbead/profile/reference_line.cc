@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "libbead/profile/kernel.h"
-#include "libbead/profile/median.h"
+#include "libbead/core/median.h"
 #include "libbead/profile/vec8.h"
 #include "libbead/profile/vec_sort.h"
 

@@ -1,6 +1,6 @@
 #include "libbead/series/encoder.h"
 
-#include "libbead/profile/median.h"
+#include "libbead/core/median.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 #include "libbead/series/hampel.h"
 
-#include "libbead/profile/median.h"
+#include "libbead/core/median.h"
 
 #include <algorithm>
 #include <cmath>

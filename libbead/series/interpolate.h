@@ -9,7 +9,7 @@
 #include <limits>
 #include <vector>
 
-#include "libbead/profile/median.h"
+#include "libbead/core/median.h"
 
 namespace bead {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "libbead/core/rig.h"
-#include "libbead/profile/profile.h"
+#include "libbead/core/profile_view.h"
 #include "libbead/sim/sensor_model.h"
 
 namespace bead::test {

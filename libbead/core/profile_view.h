@@ -1,5 +1,5 @@
 // ProfileView: one laser-line profile as the sensor reported it, borrowed
-// (no copy). Coordinates follow shared/spec/data-formats.md: x along the
+// (no copy). Coordinates follow the run archive format (docs/data-formats.md): x along the
 // laser line, z height growing toward the sensor, both mm; NaN where the
 // sensor measured nothing. x may be non-uniform, decreasing or unsorted.
 #pragma once

@@ -1,0 +1,49 @@
+// A run's plain data as every stage sees it, whatever file it came from:
+// the profiles (time, encoder, points) and the acquisition log. io/ reads
+// and writes them; profile/, flow/ and explain/ work on them and read no
+// file format.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "libbead/core/profile_view.h"
+
+namespace bead {
+
+// N profiles of P points each (profiles with fewer points pad with NaN).
+// A block may also hold only t_s and encoder (points = 0): the per-profile
+// clock of a run whose points were streamed and let go.
+struct ProfileBlock {
+  std::vector<double> t_s;       // [N]
+  std::vector<int64_t> encoder;  // [N]
+  std::vector<float> x_mm;       // [P] when shared_x, else [N * P]
+  std::vector<float> z_mm;       // [N * P]
+  std::size_t points = 0;        // P
+  bool shared_x = true;
+
+  std::size_t size() const { return t_s.size(); }
+  ProfileView view(std::size_t i) const {
+    ProfileView v;
+    v.x_mm = shared_x ? std::span<const float>(x_mm.data(), points)
+                      : std::span<const float>(x_mm.data() + i * points, points);
+    v.z_mm = std::span<const float>(z_mm.data() + i * points, points);
+    v.t_s = t_s[i];
+    v.encoder = encoder[i];
+    return v;
+  }
+};
+
+// The acquisition log (thesis 3.1: the wheel's encoder and the screw's RPM,
+// sampled on their own clock).
+struct AcquisitionLog {
+  std::vector<double> t_s;
+  std::vector<int64_t> encoder;
+  std::vector<double> screw_rpm;
+  std::vector<double> extruder_cmd_v;  // empty when absent
+  std::vector<double> wheel_cmd_v;     // empty when absent
+  std::size_t size() const { return t_s.size(); }
+};
+
+}  // namespace bead
