@@ -11,7 +11,7 @@
 int main(int argc, char** argv) {
   CLI::App app{"bead: bead cross-sections and volumetric flow from laser line profiles (libbead)"};
   app.footer(
-      "Units: mm, s, mm^2, mm^3/s, RPM, V. File formats: shared/spec/data-formats.md.\n"
+      "Units: mm, s, mm^2, mm^3/s, RPM, V. File formats: docs/data-formats.md.\n"
       "Example:\n"
       "  bead simulate testdata/configs/sample.yaml -o /tmp/run\n"
       "  bead measure --rig /tmp/run/rig.yaml /tmp/run/run.h5 -o geometry.csv\n"

@@ -27,7 +27,7 @@ Run AddFrames(CLI::App& app) {
       "In:  PLANE.yaml (where the camera sees the laser plane: points: [[u, v, x_mm, z_mm], ...],\n"
       "     four or more pixel -> plane pairs from a target in the laser's light) and the frames,\n"
       "     in time order (images OpenCV reads: PNG, TIFF, ...; undistorted; colour is made grey).\n"
-      "Out: RUN.h5, the run archive of shared/spec/data-formats.md (profiles only): one profile\n"
+      "Out: RUN.h5, the run archive of docs/data-formats.md (profiles only): one profile\n"
       "     a frame, one point an image column (the stripe's sub-pixel centre on the laser plane,\n"
       "     NaN where a column has no stripe), frame k at k / rate. No encoder: /profiles/encoder\n"
       "     holds 0 and the root attribute encoder=absent says so (`bead flow` refuses it).\n"

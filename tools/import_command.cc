@@ -19,7 +19,7 @@ Run AddImport(CLI::App& app) {
       "In:  a vendor CSV export, one row per point, with a header; name the columns that hold\n"
       "     the profile id (rows of one profile together), its time, x and z. Other columns\n"
       "     are ignored. A profile takes the time of its first row.\n"
-      "Out: RUN.h5, the run archive of shared/spec/data-formats.md (profiles only, no /log),\n"
+      "Out: RUN.h5, the run archive of docs/data-formats.md (profiles only, no /log),\n"
       "     z as height (up): --z-distance turns a distance from the sensor into one.\n"
       "     Without --encoder-column, /profiles/encoder holds 0 and the root attribute\n"
       "     encoder=absent says so: `bead measure` works, `bead flow` refuses the archive.\n"

@@ -11,18 +11,21 @@
 #include <string>
 #include <vector>
 
-#include "libbead/profile/bead_geometry.h"
+#include "libbead/io/atomic_file.h"
+#include "libbead/profile/geometry_row.h"
 
 namespace bead {
 
-struct GeometryRow {
-  int64_t profile = 0;
-  double t_s = 0.0;
-  int64_t encoder = 0;
-  BeadGeometry geometry;
-  double area_corrected_mm2 = BeadGeometry::kNaN;
-  double occlusion_bias_mm2 = BeadGeometry::kNaN;
-  double area_corrected_sigma_mm2 = BeadGeometry::kNaN;
+// Rows appended one at a time (a streamed run), committed atomically.
+class GeometryCsvWriter {
+ public:
+  explicit GeometryCsvWriter(const std::string& path);
+  void Append(const GeometryRow& row);
+  void Commit();
+
+ private:
+  AtomicFile out_;
+  std::string line_;
 };
 
 void WriteGeometryCsv(const std::string& path, const std::vector<GeometryRow>& rows);

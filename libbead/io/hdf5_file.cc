@@ -100,9 +100,8 @@ void File::CheckStoredSize(hid_t ds, hid_t type, const std::vector<hsize_t>& dim
                             " bytes for it: truncated or damaged"));
 }
 
-template <typename T>
-Array<T> File::Read(const std::string& dataset, std::initializer_list<int> ranks, Kind kind,
-                    hid_t mem_type) const {
+Handle File::OpenDataset(const std::string& dataset, std::initializer_list<int> ranks, Kind kind,
+                         std::vector<hsize_t>& dims) const {
   if (!Exists(dataset)) throw Error(Located(name_, dataset, "missing dataset"));
   Handle ds(H5Dopen2(id(), dataset.c_str(), H5P_DEFAULT), H5Dclose);
   if (!ds.valid()) throw Error(Located(name_, dataset, "is not a dataset"));
@@ -117,10 +116,17 @@ Array<T> File::Read(const std::string& dataset, std::initializer_list<int> ranks
   if (std::find(ranks.begin(), ranks.end(), rank) == ranks.end())
     throw Error(Located(name_, dataset,
                         "wrong shape: has " + std::to_string(rank) + " dimensions, expected " + RanksText(ranks)));
+  dims.resize(static_cast<std::size_t>(rank));
+  H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+  CheckStoredSize(ds.get(), type.get(), dims, dataset);
+  return ds;
+}
+
+template <typename T>
+Array<T> File::Read(const std::string& dataset, std::initializer_list<int> ranks, Kind kind,
+                    hid_t mem_type) const {
   Array<T> out;
-  out.dims.resize(static_cast<std::size_t>(rank));
-  H5Sget_simple_extent_dims(space.get(), out.dims.data(), nullptr);
-  CheckStoredSize(ds.get(), type.get(), out.dims, dataset);
+  const Handle ds = OpenDataset(dataset, ranks, kind, out.dims);
   hsize_t total = 1;
   for (hsize_t d : out.dims) total *= d;
   out.data.resize(total);

@@ -57,6 +57,11 @@ class File {
   hid_t id() const { return handle_.get(); }
   bool Exists(const std::string& object) const;
 
+  // Opens a dataset after checking its type class, rank (one of `ranks`)
+  // and declared shape (against what the file stores); `dims` gets the shape.
+  Handle OpenDataset(const std::string& dataset, std::initializer_list<int> ranks, Kind kind,
+                     std::vector<hsize_t>& dims) const;
+
   // Reads a dataset of the given kind (any width; HDF5 converts), checking
   // its rank is one of `ranks`.
   Array<double> ReadDouble(const std::string& dataset, std::initializer_list<int> ranks) const;

@@ -15,14 +15,18 @@ std::string Join(const std::string& group, const std::string& name) {
   return group == "/" ? "/" + name : group + "/" + name;
 }
 
-void CheckTime(const std::vector<double>& t, const std::string& file, const std::string& dataset) {
+// `first`: the index of t[0] in the dataset; `previous`: the time before
+// it (NaN: none), for a dataset read window by window.
+void CheckTime(const std::vector<double>& t, const std::string& file, const std::string& dataset,
+               std::size_t first = 0, double previous = std::nan("")) {
   for (std::size_t i = 0; i < t.size(); ++i) {
-    if (!std::isfinite(t[i]))
-      throw Error(Located(file, dataset + "[" + std::to_string(i) + "]", "time is not finite"));
-    if (i > 0 && !(t[i] > t[i - 1]))
-      throw Error(Located(file, dataset + "[" + std::to_string(i) + "]",
-                          "time does not increase (" + std::to_string(t[i - 1]) + " then " +
-                              std::to_string(t[i]) + " s)"));
+    const std::string at = dataset + "[" + std::to_string(first + i) + "]";
+    if (!std::isfinite(t[i])) throw Error(Located(file, at, "time is not finite"));
+    const double before = i > 0 ? t[i - 1] : previous;
+    if ((i > 0 || !std::isnan(previous)) && !(t[i] > before))
+      throw Error(Located(file, at,
+                          "time does not increase (" + std::to_string(before) + " then " + std::to_string(t[i]) +
+                              " s)"));
   }
 }
 
@@ -77,22 +81,29 @@ void WriteBlock(h5::File& f, const std::string& group, const ProfileBlock& b) {
 }  // namespace
 
 void ValidateProfileBlock(const ProfileBlock& b, const std::string& file, const std::string& where) {
+  ValidateProfileRows(b, 0, std::nan(""), file, where);
+}
+
+void ValidateProfileRows(const ProfileBlock& b, std::size_t first, double previous_t, const std::string& file,
+                         const std::string& where) {
   const std::string t_name = Join(where, "t_s");
   CheckLength(b.encoder.size(), b.size(), file, Join(where, "encoder"), t_name);
   CheckLength(b.z_mm.size(), b.size() * b.points, file, Join(where, "z_mm"), "N x P");
   CheckLength(b.x_mm.size(), b.shared_x ? b.points : b.size() * b.points, file, Join(where, "x_mm"),
               b.shared_x ? "P" : "N x P");
-  CheckTime(b.t_s, file, t_name);
-  for (std::size_t i = 0; i < b.x_mm.size(); ++i)
-    if (std::isinf(b.x_mm[i]))
-      throw Error(Located(file, Join(where, "x_mm") + " element " + std::to_string(i),
-                          "infinite coordinate (an unmeasured point must be NaN)"));
+  CheckTime(b.t_s, file, t_name, first, previous_t);
+  const std::size_t p = std::max<std::size_t>(b.points, 1);
+  auto place = [&](const char* name, std::size_t i) {
+    return Join(where, name) + "[" + std::to_string(first + i / p) + ", " + std::to_string(i % p) + "]";
+  };
+  // Shared x is checked with the first window only (it is the same for all).
+  if (!b.shared_x || first == 0)
+    for (std::size_t i = 0; i < b.x_mm.size(); ++i)
+      if (std::isinf(b.x_mm[i]))
+        throw Error(Located(file, b.shared_x ? Join(where, "x_mm") + "[" + std::to_string(i) + "]" : place("x_mm", i),
+                            "infinite coordinate (an unmeasured point must be NaN)"));
   for (std::size_t i = 0; i < b.z_mm.size(); ++i)
-    if (std::isinf(b.z_mm[i]))
-      throw Error(Located(file,
-                          Join(where, "z_mm") + "[" + std::to_string(i / std::max<std::size_t>(b.points, 1)) +
-                              ", " + std::to_string(i % std::max<std::size_t>(b.points, 1)) + "]",
-                          "infinite height (an unmeasured point must be NaN)"));
+    if (std::isinf(b.z_mm[i])) throw Error(Located(file, place("z_mm", i), "infinite height (an unmeasured point must be NaN)"));
 }
 
 void ValidateLog(const AcquisitionLog& log, const std::string& file, const std::string& where) {
@@ -106,10 +117,12 @@ void ValidateLog(const AcquisitionLog& log, const std::string& file, const std::
   CheckTime(log.t_s, file, t_name);
 }
 
-RunArchive ReadRunArchive(const std::string& path) {
+RunArchive ReadRunArchive(const std::string& path) { return ReadRunArchive(path, true); }
+
+RunArchive ReadRunArchive(const std::string& path, bool with_profiles) {
   const h5::File f = h5::File::OpenRead(path);
   RunArchive run;
-  run.profiles = ReadBlock(f, "/profiles");
+  if (with_profiles) run.profiles = ReadBlock(f, "/profiles");
   if (f.Exists("/log")) {
     AcquisitionLog log;
     log.t_s = f.ReadDouble("/log/t_s", {1}).data;

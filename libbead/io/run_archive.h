@@ -43,6 +43,9 @@ struct PinScanArchive {
 };
 
 RunArchive ReadRunArchive(const std::string& path);
+// with_profiles = false: the log and root attributes only (the profiles
+// are then read window by window, io/profile_stream.h).
+RunArchive ReadRunArchive(const std::string& path, bool with_profiles);
 void WriteRunArchive(const std::string& path, const RunArchive& run);
 PinScanArchive ReadPinScanArchive(const std::string& path);
 void WritePinScanArchive(const std::string& path, const PinScanArchive& pins);
@@ -50,6 +53,11 @@ void WritePinScanArchive(const std::string& path, const PinScanArchive& pins);
 // Checks a block's internal consistency (lengths, finite increasing time,
 // no infinite coordinates); `file` and `where` name it in the error.
 void ValidateProfileBlock(const ProfileBlock& block, const std::string& file, const std::string& where);
+// The same for profiles [first, first + N) of a dataset read in windows;
+// previous_t: the time of profile first - 1 (NaN for the first window).
+// Errors name the dataset's own row and column.
+void ValidateProfileRows(const ProfileBlock& block, std::size_t first, double previous_t, const std::string& file,
+                         const std::string& where);
 void ValidateLog(const AcquisitionLog& log, const std::string& file, const std::string& where);
 
 }  // namespace bead

@@ -8,26 +8,41 @@
 
 namespace bead::occlusion {
 
+std::vector<std::size_t> PoolRanks(std::size_t valid_count, int max_fits) {
+  // Evenly spread over the valid profiles.
+  const std::size_t fits = std::min<std::size_t>(valid_count, static_cast<std::size_t>(std::max(max_fits, 1)));
+  std::vector<std::size_t> ranks(fits);
+  for (std::size_t j = 0; j < fits; ++j) ranks[j] = (j * valid_count + valid_count / 2) / fits;
+  return ranks;
+}
+
 PooledOcclusion PoolOcclusion(std::size_t count, const std::function<ProfileView(std::size_t)>& view,
                               const std::vector<BeadGeometry>& geometry, const OcclusionOptions& options,
                               int max_fits) {
-  PooledOcclusion pool;
   std::vector<std::size_t> valid;
   for (std::size_t i = 0; i < count; ++i)
     if (geometry[i].valid()) valid.push_back(i);
-  if (valid.empty()) {
+  std::vector<std::size_t> chosen = PoolRanks(valid.size(), max_fits);
+  for (std::size_t& c : chosen) c = valid[c];
+  return PoolChosen(
+      chosen.size(), [&](std::size_t j) { return view(chosen[j]); },
+      [&](std::size_t j) -> const BeadGeometry& { return geometry[chosen[j]]; }, options);
+}
+
+PooledOcclusion PoolChosen(std::size_t chosen, const std::function<ProfileView(std::size_t)>& view,
+                           const std::function<const BeadGeometry&(std::size_t)>& geometry,
+                           const OcclusionOptions& options) {
+  PooledOcclusion pool;
+  if (chosen == 0) {
     pool.note = "no measured profile to fit";
     return pool;
   }
-  // Evenly spread over the valid profiles.
-  const std::size_t fits = std::min<std::size_t>(valid.size(), static_cast<std::size_t>(std::max(max_fits, 1)));
   std::vector<double> fraction, rel_sigma;
   std::map<std::string, int> families;
   int constrained = 0;
-  for (std::size_t j = 0; j < fits; ++j) {
-    const std::size_t i = valid[(j * valid.size() + valid.size() / 2) / fits];
-    const BeadGeometry& g = geometry[i];
-    const OcclusionEstimate e = EstimateOcclusion(view(i), g, options);
+  for (std::size_t j = 0; j < chosen; ++j) {
+    const BeadGeometry& g = geometry(j);
+    const OcclusionEstimate e = EstimateOcclusion(view(j), g, options);
     if (!e.ok || !(g.area_mm2 > 0)) continue;
     fraction.push_back(e.bias_mm2 / g.area_mm2);
     // The estimate's sigma less the area's own, which ApplyPooled adds per profile.

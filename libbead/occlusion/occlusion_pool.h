@@ -34,6 +34,14 @@ PooledOcclusion PoolOcclusion(std::size_t count, const std::function<ProfileView
                               const std::vector<BeadGeometry>& geometry, const OcclusionOptions& options,
                               int max_fits = 60);
 
+// The same in two steps, for a run streamed window by window: which of the
+// V valid profiles to fit (ranks 0..V-1 among them, in order), then the
+// pool from the chosen ones (view and geometry of the j-th).
+std::vector<std::size_t> PoolRanks(std::size_t valid_count, int max_fits = 60);
+PooledOcclusion PoolChosen(std::size_t chosen, const std::function<ProfileView(std::size_t)>& view,
+                           const std::function<const BeadGeometry&(std::size_t)>& geometry,
+                           const OcclusionOptions& options);
+
 CorrectedArea ApplyPooled(const PooledOcclusion& pooled, const BeadGeometry& geometry);
 
 }  // namespace bead::occlusion

@@ -76,7 +76,7 @@ std::vector<Malformed> Corpus() {
          w.D("/log/t_s", {0, 1}, {2}).I("/log/encoder", {0, 1}, {2}).D("/log/screw_rpm", {1}, {1});
        })},
       {"log_missing.h5", "/log/encoder: missing dataset", Archive([](H5Writer& w) { w.D("/log/t_s", {0, 1}, {2}); })},
-      {"nan_x_ok_but_inf.h5", "/profiles/x_mm element 1: infinite coordinate", Archive([nan, inf](H5Writer& w) { w.F("/profiles/x_mm", {nan, inf, 1}, {3}); }, {"x"})},
+      {"nan_x_ok_but_inf.h5", "/profiles/x_mm[1]: infinite coordinate", Archive([nan, inf](H5Writer& w) { w.F("/profiles/x_mm", {nan, inf, 1}, {3}); }, {"x"})},
       {"header.csv", "line 1: column 4 of the header is 'x'", text("profile,t_s,encoder,x,z_mm\n0,0,0,1,2\n")},
       {"number.csv", "line 3: column 5 (z_mm) is 'abc', not a number", text("profile,t_s,encoder,x_mm,z_mm\n0,0,0,1,2\n0,0,0,2,abc\n")},
       {"short_row.csv", "line 2: has 3 fields", text("profile,t_s,encoder,x_mm,z_mm\n0,0,0\n")},

@@ -1,0 +1,128 @@
+#include "libbead/io/hdf5_rows.h"
+
+#include <zlib.h>
+
+#include <algorithm>
+#include <cstring>
+
+#include "libbead/core/error.h"
+
+namespace bead::h5 {
+
+RowReader::RowReader(const File& file, const std::string& dataset, std::initializer_list<int> ranks, Kind kind,
+                     hid_t mem_type)
+    : file_(&file), name_(dataset), mem_type_(mem_type), mem_size_(H5Tget_size(mem_type)) {
+  ds_ = file.OpenDataset(dataset, ranks, kind, dims_);
+  for (std::size_t d = 1; d < dims_.size(); ++d) row_length_ *= dims_[d];
+  Handle dcpl(H5Dget_create_plist(ds_.get()), H5Pclose);
+  Handle type(H5Dget_type(ds_.get()), H5Tclose);
+  if (!dcpl.valid() || H5Pget_layout(dcpl.get()) != H5D_CHUNKED) return;
+  std::vector<hsize_t> chunk(dims_.size());
+  if (H5Pget_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()) != static_cast<int>(chunk.size()))
+    return;
+  chunk_rows_ = chunk.empty() ? 0 : chunk[0];
+  // Direct reads: float32 LE in and out, chunks of whole rows.
+  if (!(H5Tequal(type.get(), H5T_IEEE_F32LE) > 0 && H5Tequal(mem_type, H5T_NATIVE_FLOAT) > 0)) return;
+  if (H5Tequal(H5T_NATIVE_FLOAT, H5T_IEEE_F32LE) <= 0) return;
+  for (std::size_t d = 1; d < dims_.size(); ++d)
+    if (chunk[d] != dims_[d]) return;
+  if (chunk_rows_ == 0) return;
+  const int n = H5Pget_nfilters(dcpl.get());
+  for (int i = 0; i < n; ++i) {
+    unsigned flags = 0, config = 0;
+    std::size_t nelmts = 0;
+    const H5Z_filter_t id = H5Pget_filter2(dcpl.get(), static_cast<unsigned>(i), &flags, &nelmts, nullptr, 0, nullptr,
+                                           &config);
+    if (id != H5Z_FILTER_DEFLATE && id != H5Z_FILTER_SHUFFLE) return;
+    filters_.push_back(static_cast<int>(id));
+  }
+  direct_ = true;
+}
+
+void RowReader::ReadThroughHdf5(std::size_t begin, std::size_t count, void* out) const {
+  Handle space(H5Dget_space(ds_.get()), H5Sclose);
+  std::vector<hsize_t> start(dims_.size(), 0), size = dims_;
+  start[0] = begin;
+  size[0] = count;
+  Handle mem(H5Screate_simple(static_cast<int>(size.size()), size.data(), nullptr), H5Sclose);
+  if (H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start.data(), nullptr, size.data(), nullptr) < 0 ||
+      H5Dread(ds_.get(), mem_type_, mem.get(), space.get(), H5P_DEFAULT, out) < 0)
+    throw Error(Located(file_->name(), name_,
+                        "cannot read rows " + std::to_string(begin) + " to " + std::to_string(begin + count - 1) +
+                            " (damaged?)"));
+}
+
+// Undoes the filters of chunk `chunk` of the window (the last one first)
+// and copies its rows within [begin, begin + count) to `out`. The raw
+// bytes stay as read; each step writes the worker's other scratch buffer.
+void RowReader::Decode(std::size_t chunk, std::size_t begin, std::size_t count, float* out,
+                       std::vector<uint8_t>* scratch) const {
+  const std::size_t first = raw_first_row_[chunk];
+  const std::size_t values = chunk_rows_ * row_length_, bytes = values * sizeof(float);
+  const std::string where = name_ + " chunk at row " + std::to_string(first);
+  const uint8_t* data = raw_[chunk].data();
+  std::size_t size = raw_[chunk].size();
+  int next = 0;  // the scratch buffer the next step writes
+  for (std::size_t k = filters_.size(); k-- > 0;) {
+    if (masks_[chunk] & (1u << k)) continue;  // filter skipped for this chunk
+    std::vector<uint8_t>& to = scratch[next];
+    to.resize(bytes);
+    if (filters_[k] == H5Z_FILTER_DEFLATE) {
+      uLongf got = bytes;
+      const int rc = uncompress(to.data(), &got, data, size);
+      if (rc != Z_OK || got != bytes)
+        throw Error(Located(file_->name(), where,
+                            "damaged compressed data (inflates to " + std::to_string(got) + " bytes, a chunk is " +
+                                std::to_string(bytes) + ")"));
+    } else {  // shuffle: byte b of value i was stored at b * values + i
+      if (size != bytes) throw Error(Located(file_->name(), where, "damaged chunk (wrong size)"));
+      for (std::size_t b = 0; b < sizeof(float); ++b) {
+        const uint8_t* plane = data + b * values;
+        uint8_t* dst = to.data() + b;
+        for (std::size_t i = 0; i < values; ++i) dst[i * sizeof(float)] = plane[i];
+      }
+    }
+    data = to.data();
+    size = bytes;
+    next ^= 1;
+  }
+  if (size != bytes) throw Error(Located(file_->name(), where, "damaged chunk (wrong size)"));
+  const std::size_t lo = std::max(first, begin), hi = std::min(first + chunk_rows_, begin + count);
+  if (hi > lo)
+    std::memcpy(out + (lo - begin) * row_length_, data + (lo - first) * row_length_ * sizeof(float),
+                (hi - lo) * row_length_ * sizeof(float));
+}
+
+void RowReader::Read(std::size_t begin, std::size_t count, void* out, WorkerPool* pool) {
+  if (count == 0) return;
+  if (begin + count > rows())
+    throw Error(Located(file_->name(), name_, "internal: rows beyond the dataset's " + std::to_string(rows())));
+  if (!direct_ || row_length_ == 0) return ReadThroughHdf5(begin, count, out);
+  const std::size_t c0 = begin / chunk_rows_, c1 = (begin + count - 1) / chunk_rows_ + 1;
+  raw_.resize(c1 - c0);
+  masks_.assign(c1 - c0, 0);
+  raw_first_row_.resize(c1 - c0);
+  std::vector<hsize_t> offset(dims_.size(), 0);
+  for (std::size_t c = c0; c < c1; ++c) {
+    offset[0] = c * chunk_rows_;
+    hsize_t stored = 0;
+    if (H5Dget_chunk_storage_size(ds_.get(), offset.data(), &stored) < 0 || stored == 0 ||
+        stored > 2 * chunk_rows_ * row_length_ * sizeof(float) + 65536)
+      return ReadThroughHdf5(begin, count, out);  // never written (fill values), or odd: HDF5 decides
+    std::vector<uint8_t>& raw = raw_[c - c0];
+    raw.resize(stored);
+    if (H5Dread_chunk(ds_.get(), H5P_DEFAULT, offset.data(), &masks_[c - c0], raw.data()) < 0)
+      throw Error(Located(file_->name(), name_ + " chunk at row " + std::to_string(offset[0]), "cannot read (damaged?)"));
+    raw_first_row_[c - c0] = offset[0];
+  }
+  float* dest = static_cast<float*>(out);
+  const unsigned workers = pool ? pool->size() : 1;
+  if (scratch_.size() < workers) scratch_.resize(workers);
+  auto decode = [&](std::size_t k, unsigned worker) { Decode(k, begin, count, dest, scratch_[worker].data()); };
+  if (pool)
+    pool->Run(c1 - c0, decode);
+  else
+    for (std::size_t k = 0; k < c1 - c0; ++k) decode(k, 0);
+}
+
+}  // namespace bead::h5
