@@ -22,7 +22,7 @@
 #include "libbead/series/process_on.h"
 #include "libbead/io/rig_yaml.h"
 #include "libbead/model/identify.h"
-#include "libbead/profile/measure_block.h"
+#include "libbead/archive/measured_run.h"
 #include "tools/commands.h"
 #include "tools/csv_columns.h"
 #include "tools/model_json.h"
@@ -262,21 +262,21 @@ Run AddExplain(CLI::App& app) {
       const Rig rig = ReadRig(args->rig);
       // A run measured: its flow in extrusion time (kept alive with the archive).
       struct Measured {
-        RunArchive run;
-        std::vector<BeadGeometry> geometry;
-        OcclusionColumns occlusion;
+        MeasuredRun measured;
         FlowResult flow;
         std::vector<double> t, u, y;  // valid samples
       };
+      WorkerPool pool;
+      MeasureRunOptions measure_options;
+      measure_options.occlusion = ParseOcclusionMode(args->occlusion);
       auto measure = [&](const std::string& path) {
         auto m = std::make_unique<Measured>();
-        m->run = LoadRun(path);
-        RequireMotion(m->run, path, "explain");
-        const ProfileBlock& block = m->run.profiles;
-        m->geometry = MeasureProfiles(
-            block.size(), [&](std::size_t i) { return block.view(i); }, rig.reference_left, rig.reference_right, {});
-        m->occlusion = RunOcclusion(args->occlusion, rig, block, m->geometry);
-        m->flow = ComputeFlow(rig, block, m->geometry, *m->run.log, {}, m->occlusion.corrected, m->occlusion.sigma);
+        OpenedRun opened = OpenRun(path, pool);
+        RequireMotion(opened.run, path, "explain");
+        m->measured = MeasureWholeRun(std::move(opened), rig, pool, measure_options);
+        const MeasuredRun& r = m->measured;
+        if (const std::string line = OcclusionLine(r.summary); !line.empty()) std::printf("%s\n", line.c_str());
+        m->flow = ComputeFlow(rig, r.run.profiles, r.geometry, *r.run.log, {}, r.corrected, r.sigma);
         for (const std::string& w : m->flow.warnings) std::fprintf(stderr, "warning: %s: %s\n", path.c_str(), w.c_str());
         for (const auto& s : m->flow.samples)
           if (s.valid) m->t.push_back(s.t_s), m->u.push_back(s.screw_rpm), m->y.push_back(s.flow_mm3_s);
@@ -286,7 +286,8 @@ Run AddExplain(CLI::App& app) {
       const auto main_run = measure(args->data);
       const Model mdl = model_for(main_run->t, main_run->u, main_run->y, {}, args->data);
       auto series_of = [&](const Measured& m) {
-        return explain::MakeRunSeries(rig, m.run.profiles, m.geometry, *m.run.log, m.flow, mdl.tf, mdl.offset);
+        return explain::MakeRunSeries(rig, m.measured.run.profiles, m.measured.geometry, *m.measured.run.log, m.flow,
+                                      mdl.tf, mdl.offset);
       };
       const explain::RunSeries series = series_of(*main_run);
       std::optional<explain::RunSeries> other;
@@ -337,8 +338,9 @@ Run AddExplain(CLI::App& app) {
       }
       if (!args->flow_out.empty()) {
         const explain::CorrectedFlow cf =
-            explain::CorrectFlow(rig, main_run->run.profiles, main_run->geometry, *main_run->run.log,
-                                 main_run->occlusion.corrected, main_run->occlusion.sigma, r, mdl.tf, mdl.offset);
+            explain::CorrectFlow(rig, main_run->measured.run.profiles, main_run->measured.geometry,
+                                 *main_run->measured.run.log, main_run->measured.corrected, main_run->measured.sigma,
+                                 r, mdl.tf, mdl.offset);
         WriteFlowCsv(args->flow_out, cf.flow);
         std::string undone;
         for (const auto& u : cf.undone) undone += (undone.empty() ? "" : ", ") + u;

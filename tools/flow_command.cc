@@ -5,8 +5,7 @@
 #include "libbead/flow/flow.h"
 #include "libbead/io/flow_csv.h"
 #include "libbead/io/rig_yaml.h"
-#include "libbead/io/run_archive.h"
-#include "libbead/profile/measure_block.h"
+#include "libbead/archive/measured_run.h"
 #include "tools/commands.h"
 #include "tools/load_profiles.h"
 #include "tools/occlusion_step.h"
@@ -51,14 +50,15 @@ Run AddFlow(CLI::App& app) {
     if (args->rig.empty() || args->run.empty() || args->output.empty())
       throw CLI::RequiredError("--rig, RUN and -o are all needed (or none, for the bundled sample)");
     const Rig rig = ReadRig(args->rig);
-    const RunArchive run = LoadRun(args->run);
-    RequireMotion(run, args->run, "the flow");
-    const ProfileBlock& block = run.profiles;
-    const std::vector<BeadGeometry> geometry = MeasureProfiles(
-        block.size(), [&](std::size_t i) { return block.view(i); }, rig.reference_left, rig.reference_right,
-        args->profile);
-    const OcclusionColumns occ = RunOcclusion(args->occlusion, rig, block, geometry);
-    const FlowResult flow = ComputeFlow(rig, block, geometry, *run.log, args->flow, occ.corrected, occ.sigma);
+    WorkerPool pool;
+    OpenedRun opened = OpenRun(args->run, pool);
+    RequireMotion(opened.run, args->run, "the flow");
+    MeasureRunOptions measure;
+    measure.profile = args->profile;
+    measure.occlusion = ParseOcclusionMode(args->occlusion);
+    const MeasuredRun m = MeasureWholeRun(std::move(opened), rig, pool, measure);
+    if (const std::string line = OcclusionLine(m.summary); !line.empty()) std::printf("%s\n", line.c_str());
+    const FlowResult flow = ComputeFlow(rig, m.run.profiles, m.geometry, *m.run.log, args->flow, m.corrected, m.sigma);
     WriteFlowCsv(args->output, flow);
     std::size_t valid = 0;
     for (const auto& s : flow.samples) valid += s.valid;
