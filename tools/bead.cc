@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
       "  bead measure --rig /tmp/run/rig.yaml /tmp/run/run.h5 -o geometry.csv\n"
       "  bead calibrate offset --rig /tmp/run/rig.yaml /tmp/run/pins.h5\n"
       "  bead flow --rig /tmp/run/rig.yaml /tmp/run/run.h5 -o flow.csv\n"
+      "  bead batch --rig rig.yaml -o results runs/*.h5 (many runs: resumable, shardable)\n"
       "  bead import VENDOR.csv -o run.h5 --profile-column ... (a profiler's own CSV export)\n"
       "  bead frames --plane plane.yaml --rate-hz 200 frames/*.png -o run.h5 (camera frames)\n"
       "Run 'bead SUBCOMMAND --help' for each subcommand's inputs and outputs.");
@@ -30,6 +31,7 @@ int main(int argc, char** argv) {
   runs["explain"] = bead::tools::AddExplain(app);
   runs["import"] = bead::tools::AddImport(app);
   runs["frames"] = bead::tools::AddFrames(app);
+  runs["batch"] = bead::tools::AddBatch(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,11 +1,13 @@
 #include "libbead/io/atomic_file.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 
@@ -13,12 +15,45 @@
 
 namespace bead {
 
+namespace {
+
+std::string HostName() {
+  char host[256] = {};
+  if (gethostname(host, sizeof host - 1) != 0 || host[0] == '\0') return "host";
+  std::string name(host);
+  for (char& c : name)
+    if (c == '-' || c == '/') c = '_';
+  return name;
+}
+
+// Temporaries of `name` left by a process of this host that is gone (one
+// killed mid-write): .<name>.tmp-<host>-<pid>-XXXXXX. Another host's (a
+// cluster's shared folder) are left alone: their pid means nothing here.
+void RemoveStaleTemporaries(const std::filesystem::path& dir, const std::string& name, const std::string& host) {
+  const std::string prefix = "." + name + ".tmp-" + host + "-";
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string file = entry.path().filename().string();
+    if (file.compare(0, prefix.size(), prefix) != 0) continue;
+    char* end = nullptr;
+    const long pid = std::strtol(file.c_str() + prefix.size(), &end, 10);
+    if (pid <= 0 || *end != '-') continue;
+    if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) std::filesystem::remove(entry.path(), ec);
+  }
+}
+
+}  // namespace
+
 AtomicFile::AtomicFile(std::string destination) : destination_(std::move(destination)) {
   const std::filesystem::path dest(destination_);
   const std::filesystem::path dir = dest.has_parent_path() ? dest.parent_path() : ".";
   if (!std::filesystem::is_directory(dir))
     throw Error(Located(destination_, "", "cannot write: folder " + dir.string() + " does not exist"));
-  std::string pattern = (dir / ("." + dest.filename().string() + ".tmp-XXXXXX")).string();
+  const std::string host = HostName();
+  RemoveStaleTemporaries(dir, dest.filename().string(), host);
+  std::string pattern =
+      (dir / ("." + dest.filename().string() + ".tmp-" + host + "-" + std::to_string(::getpid()) + "-XXXXXX"))
+          .string();
   const int fd = mkstemp(pattern.data());
   if (fd < 0) throw Error(Located(destination_, "", std::string("cannot create a temporary file: ") + std::strerror(errno)));
   ::close(fd);

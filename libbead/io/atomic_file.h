@@ -2,7 +2,10 @@
 // content or the complete new one, never a half-written file. Writes go to
 // a temporary file beside the destination; Commit() flushes it to disk and
 // renames it over the destination. Destroyed uncommitted, it removes the
-// temporary and leaves the destination untouched.
+// temporary and leaves the destination untouched. A killed process cannot
+// remove its temporary: they are named .<name>.tmp-<host>-<pid>-XXXXXX,
+// and the next AtomicFile for the same destination removes those of this
+// host whose process is gone.
 #pragma once
 
 #include <fstream>

@@ -29,7 +29,7 @@ bool FiniteAndIncreasing(const float* xs, std::size_t n) {
   return tail && All(ordered);
 }
 
-// The points with finite x sorted by x (ties in view order), through w.map.
+// The points with finite x in increasing x (ties in view order), through w.map.
 // A non-finite z stays, as the dropout it is: a profile and its reverse
 // then give the same point set.
 PointSet SortedCopy(const float* xs, const float* zs, std::size_t n, ProfileWorkspace& w) {
@@ -37,9 +37,15 @@ PointSet SortedCopy(const float* xs, const float* zs, std::size_t n, ProfileWork
   for (std::size_t i = 0; i < n; ++i)
     if ((xs[i] - xs[i]) == 0.0f) w.map[m++] = static_cast<int32_t>(i);
   int32_t* map = w.map.data();
-  bool decreasing = true;
-  for (std::size_t k = 1; k < m; ++k) decreasing &= xs[map[k]] <= xs[map[k - 1]];
-  if (decreasing) {
+  bool increasing = true, decreasing = true;
+  for (std::size_t k = 1; k < m; ++k) {
+    increasing &= xs[map[k]] >= xs[map[k - 1]];
+    decreasing &= xs[map[k]] <= xs[map[k - 1]];
+  }
+  if (increasing) {
+    // In order already, NaN x at the dropouts (a fan sensor's usual
+    // profile): the finite points are taken as they come, without a sort.
+  } else if (decreasing) {
     // Reversed order; reversing keeps ties in reverse view order, which
     // the geometry does not depend on.
     std::reverse(map, map + m);

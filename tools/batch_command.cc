@@ -1,0 +1,153 @@
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+
+#include "libbead/archive/batch.h"
+#include "libbead/core/error.h"
+#include "tools/commands.h"
+#include "tools/occlusion_step.h"
+
+namespace bead::tools {
+namespace {
+
+std::string Clock(double seconds) {
+  if (!(seconds >= 0) || seconds > 360000) return "--:--";
+  const long s = static_cast<long>(seconds + 0.5);
+  char text[32];
+  if (s >= 3600)
+    std::snprintf(text, sizeof text, "%ld:%02ld:%02ld", s / 3600, s / 60 % 60, s % 60);
+  else
+    std::snprintf(text, sizeof text, "%ld:%02ld", s / 60, s % 60);
+  return text;
+}
+
+}  // namespace
+
+Run AddBatch(CLI::App& app) {
+  struct Args {
+    std::string rig, manifest, out, shard, occlusion = "pooled";
+    std::vector<std::string> runs;
+    BatchOptions options;
+    unsigned threads = 0;
+    bool summary_only = false, redo = false;
+  };
+  auto args = std::make_shared<Args>();
+  CLI::App* cmd = app.add_subcommand("batch", "Geometry and flow of many runs: all cores, resumable, shardable");
+  cmd->footer(
+      "In:  RUN.h5 ... with --rig RIG.yaml, or --manifest runs.csv (columns run,rig; relative paths\n"
+      "     from the manifest's folder) for runs of several rig placements.\n"
+      "Out: OUT/<run>/geometry.csv and flow.csv (as bead measure and bead flow write them; no flow\n"
+      "     for a run without a log), OUT/<run>/result.csv (the run's row) and OUT/summary.csv:\n"
+      "     name,run,rig,status,profiles,valid,flow_samples,total_volume_mm3,offset_counts,\n"
+      "     occlusion_fraction,warnings. <run> is the file's stem, or its path from the runs'\n"
+      "     common folder with '/' as '_' where stems repeat (a/run.h5 -> a_run).\n"
+      "Resumable: killed at any moment and started again with the same command, it skips the runs\n"
+      "     already complete (same inputs, same options) and redoes the rest; every file is written\n"
+      "     atomically. A run that fails is reported in its row and the batch goes on (exit 1).\n"
+      "More than one machine: each process takes every N-th run: --shard K/N, or automatically\n"
+      "     from a Slurm job array (SLURM_ARRAY_TASK_ID) or mpirun (OMPI_COMM_WORLD_RANK, PMI_RANK).\n"
+      "     Each shard rebuilds OUT/summary.csv from the results present when it ends;\n"
+      "     --summary-only rebuilds it at any time.\n"
+      "Examples:\n"
+      "  bead batch --rig rig.yaml -o results runs/*.h5\n"
+      "  mpirun -np 8 bead batch --rig rig.yaml -o results runs/*.h5\n"
+      "  sbatch --array=0-15 --wrap 'bead batch --manifest runs.csv -o results'");
+  cmd->add_option("runs", args->runs, "Run archives (.h5) or profiles CSVs")->check(CLI::ExistingFile);
+  cmd->add_option("--rig", args->rig, "Rig file (YAML) of every run given on the command line")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--manifest", args->manifest, "CSV with columns run,rig")->check(CLI::ExistingFile);
+  cmd->add_option("-o,--output", args->options.out, "Output folder (created)")->required();
+  cmd->add_option("--shard", args->shard, "Take the K-th of N shards of the run list (K from 1 to N)");
+  cmd->add_option("--threads", args->threads, "Worker threads (0: all cores)")->capture_default_str();
+  cmd->add_flag("--summary-only", args->summary_only, "Only rebuild OUT/summary.csv from the results present");
+  cmd->add_flag("--redo", args->redo, "Redo runs even when their results are complete");
+  auto& b = args->options.profile.bead;
+  cmd->add_option("--threshold-mm", b.min_threshold_mm, "Least height that counts as bead, mm")
+      ->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->add_option("--spike-mm", b.spike_mm, "A point this far off its neighbours' median is a spike, mm")
+      ->capture_default_str()->check(CLI::PositiveNumber);
+  AddOcclusionOption(cmd, args->occlusion);
+
+  return [args]() {
+    std::vector<BatchRun> runs;
+    if (!args->manifest.empty()) {
+      if (!args->runs.empty() || !args->rig.empty())
+        throw CLI::ValidationError("--manifest", "give either --manifest or --rig with runs, not both");
+      runs = RunsFromManifest(args->manifest);
+    } else {
+      if (args->runs.empty() || args->rig.empty())
+        throw CLI::RequiredError("runs and --rig (or --manifest runs.csv)");
+      runs = RunsFromPaths(args->runs, args->rig);
+    }
+    BatchOptions& options = args->options;
+    options.occlusion = ParseOcclusionMode(args->occlusion);
+    std::error_code ec;
+    std::filesystem::create_directories(options.out, ec);
+    if (ec) throw Error(Located(options.out, "", "cannot create the output folder: " + ec.message()));
+    if (args->summary_only) {
+      const SummaryState s = WriteSummary(runs, options);
+      std::printf("%s/summary.csv: %zu of %zu runs have results (%zu failed)\n", options.out.c_str(), s.complete,
+                  runs.size(), s.failed);
+      return 0;
+    }
+    const Shard shard = ResolveShard(args->shard);
+    std::vector<std::size_t> mine;
+    double total_bytes = 0;
+    for (std::size_t i = 0; i < runs.size(); ++i)
+      if (shard.Takes(i)) {
+        mine.push_back(i);
+        total_bytes += static_cast<double>(std::filesystem::file_size(runs[i].run, ec));
+      }
+    std::printf("batch: %zu of %zu runs (shard %zu/%zu: %s) into %s\n", mine.size(), runs.size(), shard.index + 1,
+                shard.count, shard.source.c_str(), options.out.c_str());
+    std::fflush(stdout);
+    const bool tty = isatty(STDERR_FILENO);
+    const auto start = std::chrono::steady_clock::now();
+    WorkerPool pool(args->threads);
+    double done_bytes = 0;
+    std::size_t failed = 0, skipped = 0, profiles_done = 0;
+    for (std::size_t k = 0; k < mine.size(); ++k) {
+      const BatchRun& run = runs[mine[k]];
+      const double bytes = static_cast<double>(std::filesystem::file_size(run.run, ec));
+      if (!args->redo && RunComplete(run, options)) {
+        ++skipped;
+        total_bytes -= bytes;
+        std::printf("[%zu/%zu] %s: complete, skipped\n", k + 1, mine.size(), run.name.c_str());
+        continue;
+      }
+      auto progress = [&](std::size_t done, std::size_t total) {
+        if (!tty) return;
+        const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const double now = done_bytes + bytes * static_cast<double>(done) / static_cast<double>(std::max<std::size_t>(total, 1));
+        const double rate = elapsed > 0 ? static_cast<double>(profiles_done + done) / elapsed : 0;
+        std::fprintf(stderr, "\r[%zu/%zu] %s: %zu/%zu profiles, %.0f profiles/s, %s left   ", k + 1, mine.size(),
+                     run.name.c_str(), done, total, rate,
+                     Clock(now > 0 ? elapsed * (total_bytes - now) / now : -1).c_str());
+      };
+      const auto t0 = std::chrono::steady_clock::now();
+      const RunResult r = ProcessRun(run, options, pool, progress);
+      if (tty) std::fprintf(stderr, "\r\033[K");
+      done_bytes += bytes;
+      profiles_done += r.profiles;
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      if (!r.ok()) {
+        ++failed;
+        std::printf("[%zu/%zu] %s: %s\n", k + 1, mine.size(), run.name.c_str(), r.status.c_str());
+      } else {
+        std::printf("[%zu/%zu] %s: %zu profiles, %zu valid, %zu with flow, volume %.1f mm^3, %.2f s\n", k + 1,
+                    mine.size(), run.name.c_str(), r.profiles, r.valid, r.flow_samples, r.total_volume_mm3, seconds);
+        for (const std::string& w : r.warnings) std::printf("  warning: %s\n", w.c_str());
+      }
+      std::fflush(stdout);
+    }
+    const SummaryState s = WriteSummary(runs, options);
+    std::printf("done: %zu runs processed, %zu skipped as complete, %zu failed; %s/summary.csv has %zu of %zu runs%s\n",
+                mine.size() - skipped, skipped, failed, options.out.c_str(), s.complete, runs.size(),
+                s.missing.empty() ? "" : " (the rest: other shards, or not yet run)");
+    return failed ? 1 : 0;
+  };
+}
+
+}  // namespace bead::tools
