@@ -23,12 +23,14 @@ if [ "${BEAD_SKIP_SANITIZE:-0}" != "1" ]; then
 fi
 
 if [ "${BEAD_SKIP_TSAN:-0}" != "1" ]; then
-  # Only what runs threads: the block measurement (bead measure, flow and
-  # explain measure through it).
+  # Only what runs threads: the block measurement, and the streamed run
+  # (chunks inflated and profiles measured on the worker pool; bead
+  # measure, flow, explain and batch run through it).
   cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" \
     -DBEAD_TSAN=ON -DBEAD_BUILD_BENCH=OFF >/dev/null
-  cmake --build build-tsan -j "$jobs" --target profile_tests
+  cmake --build build-tsan -j "$jobs" --target profile_tests archive_tests
   TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 build-tsan/tests/profile_tests --gtest_filter='MeasureProfiles.*'
+  TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 build-tsan/tests/archive_tests
 fi
 
 if [ "${BEAD_SKIP_FUZZ:-0}" != "1" ]; then
