@@ -7,6 +7,7 @@
 #include "libbead/archive/batch.h"
 #include "libbead/core/error.h"
 #include "tools/commands.h"
+#include "tools/subcommands.h"
 #include "tools/occlusion_step.h"
 
 namespace bead::tools {
@@ -34,7 +35,7 @@ Run AddBatch(CLI::App& app) {
     bool summary_only = false, redo = false;
   };
   auto args = std::make_shared<Args>();
-  CLI::App* cmd = app.add_subcommand("batch", "Geometry and flow of many runs: all cores, resumable, shardable");
+  CLI::App* cmd = app.add_subcommand("batch", Summary("batch"));
   cmd->footer(
       "In:  RUN.h5 ... with --rig RIG.yaml, or --manifest runs.csv (columns run,rig; relative paths\n"
       "     from the manifest's folder) for runs of several rig placements.\n"

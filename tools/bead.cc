@@ -1,17 +1,27 @@
-// bead: the libbead command line. Thin: each subcommand parses its options
-// and calls the library. Every error is printed as one line naming the file
-// and place, and exits with status 1; usage errors exit with status 2.
+// bead: the libbead command line. It lists the subcommands and hands each
+// call over to the subcommand's own program, bead-<name>, beside it (exec:
+// same process, same exit status), so that a call loads only the libraries
+// its subcommand uses: `bead --help` none, `bead measure` no OpenCV.
+#include <limits.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstdio>
-#include <exception>
-#include <map>
+#include <cstring>
+#include <string>
+#include <vector>
 
-#include "libbead/core/error.h"
-#include "tools/commands.h"
+#include "tools/subcommands.h"
 
-int main(int argc, char** argv) {
-  CLI::App app{"bead: bead cross-sections and volumetric flow from laser line profiles (libbead)"};
-  app.footer(
-      "Units: mm, s, mm^2, mm^3/s, RPM, V. File formats: docs/data-formats.md.\n"
+namespace {
+
+void PrintHelp() {
+  std::printf(
+      "bead: bead cross-sections and volumetric flow from laser line profiles (libbead)\n"
+      "Usage: bead SUBCOMMAND [OPTIONS]\n\nSubcommands:\n");
+  for (const auto& s : bead::tools::kSubcommands) std::printf("  %-10s %s\n", s.name, s.summary);
+  std::printf(
+      "\nUnits: mm, s, mm^2, mm^3/s, RPM, V. File formats: docs/data-formats.md.\n"
       "Example:\n"
       "  bead simulate testdata/configs/sample.yaml -o /tmp/run\n"
       "  bead measure --rig /tmp/run/rig.yaml /tmp/run/run.h5 -o geometry.csv\n"
@@ -20,31 +30,38 @@ int main(int argc, char** argv) {
       "  bead batch --rig rig.yaml -o results runs/*.h5 (many runs: resumable, shardable)\n"
       "  bead import VENDOR.csv -o run.h5 --profile-column ... (a profiler's own CSV export)\n"
       "  bead frames --plane plane.yaml --rate-hz 200 frames/*.png -o run.h5 (camera frames)\n"
-      "Run 'bead SUBCOMMAND --help' for each subcommand's inputs and outputs.");
-  app.require_subcommand(1);
-  std::map<std::string, bead::tools::Run> runs;
-  runs["measure"] = bead::tools::AddMeasure(app);
-  runs["simulate"] = bead::tools::AddSimulate(app);
-  runs["flow"] = bead::tools::AddFlow(app);
-  runs["calibrate"] = bead::tools::AddCalibrate(app);
-  runs["identify"] = bead::tools::AddIdentify(app);
-  runs["explain"] = bead::tools::AddExplain(app);
-  runs["import"] = bead::tools::AddImport(app);
-  runs["frames"] = bead::tools::AddFrames(app);
-  runs["batch"] = bead::tools::AddBatch(app);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
+      "Run 'bead SUBCOMMAND --help' for each subcommand's inputs and outputs.\n");
+}
+
+// The folder this program was started from (where its subcommands are).
+std::string OwnFolder(const char* argv0) {
+  char path[PATH_MAX];
+  const ssize_t n = readlink("/proc/self/exe", path, sizeof path - 1);
+  std::string self = n > 0 ? std::string(path, static_cast<std::size_t>(n)) : std::string(argv0);
+  const auto slash = self.rfind('/');
+  return slash == std::string::npos ? "." : self.substr(0, slash);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2 || std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0) {
+    PrintHelp();
+    return argc < 2 ? 2 : 0;
   }
-  try {
-    for (const auto* sub : app.get_subcommands()) return runs.at(sub->get_name())();
-  } catch (const bead::Error& e) {
-    std::fprintf(stderr, "bead: error: %s\n", e.what());
-    return 1;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "bead: error: %s\n", e.what());
-    return 1;
+  const char* name = argv[1];
+  if (*bead::tools::Summary(name) == '\0') {
+    std::fprintf(stderr, "bead: error: '%s' is not a subcommand (one of:", name);
+    for (const auto& s : bead::tools::kSubcommands) std::fprintf(stderr, " %s", s.name);
+    std::fprintf(stderr, "); see bead --help\n");
+    return 2;
   }
-  return 0;
+  const std::string program = OwnFolder(argv[0]) + "/bead-" + name;
+  std::vector<char*> args(argv, argv + argc);
+  args[0] = const_cast<char*>("bead");
+  args.push_back(nullptr);
+  execv(program.c_str(), args.data());
+  std::fprintf(stderr, "bead: error: %s: cannot run the '%s' subcommand's program (%s): is libbead fully installed?\n",
+               program.c_str(), name, std::strerror(errno));
+  return 1;
 }

@@ -6,6 +6,7 @@
 #include "libbead/io/profiles_csv.h"
 #include "libbead/io/rig_yaml.h"
 #include "tools/commands.h"
+#include "tools/subcommands.h"
 
 namespace bead::tools {
 
@@ -14,7 +15,7 @@ Run AddCalibrate(CLI::App& app) {
     std::string rig, pins, output;
   };
   auto args = std::make_shared<Args>();
-  CLI::App* cal = app.add_subcommand("calibrate", "Calibrate a rig placement");
+  CLI::App* cal = app.add_subcommand("calibrate", Summary("calibrate"));
   cal->require_subcommand(1);
   CLI::App* cmd = cal->add_subcommand("offset", "Nozzle-to-laser encoder offset from pin scans");
   cmd->footer(

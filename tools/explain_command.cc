@@ -24,6 +24,7 @@
 #include "libbead/model/identify.h"
 #include "libbead/archive/measured_run.h"
 #include "tools/commands.h"
+#include "tools/subcommands.h"
 #include "tools/csv_columns.h"
 #include "tools/model_json.h"
 #include "tools/load_profiles.h"
@@ -167,7 +168,7 @@ Run AddExplain(CLI::App& app) {
     bool keep_off = false;
   };
   auto args = std::make_shared<Args>();
-  CLI::App* cmd = app.add_subcommand("explain", "Find what the model lacks: residual diagnostics and effects added");
+  CLI::App* cmd = app.add_subcommand("explain", Summary("explain"));
   cmd->footer(
       "Run mode:  bead explain --rig RIG.yaml RUN.h5 [--model model.json] [--validate OTHER.h5] [--pins PINS.h5]\n"
       "           [--flow-out corrected.csv] -o explain.json\n"

@@ -7,6 +7,7 @@
 #include "libbead/io/rig_yaml.h"
 #include "libbead/archive/measured_run.h"
 #include "tools/commands.h"
+#include "tools/subcommands.h"
 #include "tools/load_profiles.h"
 #include "tools/occlusion_step.h"
 
@@ -20,7 +21,7 @@ Run AddFlow(CLI::App& app) {
     std::string occlusion = "pooled";
   };
   auto args = std::make_shared<Args>();
-  CLI::App* cmd = app.add_subcommand("flow", "Volumetric flow Q = v * A in extrusion time (thesis eq. 20)");
+  CLI::App* cmd = app.add_subcommand("flow", Summary("flow"));
   cmd->footer(
       "In:  RIG.yaml (encoder, wheel, offset, reference areas) and RUN.h5 with /profiles and /log.\n"
       "Out: flow CSV: t_s (when the material left the nozzle), encoder, surface_speed_mm_s,\n"

@@ -11,6 +11,7 @@
 #include "libbead/vision/frame_profile.h"
 #include "libbead/vision/laser_plane_yaml.h"
 #include "tools/commands.h"
+#include "tools/subcommands.h"
 
 namespace bead::tools {
 
@@ -22,7 +23,7 @@ Run AddFrames(CLI::App& app) {
     vision::StripeOptions stripe;
   };
   auto args = std::make_shared<Args>();
-  CLI::App* cmd = app.add_subcommand("frames", "Camera frames of the laser stripe as a run archive");
+  CLI::App* cmd = app.add_subcommand("frames", Summary("frames"));
   cmd->footer(
       "In:  PLANE.yaml (where the camera sees the laser plane: points: [[u, v, x_mm, z_mm], ...],\n"
       "     four or more pixel -> plane pairs from a target in the laser's light) and the frames,\n"

@@ -9,6 +9,7 @@
 #include "libbead/model/identify.h"
 #include "libbead/series/process_on.h"
 #include "tools/commands.h"
+#include "tools/subcommands.h"
 #include "tools/csv_columns.h"
 #include "tools/model_json.h"
 
@@ -40,7 +41,7 @@ Run AddIdentify(CLI::App& app) {
     bool orders = false, from_rest = false, keep_off = false;
   };
   auto args = std::make_shared<Args>();
-  CLI::App* cmd = app.add_subcommand("identify", "Identify a transfer function (poles, zeros, delay) from data");
+  CLI::App* cmd = app.add_subcommand("identify", Summary("identify"));
   cmd->footer(
       "In:  any CSV with a header row; --input and --output name its columns, --time the time column\n"
       "     (seconds; without it, rows are unit-spaced; uneven sampling is fine). Rows with an empty\n"

@@ -5,6 +5,7 @@
 #include "libbead/io/run_archive.h"
 #include "libbead/io/vendor_csv.h"
 #include "tools/commands.h"
+#include "tools/subcommands.h"
 
 namespace bead::tools {
 
@@ -14,7 +15,7 @@ Run AddImport(CLI::App& app) {
     VendorCsvColumns columns;
   };
   auto args = std::make_shared<Args>();
-  CLI::App* cmd = app.add_subcommand("import", "A laser line profiler's CSV export as a run archive");
+  CLI::App* cmd = app.add_subcommand("import", Summary("import"));
   cmd->footer(
       "In:  a vendor CSV export, one row per point, with a header; name the columns that hold\n"
       "     the profile id (rows of one profile together), its time, x and z. Other columns\n"

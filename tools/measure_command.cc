@@ -6,6 +6,7 @@
 #include "libbead/io/geometry_csv.h"
 #include "libbead/io/rig_yaml.h"
 #include "tools/commands.h"
+#include "tools/subcommands.h"
 #include "tools/occlusion_step.h"
 
 namespace bead::tools {
@@ -18,7 +19,7 @@ Run AddMeasure(CLI::App& app) {
     std::string occlusion = "pooled";
   };
   auto args = std::make_shared<Args>();
-  CLI::App* cmd = app.add_subcommand("measure", "Bead area, width and height of every profile of a run");
+  CLI::App* cmd = app.add_subcommand("measure", Summary("measure"));
   cmd->footer(
       "In:  RIG.yaml (reference areas) and RUN.h5 (run archive) or RUN.csv (profiles CSV),\n"
       "     as docs/data-formats.md defines them. An archive is read in windows of whole\n"

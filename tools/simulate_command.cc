@@ -4,6 +4,7 @@
 #include "libbead/sim/rig_simulator.h"
 #include "libbead/sim/sim_writer.h"
 #include "tools/commands.h"
+#include "tools/subcommands.h"
 
 namespace bead::tools {
 
@@ -13,7 +14,7 @@ Run AddSimulate(CLI::App& app) {
     long long seed = -1;
   };
   auto args = std::make_shared<Args>();
-  CLI::App* cmd = app.add_subcommand("simulate", "Simulate a run of the bead rig with a known truth (the digital twin)");
+  CLI::App* cmd = app.add_subcommand("simulate", Summary("simulate"));
   cmd->footer(
       "In:  CONFIG.yaml: extruder, wheel, encoder, bead, sensor, pins, effects (every key optional;\n"
       "     testdata/configs/*.yaml show them all).\n"

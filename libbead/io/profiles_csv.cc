@@ -86,7 +86,7 @@ PinScanArchive ReadPinScansCsv(const std::string& path) {
   while (csv.Next()) {
     const int64_t scan = csv.Int64(0, "scan");
     const int64_t start = csv.Int64(1, "start_encoder");
-    if (scan != last_scan) {
+    if (builders.empty() || scan != last_scan) {
       if (index.count(scan)) csv.Fail("rows of scan " + std::to_string(scan) + " are not together");
       index[scan] = builders.size();
       builders.emplace_back();

@@ -139,6 +139,10 @@ TEST(MalformedCorpus, FuzzFindingsStayFixed) {
                        [&] { ReadRigFile(d + "huge_integer.yaml"); });
   test::ExpectRejected(d + "sim_sequence_key.yaml", "line 3: pins.<key>: must be plain text",
                        [&] { sim::ReadSimConfig(d + "sim_sequence_key.yaml"); });
+  // A scan numbered -1 (the reader's "no scan yet"): read as the scan it is.
+  const PinScanArchive pins = ReadPinScansCsv(d + "pins_scan_minus_one.csv");
+  ASSERT_EQ(pins.scans.size(), 1u);
+  EXPECT_EQ(pins.scans[0].profiles.size(), 1u);
 }
 
 }  // namespace

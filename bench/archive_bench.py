@@ -1,0 +1,138 @@
+#!/usr/bin/python3
+"""Whole archives, end to end (issue: scan archives at scale). In one run:
+
+  read floor   h5py reading /profiles (t_s, encoder, x_mm, z_mm) of a
+               10-minute archive (120001 x 640) in one thread
+  bead measure the same archive end to end (read, geometry, occlusion, CSV):
+               its time against the read floor (target <= 0.75x) and its
+               peak memory; the same for a 60-minute archive (--sixty):
+               flat memory means the same peak
+  small        a 12000 x 128 archive: bead measure against a NumPy script
+               doing the same geometry end to end (target >= 20x)
+  start        bead --help and bead measure --help: process start alone
+
+Archives are made with `bead simulate` (and the 60-minute one by repeating
+the 10-minute one six times, time and encoder running on) into --work,
+and reused when they are there. Needs python3-h5py and python3-numpy.
+
+Usage: archive_bench.py --bead build/tools/bead [--work /tmp/bead-bench] [--sixty]
+"""
+import argparse
+import os
+import subprocess
+import sys
+import time
+
+import h5py
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def simulate(bead, work, name, seconds, points):
+    run = os.path.join(work, name, "run.h5")
+    if os.path.exists(run):
+        return run
+    cfg = os.path.join(work, name + ".yaml")
+    with open(cfg, "w") as f:
+        f.write(f"seed: 7\nduration_s: {seconds}\nsensor: {{points: {points}}}\npins: {{scans: 1}}\n"
+                "extruder:\n  command: {kind: steps, levels_v: [3.0, 4.0, 2.5, 3.5], "
+                f"durations_s: [{seconds / 4}, {seconds / 4}, {seconds / 4}, {seconds / 4}], start_s: 0.3}}\n")
+    subprocess.run([bead, "simulate", cfg, "-o", os.path.join(work, name)], check=True, stdout=subprocess.DEVNULL)
+    return run
+
+
+def repeat(src, dst, times):
+    """dst: src's profiles and log `times` over, time and encoder running on."""
+    if os.path.exists(dst):
+        return dst
+    os.makedirs(os.path.dirname(dst), exist_ok=True)
+    tmp = dst + ".part"
+    with h5py.File(src, "r") as a, h5py.File(tmp, "w") as b:
+        for group, names in (("profiles", ("t_s", "encoder", "x_mm", "z_mm")),
+                             ("log", ("t_s", "encoder", "screw_rpm", "extruder_cmd_v", "wheel_cmd_v"))):
+            if group not in a:
+                continue
+            g = a[group]
+            span = g["t_s"][-1] - g["t_s"][0] + (g["t_s"][1] - g["t_s"][0])
+            turn = int(g["encoder"][-1] - g["encoder"][0])
+            for name in names:
+                if name not in g:
+                    continue
+                d = g[name]
+                n = d.shape[0]
+                if d.ndim == 1 and name == "x_mm":
+                    b.create_dataset(f"{group}/{name}", data=d[...])
+                    continue
+                shape = (n * times,) + d.shape[1:]
+                out = b.create_dataset(f"{group}/{name}", shape=shape, dtype=d.dtype, chunks=d.chunks,
+                                       compression="gzip" if d.compression else None,
+                                       compression_opts=4 if d.compression else None, shuffle=d.shuffling)
+                step = 8192
+                for k in range(times):
+                    for i in range(0, n, step):
+                        block = d[i:i + step]
+                        if name == "t_s":
+                            block = block + k * span
+                        elif name == "encoder":
+                            block = block + k * turn
+                        out[k * n + i:k * n + i + len(block)] = block
+    os.replace(tmp, dst)
+    return dst
+
+
+def run_timed(cmd):
+    """Wall seconds and peak resident memory (MB) of one process."""
+    start = time.perf_counter()
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    _, status, usage = os.wait4(proc.pid, 0)
+    seconds = time.perf_counter() - start
+    if status != 0:
+        sys.exit(f"failed: {' '.join(cmd)}: {proc.stderr.read().decode()}")
+    return seconds, usage.ru_maxrss / 1024.0
+
+
+def read_floor(path):
+    start = time.perf_counter()
+    with h5py.File(path, "r") as f:
+        for name in ("t_s", "encoder", "x_mm", "z_mm"):
+            f["/profiles/" + name][...]
+    return time.perf_counter() - start
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--bead", required=True)
+    ap.add_argument("--work", default="/tmp/bead-bench")
+    ap.add_argument("--sixty", action="store_true", help="also the 60-minute archive (about 1.8 GB)")
+    a = ap.parse_args()
+    os.makedirs(a.work, exist_ok=True)
+    ten = simulate(a.bead, a.work, "ten", 600, 640)
+    rig = os.path.join(a.work, "ten", "rig.yaml")
+    small = simulate(a.bead, a.work, "small", 60, 128)
+    out = os.path.join(a.work, "geometry.csv")
+
+    floor = read_floor(ten)
+    bead_s, bead_mb = run_timed([a.bead, "measure", "--rig", rig, ten, "-o", out])
+    print(f"10-minute archive (120001 x 640): h5py read {floor:.2f} s (one thread); "
+          f"bead measure {bead_s:.2f} s = {bead_s / floor:.2f}x the read (target <= 0.75x), peak {bead_mb:.0f} MB")
+    if a.sixty:
+        sixty = repeat(ten, os.path.join(a.work, "sixty", "run.h5"), 6)
+        s, mb = run_timed([a.bead, "measure", "--rig", rig, sixty, "-o", out])
+        print(f"60-minute archive (720006 x 640): bead measure {s:.2f} s, peak {mb:.0f} MB "
+              f"({mb / bead_mb:.2f}x the 10-minute peak)")
+
+    small_rig = os.path.join(a.work, "small", "rig.yaml")
+    bead_small, _ = run_timed([a.bead, "measure", "--rig", small_rig, small, "-o", out])
+    numpy_small, _ = run_timed([sys.executable, os.path.join(HERE, "numpy_measure_archive.py"), small,
+                                os.path.join(a.work, "numpy.csv")])
+    print(f"small archive (12001 x 128): bead measure {bead_small:.3f} s, NumPy script {numpy_small:.2f} s: "
+          f"{numpy_small / bead_small:.0f}x (target >= 20x)")
+
+    for cmd in ([a.bead, "--help"], [a.bead, "measure", "--help"]):
+        best = min(run_timed(cmd)[0] for _ in range(20))
+        print(f"start: {' '.join(os.path.basename(c) for c in cmd)}: {1000 * best:.1f} ms (best of 20)")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,33 @@
+// The `bead` subcommands: each is its own program, bead-<name>, beside
+// `bead`, linking only what it uses (bead-measure no OpenCV, bead --help
+// nothing at all); `bead` only lists them and hands over (tools/bead.cc).
+#pragma once
+
+#include <cstring>
+
+namespace bead::tools {
+
+struct Subcommand {
+  const char* name;
+  const char* summary;
+};
+
+inline constexpr Subcommand kSubcommands[] = {
+    {"measure", "Bead area, width and height of every profile of a run"},
+    {"flow", "Volumetric flow Q = v * A in extrusion time (thesis eq. 20)"},
+    {"batch", "Geometry and flow of many runs: all cores, resumable, shardable"},
+    {"calibrate", "Calibrate a rig placement"},
+    {"simulate", "Simulate a run of the bead rig with a known truth (the digital twin)"},
+    {"import", "A laser line profiler's CSV export as a run archive"},
+    {"frames", "Camera frames of the laser stripe as a run archive"},
+    {"identify", "Identify a transfer function (poles, zeros, delay) from data"},
+    {"explain", "Find what the model lacks: residual diagnostics and effects added"},
+};
+
+inline const char* Summary(const char* name) {
+  for (const Subcommand& s : kSubcommands)
+    if (std::strcmp(s.name, name) == 0) return s.summary;
+  return "";
+}
+
+}  // namespace bead::tools
