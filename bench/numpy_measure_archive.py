@@ -28,7 +28,7 @@ def main():
         keep = np.isfinite(xi)  # a fan sensor reports x = NaN where it saw nothing
         try:
             area, width, height = geometry(xi[keep], z[i][keep])
-        except (ValueError, IndexError, np.linalg.LinAlgError):
+        except (ValueError, IndexError, TypeError, np.linalg.LinAlgError):
             area = width = height = np.nan
         rows.append((i, t[i], area, width, height))
     np.savetxt(out, np.array(rows), delimiter=",", header="profile,t_s,area_mm2,width_mm,height_mm", comments="")

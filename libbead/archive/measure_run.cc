@@ -110,19 +110,20 @@ MeasureRunSummary MeasureRun(ProfileStream& stream, const Rig& rig, WorkerPool& 
         while (next < chosen.size() && chosen[next] == rank) chosen[next++] = i;
         ++rank;
       }
+    // Read together (each chunk decompressed once), fitted on every core.
+    ProfileBlock profiles;
+    stream.ReadRows(chosen, profiles);
+    std::vector<BeadGeometry> geometry(chosen.size());
     std::vector<GeometryRow> one;
-    ProfileBlock profile;
-    summary.pooled = occlusion::PoolChosen(
-        chosen.size(),
-        [&](std::size_t j) {
-          stream.Read(chosen[j], 1, profile);
-          return profile.view(0);
-        },
-        [&](std::size_t j) -> const BeadGeometry& {
-          spill.Read(chosen[j], 1, one);
-          return one[0].geometry;
-        },
-        occ);
+    for (std::size_t j = 0; j < chosen.size(); ++j) {
+      spill.Read(chosen[j], 1, one);
+      geometry[j] = one[0].geometry;
+    }
+    std::vector<occlusion::OcclusionEstimate> fits(chosen.size());
+    pool.Run(chosen.size(), [&](std::size_t j, unsigned) {
+      fits[j] = occlusion::EstimateOcclusion(profiles.view(j), geometry[j], occ);
+    });
+    summary.pooled = occlusion::PoolFromFits(fits, geometry);
   }
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 

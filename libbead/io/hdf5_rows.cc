@@ -52,22 +52,20 @@ void RowReader::ReadThroughHdf5(std::size_t begin, std::size_t count, void* out)
                             " (damaged?)"));
 }
 
-// Undoes the filters of chunk `chunk` of the window (the last one first)
-// and copies its rows within [begin, begin + count) to `out`. The raw
-// bytes stay as read; each step writes the worker's other scratch buffer.
-void RowReader::Decode(std::size_t chunk, std::size_t begin, std::size_t count, float* out,
-                       std::vector<uint8_t>* scratch) const {
-  const std::size_t first = raw_first_row_[chunk];
+// Undoes the filters of chunk k of those read (the last filter first).
+// The raw bytes stay as read; each step writes the worker's other scratch
+// buffer.
+const uint8_t* RowReader::Decode(std::size_t k, std::vector<uint8_t>* scratch) const {
   const std::size_t values = chunk_rows_ * row_length_, bytes = values * sizeof(float);
-  const std::string where = name_ + " chunk at row " + std::to_string(first);
-  const uint8_t* data = raw_[chunk].data();
-  std::size_t size = raw_[chunk].size();
+  const std::string where = name_ + " chunk at row " + std::to_string(raw_first_row_[k]);
+  const uint8_t* data = raw_[k].data();
+  std::size_t size = raw_[k].size();
   int next = 0;  // the scratch buffer the next step writes
-  for (std::size_t k = filters_.size(); k-- > 0;) {
-    if (masks_[chunk] & (1u << k)) continue;  // filter skipped for this chunk
+  for (std::size_t f = filters_.size(); f-- > 0;) {
+    if (masks_[k] & (1u << f)) continue;  // filter skipped for this chunk
     std::vector<uint8_t>& to = scratch[next];
     to.resize(bytes);
-    if (filters_[k] == H5Z_FILTER_DEFLATE) {
+    if (filters_[f] == H5Z_FILTER_DEFLATE) {
       uLongf got = bytes;
       const int rc = uncompress(to.data(), &got, data, size);
       if (rc != Z_OK || got != bytes)
@@ -87,10 +85,37 @@ void RowReader::Decode(std::size_t chunk, std::size_t begin, std::size_t count, 
     next ^= 1;
   }
   if (size != bytes) throw Error(Located(file_->name(), where, "damaged chunk (wrong size)"));
+  return data;
+}
+
+// Chunk k's rows within [begin, begin + count) to `out`.
+void RowReader::DecodeInto(std::size_t k, std::size_t begin, std::size_t count, float* out,
+                           std::vector<uint8_t>* scratch) const {
+  const uint8_t* data = Decode(k, scratch);
+  const std::size_t first = raw_first_row_[k];
   const std::size_t lo = std::max(first, begin), hi = std::min(first + chunk_rows_, begin + count);
   if (hi > lo)
     std::memcpy(out + (lo - begin) * row_length_, data + (lo - first) * row_length_ * sizeof(float),
                 (hi - lo) * row_length_ * sizeof(float));
+}
+
+bool RowReader::ReadRaw(const std::vector<std::size_t>& chunks) {
+  raw_.resize(chunks.size());
+  masks_.assign(chunks.size(), 0);
+  raw_first_row_.resize(chunks.size());
+  std::vector<hsize_t> offset(dims_.size(), 0);
+  for (std::size_t k = 0; k < chunks.size(); ++k) {
+    offset[0] = chunks[k] * chunk_rows_;
+    hsize_t stored = 0;
+    if (H5Dget_chunk_storage_size(ds_.get(), offset.data(), &stored) < 0 || stored == 0 ||
+        stored > 2 * chunk_rows_ * row_length_ * sizeof(float) + 65536)
+      return false;  // never written (fill values), or odd: HDF5 decides
+    raw_[k].resize(stored);
+    if (H5Dread_chunk(ds_.get(), H5P_DEFAULT, offset.data(), &masks_[k], raw_[k].data()) < 0)
+      throw Error(Located(file_->name(), name_ + " chunk at row " + std::to_string(offset[0]), "cannot read (damaged?)"));
+    raw_first_row_[k] = offset[0];
+  }
+  return true;
 }
 
 void RowReader::Read(std::size_t begin, std::size_t count, void* out, WorkerPool* pool) {
@@ -98,31 +123,47 @@ void RowReader::Read(std::size_t begin, std::size_t count, void* out, WorkerPool
   if (begin + count > rows())
     throw Error(Located(file_->name(), name_, "internal: rows beyond the dataset's " + std::to_string(rows())));
   if (!direct_ || row_length_ == 0) return ReadThroughHdf5(begin, count, out);
-  const std::size_t c0 = begin / chunk_rows_, c1 = (begin + count - 1) / chunk_rows_ + 1;
-  raw_.resize(c1 - c0);
-  masks_.assign(c1 - c0, 0);
-  raw_first_row_.resize(c1 - c0);
-  std::vector<hsize_t> offset(dims_.size(), 0);
-  for (std::size_t c = c0; c < c1; ++c) {
-    offset[0] = c * chunk_rows_;
-    hsize_t stored = 0;
-    if (H5Dget_chunk_storage_size(ds_.get(), offset.data(), &stored) < 0 || stored == 0 ||
-        stored > 2 * chunk_rows_ * row_length_ * sizeof(float) + 65536)
-      return ReadThroughHdf5(begin, count, out);  // never written (fill values), or odd: HDF5 decides
-    std::vector<uint8_t>& raw = raw_[c - c0];
-    raw.resize(stored);
-    if (H5Dread_chunk(ds_.get(), H5P_DEFAULT, offset.data(), &masks_[c - c0], raw.data()) < 0)
-      throw Error(Located(file_->name(), name_ + " chunk at row " + std::to_string(offset[0]), "cannot read (damaged?)"));
-    raw_first_row_[c - c0] = offset[0];
-  }
+  std::vector<std::size_t> chunks;
+  for (std::size_t c = begin / chunk_rows_; c <= (begin + count - 1) / chunk_rows_; ++c) chunks.push_back(c);
+  if (!ReadRaw(chunks)) return ReadThroughHdf5(begin, count, out);
   float* dest = static_cast<float*>(out);
   const unsigned workers = pool ? pool->size() : 1;
   if (scratch_.size() < workers) scratch_.resize(workers);
-  auto decode = [&](std::size_t k, unsigned worker) { Decode(k, begin, count, dest, scratch_[worker].data()); };
+  auto decode = [&](std::size_t k, unsigned worker) { DecodeInto(k, begin, count, dest, scratch_[worker].data()); };
   if (pool)
-    pool->Run(c1 - c0, decode);
+    pool->Run(chunks.size(), decode);
   else
-    for (std::size_t k = 0; k < c1 - c0; ++k) decode(k, 0);
+    for (std::size_t k = 0; k < chunks.size(); ++k) decode(k, 0);
+}
+
+void RowReader::ReadRows(const std::vector<std::size_t>& rows, void* out, WorkerPool* pool) {
+  if (rows.empty()) return;
+  const std::size_t row_bytes = row_length_ * mem_size_;
+  auto* dest = static_cast<uint8_t*>(out);
+  if (!direct_ || row_length_ == 0) {
+    for (std::size_t j = 0; j < rows.size(); ++j) Read(rows[j], 1, dest + j * row_bytes, nullptr);
+    return;
+  }
+  // The chunks holding the rows, each once; rows are increasing.
+  std::vector<std::size_t> chunks;
+  for (std::size_t r : rows)
+    if (chunks.empty() || chunks.back() != r / chunk_rows_) chunks.push_back(r / chunk_rows_);
+  if (!ReadRaw(chunks)) {  // not direct after all: row by row through HDF5
+    for (std::size_t j = 0; j < rows.size(); ++j) ReadThroughHdf5(rows[j], 1, dest + j * row_bytes);
+    return;
+  }
+  const unsigned workers = pool ? pool->size() : 1;
+  if (scratch_.size() < workers) scratch_.resize(workers);
+  auto decode = [&](std::size_t k, unsigned worker) {
+    const uint8_t* data = Decode(k, scratch_[worker].data());
+    for (std::size_t j = 0; j < rows.size(); ++j)
+      if (rows[j] / chunk_rows_ == chunks[k])
+        std::memcpy(dest + j * row_bytes, data + (rows[j] - chunks[k] * chunk_rows_) * row_bytes, row_bytes);
+  };
+  if (pool)
+    pool->Run(chunks.size(), decode);
+  else
+    for (std::size_t k = 0; k < chunks.size(); ++k) decode(k, 0);
 }
 
 }  // namespace bead::h5

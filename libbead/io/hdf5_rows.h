@@ -39,10 +39,18 @@ class RowReader {
   // Reads rows [begin, begin + count) into `out` (count * row_length()
   // values of the memory type). `pool` may be null (one thread).
   void Read(std::size_t begin, std::size_t count, void* out, WorkerPool* pool);
+  // Reads the rows `rows` (increasing) into `out`, one after another: each
+  // stored chunk read and decompressed once however many of them it holds.
+  void ReadRows(const std::vector<std::size_t>& rows, void* out, WorkerPool* pool);
 
  private:
   void ReadThroughHdf5(std::size_t begin, std::size_t count, void* out) const;
-  void Decode(std::size_t chunk, std::size_t begin, std::size_t count, float* out, std::vector<uint8_t>* scratch) const;
+  // Reads the stored chunks (by index along the rows) raw into raw_;
+  // false when one was never written (or looks odd): then HDF5 reads.
+  bool ReadRaw(const std::vector<std::size_t>& chunks);
+  // Undoes chunk k's filters; returns its rows (in `scratch`).
+  const uint8_t* Decode(std::size_t k, std::vector<uint8_t>* scratch) const;
+  void DecodeInto(std::size_t k, std::size_t begin, std::size_t count, float* out, std::vector<uint8_t>* scratch) const;
 
   const File* file_;
   std::string name_;

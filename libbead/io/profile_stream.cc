@@ -104,4 +104,35 @@ void ProfileStream::Read(std::size_t begin, std::size_t count, ProfileBlock& b) 
   if (count) last_t_ = b.t_s.back();
 }
 
+void ProfileStream::ReadRows(const std::vector<std::size_t>& rows, ProfileBlock& b) {
+  for (std::size_t r : rows)
+    if (r >= size_) throw Error(Located(name_, "/profiles", "internal: profile " + std::to_string(r) + " beyond " + std::to_string(size_)));
+  const std::size_t n = rows.size();
+  b.points = points_;
+  b.shared_x = shared_x_;
+  b.t_s.resize(n);
+  b.encoder.resize(n);
+  b.z_mm.resize(n * points_);
+  if (!shared_x_) b.x_mm.resize(n * points_);
+  if (memory_) {
+    const ProfileBlock& m = *memory_;
+    if (shared_x_) b.x_mm = m.x_mm;
+    for (std::size_t j = 0; j < n; ++j) {
+      b.t_s[j] = m.t_s[rows[j]];
+      b.encoder[j] = m.encoder[rows[j]];
+      std::memcpy(b.z_mm.data() + j * points_, m.z_mm.data() + rows[j] * points_, points_ * sizeof(float));
+      if (!shared_x_)
+        std::memcpy(b.x_mm.data() + j * points_, m.x_mm.data() + rows[j] * points_, points_ * sizeof(float));
+    }
+    return;
+  }
+  t_->ReadRows(rows, b.t_s.data(), nullptr);
+  encoder_->ReadRows(rows, b.encoder.data(), nullptr);
+  if (shared_x_)
+    b.x_mm = x_shared_;
+  else
+    x_->ReadRows(rows, b.x_mm.data(), pool_);
+  z_->ReadRows(rows, b.z_mm.data(), pool_);
+}
+
 }  // namespace bead

@@ -42,6 +42,10 @@ class ProfileStream {
   // Profiles [begin, begin + count) into `block` (its buffers reused: no
   // allocation once they are large enough, and none zero-filled).
   void Read(std::size_t begin, std::size_t count, ProfileBlock& block);
+  // The profiles `rows` (increasing) into `block`, in that order: each
+  // stored chunk decompressed once (the pooled occlusion's few dozen
+  // profiles). Not checked again: they are rows a pass of Read has seen.
+  void ReadRows(const std::vector<std::size_t>& rows, ProfileBlock& block);
 
  private:
   std::string name_;

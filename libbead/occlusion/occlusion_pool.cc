@@ -32,17 +32,27 @@ PooledOcclusion PoolOcclusion(std::size_t count, const std::function<ProfileView
 PooledOcclusion PoolChosen(std::size_t chosen, const std::function<ProfileView(std::size_t)>& view,
                            const std::function<const BeadGeometry&(std::size_t)>& geometry,
                            const OcclusionOptions& options) {
+  std::vector<OcclusionEstimate> fits;
+  std::vector<BeadGeometry> fitted;
+  for (std::size_t j = 0; j < chosen; ++j) {
+    fitted.push_back(geometry(j));
+    fits.push_back(EstimateOcclusion(view(j), fitted.back(), options));
+  }
+  return PoolFromFits(fits, fitted);
+}
+
+PooledOcclusion PoolFromFits(const std::vector<OcclusionEstimate>& fits, const std::vector<BeadGeometry>& geometry) {
   PooledOcclusion pool;
-  if (chosen == 0) {
+  if (fits.empty()) {
     pool.note = "no measured profile to fit";
     return pool;
   }
   std::vector<double> fraction, rel_sigma;
   std::map<std::string, int> families;
   int constrained = 0;
-  for (std::size_t j = 0; j < chosen; ++j) {
-    const BeadGeometry& g = geometry(j);
-    const OcclusionEstimate e = EstimateOcclusion(view(j), g, options);
+  for (std::size_t j = 0; j < fits.size(); ++j) {
+    const BeadGeometry& g = geometry[j];
+    const OcclusionEstimate& e = fits[j];
     if (!e.ok || !(g.area_mm2 > 0)) continue;
     fraction.push_back(e.bias_mm2 / g.area_mm2);
     // The estimate's sigma less the area's own, which ApplyPooled adds per profile.

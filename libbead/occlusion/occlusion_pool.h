@@ -41,6 +41,8 @@ std::vector<std::size_t> PoolRanks(std::size_t valid_count, int max_fits = 60);
 PooledOcclusion PoolChosen(std::size_t chosen, const std::function<ProfileView(std::size_t)>& view,
                            const std::function<const BeadGeometry&(std::size_t)>& geometry,
                            const OcclusionOptions& options);
+// The pool from fits made elsewhere (in parallel): fits[j] of geometry[j].
+PooledOcclusion PoolFromFits(const std::vector<OcclusionEstimate>& fits, const std::vector<BeadGeometry>& geometry);
 
 CorrectedArea ApplyPooled(const PooledOcclusion& pooled, const BeadGeometry& geometry);
 

@@ -75,6 +75,28 @@ TEST(ProfileStream, WindowsAreTheWholeArchiveWhateverTheirSize) {
     for (unsigned threads : {1u, 3u}) ExpectWindowsMatch(path, whole, window, threads);
 }
 
+TEST(ProfileStream, ScatteredRowsAreTheWholeArchivesRows) {
+  test::TempDir dir;
+  RunArchive run;
+  run.profiles = MakeBlock(1000, 300, 5);
+  const std::string path = dir / "run.h5";
+  WriteRunArchive(path, run);
+  const ProfileBlock whole = ReadRunArchive(path).profiles;
+  const std::vector<std::size_t> rows = {0, 5, 217, 218, 219, 600, 999};  // within, across and at chunk ends
+  WorkerPool pool(2);
+  ProfileStream stream(path, pool);
+  ProfileBlock b;
+  stream.ReadRows(rows, b);
+  ASSERT_EQ(b.size(), rows.size());
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    EXPECT_EQ(b.t_s[j], whole.t_s[rows[j]]);
+    EXPECT_EQ(b.encoder[j], whole.encoder[rows[j]]);
+    const ProfileView v = b.view(j), w = whole.view(rows[j]);
+    EXPECT_TRUE(SameFloats(std::vector<float>(v.x_mm.begin(), v.x_mm.end()), w.x_mm.data(), whole.points)) << rows[j];
+    EXPECT_TRUE(SameFloats(std::vector<float>(v.z_mm.begin(), v.z_mm.end()), w.z_mm.data(), whole.points)) << rows[j];
+  }
+}
+
 // Writes /profiles as another tool might: contiguous float64 z, shared x.
 void WriteContiguousFloat64(const std::string& path, const ProfileBlock& b) {
   const hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
