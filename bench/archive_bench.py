@@ -66,7 +66,7 @@ def repeat(src, dst, times):
                 shape = (n * times,) + d.shape[1:]
                 out = b.create_dataset(f"{group}/{name}", shape=shape, dtype=d.dtype, chunks=d.chunks,
                                        compression="gzip" if d.compression else None,
-                                       compression_opts=4 if d.compression else None, shuffle=d.shuffling)
+                                       compression_opts=4 if d.compression else None, shuffle=d.shuffle)
                 step = 8192
                 for k in range(times):
                     for i in range(0, n, step):
@@ -132,11 +132,12 @@ def main():
               f"({mb / bead_mb:.2f}x the 10-minute peak)")
 
     small_rig = os.path.join(a.work, "small", "rig.yaml")
-    bead_small, _ = run_timed([a.bead, "measure", "--rig", small_rig, small, "-o", out])
-    numpy_small, _ = run_timed([sys.executable, os.path.join(HERE, "numpy_measure_archive.py"), small,
-                                os.path.join(a.work, "numpy.csv")])
-    print(f"small archive (12001 x 128): bead measure {bead_small:.3f} s, NumPy script {numpy_small:.2f} s: "
-          f"{numpy_small / bead_small:.0f}x (target >= 20x)")
+    # Best of several: one process's time on a shared machine moves by tens of per cent.
+    bead_small = min(run_timed([a.bead, "measure", "--rig", small_rig, small, "-o", out])[0] for _ in range(5))
+    numpy_small = min(run_timed([sys.executable, os.path.join(HERE, "numpy_measure_archive.py"), small,
+                                 os.path.join(a.work, "numpy.csv")])[0] for _ in range(3))
+    print(f"small archive (12001 x 128): bead measure {bead_small:.3f} s (best of 5), NumPy script "
+          f"{numpy_small:.2f} s (best of 3): {numpy_small / bead_small:.0f}x (target >= 20x)")
 
     for cmd in ([a.bead, "--help"], [a.bead, "measure", "--help"]):
         best = min(run_timed(cmd)[0] for _ in range(20))

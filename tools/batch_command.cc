@@ -99,7 +99,8 @@ Run AddBatch(CLI::App& app) {
     for (std::size_t i = 0; i < runs.size(); ++i)
       if (shard.Takes(i)) {
         mine.push_back(i);
-        total_bytes += static_cast<double>(std::filesystem::file_size(runs[i].run, ec));
+        const auto size = std::filesystem::file_size(runs[i].run, ec);
+        total_bytes += ec ? 0.0 : static_cast<double>(size);
       }
     std::printf("batch: %zu of %zu runs (shard %zu/%zu: %s) into %s\n", mine.size(), runs.size(), shard.index + 1,
                 shard.count, shard.source.c_str(), options.out.c_str());
@@ -111,7 +112,8 @@ Run AddBatch(CLI::App& app) {
     std::size_t failed = 0, skipped = 0, profiles_done = 0;
     for (std::size_t k = 0; k < mine.size(); ++k) {
       const BatchRun& run = runs[mine[k]];
-      const double bytes = static_cast<double>(std::filesystem::file_size(run.run, ec));
+      const auto size = std::filesystem::file_size(run.run, ec);
+      const double bytes = ec ? 0.0 : static_cast<double>(size);
       if (!args->redo && RunComplete(run, options)) {
         ++skipped;
         total_bytes -= bytes;

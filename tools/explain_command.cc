@@ -27,7 +27,6 @@
 #include "tools/subcommands.h"
 #include "tools/csv_columns.h"
 #include "tools/model_json.h"
-#include "tools/load_profiles.h"
 #include "tools/occlusion_step.h"
 
 namespace bead::tools {

@@ -8,7 +8,6 @@
 #include "libbead/archive/measured_run.h"
 #include "tools/commands.h"
 #include "tools/subcommands.h"
-#include "tools/load_profiles.h"
 #include "tools/occlusion_step.h"
 
 namespace bead::tools {

@@ -51,7 +51,7 @@ Run AddMeasure(CLI::App& app) {
   return [args]() {
     const Rig rig = ReadRig(args->rig);
     WorkerPool pool(args->threads);
-    OpenedRun opened = OpenRun(args->run, pool);
+    OpenedRun opened = OpenRun(args->run, pool, /*with_log=*/false);
     const bool tty = isatty(STDERR_FILENO);
     MeasureRunOptions options;
     options.profile = args->options;

@@ -121,13 +121,7 @@ RunResult ProcessRun(const BatchRun& job, const BatchOptions& options, WorkerPoo
     const Rig rig = ReadRig(job.rig);
     r.offset_counts = rig.offset_counts;
     OpenedRun opened = OpenRun(job.run, pool);
-    std::string no_flow;
-    if (EncoderAbsent(opened.run))
-      no_flow = "the archive has no encoder readings";
-    else if (!opened.run.log)
-      no_flow = "the run has no acquisition log (/log)";
-    else if (opened.run.log->size() < 3)
-      no_flow = "the acquisition log holds fewer than 3 samples";
+    const MotionGap gap = MissingMotion(opened.run, "the flow");
     MeasureRunOptions measure;
     measure.profile = options.profile;
     measure.occlusion = options.occlusion;
@@ -145,7 +139,7 @@ RunResult ProcessRun(const BatchRun& job, const BatchOptions& options, WorkerPoo
         r.warnings.push_back("occlusion: " + m.summary.pooled.note);
     }
     if (r.valid == 0) r.warnings.push_back("no profile could be measured");
-    if (no_flow.empty()) {
+    if (gap.none()) {
       const FlowResult flow = ComputeFlow(rig, m.run.profiles, m.geometry, *m.run.log, options.flow, m.corrected, m.sigma);
       WriteFlowCsv((dir / "flow.csv").string(), flow);
       for (const FlowSample& s : flow.samples) r.flow_samples += s.valid;
@@ -153,7 +147,7 @@ RunResult ProcessRun(const BatchRun& job, const BatchOptions& options, WorkerPoo
       r.warnings.insert(r.warnings.end(), flow.warnings.begin(), flow.warnings.end());
     } else {
       fs::remove(dir / "flow.csv", ec);
-      r.warnings.push_back("no flow: " + no_flow);
+      r.warnings.push_back("no flow: " + gap.dataset + " " + gap.why);
     }
   } catch (const std::exception& e) {
     r.status = std::string("failed: ") + e.what();

@@ -18,6 +18,18 @@ struct OpenedRun {
 };
 
 // `pool` decompresses the archive's chunks; it must outlive the stream.
-OpenedRun OpenRun(const std::string& path, WorkerPool& pool);
+// with_log = false: the log is not read (bead measure needs none).
+OpenedRun OpenRun(const std::string& path, WorkerPool& pool, bool with_log = true);
+
+// What a stage that needs the wheel's motion (`needs`: "the flow",
+// "explain") lacks in a run: encoder readings, an acquisition log, one of
+// at least 3 samples. `dataset` names where; empty `why` when nothing.
+struct MotionGap {
+  std::string dataset, why;
+  bool none() const { return why.empty(); }
+};
+MotionGap MissingMotion(const RunArchive& run, const std::string& needs);
+// Throws bead::Error naming `path` and the dataset when something lacks.
+void RequireMotion(const RunArchive& run, const std::string& path, const std::string& needs);
 
 }  // namespace bead

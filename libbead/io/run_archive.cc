@@ -119,11 +119,11 @@ void ValidateLog(const AcquisitionLog& log, const std::string& file, const std::
 
 RunArchive ReadRunArchive(const std::string& path) { return ReadRunArchive(path, true); }
 
-RunArchive ReadRunArchive(const std::string& path, bool with_profiles) {
+RunArchive ReadRunArchive(const std::string& path, bool with_profiles, bool with_log) {
   const h5::File f = h5::File::OpenRead(path);
   RunArchive run;
   if (with_profiles) run.profiles = ReadBlock(f, "/profiles");
-  if (f.Exists("/log")) {
+  if (with_log && f.Exists("/log")) {
     AcquisitionLog log;
     log.t_s = f.ReadDouble("/log/t_s", {1}).data;
     log.encoder = f.ReadInt64("/log/encoder", {1}).data;

@@ -40,6 +40,7 @@ TEST(CommandErrors, EachCommandNamesTheFileAndThePlace) {
   test::WriteText(dir / "frame.png", "not an image");
   test::WriteText(dir / "sim.yaml", "seed: x\n");
   test::WriteText(dir / "rig.yaml", "encoder: {counts_per_rev: -5, bits: 32, direction: 1}\n");
+  test::WriteText(dir / "manifest.csv", "run,placement\nrun/run.h5,run/rig.yaml\n");
   sim::SimConfig c;
   c.duration_s = 0.1;
   c.sensor.points = 40;
@@ -63,6 +64,8 @@ TEST(CommandErrors, EachCommandNamesTheFileAndThePlace) {
       {"calibrate offset --rig {}/run/rig.yaml {}/run/run.h5", {"run.h5: /scans: missing group"}},
       {"flow --rig {}/rig.yaml {}/run/run.h5 -o {}/flow.csv", {"rig.yaml", "counts_per_rev"}},
       {"measure --rig {}/run/rig.yaml {}/good.csv -o {}/g.csv", {"good.csv"}},
+      {"batch --manifest {}/manifest.csv -o {}/out", {"manifest.csv: line 1", "rig"}},
+      {"batch --shard 3/2 --rig {}/run/rig.yaml -o {}/out {}/run/run.h5", {"--shard '3/2': K must be from 1 to N"}},
   };
   for (const Case& k : cases) {
     const auto [status, out] = test::RunCli(dir, Fill(k.args, dir / ""));
@@ -72,6 +75,32 @@ TEST(CommandErrors, EachCommandNamesTheFileAndThePlace) {
   EXPECT_FALSE(std::filesystem::exists(dir / "e.json"));
   EXPECT_FALSE(std::filesystem::exists(dir / "f.h5"));
   EXPECT_FALSE(std::filesystem::exists(dir / "flow.csv"));
+}
+
+TEST(CommandLine, BeadListsEverySubcommandAndNamesAWrongOne) {
+  test::TempDir dir;
+  const auto [help_status, help] = test::RunCli(dir, "--help");
+  EXPECT_EQ(help_status, 0);
+  for (const char* name : {"measure", "flow", "batch", "calibrate", "simulate", "import", "frames", "identify", "explain"}) {
+    EXPECT_NE(help.find(std::string("  ") + name + " "), std::string::npos) << name << "\n" << help;
+    const auto [status, out] = test::RunCli(dir, std::string(name) + " --help");
+    EXPECT_EQ(status, 0) << name << "\n" << out;
+    EXPECT_NE(out.find("bead " + std::string(name)), std::string::npos) << out;
+  }
+  const auto [status, out] = test::RunCli(dir, "mesure --rig r.yaml");
+  EXPECT_EQ(status, 2);
+  EXPECT_NE(out.find("'mesure' is not a subcommand"), std::string::npos) << out;
+}
+
+// `bead measure` starts without loading what it does not use: its program
+// needs no OpenCV (which alone brings about 100 shared libraries).
+TEST(CommandLine, MeasureLoadsNoOpenCv) {
+  test::TempDir dir;
+  const std::string cmd = "ldd " + std::string(BEAD_CLI) + "-measure > " + (dir / "ldd.txt");
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  const std::string libs = test::ReadText(dir / "ldd.txt");
+  EXPECT_NE(libs.find("libhdf5"), std::string::npos) << libs;  // it reads archives
+  EXPECT_EQ(libs.find("libopencv"), std::string::npos) << libs;
 }
 
 }  // namespace
