@@ -78,6 +78,27 @@ void WriteBlock(h5::File& f, const std::string& group, const ProfileBlock& b) {
   f.Write(Join(group, "z_mm"), b.z_mm, {n, p});
 }
 
+// The log's datasets checked for presence, type, rank and lengths, their
+// values not read (for a command that does not use the log: a damaged log
+// is still reported, and an hour's log is not held for nothing).
+void CheckLogShape(const h5::File& f) {
+  std::vector<hsize_t> t, d;
+  f.OpenDataset("/log/t_s", {1}, h5::Kind::kFloat, t);
+  const struct {
+    const char* name;
+    h5::Kind kind;
+    bool optional;
+  } columns[] = {{"/log/encoder", h5::Kind::kInteger, false},
+                 {"/log/screw_rpm", h5::Kind::kFloat, false},
+                 {"/log/extruder_cmd_v", h5::Kind::kFloat, true},
+                 {"/log/wheel_cmd_v", h5::Kind::kFloat, true}};
+  for (const auto& c : columns) {
+    if (c.optional && !f.Exists(c.name)) continue;
+    f.OpenDataset(c.name, {1}, c.kind, d);
+    CheckLength(d[0], t[0], f.name(), c.name, "/log/t_s");
+  }
+}
+
 }  // namespace
 
 void ValidateProfileBlock(const ProfileBlock& b, const std::string& file, const std::string& where) {
@@ -123,6 +144,7 @@ RunArchive ReadRunArchive(const std::string& path, bool with_profiles, bool with
   const h5::File f = h5::File::OpenRead(path);
   RunArchive run;
   if (with_profiles) run.profiles = ReadBlock(f, "/profiles");
+  if (!with_log && f.Exists("/log")) CheckLogShape(f);
   if (with_log && f.Exists("/log")) {
     AcquisitionLog log;
     log.t_s = f.ReadDouble("/log/t_s", {1}).data;

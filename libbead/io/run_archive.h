@@ -45,8 +45,8 @@ struct PinScanArchive {
 RunArchive ReadRunArchive(const std::string& path);
 // with_profiles = false: the log and root attributes only (the profiles
 // are then read window by window, io/profile_stream.h); with_log = false:
-// without the log too (what needs no wheel motion: an hour's log at 500 Hz
-// is 70 MB).
+// the log's datasets checked (presence, type, lengths) but not read (for
+// what needs no wheel motion: an hour's log at 500 Hz is 70 MB).
 RunArchive ReadRunArchive(const std::string& path, bool with_profiles, bool with_log = true);
 void WriteRunArchive(const std::string& path, const RunArchive& run);
 PinScanArchive ReadPinScanArchive(const std::string& path);
