@@ -5,9 +5,9 @@
 #   <target>: <executions> executions, <crashes> crashes
 # and exit status 1 when any target crashed in libbead's code (the inputs
 # in build-fuzz/crashes/<target>/, each with its .report, the fuzzer's log
-# beside them). A crash whose first frame is inside libhdf5 (Debian 12's
-# 1.10.8 on a corrupt file) is upstream's: reported on a line of its own,
-# not counted.
+# beside them). A crash, hang or runaway allocation whose stack reaches
+# libhdf5 before any code of ours (Debian 12's 1.10.8 on a corrupt file) is
+# upstream's: reported on a line of its own, not counted.
 #   bash scripts/fuzz.sh [SECONDS] [TARGET...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -25,12 +25,16 @@ CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWit
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DBEAD_FUZZ=ON >/dev/null
 cmake --build build-fuzz -j "$(nproc)" --target "${targets[@]/%/_fuzz}"
 
-# The first frame of a report that is not the sanitizer's own: "ours" or
-# "libhdf5" (a crash inside HDF5 itself on a corrupt file: upstream's bug,
-# kept and reported, not counted as libbead's).
+# Whose code a report's stack is in: the first frame that is either in
+# libhdf5 or in a source file of ours (libbead/, calibration/, tools/, a
+# fuzz target) decides. Every other frame is the sanitizer's or libFuzzer's
+# runtime, an interceptor (strdup, memset: they carry no file of ours), libc
+# or libstdc++, and says nothing about whose bug it is. "libhdf5": a crash,
+# hang or runaway allocation inside HDF5 itself on a corrupt file: upstream's
+# bug, kept and reported, not counted as libbead's.
 classify() {
   local frame
-  frame=$(grep -E '^ +#[0-9]+ ' "$1" | grep -v -E '__interceptor_|__asan|__sanitizer|__lsan|__ubsan|libclang_rt|fuzzer::|libc\.so| in malloc| in calloc| in realloc| in operator new' | head -1)
+  frame=$(grep -E '^ +#[0-9]+ ' "$1" | grep -E 'libhdf5|/libbead/|/calibration/|/tools/[a-z_]+\.cc|/fuzz/[a-z_]+\.cc' | head -1)
   case "$frame" in *libhdf5*) echo libhdf5 ;; *) echo ours ;; esac
 }
 
@@ -53,7 +57,11 @@ for t in "${targets[@]}"; do
   for a in "$crashes"/crash-* "$crashes"/leak-* "$crashes"/timeout-* "$crashes"/oom-*; do
     [ -e "$a" ] || continue
     case "$a" in *.report) continue ;; esac
-    env "${env[@]}" "build-fuzz/fuzz/${t}_fuzz" -runs=1 -timeout=20 -rss_limit_mb=2048 "$a" >"$a.report" 2>&1 || true
+    # An out-of-memory input is re-run with allocations over 2 GB refused
+    # outright, so that the report holds the stack of the one who asked.
+    rerun=("${env[@]}")
+    case "$a" in */oom-*) rerun[0]=ASAN_OPTIONS=detect_leaks=0:allocator_may_return_null=0:max_allocation_size_mb=2048 ;; esac
+    env "${rerun[@]}" "build-fuzz/fuzz/${t}_fuzz" -runs=1 -timeout=20 -rss_limit_mb=2048 "$a" >"$a.report" 2>&1 || true
     if [ "$(classify "$a.report")" = libhdf5 ]; then
       upstream=$((upstream + 1))
     else

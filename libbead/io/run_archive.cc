@@ -19,12 +19,12 @@ std::string Join(const std::string& group, const std::string& name) {
 // it (NaN: none), for a dataset read window by window.
 void CheckTime(const std::vector<double>& t, const std::string& file, const std::string& dataset,
                std::size_t first = 0, double previous = std::nan("")) {
+  auto at = [&](std::size_t i) { return dataset + "[" + std::to_string(first + i) + "]"; };
   for (std::size_t i = 0; i < t.size(); ++i) {
-    const std::string at = dataset + "[" + std::to_string(first + i) + "]";
-    if (!std::isfinite(t[i])) throw Error(Located(file, at, "time is not finite"));
+    if (!std::isfinite(t[i])) throw Error(Located(file, at(i), "time is not finite"));
     const double before = i > 0 ? t[i - 1] : previous;
     if ((i > 0 || !std::isnan(previous)) && !(t[i] > before))
-      throw Error(Located(file, at,
+      throw Error(Located(file, at(i),
                           "time does not increase (" + std::to_string(before) + " then " + std::to_string(t[i]) +
                               " s)"));
   }
