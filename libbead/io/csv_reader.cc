@@ -85,11 +85,17 @@ int64_t CsvReader::Int64(std::size_t i, const char* name) const {
   return v;
 }
 
-std::string CsvNumber(double value) {
-  if (std::isnan(value)) return "";
+void AppendCsvNumber(std::string& line, double value) {
+  if (std::isnan(value)) return;
   char buf[32];
   const auto [end, ec] = std::to_chars(buf, buf + sizeof(buf), value);
-  return ec == std::errc() ? std::string(buf, end) : std::string();
+  if (ec == std::errc()) line.append(buf, end);
+}
+
+std::string CsvNumber(double value) {
+  std::string text;
+  AppendCsvNumber(text, value);
+  return text;
 }
 
 }  // namespace bead

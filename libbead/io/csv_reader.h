@@ -44,5 +44,7 @@ class CsvReader {
 
 // Shortest text that reads back to the same double; "" for NaN.
 std::string CsvNumber(double value);
+// The same appended to `line` (no allocation once the line has room).
+void AppendCsvNumber(std::string& line, double value);
 
 }  // namespace bead

@@ -1,8 +1,9 @@
 #include "libbead/io/geometry_csv.h"
 
 #include <charconv>
-#include <cmath>
 #include <type_traits>
+
+#include "libbead/io/csv_reader.h"
 
 namespace bead {
 
@@ -21,14 +22,15 @@ void GeometryCsvWriter::Append(const GeometryRow& r) {
     s += v;
     s += ',';
   };
-  // Shortest round-trip text, as CsvNumber writes it (empty for NaN).
+  // Shortest round-trip text for doubles (empty for NaN), whole numbers as they are.
   auto number = [&s](auto v) {
-    char buf[32];
     if constexpr (std::is_floating_point_v<decltype(v)>) {
-      if (std::isnan(v)) return void(s += ',');
+      AppendCsvNumber(s, v);
+    } else {
+      char buf[24];
+      const auto [end, ec] = std::to_chars(buf, buf + sizeof(buf), v);
+      if (ec == std::errc()) s.append(buf, end);
     }
-    const auto [end, ec] = std::to_chars(buf, buf + sizeof(buf), v);
-    if (ec == std::errc()) s.append(buf, end);
     s += ',';
   };
   auto value = [&](double v) { ok ? number(v) : void(s += ','); };

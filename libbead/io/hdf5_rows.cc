@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <functional>
 
 #include "libbead/core/error.h"
 
@@ -88,15 +89,16 @@ const uint8_t* RowReader::Decode(std::size_t k, std::vector<uint8_t>* scratch) c
   return data;
 }
 
-// Chunk k's rows within [begin, begin + count) to `out`.
-void RowReader::DecodeInto(std::size_t k, std::size_t begin, std::size_t count, float* out,
-                           std::vector<uint8_t>* scratch) const {
-  const uint8_t* data = Decode(k, scratch);
-  const std::size_t first = raw_first_row_[k];
-  const std::size_t lo = std::max(first, begin), hi = std::min(first + chunk_rows_, begin + count);
-  if (hi > lo)
-    std::memcpy(out + (lo - begin) * row_length_, data + (lo - first) * row_length_ * sizeof(float),
-                (hi - lo) * row_length_ * sizeof(float));
+// Decodes every chunk in raw_ on the pool (or here) and hands each to
+// `use` with its decoded values, on the thread that decoded it.
+void RowReader::DecodeEach(const std::function<void(std::size_t, const uint8_t*)>& use, WorkerPool* pool) {
+  const unsigned workers = pool ? pool->size() : 1;
+  if (scratch_.size() < workers) scratch_.resize(workers);
+  auto decode = [&](std::size_t k, unsigned worker) { use(k, Decode(k, scratch_[worker].data())); };
+  if (pool)
+    pool->Run(raw_.size(), decode);
+  else
+    for (std::size_t k = 0; k < raw_.size(); ++k) decode(k, 0);
 }
 
 bool RowReader::ReadRaw(const std::vector<std::size_t>& chunks) {
@@ -126,44 +128,37 @@ void RowReader::Read(std::size_t begin, std::size_t count, void* out, WorkerPool
   std::vector<std::size_t> chunks;
   for (std::size_t c = begin / chunk_rows_; c <= (begin + count - 1) / chunk_rows_; ++c) chunks.push_back(c);
   if (!ReadRaw(chunks)) return ReadThroughHdf5(begin, count, out);
-  float* dest = static_cast<float*>(out);
-  const unsigned workers = pool ? pool->size() : 1;
-  if (scratch_.size() < workers) scratch_.resize(workers);
-  auto decode = [&](std::size_t k, unsigned worker) { DecodeInto(k, begin, count, dest, scratch_[worker].data()); };
-  if (pool)
-    pool->Run(chunks.size(), decode);
-  else
-    for (std::size_t k = 0; k < chunks.size(); ++k) decode(k, 0);
+  const std::size_t row_bytes = row_length_ * sizeof(float);
+  auto* dest = static_cast<uint8_t*>(out);
+  DecodeEach(
+      [&](std::size_t k, const uint8_t* data) {  // the chunk's rows within [begin, begin + count)
+        const std::size_t first = raw_first_row_[k];
+        const std::size_t lo = std::max(first, begin), hi = std::min(first + chunk_rows_, begin + count);
+        if (hi > lo) std::memcpy(dest + (lo - begin) * row_bytes, data + (lo - first) * row_bytes, (hi - lo) * row_bytes);
+      },
+      pool);
 }
 
 void RowReader::ReadRows(const std::vector<std::size_t>& rows, void* out, WorkerPool* pool) {
   if (rows.empty()) return;
   const std::size_t row_bytes = row_length_ * mem_size_;
   auto* dest = static_cast<uint8_t*>(out);
-  if (!direct_ || row_length_ == 0) {
-    for (std::size_t j = 0; j < rows.size(); ++j) Read(rows[j], 1, dest + j * row_bytes, nullptr);
-    return;
-  }
   // The chunks holding the rows, each once; rows are increasing.
   std::vector<std::size_t> chunks;
-  for (std::size_t r : rows)
-    if (chunks.empty() || chunks.back() != r / chunk_rows_) chunks.push_back(r / chunk_rows_);
-  if (!ReadRaw(chunks)) {  // not direct after all: row by row through HDF5
+  if (direct_ && row_length_ > 0)
+    for (std::size_t r : rows)
+      if (chunks.empty() || chunks.back() != r / chunk_rows_) chunks.push_back(r / chunk_rows_);
+  if (chunks.empty() || !ReadRaw(chunks)) {  // not direct: row by row through HDF5
     for (std::size_t j = 0; j < rows.size(); ++j) ReadThroughHdf5(rows[j], 1, dest + j * row_bytes);
     return;
   }
-  const unsigned workers = pool ? pool->size() : 1;
-  if (scratch_.size() < workers) scratch_.resize(workers);
-  auto decode = [&](std::size_t k, unsigned worker) {
-    const uint8_t* data = Decode(k, scratch_[worker].data());
-    for (std::size_t j = 0; j < rows.size(); ++j)
-      if (rows[j] / chunk_rows_ == chunks[k])
-        std::memcpy(dest + j * row_bytes, data + (rows[j] - chunks[k] * chunk_rows_) * row_bytes, row_bytes);
-  };
-  if (pool)
-    pool->Run(chunks.size(), decode);
-  else
-    for (std::size_t k = 0; k < chunks.size(); ++k) decode(k, 0);
+  DecodeEach(
+      [&](std::size_t k, const uint8_t* data) {
+        for (std::size_t j = 0; j < rows.size(); ++j)
+          if (rows[j] / chunk_rows_ == chunks[k])
+            std::memcpy(dest + j * row_bytes, data + (rows[j] - chunks[k] * chunk_rows_) * row_bytes, row_bytes);
+      },
+      pool);
 }
 
 }  // namespace bead::h5

@@ -13,6 +13,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -50,7 +51,8 @@ class RowReader {
   bool ReadRaw(const std::vector<std::size_t>& chunks);
   // Undoes chunk k's filters; returns its rows (in `scratch`).
   const uint8_t* Decode(std::size_t k, std::vector<uint8_t>* scratch) const;
-  void DecodeInto(std::size_t k, std::size_t begin, std::size_t count, float* out, std::vector<uint8_t>* scratch) const;
+  // Decodes every chunk in raw_ on the pool; use(k, values) gets each.
+  void DecodeEach(const std::function<void(std::size_t, const uint8_t*)>& use, WorkerPool* pool);
 
   const File* file_;
   std::string name_;

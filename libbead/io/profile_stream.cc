@@ -33,25 +33,13 @@ ProfileStream::ProfileStream(const std::string& path, WorkerPool& pool)
                                        H5T_NATIVE_FLOAT);
   size_ = t_->rows();
   points_ = z_->row_length();
-  if (encoder_->rows() != size_)
-    throw Error(Located(path, "/profiles/encoder",
-                        "length mismatch: " + std::to_string(encoder_->rows()) + " values, but /profiles/t_s has " +
-                            std::to_string(size_)));
-  if (z_->rows() != size_)
-    throw Error(Located(path, "/profiles/z_mm",
-                        "wrong shape: " + std::to_string(z_->rows()) + " rows, but /profiles/t_s has " +
-                            std::to_string(size_) + " profiles"));
+  CheckProfileShapes(path, "/profiles", size_, encoder_->rows(), {z_->dims().begin(), z_->dims().end()},
+                     {x_->dims().begin(), x_->dims().end()});
   shared_x_ = x_->dims().size() == 1;
   if (shared_x_) {
-    if (x_->rows() != points_)
-      throw Error(Located(path, "/profiles/x_mm",
-                          "wrong shape: " + std::to_string(x_->rows()) + " points, but /profiles/z_mm has " +
-                              std::to_string(points_) + " per profile"));
     x_shared_.resize(points_);
     x_->Read(0, points_, x_shared_.data(), nullptr);
     x_.reset();
-  } else if (x_->rows() != size_ || x_->row_length() != points_) {
-    throw Error(Located(path, "/profiles/x_mm", "wrong shape: must be [N, P] like /profiles/z_mm or [P]"));
   }
 }
 

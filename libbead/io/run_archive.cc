@@ -47,20 +47,10 @@ ProfileBlock ReadBlock(const h5::File& f, const std::string& group) {
   b.encoder = f.ReadInt64(e_name, {1}).data;
   auto x = f.ReadFloat(x_name, {1, 2});
   auto z = f.ReadFloat(z_name, {2});
-  const std::size_t n = b.t_s.size();
-  CheckLength(b.encoder.size(), n, f.name(), e_name, t_name);
-  if (z.dims[0] != n)
-    throw Error(Located(f.name(), z_name,
-                        "wrong shape: " + std::to_string(z.dims[0]) + " rows, but " + t_name + " has " +
-                            std::to_string(n) + " profiles"));
+  CheckProfileShapes(f.name(), group, b.t_s.size(), b.encoder.size(), {z.dims.begin(), z.dims.end()},
+                     {x.dims.begin(), x.dims.end()});
   b.points = z.dims[1];
   b.shared_x = x.dims.size() == 1;
-  if (b.shared_x && x.dims[0] != b.points)
-    throw Error(Located(f.name(), x_name,
-                        "wrong shape: " + std::to_string(x.dims[0]) + " points, but " + z_name + " has " +
-                            std::to_string(b.points) + " per profile"));
-  if (!b.shared_x && (x.dims[0] != n || x.dims[1] != b.points))
-    throw Error(Located(f.name(), x_name, "wrong shape: must be [N, P] like " + z_name + " or [P]"));
   b.x_mm = std::move(x.data);
   b.z_mm = std::move(z.data);
   ValidateProfileBlock(b, f.name(), group);
@@ -100,6 +90,24 @@ void CheckLogShape(const h5::File& f) {
 }
 
 }  // namespace
+
+void CheckProfileShapes(const std::string& file, const std::string& group, std::size_t profiles,
+                        std::size_t encoders, const std::vector<std::size_t>& z_dims,
+                        const std::vector<std::size_t>& x_dims) {
+  const std::string t_name = Join(group, "t_s"), x_name = Join(group, "x_mm"), z_name = Join(group, "z_mm");
+  CheckLength(encoders, profiles, file, Join(group, "encoder"), t_name);
+  if (z_dims[0] != profiles)
+    throw Error(Located(file, z_name,
+                        "wrong shape: " + std::to_string(z_dims[0]) + " rows, but " + t_name + " has " +
+                            std::to_string(profiles) + " profiles"));
+  const std::size_t points = z_dims[1];
+  if (x_dims.size() == 1 && x_dims[0] != points)
+    throw Error(Located(file, x_name,
+                        "wrong shape: " + std::to_string(x_dims[0]) + " points, but " + z_name + " has " +
+                            std::to_string(points) + " per profile"));
+  if (x_dims.size() == 2 && (x_dims[0] != profiles || x_dims[1] != points))
+    throw Error(Located(file, x_name, "wrong shape: must be [N, P] like " + z_name + " or [P]"));
+}
 
 void ValidateProfileBlock(const ProfileBlock& b, const std::string& file, const std::string& where) {
   ValidateProfileRows(b, 0, std::nan(""), file, where);

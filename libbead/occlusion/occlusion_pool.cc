@@ -22,21 +22,12 @@ PooledOcclusion PoolOcclusion(std::size_t count, const std::function<ProfileView
   std::vector<std::size_t> valid;
   for (std::size_t i = 0; i < count; ++i)
     if (geometry[i].valid()) valid.push_back(i);
-  std::vector<std::size_t> chosen = PoolRanks(valid.size(), max_fits);
-  for (std::size_t& c : chosen) c = valid[c];
-  return PoolChosen(
-      chosen.size(), [&](std::size_t j) { return view(chosen[j]); },
-      [&](std::size_t j) -> const BeadGeometry& { return geometry[chosen[j]]; }, options);
-}
-
-PooledOcclusion PoolChosen(std::size_t chosen, const std::function<ProfileView(std::size_t)>& view,
-                           const std::function<const BeadGeometry&(std::size_t)>& geometry,
-                           const OcclusionOptions& options) {
   std::vector<OcclusionEstimate> fits;
   std::vector<BeadGeometry> fitted;
-  for (std::size_t j = 0; j < chosen; ++j) {
-    fitted.push_back(geometry(j));
-    fits.push_back(EstimateOcclusion(view(j), fitted.back(), options));
+  for (const std::size_t rank : PoolRanks(valid.size(), max_fits)) {
+    const std::size_t i = valid[rank];
+    fitted.push_back(geometry[i]);
+    fits.push_back(EstimateOcclusion(view(i), geometry[i], options));
   }
   return PoolFromFits(fits, fitted);
 }

@@ -36,12 +36,8 @@ PooledOcclusion PoolOcclusion(std::size_t count, const std::function<ProfileView
 
 // The same in two steps, for a run streamed window by window: which of the
 // V valid profiles to fit (ranks 0..V-1 among them, in order), then the
-// pool from the chosen ones (view and geometry of the j-th).
+// pool from their fits, made elsewhere (in parallel): fits[j] of geometry[j].
 std::vector<std::size_t> PoolRanks(std::size_t valid_count, int max_fits = 60);
-PooledOcclusion PoolChosen(std::size_t chosen, const std::function<ProfileView(std::size_t)>& view,
-                           const std::function<const BeadGeometry&(std::size_t)>& geometry,
-                           const OcclusionOptions& options);
-// The pool from fits made elsewhere (in parallel): fits[j] of geometry[j].
 PooledOcclusion PoolFromFits(const std::vector<OcclusionEstimate>& fits, const std::vector<BeadGeometry>& geometry);
 
 CorrectedArea ApplyPooled(const PooledOcclusion& pooled, const BeadGeometry& geometry);

@@ -38,8 +38,24 @@ ProfileBlock MakeBlock(std::size_t n, std::size_t p, uint32_t seed) {
   return b;
 }
 
-bool SameFloats(const std::vector<float>& a, const float* b, std::size_t n) {
-  return std::memcmp(a.data(), b, n * sizeof(float)) == 0;  // NaN payloads too
+// dir/run.h5 holding `block` (libbead's own chunked, compressed layout).
+std::string WriteArchive(const test::TempDir& dir, ProfileBlock block) {
+  RunArchive run;
+  run.profiles = std::move(block);
+  const std::string path = dir / "run.h5";
+  WriteRunArchive(path, run);
+  return path;
+}
+
+// Profile j of `b` is profile `row` of `whole`: time, encoder, and the
+// bytes of x and z (NaN payloads too).
+::testing::AssertionResult SameProfile(const ProfileBlock& b, std::size_t j, const ProfileBlock& whole, std::size_t row) {
+  const ProfileView v = b.view(j), w = whole.view(row);
+  const std::size_t bytes = whole.points * sizeof(float);
+  if (v.t_s != w.t_s || v.encoder != w.encoder || v.x_mm.size() != w.x_mm.size() ||
+      std::memcmp(v.x_mm.data(), w.x_mm.data(), bytes) != 0 || std::memcmp(v.z_mm.data(), w.z_mm.data(), bytes) != 0)
+    return ::testing::AssertionFailure() << "profile " << row << " differs";
+  return ::testing::AssertionSuccess();
 }
 
 // Reads the archive in windows of `window` and checks each against `whole`.
@@ -49,27 +65,17 @@ void ExpectWindowsMatch(const std::string& path, const ProfileBlock& whole, std:
   ASSERT_EQ(stream.size(), whole.size());
   ASSERT_EQ(stream.points(), whole.points);
   ProfileBlock b;
-  const std::size_t p = whole.points;
   for (std::size_t begin = 0; begin < whole.size(); begin += window) {
     const std::size_t count = std::min(window, whole.size() - begin);
     stream.Read(begin, count, b);
     ASSERT_EQ(b.size(), count);
-    for (std::size_t i = 0; i < count; ++i) {
-      ASSERT_EQ(b.t_s[i], whole.t_s[begin + i]);
-      ASSERT_EQ(b.encoder[i], whole.encoder[begin + i]);
-      const ProfileView v = b.view(i), w = whole.view(begin + i);
-      ASSERT_TRUE(SameFloats(std::vector<float>(v.x_mm.begin(), v.x_mm.end()), w.x_mm.data(), p)) << begin + i;
-      ASSERT_TRUE(SameFloats(std::vector<float>(v.z_mm.begin(), v.z_mm.end()), w.z_mm.data(), p)) << begin + i;
-    }
+    for (std::size_t i = 0; i < count; ++i) ASSERT_TRUE(SameProfile(b, i, whole, begin + i)) << "window " << window;
   }
 }
 
 TEST(ProfileStream, WindowsAreTheWholeArchiveWhateverTheirSize) {
   test::TempDir dir;
-  RunArchive run;
-  run.profiles = MakeBlock(1000, 300, 1);  // chunks of 218 rows: windows cut through them
-  const std::string path = dir / "run.h5";
-  WriteRunArchive(path, run);
+  const std::string path = WriteArchive(dir, MakeBlock(1000, 300, 1));  // chunks of 218 rows: windows cut through them
   const ProfileBlock whole = ReadRunArchive(path).profiles;
   for (std::size_t window : {1000u, 7u, 37u, 218u, 436u, 999u})
     for (unsigned threads : {1u, 3u}) ExpectWindowsMatch(path, whole, window, threads);
@@ -77,10 +83,7 @@ TEST(ProfileStream, WindowsAreTheWholeArchiveWhateverTheirSize) {
 
 TEST(ProfileStream, ScatteredRowsAreTheWholeArchivesRows) {
   test::TempDir dir;
-  RunArchive run;
-  run.profiles = MakeBlock(1000, 300, 5);
-  const std::string path = dir / "run.h5";
-  WriteRunArchive(path, run);
+  const std::string path = WriteArchive(dir, MakeBlock(1000, 300, 5));
   const ProfileBlock whole = ReadRunArchive(path).profiles;
   const std::vector<std::size_t> rows = {0, 5, 217, 218, 219, 600, 999};  // within, across and at chunk ends
   WorkerPool pool(2);
@@ -88,13 +91,7 @@ TEST(ProfileStream, ScatteredRowsAreTheWholeArchivesRows) {
   ProfileBlock b;
   stream.ReadRows(rows, b);
   ASSERT_EQ(b.size(), rows.size());
-  for (std::size_t j = 0; j < rows.size(); ++j) {
-    EXPECT_EQ(b.t_s[j], whole.t_s[rows[j]]);
-    EXPECT_EQ(b.encoder[j], whole.encoder[rows[j]]);
-    const ProfileView v = b.view(j), w = whole.view(rows[j]);
-    EXPECT_TRUE(SameFloats(std::vector<float>(v.x_mm.begin(), v.x_mm.end()), w.x_mm.data(), whole.points)) << rows[j];
-    EXPECT_TRUE(SameFloats(std::vector<float>(v.z_mm.begin(), v.z_mm.end()), w.z_mm.data(), whole.points)) << rows[j];
-  }
+  for (std::size_t j = 0; j < rows.size(); ++j) EXPECT_TRUE(SameProfile(b, j, whole, rows[j]));
 }
 
 // Writes /profiles as another tool might: contiguous float64 z, shared x.
@@ -131,10 +128,7 @@ TEST(ProfileStream, AnotherToolsLayoutIsConvertedByHdf5) {
 
 TEST(ProfileStream, DamagedChunkIsNamedWithItsRow) {
   test::TempDir dir;
-  RunArchive run;
-  run.profiles = MakeBlock(1000, 300, 3);
-  const std::string path = dir / "run.h5";
-  WriteRunArchive(path, run);
+  const std::string path = WriteArchive(dir, MakeBlock(1000, 300, 3));
   // The file offset of the third chunk of z (rows 436 to 653).
   haddr_t address = 0;
   hsize_t size = 0;
@@ -170,14 +164,12 @@ TEST(ProfileStream, DamagedChunkIsNamedWithItsRow) {
 
 TEST(ProfileStream, TimeThatStepsBackAcrossWindowsIsNamedWithItsRow) {
   test::TempDir dir;
-  RunArchive run;
-  run.profiles = MakeBlock(300, 16, 4);
-  const std::string path = dir / "run.h5";
-  WriteRunArchive(path, run);
+  const ProfileBlock block = MakeBlock(300, 16, 4);
+  const std::string path = WriteArchive(dir, block);
   // t[200] = t[199]: written through HDF5 directly (our writer refuses it).
   const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
   const hid_t ds = H5Dopen2(f, "/profiles/t_s", H5P_DEFAULT);
-  std::vector<double> t = run.profiles.t_s;
+  std::vector<double> t = block.t_s;
   t[200] = t[199];
   H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, t.data());
   H5Dclose(ds);
