@@ -1,6 +1,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -139,8 +140,10 @@ Run AddBatch(CLI::App& app) {
         ++failed;
         std::printf("[%zu/%zu] %s: %s\n", k + 1, mine.size(), run.name.c_str(), r.status.c_str());
       } else {
-        std::printf("[%zu/%zu] %s: %zu profiles, %zu valid, %zu with flow, volume %.1f mm^3, %.2f s\n", k + 1,
-                    mine.size(), run.name.c_str(), r.profiles, r.valid, r.flow_samples, r.total_volume_mm3, seconds);
+        char volume[64] = "no flow";
+        if (!std::isnan(r.total_volume_mm3)) std::snprintf(volume, sizeof volume, "volume %.1f mm^3", r.total_volume_mm3);
+        std::printf("[%zu/%zu] %s: %zu profiles, %zu valid, %zu with flow, %s, %.2f s\n", k + 1, mine.size(),
+                    run.name.c_str(), r.profiles, r.valid, r.flow_samples, volume, seconds);
         for (const std::string& w : r.warnings) std::printf("  warning: %s\n", w.c_str());
       }
       std::fflush(stdout);

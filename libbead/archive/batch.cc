@@ -4,6 +4,7 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -138,7 +139,13 @@ RunResult ProcessRun(const BatchRun& job, const BatchOptions& options, WorkerPoo
       else
         r.warnings.push_back("occlusion: " + m.summary.pooled.note);
     }
-    if (r.valid == 0) r.warnings.push_back("no profile could be measured");
+    if (r.valid == 0 && r.profiles > 0) {
+      // Why, in the words of the geometry CSV's status column: the most common reason.
+      const auto& by = m.summary.by_status;
+      const std::size_t most = static_cast<std::size_t>(std::max_element(by.begin() + 1, by.end()) - by.begin());
+      r.warnings.push_back("no profile could be measured (" + std::to_string(by[most]) + " of " +
+                           std::to_string(r.profiles) + ": " + StatusName(static_cast<ProfileStatus>(most)) + ")");
+    }
     if (gap.none()) {
       const FlowResult flow = ComputeFlow(rig, m.run.profiles, m.geometry, *m.run.log, options.flow, m.corrected, m.sigma);
       WriteFlowCsv((dir / "flow.csv").string(), flow);
