@@ -10,13 +10,15 @@
 
 namespace bead::tools {
 
-Run AddCalibrate(CLI::App& app) {
+Run AddCalibrateLaser(CLI::App* cal);  // calibrate_laser_command.cc
+
+namespace {
+
+Run AddCalibrateOffset(CLI::App* cal) {
   struct Args {
     std::string rig, pins, output;
   };
   auto args = std::make_shared<Args>();
-  CLI::App* cal = app.add_subcommand("calibrate", Summary("calibrate"));
-  cal->require_subcommand(1);
   CLI::App* cmd = cal->add_subcommand("offset", "Nozzle-to-laser encoder offset from pin scans");
   cmd->footer(
       "In:  RIG.yaml and PINS.h5 (pin-scan archive) or PINS.csv (pin-scan CSV).\n"
@@ -66,6 +68,20 @@ Run AddCalibrate(CLI::App& app) {
                 cal.total);
     return 0;
   };
+}
+
+}  // namespace
+
+Run AddCalibrate(CLI::App& app) {
+  CLI::App* cal = app.add_subcommand("calibrate", Summary("calibrate"));
+  cal->require_subcommand(1);
+  cal->footer("Subcommands: offset (nozzle-to-laser encoder offset from pin scans), laser (camera, lens and\n"
+              "laser plane from chessboard images). `bead calibrate SUB --help` for each.");
+  CLI::App* offset_app = nullptr;
+  Run offset = AddCalibrateOffset(cal);
+  offset_app = cal->get_subcommand("offset");
+  Run laser = AddCalibrateLaser(cal);
+  return [=]() { return offset_app->parsed() ? offset() : laser(); };
 }
 
 }  // namespace bead::tools

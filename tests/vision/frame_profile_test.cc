@@ -24,6 +24,14 @@ LaserPlaneMap TrueMap() {
   return m;
 }
 
+// The plane-file form: no lens model; the stripe runs along the rows.
+SensorModel TrueSensor() {
+  SensorModel s;
+  s.map = TrueMap();
+  s.stripe.axis = StripeAxis::kRows;
+  return s;
+}
+
 TEST(LaserPlaneMap, FitRecoversTheHomography) {
   std::vector<cv::Point2d> px, mm;
   for (double u : {50.0, 600.0, 1200.0})
@@ -79,7 +87,8 @@ TEST(FrameProfile, ParabolicBeadMeasuresAsItsShape) {
   for (int depth : {CV_32F, CV_8U}) {
     const cv::Mat frame = test::RenderStripe(470, 1251, stripe, depth);
     std::vector<float> x, z;
-    FrameProfile(frame, TrueMap(), {}, x, z);
+    StripeCentres stripe;
+    FrameProfile(frame, TrueSensor(), stripe, x, z);
     ASSERT_EQ(x.size(), 1251u);
     for (std::size_t u = 0; u < x.size(); ++u) ASSERT_TRUE(std::isfinite(x[u]) && std::isfinite(z[u])) << u;
     const double stripe_mm = depth == CV_8U ? 0.036 * 0.015 : 0.0;

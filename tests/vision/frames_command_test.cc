@@ -41,7 +41,7 @@ TEST(FramesCommand, PngFramesMeasureAsTheBead) {
   auto [read, read_out] = RunCli(dir, "frames --plane " + (dir / "plane.yaml") + " --rate-hz 200" + frames + " -o " +
                                            (dir / "run.h5"));
   ASSERT_EQ(read, 0) << read_out;
-  EXPECT_NE(read_out.find("3 frames of 1251 columns: 3753 stripe points"), std::string::npos) << read_out;
+  EXPECT_NE(read_out.find("3 frames of 1251 lines: 3753 stripe points"), std::string::npos) << read_out;
   const RunArchive run = ReadRunArchive(dir / "run.h5");
   EXPECT_TRUE(EncoderAbsent(run));
   EXPECT_EQ(run.profiles.t_s, (std::vector<double>{0.0, 0.005, 0.010}));
