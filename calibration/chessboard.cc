@@ -35,20 +35,44 @@ Board ParseBoard(const std::string& text, double square_mm) {
   return b;
 }
 
-std::vector<cv::Point2f> FindBoard(const cv::Mat& grey, const Board& board) {
+namespace {
+
+// The board's inner corners in `image` (grey), at half size first: the
+// corners in full-size pixels, or empty.
+std::vector<cv::Point2f> Detect(const cv::Mat& image, const Board& board) {
   const int flags = cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE;
   std::vector<cv::Point2f> corners;
   cv::Mat half;
-  cv::resize(grey, half, cv::Size(), 0.5, 0.5, cv::INTER_AREA);
-  bool found = cv::findChessboardCorners(half, board.InnerCorners(), corners, flags);
-  if (found) {
+  cv::resize(image, half, cv::Size(), 0.5, 0.5, cv::INTER_AREA);
+  if (cv::findChessboardCorners(half, board.InnerCorners(), corners, flags)) {
     // A half-size pixel i covers full-size pixels 2i and 2i + 1: its
     // centre is at 2i + 0.5.
     for (cv::Point2f& p : corners) p = p * 2.0f + cv::Point2f(0.5f, 0.5f);
-  } else {
-    found = cv::findChessboardCorners(grey, board.InnerCorners(), corners, flags);
+    return corners;
   }
-  if (!found) return {};
+  if (cv::findChessboardCorners(image, board.InnerCorners(), corners, flags)) return corners;
+  return {};
+}
+
+}  // namespace
+
+std::vector<cv::Point2f> FindBoard(const cv::Mat& grey, const Board& board) {
+  cv::Mat eight = grey;
+  if (grey.depth() != CV_8U) cv::normalize(grey, eight, 0, 255, cv::NORM_MINMAX, CV_8U);
+  cv::Mat image = eight;  // shares the frame's pixels: never written into
+  std::vector<cv::Point2f> corners = Detect(image, board);
+  if (corners.empty()) {
+    // The stripe across the squares breaks the search: a grey opening
+    // (erosion, then dilation) 9 px wide removes bright lines narrower
+    // than that and keeps the squares, whose quadrants at a corner are
+    // convex and wider: their corners stay where they were, so they are
+    // refined on the opened image too (the stripe would pull them).
+    cv::Mat opened;
+    cv::morphologyEx(eight, opened, cv::MORPH_OPEN, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(9, 9)));
+    image = opened;
+    corners = Detect(image, board);
+  }
+  if (corners.empty()) return {};
   // The refinement window: a third of the smallest corner spacing seen.
   double spacing = 1e9;
   const cv::Size inner = board.InnerCorners();
@@ -56,7 +80,7 @@ std::vector<cv::Point2f> FindBoard(const cv::Mat& grey, const Board& board) {
     for (int x = 0; x + 1 < inner.width; ++x)
       spacing = std::min(spacing, cv::norm(corners[y * inner.width + x + 1] - corners[y * inner.width + x]));
   const int win = std::clamp(static_cast<int>(spacing / 3.0), 2, 15);
-  cv::cornerSubPix(grey, corners, cv::Size(win, win), cv::Size(-1, -1),
+  cv::cornerSubPix(image, corners, cv::Size(win, win), cv::Size(-1, -1),
                    cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 50, 1e-3));
   return corners;
 }

@@ -129,6 +129,7 @@ SensorModel ReadSensorYaml(const std::string& path) {
     number("min_width_px", s.stripe.min_width_px);
     number("max_width_px", s.stripe.max_width_px);
     number("steger_sigma_px", s.stripe.steger_sigma_px);
+    number("min_relative", s.stripe.min_relative);
     StripeCentres probe;
     try {
       FindStripe(cv::Mat(3, 3, CV_8UC1, cv::Scalar(0)), s.stripe, probe);  // checks the options' ranges
@@ -156,6 +157,7 @@ void WriteSensorYaml(const std::string& path, const SensorModel& s, const std::s
   stripe["min_peak"] = s.stripe.min_peak;
   stripe["min_width_px"] = s.stripe.min_width_px;
   stripe["max_width_px"] = s.stripe.max_width_px;
+  stripe["min_relative"] = s.stripe.min_relative;
   if (s.stripe.steger_sigma_px > 0.0) stripe["steger_sigma_px"] = s.stripe.steger_sigma_px;
   doc["stripe"] = stripe;
   if (!notes_yaml.empty()) doc["calibration"] = YAML::Load(notes_yaml);

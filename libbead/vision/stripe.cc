@@ -32,6 +32,8 @@ void CheckOptions(const StripeOptions& o) {
   if (!(o.min_width_px >= 0.0)) bad("min_width_px must be 0 or more");
   if (!(o.max_width_px > o.min_width_px) || !(o.max_width_px <= 1000.0))
     bad("max_width_px must exceed min_width_px and be at most 1000 px");
+  if (!(o.min_relative >= 0.0) || !(o.min_relative < 1.0))
+    bad("min_relative must be 0 (no test) or a fraction under 1 of the frame's stripe height");
   if (!(o.steger_sigma_px >= 0.0) || !(o.steger_sigma_px <= 100.0))
     bad("steger_sigma_px must be 0 (from the peak's width) or at most 100 px");
 }
@@ -67,14 +69,18 @@ void Search(const cv::Mat& lines, const StripeOptions& o, StripeCentres& out) {
   s = StripeStats{};
   s.lines = lines.rows;
   LineScan scan;
+  std::vector<float> height(static_cast<std::size_t>(lines.rows), 0.0f), tallest;
+  std::vector<unsigned char> several(static_cast<std::size_t>(lines.rows), 0), clipped(several);
   double previous = std::numeric_limits<double>::quiet_NaN();
   for (int y = 0; y < lines.rows; ++y) {
     const T* f = lines.ptr<T>(y);
-    detail::ScanLine(f, lines.cols, o, scan);
+    detail::ScanLine(f, lines.cols, o, saturated, scan);
+    if (scan.tallest > 0.0) tallest.push_back(static_cast<float>(scan.tallest));
     if (scan.peaks.empty()) {
       switch (scan.rejected) {
         case Verdict::kTooWide: ++s.too_wide; break;
         case Verdict::kTooNarrow: ++s.too_narrow; break;
+        case Verdict::kFlatTop: ++s.flat_top; break;
         case Verdict::kAtBorder: ++s.at_border; break;
         default: ++s.no_peak; break;
       }
@@ -91,11 +97,32 @@ void Search(const cv::Mat& lines, const StripeOptions& o, StripeCentres& out) {
     } else {
       c = detail::SubPixelCentre(f, p, o.method, o.threshold);
     }
-    out.centres[static_cast<std::size_t>(y)] = static_cast<float>(c);
+    const auto k = static_cast<std::size_t>(y);
+    out.centres[k] = static_cast<float>(c);
+    height[k] = static_cast<float>(p.Height());
+    several[k] = scan.peaks.size() > 1;
+    clipped[k] = p.value >= saturated;
     previous = c;
+  }
+  // The frame's stripe height: the 95th percentile over the lines of
+  // their tallest peak of any shape (where the stripe runs nearly along
+  // the lines it is too wide there, but as tall).
+  float cut = 0.0f;
+  if (!tallest.empty() && o.min_relative > 0.0) {
+    auto at = tallest.begin() + static_cast<std::ptrdiff_t>(0.95 * static_cast<double>(tallest.size() - 1));
+    std::nth_element(tallest.begin(), at, tallest.end());
+    cut = static_cast<float>(o.min_relative * *at);
+  }
+  for (std::size_t k = 0; k < height.size(); ++k) {
+    if (std::isnan(out.centres[k])) continue;
+    if (height[k] < cut) {
+      out.centres[k] = std::numeric_limits<float>::quiet_NaN();
+      ++s.faint;
+      continue;
+    }
     ++s.found;
-    s.several += scan.peaks.size() > 1;
-    s.saturated += p.value >= saturated;
+    s.several += several[k];
+    s.saturated += clipped[k];
   }
 }
 
@@ -192,6 +219,7 @@ PeakRule ParsePeakRule(const std::string& name) {
 StripeStats& StripeStats::operator+=(const StripeStats& o) {
   lines += o.lines, found += o.found, no_peak += o.no_peak, too_wide += o.too_wide, too_narrow += o.too_narrow;
   at_border += o.at_border, unresolved += o.unresolved, several += o.several, saturated += o.saturated;
+  flat_top += o.flat_top, faint += o.faint;
   return *this;
 }
 
@@ -207,8 +235,10 @@ std::string Describe(const StripeStats& s) {
   const std::pair<int, const char*> rest[] = {{s.no_peak, "no peak"},
                                               {s.too_wide, "too wide"},
                                               {s.too_narrow, "too narrow"},
+                                              {s.flat_top, "flat-topped (a lit region)"},
                                               {s.at_border, "at the frame's border"},
-                                              {s.unresolved, "no line-like curvature"}};
+                                              {s.unresolved, "no line-like curvature"},
+                                              {s.faint, "faint (under the frame's stripe)"}};
   for (const auto& [n, what] : rest)
     if (n) o << ", " << n << " " << what;
   return o.str();

@@ -15,7 +15,15 @@
 // - its full width at half height (above the higher of those two floors)
 //   lies within [min_width_px, max_width_px] (a lit square or the
 //   background is too wide, a hot pixel too narrow);
+// - unless saturated, it is not flat-topped: at 3/4 of its height it is
+//   at most 0.85 times as wide as at half (a Gaussian: 0.64; a lit
+//   chessboard square narrower than max_width_px: about 1);
 // - its half-height extent stays inside the frame.
+// - it is not faint against the frame's stripe: at least min_relative
+//   times the 95th percentile over the lines of their tallest peak of any
+//   width (a laser stripe is about as bright along its length; a frame's
+//   squares, edges and glare stand far lower, and where the stripe
+//   crosses few lines they would otherwise be most of what is found).
 // Several stripe-shaped peaks on one line (a reflection, a second surface)
 // are resolved by `rule`; the count of such lines is reported.
 //
@@ -63,18 +71,21 @@ struct StripeOptions {
   double min_width_px = 1.5;   // full width at half height, px (a lone hot pixel is 1)
   double max_width_px = 40.0;  // also the reach of the floor search on each side
   double steger_sigma_px = 0.0;  // 0: from each peak's width
+  double min_relative = 0.25;    // of the frame's stripe height (0: no test)
 };
 
 // What became of the lines searched: every line is in exactly one of
-// found, no_peak, too_wide, too_narrow, at_border, unresolved.
+// found, no_peak, too_wide, too_narrow, flat_top, at_border, unresolved, faint.
 struct StripeStats {
   int lines = 0;
   int found = 0;
   int no_peak = 0;     // nothing stood min_peak above both sides (and reached threshold)
   int too_wide = 0;    // the best candidate was wider than max_width_px
   int too_narrow = 0;  // ... narrower than min_width_px
+  int flat_top = 0;    // ... flat-topped below saturation
   int at_border = 0;   // ... ran off the frame
   int unresolved = 0;  // steger: no stripe-like curvature there, or the stripe runs along the line
+  int faint = 0;       // the chosen peak was under min_relative of the frame's stripe
   int several = 0;     // of the found: lines with more than one stripe-shaped peak
   int saturated = 0;   // of the found: lines whose chosen peak was saturated
   StripeStats& operator+=(const StripeStats& o);

@@ -18,17 +18,18 @@ struct LinePeak {
   double Width() const { return right - left; }
 };
 
-enum class Verdict { kAccepted, kNoPeak, kTooWide, kTooNarrow, kAtBorder };
+enum class Verdict { kAccepted, kNoPeak, kTooWide, kTooNarrow, kFlatTop, kAtBorder };
 
 struct LineScan {
   std::vector<LinePeak> peaks;         // stripe-shaped, in line order
   Verdict rejected = Verdict::kNoPeak;  // why the line has no stripe, when `peaks` is empty
   double rejected_rank = -1.0;
+  double tallest = 0.0;  // the tallest candidate standing min_peak above both sides, whatever its shape
 };
 
 // saturated: the frame type's largest value (infinity for float frames).
 template <typename T>
-void ScanLine(const T* f, int n, const StripeOptions& options, LineScan& out);
+void ScanLine(const T* f, int n, const StripeOptions& options, double saturated, LineScan& out);
 
 // cog, gaussian or parabolic (steger is 2-D: stripe_steger.h).
 template <typename T>

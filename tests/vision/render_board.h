@@ -19,14 +19,17 @@ namespace bead::test {
 
 struct BoardScene {
   cv::Matx33d camera{800.0, 0.0, 322.0, 0.0, 805.0, 236.0, 0.0, 0.0, 1.0};
-  std::array<double, 5> distortion{-0.12, 0.08, 0.0005, -0.0004, 0.0};
+  std::array<double, 5> distortion{-0.12, 0.0, 0.0005, -0.0004, 0.0};
   cv::Size size{640, 480};
   int squares_x = 8, squares_y = 7;
   double square_mm = 10.0, margin_mm = 40.0;
   // The laser sheet, camera coordinates: a x + b y + c z + d = 0.
-  cv::Vec4d laser{0.8, 0.0, 0.6, -180.0};
+  cv::Vec4d laser{0.8, 0.0, 0.6, -132.0};
   double stripe_width_mm = 0.35, stripe_peak = 170.0;
   double white = 75.0, black = 12.0, table = 6.0;
+  // The table beyond the paper lies this far below the board (a plate's
+  // thickness), and the stripe falls on it too (0: the table is dark).
+  double table_drop_mm = 0.0;
 };
 
 // The board's pose: rotation vector and translation, board -> camera, mm.
@@ -57,8 +60,16 @@ inline cv::Mat RenderBoard(const BoardScene& s, const cv::Vec3d& rvec, const cv:
         const cv::Vec3d p = n.dot(tvec) / n.dot(ray) * ray;
         const cv::Vec3d b = r.t() * (p - tvec);
         double level = s.table;
-        if (b[0] > x_lo - s.margin_mm && b[0] < x_hi + s.margin_mm && b[1] > y_lo - s.margin_mm &&
-            b[1] < y_hi + s.margin_mm) {
+        const bool paper = b[0] > x_lo - s.margin_mm && b[0] < x_hi + s.margin_mm && b[1] > y_lo - s.margin_mm &&
+                           b[1] < y_hi + s.margin_mm;
+        if (!paper && s.table_drop_mm > 0.0) {
+          // Away from the camera (which sits at the origin) by the drop.
+          const double away = n.dot(tvec) > 0.0 ? s.table_drop_mm : -s.table_drop_mm;
+          const cv::Vec3d q = (n.dot(tvec) + away) / n.dot(ray) * ray;
+          const double dist = laser_n.dot(q) + s.laser[3];
+          level += s.stripe_peak * std::exp(-dist * dist / (2.0 * s.stripe_width_mm * s.stripe_width_mm));
+        }
+        if (paper) {
           level = s.white;
           if (b[0] > x_lo && b[0] < x_hi && b[1] > y_lo && b[1] < y_hi) {
             const int parity = static_cast<int>(std::floor(b[0] / s.square_mm) + std::floor(b[1] / s.square_mm));
