@@ -12,7 +12,8 @@ void AddStripeFlags(CLI::App* cmd, StripeFlags& f) {
                    ->capture_default_str()->group("Stripe");
   f.method_opt = cmd->add_option("--stripe-method", f.method,
                                  "Sub-pixel centre: cog (centre of gravity above the threshold), gaussian, "
-                                 "parabolic, steger (Hessian; wide or tilted stripes)")
+                                 "parabolic, steger (the smoothed profile's peak, a bright line by the Hessian; wide or "
+                                 "saturated stripes)")
                      ->capture_default_str()->group("Stripe");
   f.rule_opt = cmd->add_option("--peak-rule", f.rule,
                                "Several stripe-shaped peaks on a line (reflections): strongest, widest, first, "
@@ -31,6 +32,10 @@ void AddStripeFlags(CLI::App* cmd, StripeFlags& f) {
   f.max_width_opt = cmd->add_option("--max-width-px", f.options.max_width_px,
                                     "Widest stripe, px; also how far each side the background is looked for")
                         ->capture_default_str()->check(CLI::PositiveNumber)->group("Stripe");
+  f.min_relative_opt = cmd->add_option("--min-relative", f.options.min_relative,
+                                       "Least stripe height as a share of the frame's stripe (its 95th-percentile "
+                                       "height over the lines; 0: no test)")
+                           ->capture_default_str()->check(CLI::Range(0.0, 0.99))->group("Stripe");
 }
 
 vision::StripeOptions ApplyStripeFlags(const StripeFlags& f, vision::StripeOptions o) {
@@ -46,6 +51,7 @@ vision::StripeOptions ApplyStripeFlags(const StripeFlags& f, vision::StripeOptio
   if (given(f.min_peak_opt)) o.min_peak = f.options.min_peak;
   if (given(f.min_width_opt)) o.min_width_px = f.options.min_width_px;
   if (given(f.max_width_opt)) o.max_width_px = f.options.max_width_px;
+  if (given(f.min_relative_opt)) o.min_relative = f.options.min_relative;
   return o;
 }
 

@@ -1,6 +1,6 @@
 // The laser plane file: where the camera sees the laser plane, as point
 // pairs of a calibration target in the laser's light (an extension of
-// shared/spec/data-formats.md, read by `bead frames`):
+// docs/data-formats.md, read by `bead frames --plane`):
 //
 //   points:            # four or more, not all on one line
 //     - [u, v, x_mm, z_mm]   # pixel column and row -> position on the plane

@@ -56,14 +56,17 @@ Verdict Examine(const T* f, int n, int first, int last, const StripeOptions& o, 
   // half, noise or not. A Gaussian stripe is 0.64 times as wide there
   // (2 sigma sqrt(2 ln(4 / 3)) against 2 sigma sqrt(2 ln 2)); a blurred
   // or speckled one a little more. Above 0.85 the peak is flat-topped,
-  // which only saturation excuses. (Counted in whole samples: not tested
-  // below 4 px at half height, where one sample is a quarter of the width.)
-  if (p.value < saturated && p.Width() >= 4.0) {
+  // which only saturation excuses. Widths between samples as for the half
+  // height; not tested under 6 px at half height, where a speckled
+  // stripe's few samples cannot tell a flat top from a round one.
+  if (p.value < saturated && p.Width() >= 6.0) {
     const double top = p.floor + 0.75 * p.Height();
     int a = first, b = last;
     while (a > 0 && f[a - 1] > top) --a;
     while (b < n - 1 && f[b + 1] > top) ++b;
-    if (b - a + 1 > 0.85 * p.Width()) return Verdict::kFlatTop;
+    const double left = a > 0 ? (a - 1) + (top - f[a - 1]) / (static_cast<double>(f[a]) - f[a - 1]) : a;
+    const double right = b < n - 1 ? b + (static_cast<double>(f[b]) - top) / (static_cast<double>(f[b]) - f[b + 1]) : b;
+    if (right - left > 0.85 * p.Width()) return Verdict::kFlatTop;
   }
   return Verdict::kAccepted;
 }
