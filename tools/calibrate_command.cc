@@ -11,6 +11,7 @@
 namespace bead::tools {
 
 Run AddCalibrateLaser(CLI::App* cal);  // calibrate_laser_command.cc
+Run AddCalibrateWheel(CLI::App* cal);  // calibrate_wheel_command.cc
 
 namespace {
 
@@ -76,12 +77,14 @@ Run AddCalibrate(CLI::App& app) {
   CLI::App* cal = app.add_subcommand("calibrate", Summary("calibrate"));
   cal->require_subcommand(1);
   cal->footer("Subcommands: offset (nozzle-to-laser encoder offset from pin scans), laser (camera, lens and\n"
-              "laser plane from chessboard images). `bead calibrate SUB --help` for each.");
-  CLI::App* offset_app = nullptr;
+              "laser plane from chessboard images), wheel (runout and eccentricity from a run).\n"
+              "`bead calibrate SUB --help` for each.");
   Run offset = AddCalibrateOffset(cal);
-  offset_app = cal->get_subcommand("offset");
   Run laser = AddCalibrateLaser(cal);
-  return [=]() { return offset_app->parsed() ? offset() : laser(); };
+  Run wheel = AddCalibrateWheel(cal);
+  CLI::App* offset_app = cal->get_subcommand("offset");
+  CLI::App* laser_app = cal->get_subcommand("laser");
+  return [=]() { return offset_app->parsed() ? offset() : laser_app->parsed() ? laser() : wheel(); };
 }
 
 }  // namespace bead::tools

@@ -34,9 +34,19 @@ struct Rig {
   ReferenceArea reference_left;   // the area at smaller x
   ReferenceArea reference_right;  // the area at larger x
   std::optional<LaserOrigin> laser_origin;
+  // The wheel's eccentricity as calibrated (`bead calibrate wheel`): the
+  // wheel point under the laser at encoder angle theta (2 pi counts /
+  // counts_per_rev, counts anchored to the raw counter) stands
+  // e cos(theta - phase) off the mean radius. 0: a centred wheel.
+  double wheel_eccentricity_mm = 0.0;
+  double wheel_eccentricity_phase_deg = 0.0;
 
   // Surface travel per encoder count, mm.
   double MmPerCount() const;
+  // The surface speed under the nozzle of the material that is at the
+  // laser at unwrapped position `counts`, over the nominal omega R:
+  // 1 + e cos(theta - phase) / R (the same wheel point carried it).
+  double SurfaceSpeedFactor(double counts) const;
 };
 
 }  // namespace bead

@@ -130,7 +130,9 @@ FlowResult ComputeFlow(const Rig& rig, const ProfileBlock& profiles, const std::
     const double target = p_k - rig.offset_counts;
     s.t_s = finder.Find(t_k, target);
     s.encoder = RawFromCounts(target, rig.encoder);
-    s.surface_speed_mm_s = InterpolateLinear(log.t_s.data(), speed.data(), speed.size(), s.t_s);
+    // An eccentric wheel carried this material at its own radius.
+    s.surface_speed_mm_s =
+        InterpolateLinear(log.t_s.data(), speed.data(), speed.size(), s.t_s) * rig.SurfaceSpeedFactor(p_k);
     s.area_mm2 = a_f[k];
     s.area_corrected_mm2 = c_f[k];
     s.flow_mm3_s = s.surface_speed_mm_s * s.area_corrected_mm2;

@@ -3,7 +3,8 @@
 // For each profile: its unwrapped wheel position; the extrusion time t_e
 // (extrusion_time.h); the surface speed v(t_e) from the log's encoder
 // (unwrapped and repaired, Savitzky-Golay derivative of position, then a
-// Hampel filter on the speed); the area A (Hampel on the series, its sigma
+// Hampel filter on the speed; times the rig's eccentricity factor for the
+// wheel point that carried the material, Rig::SurfaceSpeedFactor); the area A (Hampel on the series, its sigma
 // floored at the run's median area_sigma_mm2 so the edge-sampling sawtooth
 // is not taken for outliers; optional Savitzky-Golay smoothing; a profile
 // with no bead is area 0, one that could not be measured is a gap); the screw RPM at t_e from the log; and

@@ -79,6 +79,16 @@ class RigParser {
     const YAML::Node diam = Child(wheel, "wheel", "diameter_mm");
     rig.wheel_diameter_mm = Number(diam, "wheel.diameter_mm");
     if (!(rig.wheel_diameter_mm > 0)) Fail(diam, "wheel.diameter_mm", "must be positive");
+    // Optional, from `bead calibrate wheel`.
+    if (const YAML::Node e = wheel["eccentricity_mm"]; e.IsDefined()) {
+      rig.wheel_eccentricity_mm = Number(e, "wheel.eccentricity_mm");
+      if (!(rig.wheel_eccentricity_mm >= 0 && rig.wheel_eccentricity_mm < 0.1 * rig.wheel_diameter_mm))
+        Fail(e, "wheel.eccentricity_mm", "must be 0 or more and under a tenth of the diameter");
+      const YAML::Node phase = Child(wheel, "wheel", "eccentricity_phase_deg");
+      rig.wheel_eccentricity_phase_deg = Number(phase, "wheel.eccentricity_phase_deg");
+      if (!(std::abs(rig.wheel_eccentricity_phase_deg) <= 360.0))
+        Fail(phase, "wheel.eccentricity_phase_deg", "must be an angle within +-360 degrees");
+    }
 
     const YAML::Node offset = Child(root, "", "offset");
     rig.offset_counts = Number(Child(offset, "offset", "counts"), "offset.counts");
@@ -137,6 +147,13 @@ void WriteRigFile(const std::string& path, const RigFile& file) {
   doc["encoder"]["bits"] = rig.encoder.bits;
   doc["encoder"]["direction"] = rig.encoder.direction;
   doc["wheel"]["diameter_mm"] = rig.wheel_diameter_mm;
+  if (rig.wheel_eccentricity_mm > 0.0) {
+    doc["wheel"]["eccentricity_mm"] = rig.wheel_eccentricity_mm;
+    doc["wheel"]["eccentricity_phase_deg"] = rig.wheel_eccentricity_phase_deg;
+  } else {
+    doc["wheel"].remove("eccentricity_mm");
+    doc["wheel"].remove("eccentricity_phase_deg");
+  }
   doc["offset"]["counts"] = rig.offset_counts;
   YAML::Node areas(YAML::NodeType::Sequence);
   for (const ReferenceArea& a : {rig.reference_left, rig.reference_right}) {

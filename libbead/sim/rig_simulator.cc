@@ -229,8 +229,13 @@ void SimulateProfiles(const SimConfig& c, const Timeline& tl, std::mt19937_64& r
     const Outline outline = has_bead ? ScaledOutline(unit, unit_area, area, center) : Outline{};
     SensorPose pose;
     pose.roll_rad = roll;
-    // Runout: once per revolution; eccentricity moves the surface at the laser too.
-    pose.z_offset_mm = c.sensor.runout_mm * std::cos(angle) + c.effects.eccentricity_mm * std::cos(angle + offset_angle);
+    // Runout: once per revolution; eccentricity moves the surface at the
+    // laser too: the wheel point under it stood under the nozzle at
+    // angle - offset_angle, where its radius was R + e cos(that angle)
+    // (the sign was + before: the height's phase did not match the
+    // speed's; nothing read the phase until `bead calibrate wheel`).
+    pose.z_offset_mm =
+        c.sensor.runout_mm * std::cos(angle) + c.effects.eccentricity_mm * std::cos(angle - offset_angle);
     const bool dropped = renderer.Append(block, outline, pose, rng);
 
     int64_t raw = RawCounter(c.rig, c.encoder.start_count, angle / kTwoPi * c.rig.encoder.counts_per_rev);
