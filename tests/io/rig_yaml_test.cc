@@ -58,6 +58,12 @@ TEST(RigYaml, ErrorsNameTheKeyAndLine) {
       {"[[-24.0, -12.0], [12.0, 24.0]]", "[[-24.0, -12.0]]", "must hold exactly two x ranges"},
       {"[0.0, 95.0]", "[0.0]", "laser_origin_mm: must be a pair"},
       {"wheel:\n", "wheel: [\n", "not valid YAML"},
+      // The wheel calibration's keys: both or neither, in range.
+      {"254.762", "254.762\n  eccentricity_mm: 0.5", "wheel.eccentricity_phase_deg: missing key"},
+      {"254.762", "254.762\n  eccentricity_mm: -0.5\n  eccentricity_phase_deg: 10",
+       "wheel.eccentricity_mm: must be 0 or more and under a tenth of the diameter"},
+      {"254.762", "254.762\n  eccentricity_mm: 0.5\n  eccentricity_phase_deg: 900",
+       "wheel.eccentricity_phase_deg: must be an angle within +-360 degrees"},
   };
   for (const Case& c : cases) {
     std::string text = kSpecExample;
