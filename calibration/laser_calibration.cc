@@ -101,6 +101,10 @@ LaserCalibration CalibrateLaser(const std::vector<cv::Mat>& frames, const std::v
       points.push_back(p), view_of.push_back(with_board[j]);
   }
   out.plane = FitPlaneRobust(points);
+  if (out.plane.inliers < 10)
+    throw Error("only " + std::to_string(out.plane.inliers) + " of " + std::to_string(points.size()) +
+                " stripe points agree on one plane: the stripe is not on the boards (see --stripe-axis, "
+                "--board-margin-mm)");
   const cv::Vec4d& plane = out.plane.plane;
   out.sensor.plane = plane;
 
