@@ -14,9 +14,7 @@ class RigParser {
   explicit RigParser(std::string file) : file_(std::move(file)) {}
 
   [[noreturn]] void Fail(const YAML::Node& node, const std::string& key, const std::string& what) const {
-    std::string place = key;
-    if (node.IsDefined() && node.Mark().line >= 0) place = "line " + std::to_string(node.Mark().line + 1) + ": " + key;
-    throw Error(Located(file_, place, what));
+    throw Error(Located(file_, YamlPlace(node, key), what));
   }
 
   YAML::Node Child(const YAML::Node& parent, const std::string& parent_key, const std::string& key,

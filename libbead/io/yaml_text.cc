@@ -23,4 +23,9 @@ YAML::Node ParseYamlText(const std::string& text, const std::string& name) {
   }
 }
 
+std::string YamlPlace(const YAML::Node& node, const std::string& key) {
+  if (node.IsDefined() && node.Mark().line >= 0) return "line " + std::to_string(node.Mark().line + 1) + ": " + key;
+  return key;
+}
+
 }  // namespace bead

@@ -10,10 +10,7 @@ namespace bead::vision {
 LaserPlaneMap ReadLaserPlaneYaml(const std::string& path) {
   const YAML::Node root = ParseYamlText(ReadTextFile(path, "laser plane file"), path);
   auto fail = [&](const YAML::Node& node, const std::string& what) {
-    const std::string place = node.IsDefined() && node.Mark().line >= 0
-                                  ? "line " + std::to_string(node.Mark().line + 1) + ": points"
-                                  : "points";
-    throw Error(Located(path, place, what));
+    throw Error(Located(path, YamlPlace(node, "points"), what));
   };
   const YAML::Node points = root.IsMap() ? root["points"] : YAML::Node(YAML::NodeType::Undefined);
   if (!points.IsDefined() || !points.IsSequence())

@@ -14,10 +14,7 @@ class Reader {
   explicit Reader(std::string path) : path_(std::move(path)) {}
 
   [[noreturn]] void Fail(const YAML::Node& node, const std::string& key, const std::string& what) const {
-    const std::string place = node.IsDefined() && node.Mark().line >= 0
-                                  ? "line " + std::to_string(node.Mark().line + 1) + ": " + key
-                                  : key;
-    throw Error(Located(path_, place, what));
+    throw Error(Located(path_, YamlPlace(node, key), what));
   }
 
   YAML::Node Need(const YAML::Node& parent, const char* name, const std::string& key) const {
