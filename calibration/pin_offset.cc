@@ -157,7 +157,6 @@ OffsetCalibration CalibrateOffset(const Rig& rig, const PinScanArchive& pins, co
   for (double x : centers) dev.push_back(std::abs(x - med));
   const double robust_sigma =
       std::max(1.4826 * MedianInPlace(dev.data(), dev.size()), 3.0 * MedianInPlace(ses.data(), ses.size()));
-  double sum = 0.0;
   std::vector<double> kept, kept_ses;
   for (PinScanFit& s : cal.scans) {
     if (!s.ok) continue;
@@ -165,7 +164,6 @@ OffsetCalibration CalibrateOffset(const Rig& rig, const PinScanArchive& pins, co
     if (!s.outlier) {
       kept.push_back(s.center_counts);
       kept_ses.push_back(s.center_se_counts);
-      sum += s.center_counts;
     }
   }
   cal.used = static_cast<int>(kept.size());
@@ -173,9 +171,15 @@ OffsetCalibration CalibrateOffset(const Rig& rig, const PinScanArchive& pins, co
     cal.reason = "fewer than 2 scans left after rejecting outliers";
     return cal;
   }
-  cal.offset_counts = sum / cal.used;
+  // Mean and spread about the first kept scan (shifted sums: scans that
+  // agree exactly give a spread of exactly 0, not the rounding of a sum).
+  const double x0 = kept.front();
+  double shift = 0.0;
+  for (double x : kept) shift += x - x0;
+  shift /= cal.used;
+  cal.offset_counts = x0 + shift;
   double ss = 0.0;
-  for (double x : kept) ss += (x - cal.offset_counts) * (x - cal.offset_counts);
+  for (double x : kept) ss += (x - x0 - shift) * (x - x0 - shift);
   cal.sd_counts = std::sqrt(ss / (cal.used - 1));
   const double fit_se = MedianInPlace(kept_ses.data(), kept_ses.size());
   double per_scan = cal.sd_counts;

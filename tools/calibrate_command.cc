@@ -12,6 +12,7 @@ namespace bead::tools {
 
 Run AddCalibrateLaser(CLI::App* cal);  // calibrate_laser_command.cc
 Run AddCalibrateWheel(CLI::App* cal);  // calibrate_wheel_command.cc
+Run AddCalibrateReference(CLI::App* cal);  // calibrate_reference_command.cc
 
 namespace {
 
@@ -77,14 +78,19 @@ Run AddCalibrate(CLI::App& app) {
   CLI::App* cal = app.add_subcommand("calibrate", Summary("calibrate"));
   cal->require_subcommand(1);
   cal->footer("Subcommands: offset (nozzle-to-laser encoder offset from pin scans), laser (camera, lens and\n"
-              "laser plane from chessboard images), wheel (runout and eccentricity from a run).\n"
+              "laser plane from chessboard images), wheel (runout and eccentricity from a run), reference\n"
+              "(reference areas from a run).\n"
               "`bead calibrate SUB --help` for each.");
   Run offset = AddCalibrateOffset(cal);
   Run laser = AddCalibrateLaser(cal);
   Run wheel = AddCalibrateWheel(cal);
+  Run reference = AddCalibrateReference(cal);
   CLI::App* offset_app = cal->get_subcommand("offset");
   CLI::App* laser_app = cal->get_subcommand("laser");
-  return [=]() { return offset_app->parsed() ? offset() : laser_app->parsed() ? laser() : wheel(); };
+  CLI::App* wheel_app = cal->get_subcommand("wheel");
+  return [=]() {
+    return offset_app->parsed() ? offset() : laser_app->parsed() ? laser() : wheel_app->parsed() ? wheel() : reference();
+  };
 }
 
 }  // namespace bead::tools

@@ -23,7 +23,7 @@ class RigParser {
     if (!parent.IsMap()) Fail(parent, parent_key, "must be a mapping with key '" + key + "'");
     YAML::Node child = parent[key];
     if (!child.IsDefined() || child.IsNull()) {
-      if (required) Fail(parent, full, "missing key (see shared/spec/data-formats.md, rig file)");
+      if (required) Fail(parent, full, "missing key (docs/data-formats.md lists the rig file's keys)");
       return YAML::Node(YAML::NodeType::Undefined);
     }
     return child;
@@ -54,7 +54,7 @@ class RigParser {
     return {Number(node[0], key + "[0]"), Number(node[1], key + "[1]")};
   }
 
-  Rig Parse(const YAML::Node& root) const {
+  Rig Parse(const YAML::Node& root, bool areas_required, bool& has_areas) const {
     if (!root.IsMap()) Fail(root, "", "a rig file must be a YAML mapping (name, encoder, wheel, offset, sensor)");
     Rig rig;
     if (YAML::Node name = root["name"]; name.IsDefined() && name.IsScalar()) rig.name = name.Scalar();
@@ -91,19 +91,24 @@ class RigParser {
     const YAML::Node offset = Child(root, "", "offset");
     rig.offset_counts = Number(Child(offset, "offset", "counts"), "offset.counts");
 
-    const YAML::Node sensor = Child(root, "", "sensor");
-    const YAML::Node areas = Child(sensor, "sensor", "reference_areas_mm");
-    if (!areas.IsSequence() || areas.size() != 2)
+    const YAML::Node sensor = Child(root, "", "sensor", areas_required);
+    if (!sensor.IsDefined()) {
+      has_areas = false;
+      return rig;
+    }
+    const YAML::Node areas = Child(sensor, "sensor", "reference_areas_mm", areas_required);
+    has_areas = areas.IsDefined();
+    if (has_areas && (!areas.IsSequence() || areas.size() != 2))
       Fail(areas, "sensor.reference_areas_mm", "must hold exactly two x ranges, [[x0, x1], [x2, x3]]");
-    ReferenceArea ra[2];
-    for (int i = 0; i < 2; ++i) {
+    ReferenceArea ra[2] = {rig.reference_left, rig.reference_right};
+    for (int i = 0; i < 2 && has_areas; ++i) {
       const std::string key = "sensor.reference_areas_mm[" + std::to_string(i) + "]";
       const auto [lo, hi] = Pair(areas[i], key);
       if (!(hi > lo)) Fail(areas[i], key, "is empty: the second x must be larger than the first");
       ra[i] = ReferenceArea{lo, hi};
     }
     if (ra[0].x_min_mm > ra[1].x_min_mm) std::swap(ra[0], ra[1]);
-    if (ra[0].x_max_mm >= ra[1].x_min_mm)
+    if (has_areas && ra[0].x_max_mm >= ra[1].x_min_mm)
       Fail(areas, "sensor.reference_areas_mm",
            "the two reference areas overlap: the bead must lie in a gap between them");
     rig.reference_left = ra[0];
@@ -121,14 +126,16 @@ class RigParser {
 
 }  // namespace
 
-RigFile ParseRig(const std::string& text, const std::string& name) {
+RigFile ParseRig(const std::string& text, const std::string& name, bool areas_required) {
   RigFile out;
   out.document = ParseYamlText(text, name);
-  out.rig = RigParser(name).Parse(out.document);
+  out.rig = RigParser(name).Parse(out.document, areas_required, out.has_reference_areas);
   return out;
 }
 
-RigFile ReadRigFile(const std::string& path) { return ParseRig(ReadTextFile(path, "rig file"), path); }
+RigFile ReadRigFile(const std::string& path, bool areas_required) {
+  return ParseRig(ReadTextFile(path, "rig file"), path, areas_required);
+}
 
 RigFile MakeRigFile(const Rig& rig) {
   RigFile out;

@@ -15,12 +15,15 @@ namespace bead {
 struct RigFile {
   Rig rig;
   YAML::Node document;  // the whole file as read
+  bool has_reference_areas = true;  // false: absent, and not required
 };
 
-RigFile ReadRigFile(const std::string& path);
+// areas_required = false: a file without sensor.reference_areas_mm is read
+// (bead calibrate reference proposes them); when present they are checked.
+RigFile ReadRigFile(const std::string& path, bool areas_required = true);
 inline Rig ReadRig(const std::string& path) { return ReadRigFile(path).rig; }
 // Parses YAML text; `name` is used in errors in place of a file name.
-RigFile ParseRig(const std::string& text, const std::string& name);
+RigFile ParseRig(const std::string& text, const std::string& name, bool areas_required = true);
 
 // Writes `file.document` with the spec keys set from `file.rig`, atomically.
 void WriteRigFile(const std::string& path, const RigFile& file);

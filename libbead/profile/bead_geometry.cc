@@ -300,12 +300,48 @@ Run LargestRun(const PointSet& p, const Heights& g, float threshold, float max_g
   return best;
 }
 
-// Where the segment from (s_out, h_out) to (s_in, h_in) crosses h = 0,
-// clamped to the segment.
-double EdgeCrossing(double s_out, double h_out, double s_in, double h_in) {
-  if (!(h_in > h_out)) return s_out;
-  const double t = std::clamp(-h_out / (h_in - h_out), 0.0, 1.0);
-  return s_out + t * (s_in - s_out);
+// The bead's edge between its last bare sample and its first bead sample,
+// the sub-sample model of bead_geometry.h. x2 and x3 are the distances
+// of the second and third bead samples inward from the first (heights h1,
+// h2, h3), gap that of the bare sample outward; trap the trapezoid the
+// plain integral gives the gap. Returns the piece that replaces it, the
+// edge's distance outward from the first bead sample, and the piece's
+// centroid's distance outward from it.
+struct EdgePiece {
+  double area = 0.0, reach = 0.0, centroid = 0.0;
+};
+EdgePiece EdgeModel(double gap, double trap, double h1, double x2, double h2, double x3, double h3) {
+  EdgePiece e;
+  if (!(gap > 0.0) || !(h1 > 0.0)) return e;
+  // A wall the trapezoid integrates exactly in the mean: a step anywhere in
+  // the gap gives on average the trapezoid's area, the area of a step at
+  // the gap's middle (when the bare sample reads 0).
+  e.area = trap;
+  e.reach = std::min(trap / h1, gap);
+  e.centroid = 0.5 * e.reach;
+  // The parabola through the first three bead samples, q(x) = a x^2 + b x
+  // + h1 with x inward from the first; below it, outward (x = -u), it
+  // meets the surface at its smallest positive root (the continuation of
+  // h1 / b as a -> 0).
+  if (!(x2 > 0.0) || !(x3 > x2)) return e;
+  const double r2 = (h2 - h1) / x2, r3 = (h3 - h1) / x3;
+  const double a = (r2 - r3) / (x2 - x3), b = r2 - a * x2;  // b: the wall's slope at the first sample
+  const double disc = b * b - 4.0 * a * h1;
+  if (!(b > 0.0) || !(disc >= 0.0)) return e;  // level or rising outward: a wall in the gap
+  const double u = 2.0 * h1 / (b + std::sqrt(disc));
+  if (!(u <= gap)) return e;  // the wall's curve does not reach the surface in the gap: a wall in the gap
+  // A sloped wall meeting the surface inside the gap: the parabola's piece
+  // down to it. The trapezoids inward cut the chords of a curved top and
+  // the corner above a straight wall: the Euler-Maclaurin end term
+  // (x2^2 / 12) f'(a) (the Euler-Maclaurin formula, Abramowitz and Stegun
+  // 23.1.30, to its first term)
+  // gives them back on average.
+  const double u2 = u * u;
+  e.reach = u;
+  e.area = a * u2 * u / 3.0 - b * u2 / 2.0 + h1 * u;
+  e.centroid = e.area > 0.0 ? (a * u2 * u2 / 4.0 - b * u2 * u / 3.0 + h1 * u2 / 2.0) / e.area : u / 3.0;
+  e.area += x2 * x2 / 12.0 * b;
+  return e;
 }
 
 }  // namespace
@@ -433,9 +469,46 @@ BeadGeometry MeasureBead(const PointSet& p, const ReferenceLine& line, const Ref
   float height = MaxOf(v_height);
   for (; k <= run.last; ++k) height = std::max(height, Median3(h[k - 1], h[k], h[k + 1]));
 
-  const double s_left = EdgeCrossing(s[lo], h[lo], s[lo + 1], h[lo + 1]);
-  const double s_right = EdgeCrossing(s[hi], h[hi], s[hi - 1], h[hi - 1]);
-  g.area_mm2 = area;
+  // The two edge pieces by the sub-sample model in place of their
+  // trapezoids. It takes the first three bead samples inside each edge
+  // that are not bridged spikes (a spike counts as a missing point: it
+  // lies on the chord its neighbours span), and needs all three.
+  auto is_spike = [&](std::size_t k) { return w.n_spikes > 0 && SpikesWithin(w, k, k) > 0; };
+  struct Side {
+    EdgePiece piece;
+    double trap = 0.0, trap_moment = 0.0, first_s = 0.0;
+  };
+  auto side = [&](std::size_t bare, int dir) {  // dir: +1 inward from lo, -1 inward from hi
+    Side out;
+    std::size_t at[3];
+    std::size_t k = bare;
+    for (int found = 0; found < 3;) {
+      k = dir > 0 ? k + 1 : k - 1;
+      if (k == lo || k == hi) break;  // reached the other bare sample
+      if (!is_spike(k)) at[found++] = k;
+      if (found == 3) break;
+    }
+    const std::size_t i1 = (k == lo || k == hi) ? (dir > 0 ? lo + 1 : hi - 1) : at[0];
+    for (std::size_t j = std::min(bare, i1); j < std::max(bare, i1); ++j) {
+      const double piece = 0.5 * (double(h[j]) + h[j + 1]) * (double(s[j + 1]) - s[j]);
+      out.trap += piece;
+      out.trap_moment += piece * 0.5 * (double(s[j]) + s[j + 1]);
+    }
+    const double gap = std::abs(double(s[i1]) - s[bare]);
+    out.first_s = s[i1];
+    out.piece = {out.trap, 0.5 * gap, 0.25 * gap};
+    if (k != lo && k != hi)
+      out.piece = EdgeModel(gap, out.trap, h[at[0]], std::abs(double(s[at[1]]) - s[at[0]]), h[at[1]],
+                            std::abs(double(s[at[2]]) - s[at[0]]), h[at[2]]);
+    return out;
+  };
+  const Side foot_l = side(lo, +1), foot_r = side(hi, -1);
+  const double s_left = foot_l.first_s - foot_l.piece.reach, s_right = foot_r.first_s + foot_r.piece.reach;
+  const double area_d = double(area) - foot_l.trap - foot_r.trap + foot_l.piece.area + foot_r.piece.area;
+  const double moment_d = double(moment) - foot_l.trap_moment - foot_r.trap_moment +
+                          foot_l.piece.area * (foot_l.first_s - foot_l.piece.centroid) +
+                          foot_r.piece.area * (foot_r.first_s + foot_r.piece.centroid);
+  g.area_mm2 = area_d;
   const double rms = line.residual_rms_mm;
   const double edge_l = double(h[lo + 1]) * (s[lo + 1] - s[lo]), edge_r = double(h[hi - 1]) * (s[hi] - s[hi - 1]);
   const double width = double(s[hi]) - s[lo];
@@ -444,7 +517,7 @@ BeadGeometry MeasureBead(const PointSet& p, const ReferenceLine& line, const Ref
   g.width_mm = s_right - s_left;
   g.height_mm = height;
   // A point at along-line position s lies at x = s / sqrt(1 + slope^2).
-  const double s_centre = area > 0.0f ? double(moment) / area : 0.5 * (s_left + s_right);
+  const double s_centre = area_d > 0.0 ? moment_d / area_d : 0.5 * (s_left + s_right);
   g.center_x_mm = (pts.s_offset_mm + s_centre) * pts.inv_norm;
   g.left_edge_x_mm = (pts.s_offset_mm + s_left) * pts.inv_norm;
   g.right_edge_x_mm = (pts.s_offset_mm + s_right) * pts.inv_norm;

@@ -14,12 +14,17 @@
 //    max(min_edge_floor_mm, edge_floor_sigmas * reference RMS) belong to
 //    it (a gently sloped side dips below the detection threshold before it
 //    meets the surface); the first point beyond is bare surface;
-//  - area: the trapezoid integral of h along the line from that bare point
-//    on one side to the other (the polygon area between the measured
-//    envelope and the line, exact for a polygonal envelope);
-//  - edges: where the segment from the bare point to the outermost foot
-//    point crosses h = 0 (clamped to that segment): sub-sample, not
-//    snapped to a point; width = distance between the two edges;
+//  - edges (the sub-sample model): below the first bead sample the
+//    outline continues the parabola through the first three bead samples
+//    (spikes left out) to the surface when it meets it before the bare
+//    sample (a sloped wall; the edge is that root); otherwise a wall stands
+//    somewhere in the gap (seen from above, as undercut makes it): the
+//    trapezoid to the bare sample, right on average wherever the wall
+//    stands, the edge at the gap's middle; width = distance between edges;
+//  - area: the trapezoid integral of h from the first to the last bead
+//    sample, each end of a sloped wall corrected by the Euler-Maclaurin
+//    term spacing^2 / 12 * slope, plus the two edge pieces: exact for a
+//    parabola or straight walls, unbiased over sampling phase otherwise;
 //  - height: the largest median of three neighbouring heights in the bead
 //    (a robust maximum: one stray point cannot set it);
 //  - centre: x of the area centroid, projected onto the reference line.

@@ -1,9 +1,10 @@
 // Bead geometry of analytic shapes with exact areas, as the sensor sees
 // them. Tolerances come from the point spacing dx and the noise:
-//  - area: the envelope between the last surface point and the first bead
-//    point is a straight segment, so each edge errs by at most
-//    h_edge * dx / 2: at most H * dx for the bead;
-//  - width: each edge lies within one spacing of the segment crossing, 2 dx;
+//  - area: a wall standing somewhere between the last surface point and
+//    the first bead point is taken as the trapezoid between them, so each
+//    edge errs by at most h_edge * dx / 2: at most H * dx for the bead
+//    (sloped walls do better: bead_edge_test.cc);
+//  - width: each edge lies within one spacing of the truth, 2 dx;
 //  - height: the robust maximum (median of three) is the apex or a
 //    neighbour within 2 dx of it: a drop of curvature * (2 dx)^2 / 2.
 #include "libbead/profile/bead_geometry.h"
