@@ -24,7 +24,7 @@ Run AddImport(CLI::App& app) {
       "     z as height (up): --z-distance turns a distance from the sensor into one.\n"
       "     Without --encoder-column, /profiles/encoder holds 0 and the root attribute\n"
       "     encoder=absent says so: `bead measure` works, `bead flow` refuses the archive.\n"
-      "Example (shared/realdata/bead-observer):\n"
+      "Example (testdata/realdata/bead-observer, a real export):\n"
       "  bead import Representative_Layer_raw_points.csv -o layer.h5 --profile-column ScanID \\\n"
       "       --time-column Timestamp --x-column X --z-column Z --z-distance");
   auto& c = args->columns;

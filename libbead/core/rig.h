@@ -1,5 +1,5 @@
 // Rig: one rig placement, as described by the rig YAML file of
-// shared/spec/data-formats.md. Plain data; the YAML reader lives in io/.
+// docs/data-formats.md. Plain data; the YAML reader lives in io/.
 #pragma once
 
 #include <cstdint>

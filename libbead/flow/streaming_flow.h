@@ -13,12 +13,15 @@
 // the whole run's noise); unless area_sigma_floor_mm2 is given, the area
 // Hampel's floor is the running median of the sigmas seen so far,
 // refreshed as their count doubles (the batch's is the whole run's); the optional area smoothing is batch-only.
-// It keeps the whole run's log and areas (about 20 kB per second of log at
-// 500 Hz): fine for runs of minutes to hours, not for days.
+// Memory is bounded and reserved at construction: it keeps history_s of
+// log (about 20 kB per second at 500 Hz; the extrusion time of a profile
+// must lie within it: the nozzle-to-laser travel at the slowest wheel
+// speed), at least 1024 profiles' areas and the last 8192 area sigmas for the
+// floor's median. Once the log's first Savitzky-Golay window is in, no
+// call allocates (tested), so long as finished samples are popped.
 #pragma once
 
 #include <cstdint>
-#include <deque>
 #include <limits>
 #include <vector>
 
@@ -32,7 +35,7 @@ class StreamingFlow {
  public:
   // `log_rate_hz` fixes the Savitzky-Golay window in samples, as the batch
   // derives it from the log's median step.
-  StreamingFlow(const Rig& rig, const FlowOptions& options, double log_rate_hz);
+  StreamingFlow(const Rig& rig, const FlowOptions& options, double log_rate_hz, double history_s = 600.0);
 
   void PushLog(double t_s, int64_t raw_encoder, double screw_rpm);
   void PushProfile(double t_s, int64_t raw_encoder, const BeadGeometry& geometry,
@@ -45,6 +48,8 @@ class StreamingFlow {
  private:
   void ProcessLog();
   void ProcessProfiles();
+  void CompactLog();
+  void CompactProfiles();
 
   Rig rig_;
   FlowOptions options_;
@@ -64,12 +69,17 @@ class StreamingFlow {
     int64_t raw;
     double area, area_c;
   };
-  std::deque<Pending> profiles_;
+  std::vector<Pending> profiles_;  // waiting from profiles_head_ on
+  std::size_t profiles_head_ = 0;
   std::vector<double> area_window_, area_c_window_, area_sigmas_;
-  double running_floor_ = 0.0;    // median of area_sigmas_ when it held floor_count_ values
-  std::size_t floor_count_ = 0;
+  std::size_t area_base_ = 0;     // the profile index of area_window_[0]
+  double running_floor_ = 0.0;    // median of area_sigmas_ when floor_count_ had been seen
+  std::size_t floor_count_ = 0, sigmas_seen_ = 0;
   std::size_t next_profile_ = 0;
-  std::deque<FlowSample> ready_;
+  std::vector<FlowSample> ready_;  // finished from ready_head_ on
+  std::size_t ready_head_ = 0;
+  std::size_t log_keep_ = 0;      // samples of log history kept (at least)
+  std::vector<double> scratch_, floor_scratch_;
   bool finished_ = false;
 };
 

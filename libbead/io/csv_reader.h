@@ -1,5 +1,5 @@
 // CsvReader: line-by-line reading of the simple comma-separated forms of
-// shared/spec/data-formats.md (no quoting needed: all fields are numbers).
+// docs/data-formats.md (no quoting needed: all fields are numbers).
 // Every parse error names the file, line and column.
 #pragma once
 

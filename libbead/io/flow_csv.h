@@ -1,4 +1,4 @@
-// Flow results CSV of shared/spec/data-formats.md: the spec columns
+// Flow results CSV of docs/data-formats.md: the spec columns
 // t_s,encoder,surface_speed_mm_s,area_mm2,area_corrected_mm2,flow_mm3_s,screw_rpm
 // (t_s: when the material left the nozzle; encoder: the raw counter then),
 // then ours: profile, valid, occlusion_bias_mm2, area_corrected_sigma_mm2,

@@ -1,4 +1,4 @@
-// Geometry results CSV of shared/spec/data-formats.md: the spec columns
+// Geometry results CSV of docs/data-formats.md: the spec columns
 // profile,t_s,encoder,area_mm2,width_mm,height_mm,area_corrected_mm2,valid
 // first, then ours: center_x_mm, reference_rms_mm, reference_points,
 // threshold_mm, dropped_points, status, area_sigma_mm2, occlusion_bias_mm2,

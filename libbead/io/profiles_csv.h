@@ -1,4 +1,4 @@
-// The CSV interchange forms of shared/spec/data-formats.md:
+// The CSV interchange forms of docs/data-formats.md:
 //  profiles (long form) profile,t_s,encoder,x_mm,z_mm
 //  acquisition log      t_s,encoder,screw_rpm[,extruder_cmd_v,wheel_cmd_v]
 //  pin scans            scan,start_encoder,profile,t_s,encoder,x_mm,z_mm

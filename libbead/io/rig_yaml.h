@@ -1,4 +1,4 @@
-// Rig file (YAML) of shared/spec/data-formats.md. The reader names the
+// Rig file (YAML) of docs/data-formats.md. The reader names the
 // file, the line and the key of anything missing or wrong. Keys the spec
 // does not list are kept in `document`, so rewriting a rig file (a new
 // offset from calibration) loses nothing the user had.

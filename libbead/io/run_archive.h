@@ -1,4 +1,4 @@
-// Run and pin-scan archives (HDF5), as shared/spec/data-formats.md defines
+// Run and pin-scan archives (HDF5), as docs/data-formats.md defines
 // them. Readers check every dataset's presence, type, shape and lengths,
 // and that time is finite and increasing; they throw bead::Error naming
 // the file and dataset. Writers write atomically.

@@ -2,7 +2,7 @@
 // columns named as the vendor names them and in any order (a mapping says
 // which is which; the others are ignored), z either as height or as the
 // distance from the sensor. Read into a run archive of
-// shared/spec/data-formats.md; an export without an encoder column gets
+// docs/data-formats.md; an export without an encoder column gets
 // encoder 0 and the root attribute encoder = "absent" (run_archive.h), so
 // what needs the wheel's motion can refuse it instead of reading a
 // standstill.

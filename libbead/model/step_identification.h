@@ -1,5 +1,5 @@
 // Models from one step response, by the graph-analytic method of
-// shared/seeds/004_61a278c05da36682.txt (section IV):
+// Cojuhari et al., "Synthesis of the PID Algorithm for Control the Thermal Regime in the 3D Printer" (section IV):
 //   k   = (y_final - y_initial) / (input step)                        (eq. 1-2)
 //   tau = where the output leaves its initial value (eq. 4: "null");
 //         found by extending the first rising samples back to it

@@ -3,7 +3,7 @@
 // coefficients in descending powers of s, m <= n. Exact discretisation by
 // zero-order hold through the matrix exponential, and simulation.
 //
-// Defaults from shared/seeds/000_e63cfd053cafd599.txt:
+// Defaults from the bead characterisation system thesis (large-scale AM extruder dynamics):
 //   eq. 21, extruder voltage -> screw RPM: (439 s + 35.08) / (1.523 s^2 + 11.44 s + 1), delay 0.054 s;
 //   eq. 22, screw RPM -> flow (mm^3/s, constant wheel speed):
 //           (9.175 s^2 + 149.2 s + 905.3) / (s^2 + 12.84 s + 47.52); its delay's digits are lost

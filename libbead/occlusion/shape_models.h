@@ -6,7 +6,7 @@
 //  - TrueArea, VisibleArea: closed form or exact quadrature (double);
 //  - whether its hidden part is constrained by what is seen.
 // Parameter order is the order of the fields. Sources: the undercut and
-// rounded corners of shared/seeds/000_e63cfd053cafd599.txt 4.4.3 (Fig. 37).
+// rounded corners of the bead characterisation system thesis (large-scale AM extruder dynamics) 4.4.3 (Fig. 37).
 #pragma once
 
 #include <cmath>

@@ -304,13 +304,13 @@ Run LargestRun(const PointSet& p, const Heights& g, float threshold, float max_g
 // the sub-sample model of bead_geometry.h. x2 and x3 are the distances
 // of the second and third bead samples inward from the first (heights h1,
 // h2, h3), gap that of the bare sample outward; trap the trapezoid the
-// plain integral gives the gap. Returns the piece that replaces it, the
+// plain integral gives the gap, floor the height noise floor. Returns the piece that replaces it, the
 // edge's distance outward from the first bead sample, and the piece's
 // centroid's distance outward from it.
 struct EdgePiece {
   double area = 0.0, reach = 0.0, centroid = 0.0;
 };
-EdgePiece EdgeModel(double gap, double trap, double h1, double x2, double h2, double x3, double h3) {
+EdgePiece EdgeModel(double gap, double trap, double h1, double x2, double h2, double x3, double h3, double floor) {
   EdgePiece e;
   if (!(gap > 0.0) || !(h1 > 0.0)) return e;
   // A wall the trapezoid integrates exactly in the mean: a step anywhere in
@@ -328,8 +328,11 @@ EdgePiece EdgeModel(double gap, double trap, double h1, double x2, double h2, do
   const double a = (r2 - r3) / (x2 - x3), b = r2 - a * x2;  // b: the wall's slope at the first sample
   const double disc = b * b - 4.0 * a * h1;
   if (!(b > 0.0) || !(disc >= 0.0)) return e;  // level or rising outward: a wall in the gap
-  const double u = 2.0 * h1 / (b + std::sqrt(disc));
-  if (!(u <= gap)) return e;  // the wall's curve does not reach the surface in the gap: a wall in the gap
+  double u = 2.0 * h1 / (b + std::sqrt(disc));
+  // The bare sample reads within the noise floor of the surface: a root
+  // that far beyond it (floor / slope) still meets the surface at it.
+  if (!(u <= gap + floor / b)) return e;  // the curve does not reach the surface in the gap: a wall in the gap
+  u = std::min(u, gap);
   // A sloped wall meeting the surface inside the gap: the parabola's piece
   // down to it. The trapezoids inward cut the chords of a curved top and
   // the corner above a straight wall: the Euler-Maclaurin end term
@@ -499,7 +502,7 @@ BeadGeometry MeasureBead(const PointSet& p, const ReferenceLine& line, const Ref
     out.piece = {out.trap, 0.5 * gap, 0.25 * gap};
     if (k != lo && k != hi)
       out.piece = EdgeModel(gap, out.trap, h[at[0]], std::abs(double(s[at[1]]) - s[at[0]]), h[at[1]],
-                            std::abs(double(s[at[2]]) - s[at[0]]), h[at[2]]);
+                            std::abs(double(s[at[2]]) - s[at[0]]), h[at[2]], floor_mm);
     return out;
   };
   const Side foot_l = side(lo, +1), foot_r = side(hi, -1);

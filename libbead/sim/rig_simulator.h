@@ -1,5 +1,5 @@
 // The rig's digital twin: simulates a run of the bead characterisation
-// system of shared/seeds/000_e63cfd053cafd599.txt (chapters 2-3) and what
+// system of the bead characterisation system thesis (large-scale AM extruder dynamics) (chapters 2-3) and what
 // each instrument records, beside the truth.
 //
 // Chain: extruder command (V) -> screw RPM (transfer function, eq. 21)

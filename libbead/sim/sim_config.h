@@ -1,5 +1,5 @@
 // SimConfig: every parameter of the rig's digital twin, with defaults from
-// shared/seeds/000_e63cfd053cafd599.txt where the thesis gives them. Read
+// the bead characterisation system thesis (large-scale AM extruder dynamics) where the thesis gives them. Read
 // from YAML by ReadSimConfig (sim_config_yaml.cc); every key is optional.
 #pragma once
 

@@ -1,5 +1,5 @@
 // Writes a simulated run as DIR/run.h5, DIR/pins.h5, DIR/rig.yaml (the
-// formats of shared/spec/data-formats.md) and DIR/truth.h5:
+// formats of docs/data-formats.md) and DIR/truth.h5:
 //   /flow/{t_s, flow_mm3_s, area_mm2, surface_speed_mm_s, screw_rpm}   extrusion time, log rate
 //   /profiles/{t_s, t_extruded_s, area_true_mm2, area_visible_mm2,
 //              max_width_mm, contact_width_mm, height_mm, center_x_mm, dropped}  one per profile

@@ -9,6 +9,7 @@
 #include <limits>
 #include <new>
 
+#include "libbead/flow/streaming_flow.h"
 #include "libbead/profile/profile_processor.h"
 #include "tests/support/synthetic.h"
 
@@ -64,6 +65,39 @@ TEST(ProfileProcessor, AllocatesNothingPerProfile) {
   const long probe = g_allocations.load();
   std::vector<int> v(10);
   EXPECT_EQ(g_allocations.load() - probe, 1);
+}
+
+// The on-line flow too: after its first seconds (the log's first
+// Savitzky-Golay window, the first compactions of a short history), an
+// hour's worth of pushing and popping at 500 Hz of log and 200 Hz of
+// profiles, a wheel at 20 RPM with the counter wrapping, valid and
+// invalid profiles, counts no allocation.
+TEST(StreamingFlow, AllocatesNothingPerCall) {
+  Rig rig;
+  rig.encoder.counts_per_rev = 20480;
+  rig.encoder.bits = 16;
+  rig.wheel_diameter_mm = 254.762;
+  rig.offset_counts = 3000;
+  StreamingFlow flow(rig, FlowOptions{}, 500.0, /*history_s=*/5.0);
+  const double counts_per_s = 20480 * 20.0 / 60.0;
+  BeadGeometry g;
+  g.status = ProfileStatus::kValid;
+  long pops = 0, before = 0;
+  const int seconds = 900, warm = 20;
+  for (int k = 0; k < seconds * 500; ++k) {
+    if (k == warm * 500) before = g_allocations.load();
+    const double t = k / 500.0;
+    flow.PushLog(t, static_cast<int64_t>(counts_per_s * t) % 65536, 30.0);
+    if (k % 5 == 0 || k % 5 == 2) {  // 200 Hz
+      g.status = k % 997 == 0 ? ProfileStatus::kNoBead : ProfileStatus::kValid;
+      g.area_mm2 = 10.0 + 0.01 * (k % 7);
+      g.area_sigma_mm2 = 0.02 + 0.001 * (k % 3);
+      flow.PushProfile(t, static_cast<int64_t>(counts_per_s * t) % 65536, g);
+    }
+    for (FlowSample s; flow.Pop(s);) pops += s.valid;
+  }
+  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_GT(pops, 0.99 * seconds * 200);  // it did produce the flow (200 profiles a second)
 }
 
 }  // namespace

@@ -1,0 +1,36 @@
+# cmake --install BUILD --prefix P: the libraries, their headers (the
+# source layout kept: #include "libbead/profile/profile_processor.h"), the
+# C header <bead/bead.h> and libbead.so, the bead tool, a CMake package
+# (find_package(bead CONFIG REQUIRED): bead::core, bead::c, and bead::io,
+# bead::model, ... when their dependencies are found) and bead.pc.
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+
+# Core: Eigen and the standard library only (and libbead.so over it).
+set(bead_core_targets bead_core bead_c)
+# The rest: HDF5, yaml-cpp, Ceres, OpenCV.
+set(bead_full_targets bead_io bead_flow bead_model bead_sim bead_occlusion bead_explain bead_archive bead_vision)
+foreach(t ${bead_full_targets})
+  string(REGEX REPLACE "^bead_" "" short ${t})
+  set_target_properties(${t} PROPERTIES EXPORT_NAME ${short})
+endforeach()
+
+install(TARGETS ${bead_core_targets} EXPORT beadCoreTargets
+  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
+install(TARGETS ${bead_full_targets} EXPORT beadTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/libbead/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/libbead
+  FILES_MATCHING PATTERN "*.h")
+install(FILES ${PROJECT_SOURCE_DIR}/include/bead/bead.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/bead)
+install(TARGETS bead bead-measure bead-flow bead-batch bead-calibrate bead-simulate bead-import bead-frames
+  bead-identify bead-explain RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+
+set(bead_cmake_dir ${CMAKE_INSTALL_LIBDIR}/cmake/bead)
+install(EXPORT beadCoreTargets NAMESPACE bead:: DESTINATION ${bead_cmake_dir})
+install(EXPORT beadTargets NAMESPACE bead:: DESTINATION ${bead_cmake_dir})
+configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/beadConfig.cmake.in
+  ${PROJECT_BINARY_DIR}/beadConfig.cmake INSTALL_DESTINATION ${bead_cmake_dir})
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/beadConfigVersion.cmake COMPATIBILITY SameMinorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/beadConfig.cmake ${PROJECT_BINARY_DIR}/beadConfigVersion.cmake
+  DESTINATION ${bead_cmake_dir})
+configure_file(${PROJECT_SOURCE_DIR}/cmake/bead.pc.in ${PROJECT_BINARY_DIR}/bead.pc @ONLY)
+install(FILES ${PROJECT_BINARY_DIR}/bead.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)

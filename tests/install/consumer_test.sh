@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# An outside project against the installed package: cmake --install into a
+# fresh prefix, then a consumer configured with find_package(bead), a C
+# program built with pkg-config, each run; the hot-path consumer must not
+# need HDF5, Ceres or OpenCV at run time.
+#   consumer_test.sh BUILD_DIR SOURCE_DIR WORK_DIR
+set -euo pipefail
+build=$1 src=$2 work=$3
+rm -rf "$work" && mkdir -p "$work"
+prefix=$work/prefix
+cmake --install "$build" --prefix "$prefix" >/dev/null
+cmake -S "$src/tests/install/consumer" -B "$work/consumer" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_RPATH="$prefix/lib" >/dev/null
+cmake --build "$work/consumer" >/dev/null
+"$work/consumer/core_consumer"
+"$work/consumer/c_consumer"
+"$work/consumer/io_consumer" "$src/testdata/sample/rig.yaml"
+if readelf -d "$work/consumer/core_consumer" | grep -Ei 'NEEDED.*(hdf5|ceres|opencv|yaml|glog)'; then
+  echo "core_consumer links what bead::core must not need" >&2
+  exit 1
+fi
+# The C interface by pkg-config alone.
+export PKG_CONFIG_PATH=$prefix/lib/pkgconfig
+cc -std=c11 "$src/tests/install/consumer/c_consumer.c" $(pkg-config --cflags --libs bead) -lm \
+  -Wl,-rpath,"$prefix/lib" -o "$work/c_pkgconfig"
+"$work/c_pkgconfig"
+echo "consumer: all ran"
