@@ -22,7 +22,8 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/libbead/ DESTINATION ${CMAKE_INSTALL_INC
   FILES_MATCHING PATTERN "*.h")
 install(FILES ${PROJECT_SOURCE_DIR}/include/bead/bead.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/bead)
 install(TARGETS bead bead-measure bead-flow bead-batch bead-calibrate bead-simulate bead-import bead-frames
-  bead-identify bead-explain RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  bead-identify bead-explain bead-report RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(FILES ${PROJECT_SOURCE_DIR}/tools/report/bead_report.py DESTINATION ${CMAKE_INSTALL_DATADIR}/bead)
 
 set(bead_cmake_dir ${CMAKE_INSTALL_LIBDIR}/cmake/bead)
 install(EXPORT beadCoreTargets NAMESPACE bead:: DESTINATION ${bead_cmake_dir})

@@ -22,6 +22,7 @@ Run AddExplain(CLI::App& app);
 Run AddImport(CLI::App& app);
 Run AddFrames(CLI::App& app);
 Run AddBatch(CLI::App& app);
+Run AddReport(CLI::App& app);
 
 // --structure of identify and explain: tf, or a process model (P1D, P1DZ,
 // P2D, P2DZ, P3D, P3DZ: real poles, as MATLAB's procest). Throws bead::Error.

@@ -4,9 +4,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <set>
 
 #include "libbead/core/error.h"
 #include "libbead/io/csv_reader.h"
+#include "libbead/io/mat_file.h"
 
 namespace bead::tools {
 namespace {
@@ -19,7 +21,67 @@ struct Columns {
   std::string first_skip;  // "line 5, column 'w': 'N/A'"
 };
 
+bool IsMat(const std::string& path) {
+  return path.size() > 4 && (path.compare(path.size() - 4, 4, ".mat") == 0 || path.compare(path.size() - 4, 4, ".MAT") == 0);
+}
+
+// The same from a .mat file: each name a vector variable, all of one
+// length (one clock); NaN and infinite values skipped as gaps. What the
+// file holds and a reader cannot use is said once on stdout.
+Columns ReadMat(const std::string& path, const std::vector<std::string>& names, bool first_is_time) {
+  static std::set<std::string> told;
+  const MatContents mat = ReadMatVectors(path);
+  if (told.insert(path).second && !mat.skipped.empty()) {
+    std::string list;
+    for (const auto& s : mat.skipped) list += (list.empty() ? "" : "; ") + s;
+    std::printf("%s: skipped what is no numeric vector: %s\n", path.c_str(), list.c_str());
+  }
+  std::vector<const MatVector*> vars;
+  std::size_t n = 0;
+  for (const auto& name : names) {
+    if (name.empty()) {
+      vars.push_back(nullptr);
+      continue;
+    }
+    const MatVector* v = mat.Find(name);
+    if (!v) throw Error(Located(path, "", "no numeric vector '" + name + "' (vectors: " + mat.Names() + ")"));
+    if (n != 0 && v->values.size() != n) {
+      std::string sizes;
+      for (const MatVector* w : vars)
+        if (w) sizes += "'" + w->name + "' " + std::to_string(w->values.size()) + ", ";
+      throw Error(Located(path, "", "'" + name + "' holds " + std::to_string(v->values.size()) + " values, " + sizes +
+                                        "not the same: they are on different clocks; name the input's with "
+                                        "--input-time and the output's with --output-time"));
+    }
+    n = v->values.size();
+    vars.push_back(v);
+  }
+  Columns out;
+  out.v.resize(names.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    bool ok = true;
+    for (std::size_t k = 0; k < vars.size() && ok; ++k) {
+      const double x = vars[k] ? vars[k]->values[i] : double(i);
+      if (!std::isfinite(x)) {
+        ok = false;
+        if (out.first_skip.empty()) out.first_skip = "element " + std::to_string(i + 1) + " of '" + names[k] + "': not finite";
+      }
+    }
+    if (!ok) {
+      ++out.skipped;
+      continue;
+    }
+    const double t = vars[0] ? vars[0]->values[i] : double(i);
+    if (first_is_time && !out.v[0].empty() && !(t > out.v[0].back()))
+      throw Error(Located(path, "", "'" + names[0] + "' does not increase at element " + std::to_string(i + 1) + " (" +
+                                        std::to_string(out.v[0].back()) + " then " + std::to_string(t) + ")"));
+    for (std::size_t k = 0; k < vars.size(); ++k) out.v[k].push_back(vars[k] ? vars[k]->values[i] : double(i));
+  }
+  return out;
+}
+
 Columns Read(const std::string& path, const std::vector<std::string>& names, bool first_is_time) {
+  if (IsMat(path)) return ReadMat(path, names, first_is_time);
   CsvReader csv(path);
   const auto header = csv.Header({}, "data CSV with a header row");
   auto find = [&](const std::string& name) -> long {
@@ -76,7 +138,10 @@ Series ReadColumns(const std::string& path, const std::string& time, const std::
   return ReadSeries({path, time, input, output, "", ""});
 }
 
-Series ReadSeries(const SeriesSpec& spec) {
+Series ReadSeries(const SeriesSpec& given) {
+  SeriesSpec spec = given;
+  // An input on its own clock in the same file (a .mat's variables).
+  if (spec.input_path.empty() && !spec.input_time.empty()) spec.input_path = spec.path;
   Series s;
   if (spec.input_path.empty()) {
     Columns c = Read(spec.path, {spec.time, spec.input, spec.output}, true);
@@ -87,7 +152,7 @@ Series ReadSeries(const SeriesSpec& spec) {
     s.first_skip = c.first_skip;
   } else {
     if (spec.time.empty() || spec.input_time.empty())
-      throw Error(Located(spec.input_path, "", "an input on its own clock needs --time and --input-time columns"));
+      throw Error(Located(spec.input_path, "", "an input on its own clock needs --output-time (or --time) and --input-time"));
     Columns out = Read(spec.path, {spec.time, spec.output}, true);
     Columns in = Read(spec.input_path, {spec.input_time, spec.input}, true);
     if (in.v[0].empty()) throw Error(Located(spec.input_path, "", "no usable input rows"));

@@ -188,22 +188,28 @@ Run AddExplain(CLI::App& app) {
       "  the same loop on any measured series (uneven sampling, gaps, a start mid-process; stretches where\n"
       "  the output sits at zero while the input does not are reported as process off and left out);\n"
       "  --input-file/--input-time take the input from its own file and clock, held at the output's times.\n"
+      ".mat mode: DATA.mat (MATLAB v4/v5/v7.3) with --input, --output and --time naming vector variables;\n"
+      "  --input-time VAR --output-time VAR when the two were sampled on their own clocks (the input held\n"
+      "  at the output's times, as a power source's state is). Objects, cells, structs and a function\n"
+      "  workspace in the file are skipped and listed.\n"
       "Out: a table (effect, parameters, fit % and RMS before and after), what stays unexplained, and\n"
       "  -o explain.json with effects_added, base_refit, base_model, unexplained, offset_from_run_counts,\n"
       "  offset_from_run_ci95_counts, offset_profile, rig_offset_counts, diagnostics and spectrum.\n"
       "Examples:\n"
       "  bead explain --rig testdata/sample/rig.yaml testdata/sample/run.h5 -o explain.json\n"
-      "  bead explain width.csv --time t --output w --input-file wfs.csv --input-time t --input wfs -o explain.json");
-  cmd->add_option("data", args->data, "RUN.h5 (with --rig) or DATA.csv")->required()->check(CLI::ExistingFile);
+      "  bead explain width.csv --time t --output w --input-file wfs.csv --input-time t --input wfs -o explain.json\n"
+      "  bead explain bead1.mat --input wfs --input-time powersource_state_time --output width_f_array \\\n"
+      "       --output-time width_f_time -o explain.json");
+  cmd->add_option("data", args->data, "RUN.h5 (with --rig), DATA.csv or DATA.mat")->required()->check(CLI::ExistingFile);
   cmd->add_option("--rig", args->rig, "Rig file (YAML): run mode")->check(CLI::ExistingFile);
   cmd->add_option("--model", args->model, "Model JSON (bead identify -o); else identified on the data")
       ->check(CLI::ExistingFile);
   cmd->add_option("--input", args->input, "CSV mode: input column");
   cmd->add_option("--output", args->output, "CSV mode: output column");
-  cmd->add_option("--time", args->time, "CSV mode: time column (s)");
+  cmd->add_option("--time,--output-time", args->time, "CSV/.mat mode: time column or variable (s) of the output (and the input)");
   cmd->add_option("--input-file", args->input_file, "CSV mode: the input's own CSV (its own clock)")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--input-time", args->input_time, "CSV mode: time column of --input-file (default: --time's name)");
+  cmd->add_option("--input-time", args->input_time, "CSV/.mat mode: the input's own time column or variable (in --input-file, else in DATA)");
   cmd->add_flag("--keep-off", args->keep_off, "CSV mode: explain the stretches where the process was off too");
   cmd->add_option("--validate", args->validate, "Another run (same rig, or same columns): the held-out data")
       ->check(CLI::ExistingFile);
@@ -362,9 +368,10 @@ Run AddExplain(CLI::App& app) {
       throw CLI::ValidationError("--flow-out and --pins", "are for run mode (--rig)");
     CheckValidationInput(args->input_file, args->validate, args->validate_input_file);
     auto read = [&](const std::string& path) {
-      return ReadSeries({path, args->time, args->input, args->output,
-                         path == args->data ? args->input_file : args->validate_input_file,
-                         args->input_time.empty() ? args->time : args->input_time});
+      // The input's own clock: --input-time, else --time's name in --input-file.
+      const std::string in_file = path == args->data ? args->input_file : args->validate_input_file;
+      const std::string in_time = !args->input_time.empty() ? args->input_time : in_file.empty() ? "" : args->time;
+      return ReadSeries({path, args->time, args->input, args->output, in_file, in_time});
     };
     auto stretches = [&](const Series& s, const std::string& path) {
       return SeriesStretches(s, path, args->keep_off, "explain");

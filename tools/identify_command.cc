@@ -45,7 +45,9 @@ Run AddIdentify(CLI::App& app) {
   cmd->footer(
       "In:  any CSV with a header row; --input and --output name its columns, --time the time column\n"
       "     (seconds; without it, rows are unit-spaced; uneven sampling is fine). Rows with an empty\n"
-      "     field are gaps. The input may come from its own file and clock (--input-file, --input-time):\n"
+      "     field are gaps. Or a MATLAB .mat file: the names are then vector variables (objects, cells and\n"
+      "     structs in it are skipped and listed). The input may come from its own clock (--input-time,\n"
+      "     in --input-file or the same .mat, --output-time the output's):\n"
       "     it is held at each output time. The record may start mid-process: the operating point (a\n"
       "     constant term) and each stretch's initial state are estimated, as MATLAB's tfest does with\n"
       "     InitialCondition 'estimate' (--from-rest: neither). Where the output sits at zero while the\n"
@@ -60,12 +62,12 @@ Run AddIdentify(CLI::App& app) {
       "Examples:\n"
       "  bead identify flow.csv --time t_s --input screw_rpm --output flow_mm3_s --poles 2 --zeros 2 -o model.json\n"
       "  bead identify width.csv --time t --output w --input-file wfs.csv --input-time t --input wfs --structure P1D");
-  cmd->add_option("data", args->data, "Data CSV")->required()->check(CLI::ExistingFile);
+  cmd->add_option("data", args->data, "Data CSV or .mat")->required()->check(CLI::ExistingFile);
   cmd->add_option("--input", args->input, "Input column")->required();
   cmd->add_option("--output", args->output, "Output column")->required();
-  cmd->add_option("--time", args->time, "Time column (s)");
+  cmd->add_option("--time,--output-time", args->time, "Time column or .mat variable (s) of the output (and the input)");
   cmd->add_option("--input-file", args->input_file, "The input's own CSV (its own clock)")->check(CLI::ExistingFile);
-  cmd->add_option("--input-time", args->input_time, "Time column of --input-file (default: --time's name)");
+  cmd->add_option("--input-time", args->input_time, "The input's own time column or variable (in --input-file, else in DATA)");
   cmd->add_option("--poles", args->poles, "Number of poles")->capture_default_str()->check(CLI::Range(1, 6));
   cmd->add_option("--zeros", args->zeros, "Number of zeros (<= poles)")->capture_default_str()->check(CLI::Range(0, 6));
   cmd->add_option("--structure", args->structure, "tf, or a process model: P1D, P1DZ, P2D, P2DZ, P3D, P3DZ")
@@ -83,10 +85,10 @@ Run AddIdentify(CLI::App& app) {
   return [args]() {
     CheckValidationInput(args->input_file, args->validate, args->validate_input_file);
     auto read = [&](const std::string& path) {
-      SeriesSpec spec{path, args->time, args->input, args->output,
-                      path == args->data ? args->input_file : args->validate_input_file,
-                      args->input_time.empty() ? args->time : args->input_time};
-      return ReadSeries(spec);
+      // The input's own clock: --input-time, else --time's name in --input-file.
+      const std::string in_file = path == args->data ? args->input_file : args->validate_input_file;
+      const std::string in_time = !args->input_time.empty() ? args->input_time : in_file.empty() ? "" : args->time;
+      return ReadSeries({path, args->time, args->input, args->output, in_file, in_time});
     };
     const Series est = read(args->data);
     model::IdentifyOptions o;

@@ -22,6 +22,7 @@ inline constexpr Subcommand kSubcommands[] = {
     {"frames", "Camera frames of the laser stripe as a run archive"},
     {"identify", "Identify a transfer function (poles, zeros, delay) from data"},
     {"explain", "Find what the model lacks: residual diagnostics and effects added"},
+    {"report", "One self-contained HTML page about a run: profiles, geometry, flow, pins"},
 };
 
 inline const char* Summary(const char* name) {

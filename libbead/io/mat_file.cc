@@ -1,0 +1,137 @@
+#include "libbead/io/mat_file.h"
+
+#include <matio.h>
+
+#include <cstdint>
+#include <memory>
+#include <set>
+
+#include "libbead/core/error.h"
+
+namespace bead {
+namespace {
+
+struct MatCloser {
+  void operator()(mat_t* m) const { Mat_Close(m); }
+};
+struct VarFree {
+  void operator()(matvar_t* v) const { Mat_VarFree(v); }
+};
+using MatPtr = std::unique_ptr<mat_t, MatCloser>;
+using VarPtr = std::unique_ptr<matvar_t, VarFree>;
+
+const char* ClassName(matio_classes c) {
+  switch (c) {
+    case MAT_C_CELL: return "a cell array";
+    case MAT_C_STRUCT: return "a struct";
+    case MAT_C_OBJECT: return "a MATLAB object";
+    case MAT_C_CHAR: return "text";
+    case MAT_C_SPARSE: return "a sparse matrix";
+    case MAT_C_FUNCTION: return "a function handle";
+    case MAT_C_OPAQUE: return "a MATLAB object (opaque)";
+    case MAT_C_EMPTY: return "empty";
+    default: return "not numeric";
+  }
+}
+
+bool Numeric(matio_classes c) {
+  switch (c) {
+    case MAT_C_DOUBLE: case MAT_C_SINGLE: case MAT_C_INT8: case MAT_C_UINT8: case MAT_C_INT16: case MAT_C_UINT16:
+    case MAT_C_INT32: case MAT_C_UINT32: case MAT_C_INT64: case MAT_C_UINT64:
+      return true;
+    default:
+      return false;
+  }
+}
+
+template <class T>
+void Convert(const void* data, std::size_t n, std::vector<double>& out) {
+  const T* p = static_cast<const T*>(data);
+  out.assign(p, p + n);
+}
+
+// The values of a numeric variable as doubles; false when its data did not come.
+bool Values(const matvar_t* v, std::size_t n, std::vector<double>& out) {
+  if (v->data == nullptr || (v->data_size > 0 && v->nbytes / v->data_size < n)) return false;
+  switch (v->class_type) {
+    case MAT_C_DOUBLE: Convert<double>(v->data, n, out); return true;
+    case MAT_C_SINGLE: Convert<float>(v->data, n, out); return true;
+    case MAT_C_INT8: Convert<int8_t>(v->data, n, out); return true;
+    case MAT_C_UINT8: Convert<uint8_t>(v->data, n, out); return true;
+    case MAT_C_INT16: Convert<int16_t>(v->data, n, out); return true;
+    case MAT_C_UINT16: Convert<uint16_t>(v->data, n, out); return true;
+    case MAT_C_INT32: Convert<int32_t>(v->data, n, out); return true;
+    case MAT_C_UINT32: Convert<uint32_t>(v->data, n, out); return true;
+    case MAT_C_INT64: Convert<int64_t>(v->data, n, out); return true;
+    case MAT_C_UINT64: Convert<uint64_t>(v->data, n, out); return true;
+    default: return false;
+  }
+}
+
+}  // namespace
+
+const MatVector* MatContents::Find(const std::string& name) const {
+  for (const MatVector& v : vectors)
+    if (v.name == name) return &v;
+  return nullptr;
+}
+
+std::string MatContents::Names() const {
+  std::string all;
+  for (const MatVector& v : vectors) all += (all.empty() ? "" : ", ") + v.name;
+  return all.empty() ? "none" : all;
+}
+
+MatContents ReadMatVectors(const std::string& path) {
+  MatPtr mat(Mat_Open(path.c_str(), MAT_ACC_RDONLY));
+  if (!mat) throw Error(Located(path, "", "not a MATLAB .mat file libmatio can open (v4, v5 or v7.3)"));
+  MatContents out;
+  std::set<std::string> seen;
+  int unnamed = 0;
+  // First pass: names, classes and sizes only; the usable ones are read by
+  // name after (the first of a repeated name, as MATLAB's load keeps it).
+  std::vector<std::pair<std::string, std::size_t>> usable;
+  for (;;) {
+    VarPtr v(Mat_VarReadNextInfo(mat.get()));
+    if (!v) break;
+    const std::string name = v->name ? v->name : "";
+    if (name.empty()) {
+      ++unnamed;
+      continue;
+    }
+    if (!seen.insert(name).second) {
+      out.skipped.push_back(name + ": written twice; the first is used");
+      continue;
+    }
+    if (!Numeric(v->class_type)) {
+      out.skipped.push_back(name + ": " + ClassName(v->class_type));
+      continue;
+    }
+    if (v->isComplex) {
+      out.skipped.push_back(name + ": complex");
+      continue;
+    }
+    std::size_t n = 1, longest = 0;
+    for (int i = 0; i < v->rank; ++i) n *= v->dims[i], longest = std::max<std::size_t>(longest, v->dims[i]);
+    if (v->rank > 2 || n != longest || n == 0) {
+      out.skipped.push_back(name + ": a matrix, not a vector (" + std::to_string(v->rank) + " dimensions, " +
+                            std::to_string(n) + " values)");
+      continue;
+    }
+    usable.emplace_back(name, n);
+  }
+  if (unnamed > 0)
+    out.skipped.push_back(std::to_string(unnamed) + " unnamed: MATLAB's objects and function workspace");
+  for (const auto& [name, n] : usable) {
+    VarPtr v(Mat_VarRead(mat.get(), name.c_str()));
+    MatVector mv{name, {}};
+    if (!v || !Values(v.get(), n, mv.values)) {
+      out.skipped.push_back(name + ": its data could not be read");
+      continue;
+    }
+    out.vectors.push_back(std::move(mv));
+  }
+  return out;
+}
+
+}  // namespace bead

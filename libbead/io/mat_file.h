@@ -1,0 +1,29 @@
+// MATLAB .mat files (v4, v5, v7.3 as Debian's libmatio reads them): the
+// real numeric vectors they hold, by name, for the commands that take
+// measured series (identify, explain). What a reader cannot use (MATLAB
+// objects, cells, structs, strings, matrices, a function workspace, a
+// name written twice) is skipped and listed, never an error by itself.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace bead {
+
+struct MatVector {
+  std::string name;
+  std::vector<double> values;  // converted from the stored class (double, single, integers)
+};
+
+struct MatContents {
+  std::vector<MatVector> vectors;      // in file order, the first of a repeated name
+  std::vector<std::string> skipped;    // "name: why"
+  const MatVector* Find(const std::string& name) const;
+  std::string Names() const;           // the usable vectors' names, comma separated
+};
+
+// Reads every usable vector (all of them: small acquisition files).
+// Throws bead::Error naming the file when it is no .mat file.
+MatContents ReadMatVectors(const std::string& path);
+
+}  // namespace bead

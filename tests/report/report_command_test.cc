@@ -1,0 +1,61 @@
+// bead report: one page that opens offline, with every section the run
+// has data for, the pictures inside it; without pins or explain, no such
+// section; a failed drawing leaves no page behind.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <regex>
+#include <string>
+
+#include "tests/support/run_cli.h"
+
+namespace bead {
+namespace {
+
+int Count(const std::string& text, const std::string& what) {
+  int n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+TEST(ReportCommand, OnePageWithEverySectionAndNothingOutside) {
+  test::TempDir dir;
+  test::WriteText(dir / "sim.yaml", "seed: 4\nduration_s: 4\nsensor: {points: 200}\npins: {scans: 3}\n");
+  auto [sim, sim_out] = test::RunCli(dir, "simulate " + (dir / "sim.yaml") + " -o " + (dir / "twin"));
+  ASSERT_EQ(sim, 0) << sim_out;
+  const std::string twin = dir / "twin";
+  auto [ex, ex_out] = test::RunCli(dir, "explain --occlusion none --rig " + twin + "/rig.yaml " + twin + "/run.h5 -o " +
+                                            (dir / "explain.json"));
+  ASSERT_EQ(ex, 0) << ex_out;
+  auto [status, out] = test::RunCli(dir, "report --rig " + twin + "/rig.yaml " + twin + "/run.h5 --pins " + twin +
+                                             "/pins.h5 --explain " + (dir / "explain.json") + " -o " + (dir / "r.html"));
+  ASSERT_EQ(status, 0) << out;
+  const std::string page = test::ReadText(dir / "r.html");
+  ASSERT_EQ(page.rfind("<!DOCTYPE html>", 0), 0u);
+  for (const char* id : {"summary", "profiles", "geometry", "flow", "explain", "pins"})
+    EXPECT_EQ(Count(page, std::string("<section id=\"") + id + "\">"), 1) << id;
+  // Pictures: profiles, geometry, flow, spectrum, pins; all inside the page.
+  EXPECT_EQ(Count(page, "<img alt=\"\" src=\"data:image/png;base64,"), 5);
+  EXPECT_EQ(Count(page, "<script"), 0);
+  EXPECT_FALSE(std::regex_search(page, std::regex(R"((src|href)=\"(https?:|file:|/))"))) << "a link outside the page";
+  EXPECT_NE(page.find("profiles</td><td>801</td>"), std::string::npos);  // 4 s at 200 Hz, both ends
+  EXPECT_NE(page.find("scans used"), std::string::npos);
+
+  auto [imp, imp_out] = test::RunCli(dir, "report --rig " + twin + "/rig.yaml " + twin + "/run.h5 -o " + (dir / "r2.html"));
+  ASSERT_EQ(imp, 0) << imp_out;
+  // A page without pins or explain has neither section.
+  const std::string page2 = test::ReadText(dir / "r2.html");
+  EXPECT_EQ(Count(page2, "<section id=\"pins\">"), 0);
+  EXPECT_EQ(Count(page2, "<section id=\"explain\">"), 0);
+
+  // The drawing fails (a python that cannot run the script): an error, and no page.
+  const std::string env_cmd = "BEAD_PYTHON=/bin/false " + std::string(BEAD_CLI) + " report --rig " + twin +
+                              "/rig.yaml " + twin + "/run.h5 -o " + (dir / "r3.html") + " >" + (dir / "o3.txt") + " 2>&1";
+  EXPECT_NE(std::system(env_cmd.c_str()), 0);
+  EXPECT_NE(test::ReadText(dir / "o3.txt").find("r3.html: the report script"), std::string::npos)
+      << test::ReadText(dir / "o3.txt");
+  EXPECT_FALSE(std::filesystem::exists(dir / "r3.html"));
+}
+
+}  // namespace
+}  // namespace bead
