@@ -304,9 +304,9 @@ Run LargestRun(const PointSet& p, const Heights& g, float threshold, float max_g
 // the sub-sample model of bead_geometry.h. x2 and x3 are the distances
 // of the second and third bead samples inward from the first (heights h1,
 // h2, h3), gap that of the bare sample outward; trap the trapezoid the
-// plain integral gives the gap, floor the height noise floor. Returns the piece that replaces it, the
-// edge's distance outward from the first bead sample, and the piece's
-// centroid's distance outward from it.
+// plain integral gives the gap; floor the height noise floor. Returns the
+// piece that replaces the trapezoid, the edge's distance outward from the
+// first bead sample, and the piece's centroid's distance outward from it.
 struct EdgePiece {
   double area = 0.0, reach = 0.0, centroid = 0.0;
 };
@@ -335,10 +335,9 @@ EdgePiece EdgeModel(double gap, double trap, double h1, double x2, double h2, do
   u = std::min(u, gap);
   // A sloped wall meeting the surface inside the gap: the parabola's piece
   // down to it. The trapezoids inward cut the chords of a curved top and
-  // the corner above a straight wall: the Euler-Maclaurin end term
-  // (x2^2 / 12) f'(a) (the Euler-Maclaurin formula, Abramowitz and Stegun
-  // 23.1.30, to its first term)
-  // gives them back on average.
+  // the corner above a straight wall; the end term (x2^2 / 12) f'(a) of
+  // the Euler-Maclaurin formula (Abramowitz and Stegun 23.1.30, its first
+  // correction term) gives them back on average.
   const double u2 = u * u;
   e.reach = u;
   e.area = a * u2 * u / 3.0 - b * u2 / 2.0 + h1 * u;
