@@ -4,8 +4,8 @@
 #include "libbead/io/vendor_csv.h"
 
 namespace {
-bead::VendorCsvColumns Columns() {
-  bead::VendorCsvColumns c;
+bead::ImportColumns Columns() {
+  bead::ImportColumns c;
   c.profile = "ScanID";
   c.time = "Timestamp";
   c.x = "X";

@@ -28,7 +28,8 @@ void PrintHelp() {
       "  bead calibrate offset --rig /tmp/run/rig.yaml /tmp/run/pins.h5\n"
       "  bead flow --rig /tmp/run/rig.yaml /tmp/run/run.h5 -o flow.csv\n"
       "  bead batch --rig rig.yaml -o results runs/*.h5 (many runs: resumable, shardable)\n"
-      "  bead import VENDOR.csv -o run.h5 --profile-column ... (a profiler's own CSV export)\n"
+      "  bead import VENDOR.csv -o run.h5 --profile-column ... (a profiler's CSV, .mat, PLY, PCD)\n"
+      "  bead export --rig /tmp/run/rig.yaml /tmp/run/run.h5 -o run.ply (a point cloud)\n"
       "  bead frames --plane plane.yaml --rate-hz 200 frames/*.png -o run.h5 (camera frames)\n"
       "  bead report --rig /tmp/run/rig.yaml /tmp/run/run.h5 --pins /tmp/run/pins.h5 -o report.html\n"
       "Run 'bead SUBCOMMAND --help' for each subcommand's inputs and outputs.\n");

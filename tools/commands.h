@@ -20,6 +20,7 @@ Run AddCalibrate(CLI::App& app);
 Run AddIdentify(CLI::App& app);
 Run AddExplain(CLI::App& app);
 Run AddImport(CLI::App& app);
+Run AddExport(CLI::App& app);
 Run AddFrames(CLI::App& app);
 Run AddBatch(CLI::App& app);
 Run AddReport(CLI::App& app);

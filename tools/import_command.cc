@@ -1,68 +1,101 @@
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
+#include "libbead/core/error.h"
+#include "libbead/io/mat_run.h"
+#include "libbead/io/point_cloud.h"
 #include "libbead/io/run_archive.h"
 #include "libbead/io/vendor_csv.h"
 #include "tools/commands.h"
 #include "tools/subcommands.h"
 
 namespace bead::tools {
+namespace {
+
+// The reader for the input's extension: .csv, .mat, .ply or .pcd.
+ImportedRun ReadForeignRun(const std::string& path, const ImportColumns& columns) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (ext == ".csv" || ext == ".txt") return ReadVendorCsv(path, columns);
+  if (ext == ".mat") return ReadMatRun(path, columns);
+  if (IsPointCloudPath(path)) return ReadPointCloud(path, columns);
+  throw Error(Located(path, "", "import reads .csv, .mat, .ply or .pcd files (by their extension)"));
+}
+
+void PrintSummary(const std::string& input, const std::string& output, const ImportedRun& imported) {
+  const ProfileBlock& b = imported.run.profiles;
+  std::size_t fewest = b.points, most = 0;
+  float x_lo = INFINITY, x_hi = -INFINITY, z_lo = INFINITY, z_hi = -INFINITY;
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    const ProfileView v = b.view(i);
+    std::size_t points = 0;
+    for (std::size_t k = 0; k < v.z_mm.size(); ++k)
+      if (std::isfinite(v.x_mm[k]) && std::isfinite(v.z_mm[k])) {
+        ++points;
+        x_lo = std::min(x_lo, v.x_mm[k]), x_hi = std::max(x_hi, v.x_mm[k]);
+        z_lo = std::min(z_lo, v.z_mm[k]), z_hi = std::max(z_hi, v.z_mm[k]);
+      }
+    fewest = std::min(fewest, points), most = std::max(most, points);
+  }
+  std::printf("%s: %zu points in %zu profiles (%zu to %zu points each) over %.3f s; wrote %s\n", input.c_str(),
+              imported.rows, b.size(), fewest, most, b.t_s.back() - b.t_s.front(), output.c_str());
+  std::printf("  x %.4g .. %.4g mm, z (height) %.4g .. %.4g mm: the rig's reference_areas_mm must lie in this x range\n",
+              x_lo, x_hi, z_lo, z_hi);
+  if (EncoderAbsent(imported.run))
+    std::printf("  no encoder column: /profiles/encoder holds 0, marked encoder=absent (flow needs the wheel's motion)\n");
+}
+
+}  // namespace
 
 Run AddImport(CLI::App& app) {
   struct Args {
     std::string input, output;
-    VendorCsvColumns columns;
+    ImportColumns columns;
   };
   auto args = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand("import", Summary("import"));
   cmd->footer(
-      "In:  a vendor CSV export, one row per point, with a header; name the columns that hold\n"
-      "     the profile id (rows of one profile together), its time, x and z. Other columns\n"
-      "     are ignored. A profile takes the time of its first row.\n"
+      "In (by the extension; the --*-column options name what holds what):\n"
+      "  .csv  a vendor CSV export, one row per point, with a header: columns of the profile id\n"
+      "        (rows of one profile together), its time, x and z; other columns are ignored.\n"
+      "  .mat  a MATLAB file with the profiles as matrices: z N x P (or P x N), x a vector of P\n"
+      "        or a matrix as z, the time a vector of N, the encoder (optional) a vector of N.\n"
+      "  .ply, .pcd  a line scanner's point cloud: --profile-column names the field that numbers\n"
+      "        the scan lines (the lines are ordered by it; an organized cloud may leave it out:\n"
+      "        a profile per row); also the fields of time, x and z. `bead export` writes such a\n"
+      "        cloud (fields profile, t_s, encoder, x, z_sensor) which comes back in this way.\n"
+      "  A profile takes the time of its first point; non-finite x or z are dropouts.\n"
       "Out: RUN.h5, the run archive of docs/data-formats.md (profiles only, no /log),\n"
       "     z as height (up): --z-distance turns a distance from the sensor into one.\n"
       "     Without --encoder-column, /profiles/encoder holds 0 and the root attribute\n"
       "     encoder=absent says so: `bead measure` works, `bead flow` refuses the archive.\n"
-      "Example (testdata/realdata/bead-observer, a real export):\n"
+      "Examples:\n"
       "  bead import Representative_Layer_raw_points.csv -o layer.h5 --profile-column ScanID \\\n"
-      "       --time-column Timestamp --x-column X --z-column Z --z-distance");
+      "       --time-column Timestamp --x-column X --z-column Z --z-distance\n"
+      "  bead import scans.mat -o run.h5 --time-column t --x-column X --z-column Z --encoder-column enc\n"
+      "  bead import run.ply -o back.h5 --profile-column profile --time-column t_s --x-column x \\\n"
+      "       --z-column z_sensor --encoder-column encoder");
   auto& c = args->columns;
-  cmd->add_option("csv", args->input, "Vendor CSV export")->required()->check(CLI::ExistingFile);
+  cmd->add_option("file", args->input, "The file to import: .csv, .mat, .ply or .pcd")
+      ->required()->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", args->output, "Run archive to write (.h5, written atomically)")->required();
-  cmd->add_option("--profile-column", c.profile, "Column of the profile id (whole numbers)")->required();
-  cmd->add_option("--time-column", c.time, "Column of the time")->required();
-  cmd->add_option("--x-column", c.x, "Column of x, mm")->required();
-  cmd->add_option("--z-column", c.z, "Column of z, mm")->required();
-  cmd->add_option("--encoder-column", c.encoder, "Column of the raw wheel encoder counter (if the export has one)");
+  cmd->add_option("--profile-column", c.profile,
+                  "Column of the profile id (CSV: whole numbers; PLY/PCD: the field ordering the scan lines)");
+  cmd->add_option("--time-column", c.time, "Column (variable, field) of the time")->required();
+  cmd->add_option("--x-column", c.x, "Column (variable, field) of x, mm")->required();
+  cmd->add_option("--z-column", c.z, "Column (variable, field) of z, mm")->required();
+  cmd->add_option("--encoder-column", c.encoder, "Column of the raw wheel encoder counter (if the file has one)");
   cmd->add_option("--time-scale", c.time_scale, "The time column times this is seconds (0.001 for ms)")
       ->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_flag("--z-distance", c.z_is_distance, "z is the distance from the sensor (grows away from it)");
 
   return [args]() {
-    const VendorImport imported = ReadVendorCsv(args->input, args->columns);
-    const ProfileBlock& b = imported.run.profiles;
+    const ImportedRun imported = ReadForeignRun(args->input, args->columns);
     WriteRunArchive(args->output, imported.run);
-    std::size_t fewest = b.points, most = 0;
-    float x_lo = INFINITY, x_hi = -INFINITY, z_lo = INFINITY, z_hi = -INFINITY;
-    for (std::size_t i = 0; i < b.size(); ++i) {
-      const ProfileView v = b.view(i);
-      std::size_t points = 0;
-      for (std::size_t k = 0; k < v.z_mm.size(); ++k)
-        if (std::isfinite(v.x_mm[k]) && std::isfinite(v.z_mm[k])) {
-          ++points;
-          x_lo = std::min(x_lo, v.x_mm[k]), x_hi = std::max(x_hi, v.x_mm[k]);
-          z_lo = std::min(z_lo, v.z_mm[k]), z_hi = std::max(z_hi, v.z_mm[k]);
-        }
-      fewest = std::min(fewest, points), most = std::max(most, points);
-    }
-    std::printf("%s: %zu points in %zu profiles (%zu to %zu points each) over %.3f s; wrote %s\n",
-                args->input.c_str(), imported.rows, b.size(), fewest, most, b.t_s.back() - b.t_s.front(),
-                args->output.c_str());
-    std::printf("  x %.4g .. %.4g mm, z (height) %.4g .. %.4g mm: the rig's reference_areas_mm must lie in this x range\n",
-                x_lo, x_hi, z_lo, z_hi);
-    if (EncoderAbsent(imported.run))
-      std::printf("  no encoder column: /profiles/encoder holds 0, marked encoder=absent (flow needs the wheel's motion)\n");
+    PrintSummary(args->input, args->output, imported);
     return 0;
   };
 }

@@ -82,6 +82,33 @@ std::string MatContents::Names() const {
   return all.empty() ? "none" : all;
 }
 
+MatMatrix ReadMatMatrix(const std::string& path, const std::string& name) {
+  MatPtr mat(Mat_Open(path.c_str(), MAT_ACC_RDONLY));
+  if (!mat) throw Error(Located(path, "", "not a MATLAB .mat file libmatio can open (v4, v5 or v7.3)"));
+  std::string numeric;
+  bool found = false;
+  for (;;) {
+    VarPtr v(Mat_VarReadNextInfo(mat.get()));
+    if (!v) break;
+    if (v->name == nullptr) continue;
+    found = found || name == v->name;
+    if (Numeric(v->class_type) && !v->isComplex && v->rank <= 2)
+      numeric += (numeric.empty() ? "" : ", ") + std::string(v->name);
+  }
+  const std::string there = " (its numeric variables: " + (numeric.empty() ? std::string("none") : numeric) + ")";
+  if (!found) throw Error(Located(path, name, "no such variable" + there));
+  Mat_Rewind(mat.get());
+  VarPtr v(Mat_VarRead(mat.get(), name.c_str()));
+  if (!v) throw Error(Located(path, name, "its data could not be read"));
+  if (!Numeric(v->class_type)) throw Error(Located(path, name, std::string("is ") + ClassName(v->class_type) + there));
+  if (v->isComplex) throw Error(Located(path, name, "is complex" + there));
+  if (v->rank != 2) throw Error(Located(path, name, "has " + std::to_string(v->rank) + " dimensions, not 2"));
+  MatMatrix m{name, v->dims[0], v->dims[1], {}};
+  if (m.rows * m.cols == 0) throw Error(Located(path, name, "is empty"));
+  if (!Values(v.get(), m.rows * m.cols, m.values)) throw Error(Located(path, name, "its data could not be read"));
+  return m;
+}
+
 MatContents ReadMatVectors(const std::string& path) {
   MatPtr mat(Mat_Open(path.c_str(), MAT_ACC_RDONLY));
   if (!mat) throw Error(Located(path, "", "not a MATLAB .mat file libmatio can open (v4, v5 or v7.3)"));

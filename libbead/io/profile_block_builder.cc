@@ -4,19 +4,34 @@
 #include <cmath>
 #include <limits>
 
+#include "libbead/core/error.h"
+
 namespace bead {
 
-void ProfileBlockBuilder::Add(const CsvReader& csv, int64_t id, double t_s, int64_t encoder, float x_mm, float z_mm) {
+std::string ProfileBlockBuilder::Append(const char* noun, int64_t id, double t_s, int64_t encoder, float x_mm,
+                                        float z_mm) {
   if (profiles_.empty() || id != current_id_) {
-    if (seen_.count(id)) csv.Fail("rows of profile " + std::to_string(id) + " are not together");
+    if (seen_.count(id)) return std::string(noun) + " of profile " + std::to_string(id) + " are not together";
     seen_.insert({id, true});
     current_id_ = id;
     profiles_.push_back({t_s, encoder, {}, {}});
   } else if (t_s != profiles_.back().t || encoder != profiles_.back().encoder) {
-    csv.Fail("profile " + std::to_string(id) + " changes its t_s or encoder between rows");
+    return "profile " + std::to_string(id) + " changes its t_s or encoder between " + noun;
   }
   profiles_.back().x.push_back(x_mm);
   profiles_.back().z.push_back(z_mm);
+  return {};
+}
+
+void ProfileBlockBuilder::Add(const CsvReader& csv, int64_t id, double t_s, int64_t encoder, float x_mm, float z_mm) {
+  const std::string why = Append("rows", id, t_s, encoder, x_mm, z_mm);
+  if (!why.empty()) csv.Fail(why);
+}
+
+void ProfileBlockBuilder::Add(const std::string& file, const std::string& where, int64_t id, double t_s,
+                              int64_t encoder, float x_mm, float z_mm) {
+  const std::string why = Append("points", id, t_s, encoder, x_mm, z_mm);
+  if (!why.empty()) throw Error(Located(file, where, why));
 }
 
 ProfileBlock ProfileBlockBuilder::Build(const std::string& file, const std::string& where) const {

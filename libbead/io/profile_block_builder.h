@@ -1,6 +1,7 @@
-// ProfileBlockBuilder: collects the points of profiles given one point per
-// CSV row (the rows of one profile together), then pads them with NaN into
-// a ProfileBlock. Shared by the spec's CSV forms and vendor CSV imports.
+// ProfileBlockBuilder: collects the points of profiles given one point at
+// a time (the points of one profile together), then pads them with NaN into
+// a ProfileBlock. Shared by the spec's CSV forms and the imports of other
+// tools' files (CSV, .mat, PLY/PCD).
 #pragma once
 
 #include <cstdint>
@@ -19,6 +20,9 @@ class ProfileBlockBuilder {
   // `csv` (which names the line in errors): a profile's rows must be
   // together and agree on t_s and encoder.
   void Add(const CsvReader& csv, int64_t id, double t_s, int64_t encoder, float x_mm, float z_mm);
+  // The same for points from elsewhere: errors name `file` and `where`.
+  void Add(const std::string& file, const std::string& where, int64_t id, double t_s, int64_t encoder, float x_mm,
+           float z_mm);
 
   bool empty() const { return profiles_.empty(); }
   std::size_t size() const { return profiles_.size(); }
@@ -28,6 +32,8 @@ class ProfileBlockBuilder {
   ProfileBlock Build(const std::string& file, const std::string& where) const;
 
  private:
+  // Adds the point; the reason when it cannot be added, else empty.
+  std::string Append(const char* noun, int64_t id, double t_s, int64_t encoder, float x_mm, float z_mm);
   struct Profile {
     double t;
     int64_t encoder;

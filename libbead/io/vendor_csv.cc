@@ -27,11 +27,8 @@ std::size_t ColumnIndex(const CsvReader& csv, const std::vector<std::string>& he
 
 }  // namespace
 
-VendorImport ReadVendorCsv(const std::string& path, const VendorCsvColumns& c) {
-  if (!(std::isfinite(c.time_scale) && c.time_scale > 0.0))
-    throw Error(Located(path, "", "the time scale must be a positive number"));
-  for (const auto* name : {&c.profile, &c.time, &c.x, &c.z})
-    if (name->empty()) throw Error(Located(path, "", "the profile, time, x and z columns must all be named"));
+ImportedRun ReadVendorCsv(const std::string& path, const ImportColumns& c) {
+  CheckImportColumns(path, c, true);
   CsvReader csv(path);
   const std::vector<std::string> header = csv.Header({}, "vendor CSV");
   const std::size_t i_profile = ColumnIndex(csv, header, c.profile, "profile id");
@@ -42,7 +39,7 @@ VendorImport ReadVendorCsv(const std::string& path, const VendorCsvColumns& c) {
   const std::size_t i_encoder = has_encoder ? ColumnIndex(csv, header, c.encoder, "encoder") : 0;
   const float sign = c.z_is_distance ? -1.0f : 1.0f;
 
-  VendorImport result;
+  ImportedRun result;
   ProfileBlockBuilder builder;
   int64_t current = 0;
   double current_t = 0.0;

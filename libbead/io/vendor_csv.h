@@ -8,29 +8,13 @@
 // standstill.
 #pragma once
 
-#include <cstddef>
 #include <string>
 
-#include "libbead/io/run_archive.h"
+#include "libbead/io/import_columns.h"
 
 namespace bead {
 
-struct VendorCsvColumns {
-  std::string profile;  // whole-number profile id; a profile's rows together
-  std::string time;     // profile time (a profile takes its first row's)
-  std::string x;        // across the laser line
-  std::string z;        // height, or distance from the sensor (z_is_distance)
-  std::string encoder;  // empty: the export has none
-  double time_scale = 1.0;     // the time column times this is seconds
-  bool z_is_distance = false;  // z grows away from the sensor: height = -z
-};
-
-struct VendorImport {
-  RunArchive run;
-  std::size_t rows = 0;  // points read
-};
-
 // Throws bead::Error naming the file, the line and the column.
-VendorImport ReadVendorCsv(const std::string& path, const VendorCsvColumns& columns);
+ImportedRun ReadVendorCsv(const std::string& path, const ImportColumns& columns);
 
 }  // namespace bead

@@ -81,7 +81,7 @@ TEST(CommandLine, BeadListsEverySubcommandAndNamesAWrongOne) {
   test::TempDir dir;
   const auto [help_status, help] = test::RunCli(dir, "--help");
   EXPECT_EQ(help_status, 0);
-  for (const char* name : {"measure", "flow", "batch", "calibrate", "simulate", "import", "frames", "identify", "explain"}) {
+  for (const char* name : {"measure", "flow", "batch", "calibrate", "simulate", "import", "export", "frames", "identify", "explain", "report"}) {
     EXPECT_NE(help.find(std::string("  ") + name + " "), std::string::npos) << name << "\n" << help;
     const auto [status, out] = test::RunCli(dir, std::string(name) + " --help");
     EXPECT_EQ(status, 0) << name << "\n" << out;

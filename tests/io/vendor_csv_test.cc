@@ -21,7 +21,7 @@ namespace {
 
 const std::string kReal = std::string(BEAD_SOURCE_DIR) + "/testdata/realdata/bead-observer/Representative_Layer_raw_points.csv";
 
-VendorCsvColumns RealColumns() { return {"ScanID", "Timestamp", "X", "Z", "", 1.0, true}; }
+ImportColumns RealColumns() { return {"ScanID", "Timestamp", "X", "Z", "", 1.0, true}; }
 
 // The rows of the real file, parsed independently of the importer.
 struct Row {
@@ -44,7 +44,7 @@ std::vector<Row> RealRows() {
 
 TEST(VendorCsv, RealExportKeepsEveryPointWithDistanceTurnedIntoHeight) {
   const std::vector<Row> rows = RealRows();
-  const VendorImport imported = ReadVendorCsv(kReal, RealColumns());
+  const ImportedRun imported = ReadVendorCsv(kReal, RealColumns());
   const ProfileBlock& b = imported.run.profiles;
   ASSERT_EQ(imported.rows, rows.size());
   ASSERT_EQ(b.size(), 399u);  // ScanID 1..399, as the file's README says
@@ -111,7 +111,7 @@ TEST(VendorCsv, EncoderColumnAndTimeScaleAreUsed) {
                   "ms,id,enc,height,pos\n"
                   "10,7,100,0.5,-1\n10,7,100,0.6,0\n10,7,100,0.5,1\n"
                   "15,8,140,0.4,-1\n15,8,140,,0\n");
-  const VendorImport imported = ReadVendorCsv(dir / "v.csv", {"id", "ms", "pos", "height", "enc", 1e-3, false});
+  const ImportedRun imported = ReadVendorCsv(dir / "v.csv", {"id", "ms", "pos", "height", "enc", 1e-3, false});
   const ProfileBlock& b = imported.run.profiles;
   ASSERT_EQ(b.size(), 2u);
   EXPECT_FALSE(EncoderAbsent(imported.run));
@@ -125,7 +125,7 @@ TEST(VendorCsv, EncoderColumnAndTimeScaleAreUsed) {
 
 TEST(VendorCsv, MalformedExportsAreRejectedWithFileLineAndColumn) {
   test::TempDir dir;
-  const VendorCsvColumns columns{"id", "t", "x", "z", "", 1.0, false};
+  const ImportColumns columns{"id", "t", "x", "z", "", 1.0, false};
   struct Case {
     std::string name, text, expect;
   };

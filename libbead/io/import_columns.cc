@@ -1,0 +1,18 @@
+#include "libbead/io/import_columns.h"
+
+#include <cmath>
+
+#include "libbead/core/error.h"
+
+namespace bead {
+
+void CheckImportColumns(const std::string& path, const ImportColumns& c, bool profile_required) {
+  if (!(std::isfinite(c.time_scale) && c.time_scale > 0.0))
+    throw Error(Located(path, "", "the time scale must be a positive number"));
+  for (const auto* name : {&c.time, &c.x, &c.z})
+    if (name->empty()) throw Error(Located(path, "", "the time, x and z columns must all be named"));
+  if (profile_required && c.profile.empty())
+    throw Error(Located(path, "", "name the column of the profile id (--profile-column)"));
+}
+
+}  // namespace bead

@@ -1,0 +1,35 @@
+// What `bead import` reads from a file made by another tool: which of its
+// columns (CSV), variables (.mat) or fields (PLY/PCD) hold the profile's
+// number, its time, x, z and the wheel encoder, and how to turn them into
+// the run archive's units. The readers (vendor_csv.h, mat_run.h,
+// point_cloud.h) all fill an ImportedRun.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "libbead/io/run_archive.h"
+
+namespace bead {
+
+struct ImportColumns {
+  std::string profile;  // whole-number profile id (CSV), the field ordering the scan lines (PLY/PCD)
+  std::string time;     // profile time (a profile takes its first point's)
+  std::string x;        // across the laser line
+  std::string z;        // height, or distance from the sensor (z_is_distance)
+  std::string encoder;  // empty: the file has none
+  double time_scale = 1.0;     // the time column times this is seconds
+  bool z_is_distance = false;  // z grows away from the sensor: height = -z
+};
+
+struct ImportedRun {
+  RunArchive run;
+  std::size_t rows = 0;  // points read
+};
+
+// Checks what every reader needs of `c` (a positive time scale, the time,
+// x and z named; the profile too when `profile_required`); throws
+// bead::Error naming `path`.
+void CheckImportColumns(const std::string& path, const ImportColumns& c, bool profile_required);
+
+}  // namespace bead
