@@ -2,7 +2,6 @@
 // call over to the subcommand's own program, bead-<name>, beside it (exec:
 // same process, same exit status), so that a call loads only the libraries
 // its subcommand uses: `bead --help` none, `bead measure` no OpenCV.
-#include <limits.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -11,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "tools/own_folder.h"
 #include "tools/subcommands.h"
 
 namespace {
@@ -35,15 +35,6 @@ void PrintHelp() {
       "Run 'bead SUBCOMMAND --help' for each subcommand's inputs and outputs.\n");
 }
 
-// The folder this program was started from (where its subcommands are).
-std::string OwnFolder(const char* argv0) {
-  char path[PATH_MAX];
-  const ssize_t n = readlink("/proc/self/exe", path, sizeof path - 1);
-  std::string self = n > 0 ? std::string(path, static_cast<std::size_t>(n)) : std::string(argv0);
-  const auto slash = self.rfind('/');
-  return slash == std::string::npos ? "." : self.substr(0, slash);
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -58,7 +49,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "); see bead --help\n");
     return 2;
   }
-  const std::string program = OwnFolder(argv[0]) + "/bead-" + name;
+  const std::string program = bead::tools::OwnFolder(argv[0]) + "/bead-" + name;
   std::vector<char*> args(argv, argv + argc);
   args[0] = const_cast<char*>("bead");
   args.push_back(nullptr);

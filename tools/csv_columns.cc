@@ -21,6 +21,20 @@ struct Columns {
   std::string first_skip;  // "line 5, column 'w': 'N/A'"
 };
 
+// The row rule of both sources: a row whose values all came is kept, the
+// others counted; the time (the first value) must increase, else `fail`
+// throws naming the row.
+template <class Fail>
+void AddRow(Columns& out, const std::vector<double>& v, bool ok, bool first_is_time, const Fail& fail) {
+  if (!ok) {
+    ++out.skipped;
+    return;
+  }
+  if (first_is_time && !out.v[0].empty() && !(v[0] > out.v[0].back()))
+    fail("does not increase (" + std::to_string(out.v[0].back()) + " then " + std::to_string(v[0]) + ")");
+  for (std::size_t k = 0; k < v.size(); ++k) out.v[k].push_back(v[k]);
+}
+
 bool IsMat(const std::string& path) {
   return path.size() > 4 && (path.compare(path.size() - 4, 4, ".mat") == 0 || path.compare(path.size() - 4, 4, ".MAT") == 0);
 }
@@ -58,24 +72,19 @@ Columns ReadMat(const std::string& path, const std::vector<std::string>& names, 
   }
   Columns out;
   out.v.resize(names.size());
+  std::vector<double> v(names.size());
   for (std::size_t i = 0; i < n; ++i) {
     bool ok = true;
     for (std::size_t k = 0; k < vars.size() && ok; ++k) {
-      const double x = vars[k] ? vars[k]->values[i] : double(i);
-      if (!std::isfinite(x)) {
+      v[k] = vars[k] ? vars[k]->values[i] : double(i);
+      if (!std::isfinite(v[k])) {
         ok = false;
         if (out.first_skip.empty()) out.first_skip = "element " + std::to_string(i + 1) + " of '" + names[k] + "': not finite";
       }
     }
-    if (!ok) {
-      ++out.skipped;
-      continue;
-    }
-    const double t = vars[0] ? vars[0]->values[i] : double(i);
-    if (first_is_time && !out.v[0].empty() && !(t > out.v[0].back()))
-      throw Error(Located(path, "", "'" + names[0] + "' does not increase at element " + std::to_string(i + 1) + " (" +
-                                        std::to_string(out.v[0].back()) + " then " + std::to_string(t) + ")"));
-    for (std::size_t k = 0; k < vars.size(); ++k) out.v[k].push_back(vars[k] ? vars[k]->values[i] : double(i));
+    AddRow(out, v, ok, first_is_time, [&](const std::string& why) {
+      throw Error(Located(path, "", "'" + names[0] + "' " + why + " at element " + std::to_string(i + 1)));
+    });
   }
   return out;
 }
@@ -121,13 +130,7 @@ Columns Read(const std::string& path, const std::vector<std::string>& names, boo
         out.first_skip = "line " + std::to_string(row + 1) + ", column '" + names[k] + "': '" + f.substr(0, 40) +
                          "' is not a finite number";
     }
-    if (!ok) {
-      ++out.skipped;
-      continue;
-    }
-    if (first_is_time && !out.v[0].empty() && !(v[0] > out.v[0].back()))
-      csv.Fail("time does not increase (" + std::to_string(out.v[0].back()) + " then " + std::to_string(v[0]) + ")");
-    for (std::size_t k = 0; k < v.size(); ++k) out.v[k].push_back(v[k]);
+    AddRow(out, v, ok, first_is_time, [&](const std::string& why) { csv.Fail("time " + why); });
   }
   return out;
 }

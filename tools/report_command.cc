@@ -22,6 +22,7 @@
 #include "libbead/io/rig_yaml.h"
 #include "libbead/io/run_archive.h"
 #include "tools/commands.h"
+#include "tools/own_folder.h"
 #include "libbead/archive/measure_run.h"
 #include "tools/occlusion_step.h"
 
@@ -33,12 +34,8 @@ namespace fs = std::filesystem;
 // The report script: installed beside the tool (PREFIX/share/bead), else
 // in the source tree this tool was built from.
 std::string ReportScript() {
-  std::error_code ec;
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    const fs::path installed = self.parent_path().parent_path() / "share" / "bead" / "bead_report.py";
-    if (fs::exists(installed)) return installed.string();
-  }
+  const fs::path installed = fs::path(OwnFolder("")).parent_path() / "share" / "bead" / "bead_report.py";
+  if (fs::exists(installed)) return installed.string();
   return std::string(BEAD_SOURCE_DIR) + "/tools/report/bead_report.py";
 }
 
