@@ -6,8 +6,9 @@
 # and exit status 1 when any target crashed in libbead's code (the inputs
 # in build-fuzz/crashes/<target>/, each with its .report, the fuzzer's log
 # beside them). A crash, hang or runaway allocation whose stack reaches
-# libhdf5 before any code of ours (Debian 12's 1.10.8 on a corrupt file) is
-# upstream's: reported on a line of its own, not counted.
+# libhdf5 or libmatio before any code of ours (Debian 12's HDF5 1.10.8 and
+# matio 1.5.23 on a corrupt file) is upstream's: reported on a line of its
+# own, not counted.
 #   bash scripts/fuzz.sh [SECONDS] [TARGET...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -26,7 +27,7 @@ CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWit
 cmake --build build-fuzz -j "$(nproc)" --target "${targets[@]/%/_fuzz}"
 
 # Whose code a report's stack is in: the first frame that is either in
-# libhdf5 or in a source file of ours (libbead/, calibration/, tools/, a
+# libhdf5 or libmatio, or in a source file of ours (libbead/, calibration/, tools/, a
 # fuzz target) decides. Every other frame is the sanitizer's or libFuzzer's
 # runtime, an interceptor (strdup, memset: they carry no file of ours), libc
 # or libstdc++, and says nothing about whose bug it is. "libhdf5": a crash,
@@ -34,8 +35,8 @@ cmake --build build-fuzz -j "$(nproc)" --target "${targets[@]/%/_fuzz}"
 # bug, kept and reported, not counted as libbead's.
 classify() {
   local frame
-  frame=$(grep -E '^ +#[0-9]+ ' "$1" | grep -E 'libhdf5|/libbead/|/calibration/|/tools/[a-z_]+\.cc|/fuzz/[a-z_]+\.cc' | head -1)
-  case "$frame" in *libhdf5*) echo libhdf5 ;; *) echo ours ;; esac
+  frame=$(grep -E '^ +#[0-9]+ ' "$1" | grep -E 'libhdf5|libmatio|/libbead/|/calibration/|/tools/[a-z_]+\.cc|/fuzz/[a-z_]+\.cc' | head -1)
+  case "$frame" in *libhdf5* | *libmatio*) echo upstream ;; *) echo ours ;; esac
 }
 
 failed=0
@@ -62,14 +63,14 @@ for t in "${targets[@]}"; do
     rerun=("${env[@]}")
     case "$a" in */oom-*) rerun[0]=ASAN_OPTIONS=detect_leaks=0:allocator_may_return_null=0:max_allocation_size_mb=2048 ;; esac
     env "${rerun[@]}" "build-fuzz/fuzz/${t}_fuzz" -runs=1 -timeout=20 -rss_limit_mb=2048 "$a" >"$a.report" 2>&1 || true
-    if [ "$(classify "$a.report")" = libhdf5 ]; then
+    if [ "$(classify "$a.report")" = upstream ]; then
       upstream=$((upstream + 1))
     else
       ours=$((ours + 1))
     fi
   done
   echo "$t: ${runs:-0} executions, $ours crashes"
-  [ "$upstream" -eq 0 ] || echo "  ($upstream more inside libhdf5 itself on a corrupt file: upstream; reports in $crashes/*.report)"
+  [ "$upstream" -eq 0 ] || echo "  ($upstream more inside libhdf5 or libmatio itself on a corrupt file: upstream; reports in $crashes/*.report)"
   if [ "$ours" -ne 0 ]; then
     failed=1
     for r in "$crashes"/*.report; do

@@ -2,7 +2,9 @@
 
 #include <matio.h>
 
+#include <algorithm>
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <set>
 
@@ -68,6 +70,26 @@ bool Values(const matvar_t* v, std::size_t n, std::vector<double>& out) {
   }
 }
 
+// Whether a variable of `values` elements of `klass` could be in a file of
+// `file_bytes`: deflate packs at most about 1032:1 (zlib's technical
+// notes), so a header declaring more is corrupt. libmatio would allocate
+// whatever a corrupt header says (gigabytes) before finding out.
+bool Fits(std::size_t values, matio_classes klass, std::uintmax_t file_bytes) {
+  const std::size_t element = std::max<std::size_t>(1, Mat_SizeOfClass(klass));
+  return values <= (file_bytes * 1100 + 4096) / element;
+}
+
+// The declared element count, saturating (a corrupt header may declare
+// dimensions whose product overflows).
+std::size_t Elements(const matvar_t* v) {
+  std::size_t n = 1;
+  for (int i = 0; i < v->rank; ++i) {
+    if (v->dims[i] != 0 && n > SIZE_MAX / v->dims[i]) return SIZE_MAX;
+    n *= v->dims[i];
+  }
+  return n;
+}
+
 }  // namespace
 
 const MatVector* MatContents::Find(const std::string& name) const {
@@ -85,24 +107,30 @@ std::string MatContents::Names() const {
 MatMatrix ReadMatMatrix(const std::string& path, const std::string& name) {
   MatPtr mat(Mat_Open(path.c_str(), MAT_ACC_RDONLY));
   if (!mat) throw Error(Located(path, "", "not a MATLAB .mat file libmatio can open (v4, v5 or v7.3)"));
-  std::string numeric;
+  const std::uintmax_t file_bytes = std::filesystem::file_size(path);
+  std::string numeric, why;  // why: what makes the variable unusable, from its header
   bool found = false;
   for (;;) {
     VarPtr v(Mat_VarReadNextInfo(mat.get()));
     if (!v) break;
     if (v->name == nullptr) continue;
-    found = found || name == v->name;
+    if (name == v->name && !found) {
+      found = true;
+      if (!Numeric(v->class_type)) why = std::string("is ") + ClassName(v->class_type);
+      else if (v->isComplex) why = "is complex";
+      else if (v->rank != 2) why = "has " + std::to_string(v->rank) + " dimensions, not 2";
+      else if (!Fits(Elements(v.get()), v->class_type, file_bytes))
+        why = "declares " + std::to_string(Elements(v.get())) + " values, more than the file could hold (corrupt)";
+    }
     if (Numeric(v->class_type) && !v->isComplex && v->rank <= 2)
       numeric += (numeric.empty() ? "" : ", ") + std::string(v->name);
   }
   const std::string there = " (its numeric variables: " + (numeric.empty() ? std::string("none") : numeric) + ")";
   if (!found) throw Error(Located(path, name, "no such variable" + there));
+  if (!why.empty()) throw Error(Located(path, name, why + there));
   Mat_Rewind(mat.get());
   VarPtr v(Mat_VarRead(mat.get(), name.c_str()));
-  if (!v) throw Error(Located(path, name, "its data could not be read"));
-  if (!Numeric(v->class_type)) throw Error(Located(path, name, std::string("is ") + ClassName(v->class_type) + there));
-  if (v->isComplex) throw Error(Located(path, name, "is complex" + there));
-  if (v->rank != 2) throw Error(Located(path, name, "has " + std::to_string(v->rank) + " dimensions, not 2"));
+  if (!v || !Numeric(v->class_type) || v->rank != 2) throw Error(Located(path, name, "its data could not be read"));
   MatMatrix m{name, v->dims[0], v->dims[1], {}};
   if (m.rows * m.cols == 0) throw Error(Located(path, name, "is empty"));
   if (!Values(v.get(), m.rows * m.cols, m.values)) throw Error(Located(path, name, "its data could not be read"));
@@ -112,6 +140,7 @@ MatMatrix ReadMatMatrix(const std::string& path, const std::string& name) {
 MatContents ReadMatVectors(const std::string& path) {
   MatPtr mat(Mat_Open(path.c_str(), MAT_ACC_RDONLY));
   if (!mat) throw Error(Located(path, "", "not a MATLAB .mat file libmatio can open (v4, v5 or v7.3)"));
+  const std::uintmax_t file_bytes = std::filesystem::file_size(path);
   MatContents out;
   std::set<std::string> seen;
   int unnamed = 0;
@@ -138,8 +167,13 @@ MatContents ReadMatVectors(const std::string& path) {
       out.skipped.push_back(name + ": complex");
       continue;
     }
-    std::size_t n = 1, longest = 0;
-    for (int i = 0; i < v->rank; ++i) n *= v->dims[i], longest = std::max<std::size_t>(longest, v->dims[i]);
+    const std::size_t n = Elements(v.get());
+    std::size_t longest = 0;
+    for (int i = 0; i < v->rank; ++i) longest = std::max<std::size_t>(longest, v->dims[i]);
+    if (!Fits(n, v->class_type, file_bytes)) {
+      out.skipped.push_back(name + ": declares " + std::to_string(n) + " values, more than the file could hold");
+      continue;
+    }
     if (v->rank > 2 || n != longest || n == 0) {
       out.skipped.push_back(name + ": a matrix, not a vector (" + std::to_string(v->rank) + " dimensions, " +
                             std::to_string(n) + " values)");
