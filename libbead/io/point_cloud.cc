@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <numeric>
@@ -115,6 +116,10 @@ void WritePointCloud(const std::string& path, const WheelCloud& c) {
     offset += spec.size;
   }
   cloud.point_step = offset;
+  // PLY and PCD count a cloud's bytes in 32 bits (PCL's row_step).
+  if (c.size() > UINT32_MAX / cloud.point_step)
+    throw Error(Located(path, "", std::to_string(c.size()) + " points are more than one PLY/PCD cloud holds (" +
+                                      std::to_string(UINT32_MAX / cloud.point_step) + "): thin the run (--every)"));
   cloud.width = static_cast<uint32_t>(c.size());
   cloud.height = 1;
   cloud.row_step = cloud.point_step * cloud.width;
