@@ -2,7 +2,7 @@
 // saves them): a twin run written by libmatio (v5 and v7.3, profiles as
 // rows or as columns, x shared or per profile) comes back point for point
 // and measures the same as the archive it came from; files whose shapes
-// do not fit say which variable and why.
+// do not fit, or whose encoder is not whole counts, say which variable and why.
 #include "libbead/io/mat_run.h"
 
 #include <gtest/gtest.h>
@@ -96,13 +96,14 @@ TEST(MatRun, TwinRunComesBackPointForPoint) {
   EXPECT_EQ(test::ReadText(dir / "g0.csv"), test::ReadText(dir / "g1.csv"));
 }
 
-TEST(MatRun, ShapesThatDoNotFitAreNamed) {
+TEST(MatRun, ShapesThatDoNotFitAndFractionalCountsAreNamed) {
   test::TempDir dir;
   const std::string path = dir / "bad.mat";
   mat_t* mat = Mat_CreateVer(path.c_str(), nullptr, MAT_FT_MAT5);
   ASSERT_NE(mat, nullptr);
   WriteMatrix(mat, "Z", 3, 4, std::vector<double>(12, 1.0));
   WriteMatrix(mat, "X", 1, 5, std::vector<double>(5, 0.0));
+  WriteMatrix(mat, "X4", 1, 4, {0.0, 1.0, 2.0, 3.0});
   WriteMatrix(mat, "t", 3, 1, {0.0, 0.1, 0.2});
   WriteMatrix(mat, "t5", 5, 1, {0.0, 0.1, 0.2, 0.3, 0.4});
   WriteMatrix(mat, "enc", 3, 1, {0.0, 1.5, 2.0});
@@ -111,25 +112,13 @@ TEST(MatRun, ShapesThatDoNotFitAreNamed) {
                        [&] { ReadMatRun(path, {"", "t", "X", "Z", "", 1.0, false}); });
   test::ExpectRejected(path, "Z: is 3 x 4: neither side matches the 5 times of 't5'",
                        [&] { ReadMatRun(path, {"", "t5", "X", "Z", "", 1.0, false}); });
-  test::ExpectRejected(path, "height: no such variable (its numeric variables: Z, X, t, t5, enc)",
+  test::ExpectRejected(path, "height: no such variable (its numeric variables: Z, X, X4, t, t5, enc)",
                        [&] { ReadMatRun(path, {"", "t", "X", "height", "", 1.0, false}); });
+  test::ExpectRejected(path, "enc(2): the encoder is not a whole number",
+                       [&] { ReadMatRun(path, {"", "t", "X4", "Z", "enc", 1.0, false}); });
   test::WriteText(dir / "text.mat", "not a mat file at all, only text\n");
   test::ExpectRejected(dir / "text.mat", "not a MATLAB .mat file",
                        [&] { ReadMatRun(dir / "text.mat", {"", "t", "X", "Z", "", 1.0, false}); });
-}
-
-TEST(MatRun, EncoderMustCountInWholeNumbers) {
-  test::TempDir dir;
-  const std::string path = dir / "enc.mat";
-  mat_t* mat = Mat_CreateVer(path.c_str(), nullptr, MAT_FT_MAT5);
-  ASSERT_NE(mat, nullptr);
-  WriteMatrix(mat, "Z", 3, 4, std::vector<double>(12, 1.0));
-  WriteMatrix(mat, "X", 1, 4, {0.0, 1.0, 2.0, 3.0});
-  WriteMatrix(mat, "t", 3, 1, {0.0, 0.1, 0.2});
-  WriteMatrix(mat, "enc", 3, 1, {0.0, 1.5, 2.0});
-  Mat_Close(mat);
-  test::ExpectRejected(path, "enc(2): the encoder is not a whole number",
-                       [&] { ReadMatRun(path, {"", "t", "X", "Z", "enc", 1.0, false}); });
 }
 
 }  // namespace
