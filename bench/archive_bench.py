@@ -6,16 +6,20 @@
   bead measure the same archive end to end (read, geometry, occlusion, CSV):
                its time against the read floor (target <= 0.75x) and its
                peak memory; the same for a 60-minute archive (--sixty):
-               flat memory means the same peak
+               flat memory means the same peak; bead flow's time and peak
+               on both (it keeps ~150 B per profile and the log)
   small        a 12000 x 128 archive: bead measure against a NumPy script
                doing the same geometry end to end (target >= 20x)
-  start        bead --help and bead measure --help: process start alone
+  start        bead --help and bead measure --help (process start alone),
+               bead measure on a 2-second archive with --occlusion none and
+               pooled (the fit's module loaded); with --baseline BEAD,
+               another build's times beside ours
 
 Archives are made with `bead simulate` (and the 60-minute one by repeating
 the 10-minute one six times, time and encoder running on) into --work,
 and reused when they are there. Needs python3-h5py and python3-numpy.
 
-Usage: archive_bench.py --bead build/tools/bead [--work /tmp/bead-bench] [--sixty]
+Usage: archive_bench.py --bead build/tools/bead [--work /tmp/bead-bench] [--sixty] [--baseline OTHER/bead]
 """
 import argparse
 import os
@@ -114,7 +118,12 @@ def main():
     ap.add_argument("--bead", required=True)
     ap.add_argument("--work", default="/tmp/bead-bench")
     ap.add_argument("--sixty", action="store_true", help="also the 60-minute archive (about 1.8 GB)")
+    ap.add_argument("--baseline", help="another build's bead: its start times printed beside ours")
+    ap.add_argument("--repeat", nargs=3, metavar=("SRC", "DST", "TIMES"), help=argparse.SUPPRESS)
     a = ap.parse_args()
+    if a.repeat:
+        repeat(a.repeat[0], a.repeat[1], int(a.repeat[2]))
+        return
     os.makedirs(a.work, exist_ok=True)
     ten = simulate(a.bead, a.work, "ten", 600, 640)
     rig = os.path.join(a.work, "ten", "rig.yaml")
@@ -126,10 +135,18 @@ def main():
     print(f"10-minute archive (120001 x 640): h5py read {floor:.2f} s (one thread); "
           f"bead measure {bead_s:.2f} s = {bead_s / floor:.2f}x the read (target <= 0.75x), peak {bead_mb:.0f} MB")
     if a.sixty:
-        sixty = repeat(ten, os.path.join(a.work, "sixty", "run.h5"), 6)
+        # Made in a child: a process forked from a Python that had held the
+        # blocks reports that Python's peak as its own (ru_maxrss survives exec).
+        sixty = os.path.join(a.work, "sixty", "run.h5")
+        subprocess.run([sys.executable, os.path.abspath(__file__), "--bead", a.bead, "--repeat", ten, sixty, "6"],
+                       check=True)
         s, mb = run_timed([a.bead, "measure", "--rig", rig, sixty, "-o", out])
         print(f"60-minute archive (720006 x 640): bead measure {s:.2f} s, peak {mb:.0f} MB "
               f"({mb / bead_mb:.2f}x the 10-minute peak)")
+    flow_out = os.path.join(a.work, "flow.csv")
+    for name, path in (("10", ten),) + ((("60", sixty),) if a.sixty else ()):
+        s, mb = run_timed([a.bead, "flow", "--rig", rig, path, "-o", flow_out])
+        print(f"{name}-minute archive: bead flow {s:.2f} s, peak {mb:.0f} MB")
 
     small_rig = os.path.join(a.work, "small", "rig.yaml")
     # Best of several: one process's time on a shared machine moves by tens of per cent.
@@ -139,9 +156,19 @@ def main():
     print(f"small archive (12001 x 128): bead measure {bead_small:.3f} s (best of 5), NumPy script "
           f"{numpy_small:.2f} s (best of 3): {numpy_small / bead_small:.0f}x (target >= 20x)")
 
-    for cmd in ([a.bead, "--help"], [a.bead, "measure", "--help"]):
-        best = min(run_timed(cmd)[0] for _ in range(20))
-        print(f"start: {' '.join(os.path.basename(c) for c in cmd)}: {1000 * best:.1f} ms (best of 20)")
+    # Start: the programs alone, then a small archive end to end without and
+    # with the occlusion fit (loaded on demand, tools/occlusion_module.h).
+    tiny = simulate(a.bead, a.work, "tiny", 2, 128)
+    tiny_rig = os.path.join(a.work, "tiny", "rig.yaml")
+    starts = (["--help"], ["measure", "--help"],
+              ["measure", "--rig", tiny_rig, tiny, "-o", out, "--occlusion", "none"],
+              ["measure", "--rig", tiny_rig, tiny, "-o", out])
+    for args in starts:
+        line = f"start: bead {' '.join(os.path.basename(c) for c in args)}: "
+        for label, bead in (("", a.bead),) + ((("baseline ", a.baseline),) if a.baseline else ()):
+            best = min(run_timed([bead] + args)[0] for _ in range(20))
+            line += f"{label}{1000 * best:.1f} ms  "
+        print(line + "(best of 20)")
 
 
 if __name__ == "__main__":

@@ -9,6 +9,7 @@
 #include "libbead/core/error.h"
 #include "tools/commands.h"
 #include "tools/subcommands.h"
+#include "tools/occlusion_module.h"
 #include "tools/occlusion_step.h"
 
 namespace bead::tools {
@@ -85,6 +86,7 @@ Run AddBatch(CLI::App& app) {
     }
     BatchOptions& options = args->options;
     options.occlusion = ParseOcclusionMode(args->occlusion);
+    options.estimate = EstimateOcclusionOnDemand;
     std::error_code ec;
     std::filesystem::create_directories(options.out, ec);
     if (ec) throw Error(Located(options.out, "", "cannot create the output folder: " + ec.message()));

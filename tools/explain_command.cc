@@ -23,6 +23,7 @@
 #include "libbead/io/rig_yaml.h"
 #include "libbead/model/identify.h"
 #include "libbead/archive/measured_run.h"
+#include "libbead/occlusion/occlusion_fit.h"
 #include "tools/commands.h"
 #include "tools/subcommands.h"
 #include "tools/csv_columns.h"
@@ -275,6 +276,7 @@ Run AddExplain(CLI::App& app) {
       WorkerPool pool;
       MeasureRunOptions measure_options;
       measure_options.occlusion = ParseOcclusionMode(args->occlusion);
+      measure_options.estimate = occlusion::EstimateOcclusion;
       auto measure = [&](const std::string& path) {
         auto m = std::make_unique<Measured>();
         OpenedRun opened = OpenRun(path, pool);

@@ -8,6 +8,7 @@
 #include "libbead/archive/measured_run.h"
 #include "tools/commands.h"
 #include "tools/subcommands.h"
+#include "tools/occlusion_module.h"
 #include "tools/occlusion_step.h"
 
 namespace bead::tools {
@@ -56,6 +57,7 @@ Run AddFlow(CLI::App& app) {
     MeasureRunOptions measure;
     measure.profile = args->profile;
     measure.occlusion = ParseOcclusionMode(args->occlusion);
+    measure.estimate = EstimateOcclusionOnDemand;
     const MeasuredRun m = MeasureWholeRun(std::move(opened), rig, pool, measure);
     if (const std::string line = OcclusionLine(m.summary); !line.empty()) std::printf("%s\n", line.c_str());
     const FlowResult flow = ComputeFlow(rig, m.run.profiles, m.geometry, *m.run.log, args->flow, m.corrected, m.sigma);

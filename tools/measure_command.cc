@@ -7,6 +7,7 @@
 #include "libbead/io/rig_yaml.h"
 #include "tools/commands.h"
 #include "tools/subcommands.h"
+#include "tools/occlusion_module.h"
 #include "tools/occlusion_step.h"
 
 namespace bead::tools {
@@ -56,6 +57,7 @@ Run AddMeasure(CLI::App& app) {
     MeasureRunOptions options;
     options.profile = args->options;
     options.occlusion = ParseOcclusionMode(args->occlusion);
+    options.estimate = EstimateOcclusionOnDemand;
     if (tty)
       options.progress = [](std::size_t done, std::size_t total) {
         std::fprintf(stderr, "\rmeasured %zu / %zu profiles", done, total);

@@ -24,6 +24,7 @@
 #include "tools/commands.h"
 #include "tools/own_folder.h"
 #include "libbead/archive/measure_run.h"
+#include "libbead/occlusion/occlusion_fit.h"
 #include "tools/occlusion_step.h"
 
 namespace bead::tools {
@@ -126,6 +127,7 @@ Run AddReport(CLI::App& app) {
     const bool motion = MissingMotion(opened.run, "the flow").none();
     MeasureRunOptions measure;
     measure.occlusion = ParseOcclusionMode(args->occlusion);
+    measure.estimate = occlusion::EstimateOcclusion;
     char tmpl[] = "/tmp/bead-report-XXXXXX";
     if (!mkdtemp(tmpl)) throw Error("cannot make a scratch folder in /tmp for the report");
     const fs::path dir(tmpl);

@@ -126,6 +126,7 @@ RunResult ProcessRun(const BatchRun& job, const BatchOptions& options, WorkerPoo
     MeasureRunOptions measure;
     measure.profile = options.profile;
     measure.occlusion = options.occlusion;
+    measure.estimate = options.estimate;
     measure.progress = progress;
     GeometryCsvWriter geometry((dir / "geometry.csv").string());
     const MeasuredRun m = MeasureWholeRun(std::move(opened), rig, pool, measure,

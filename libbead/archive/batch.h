@@ -30,6 +30,7 @@ struct BatchOptions {
   ProfileOptions profile;
   FlowOptions flow;
   OcclusionMode occlusion = OcclusionMode::kPooled;
+  occlusion::Estimator estimate = nullptr;  // as MeasureRunOptions::estimate
 };
 
 struct RunResult {

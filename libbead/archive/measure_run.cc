@@ -45,6 +45,9 @@ OcclusionMode ParseOcclusionMode(const std::string& text) {
 
 MeasureRunSummary MeasureRun(ProfileStream& stream, const Rig& rig, WorkerPool& pool,
                              const MeasureRunOptions& options, const std::function<void(const GeometryRow&)>& sink) {
+  if (options.occlusion != OcclusionMode::kNone && options.estimate == nullptr)
+    throw Error("MeasureRun: an occlusion mode other than none needs MeasureRunOptions::estimate "
+                "(occlusion::EstimateOcclusion from bead::occlusion)");
   const auto start = std::chrono::steady_clock::now();
   MeasureRunSummary summary;
   summary.occlusion = options.occlusion;
@@ -78,7 +81,7 @@ MeasureRunSummary MeasureRun(ProfileStream& stream, const Rig& rig, WorkerPool& 
         r.encoder = v.encoder;
         r.geometry = processors[worker].Process(v);
         if (options.occlusion != OcclusionMode::kEach || !r.geometry.valid()) continue;
-        const occlusion::OcclusionEstimate e = occlusion::EstimateOcclusion(v, r.geometry, occ);
+        const occlusion::OcclusionEstimate e = options.estimate(v, r.geometry, occ);
         if (!e.ok) continue;
         r.area_corrected_mm2 = e.corrected_area_mm2;
         r.occlusion_bias_mm2 = e.bias_mm2;
@@ -121,7 +124,7 @@ MeasureRunSummary MeasureRun(ProfileStream& stream, const Rig& rig, WorkerPool& 
     }
     std::vector<occlusion::OcclusionEstimate> fits(chosen.size());
     pool.Run(chosen.size(), [&](std::size_t j, unsigned) {
-      fits[j] = occlusion::EstimateOcclusion(profiles.view(j), geometry[j], occ);
+      fits[j] = options.estimate(profiles.view(j), geometry[j], occ);
     });
     summary.pooled = occlusion::PoolFromFits(fits, geometry);
   }

@@ -34,6 +34,10 @@ OcclusionMode ParseOcclusionMode(const std::string& text);
 struct MeasureRunOptions {
   ProfileOptions profile;
   OcclusionMode occlusion = OcclusionMode::kPooled;
+  // The occlusion fit, needed unless `occlusion` is kNone:
+  // occlusion::EstimateOcclusion (link bead::occlusion), or one loaded on
+  // demand. bead::archive itself does not link Ceres.
+  occlusion::Estimator estimate = nullptr;
   std::size_t window_rows = 4096;  // about this many profiles per window (whole chunks)
   // Called after each window with (profiles measured, total).
   std::function<void(std::size_t, std::size_t)> progress;

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "libbead/occlusion/occlusion_pool.h"
 #include "libbead/occlusion/shape_models.h"
 
 namespace bead::occlusion {
@@ -242,6 +243,22 @@ OcclusionEstimate EstimateOcclusion(const ProfileView& view, const BeadGeometry&
   if (!est.constrained)
     est.note = "the hidden part is not constrained by the data: the best shape hides an undercut it cannot show";
   return est;
+}
+
+PooledOcclusion PoolOcclusion(std::size_t count, const std::function<ProfileView(std::size_t)>& view,
+                              const std::vector<BeadGeometry>& geometry, const OcclusionOptions& options,
+                              int max_fits) {
+  std::vector<std::size_t> valid;
+  for (std::size_t i = 0; i < count; ++i)
+    if (geometry[i].valid()) valid.push_back(i);
+  std::vector<OcclusionEstimate> fits;
+  std::vector<BeadGeometry> fitted;
+  for (const std::size_t rank : PoolRanks(valid.size(), max_fits)) {
+    const std::size_t i = valid[rank];
+    fitted.push_back(geometry[i]);
+    fits.push_back(EstimateOcclusion(view(i), geometry[i], options));
+  }
+  return PoolFromFits(fits, fitted);
 }
 
 }  // namespace bead::occlusion

@@ -58,7 +58,14 @@ struct OcclusionOptions {
 };
 
 // Fits the bead of one measured profile (geometry must be valid).
+// Defined in bead::occlusion, which links Ceres; the types above and the
+// pooling (occlusion_pool.h) are in bead::occlusion_pool, which does not.
 OcclusionEstimate EstimateOcclusion(const ProfileView& view, const BeadGeometry& geometry,
                                     const OcclusionOptions& options);
+
+// What a stage that estimates occlusion is handed: EstimateOcclusion, or a
+// function that loads it when first called (the bead tool's programs load
+// Ceres only when a fit runs).
+using Estimator = OcclusionEstimate (*)(const ProfileView&, const BeadGeometry&, const OcclusionOptions&);
 
 }  // namespace bead::occlusion

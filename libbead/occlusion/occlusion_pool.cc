@@ -16,22 +16,6 @@ std::vector<std::size_t> PoolRanks(std::size_t valid_count, int max_fits) {
   return ranks;
 }
 
-PooledOcclusion PoolOcclusion(std::size_t count, const std::function<ProfileView(std::size_t)>& view,
-                              const std::vector<BeadGeometry>& geometry, const OcclusionOptions& options,
-                              int max_fits) {
-  std::vector<std::size_t> valid;
-  for (std::size_t i = 0; i < count; ++i)
-    if (geometry[i].valid()) valid.push_back(i);
-  std::vector<OcclusionEstimate> fits;
-  std::vector<BeadGeometry> fitted;
-  for (const std::size_t rank : PoolRanks(valid.size(), max_fits)) {
-    const std::size_t i = valid[rank];
-    fitted.push_back(geometry[i]);
-    fits.push_back(EstimateOcclusion(view(i), geometry[i], options));
-  }
-  return PoolFromFits(fits, fitted);
-}
-
 PooledOcclusion PoolFromFits(const std::vector<OcclusionEstimate>& fits, const std::vector<BeadGeometry>& geometry) {
   PooledOcclusion pool;
   if (fits.empty()) {

@@ -30,6 +30,8 @@ struct CorrectedArea {
   double area_mm2, bias_mm2, sigma_mm2;
 };
 
+// The pool of a run held whole: PoolRanks, EstimateOcclusion on each,
+// PoolFromFits. Defined with the fit in bead::occlusion (Ceres).
 PooledOcclusion PoolOcclusion(std::size_t count, const std::function<ProfileView(std::size_t)>& view,
                               const std::vector<BeadGeometry>& geometry, const OcclusionOptions& options,
                               int max_fits = 60);

@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "libbead/archive/measure_run.h"
+#include "libbead/core/error.h"
 #include "libbead/io/run_archive.h"
 #include "libbead/occlusion/occlusion_pool.h"
 #include "libbead/profile/measure_block.h"
@@ -54,6 +55,7 @@ class MeasureRunTest : public ::testing::Test {
     ProfileStream stream(*dir_ / "run.h5", pool);
     MeasureRunOptions options;
     options.occlusion = mode;
+    options.estimate = occlusion::EstimateOcclusion;
     options.window_rows = window;
     std::vector<GeometryRow> rows;
     const MeasureRunSummary s =
@@ -105,6 +107,19 @@ TEST_F(MeasureRunTest, FitsPerProfileDoNotDependOnThreads) {
     fitted += std::isfinite(one[i].area_corrected_mm2);
   }
   EXPECT_GT(fitted, one.size() / 2);  // most profiles have a bead to fit
+}
+
+// A run in a pooled or fitted mode is handed its fit; none is a clear error.
+TEST_F(MeasureRunTest, AFitModeWithoutItsEstimatorIsRefused) {
+  WorkerPool pool(1);
+  ProfileStream stream(*dir_ / "run.h5", pool);
+  MeasureRunOptions options;  // occlusion pooled, no estimate
+  try {
+    MeasureRun(stream, sim_->rig_file, pool, options, [](const GeometryRow&) {});
+    FAIL() << "measured without an occlusion fit";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("MeasureRunOptions::estimate"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

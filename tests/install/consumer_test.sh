@@ -24,4 +24,7 @@ export PKG_CONFIG_PATH=$prefix/lib/pkgconfig
 cc -std=c11 "$src/tests/install/consumer/c_consumer.c" $(pkg-config --cflags --libs bead) -lm \
   -Wl,-rpath,"$prefix/lib" -o "$work/c_pkgconfig"
 "$work/c_pkgconfig"
+# The installed tool finds its occlusion module (LIBDIR/bead) when a fit runs.
+"$prefix/bin/bead" measure --rig "$src/testdata/sample/rig.yaml" "$src/testdata/sample/run.h5" \
+  -o "$work/geometry.csv" | grep -q "occlusion (pooled"
 echo "consumer: all ran"

@@ -2,6 +2,9 @@
 // the place in it and what is wrong (never a crash, never a success with
 // nothing in it); what is odd but usable runs to the end with a warning.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <filesystem>
 
 #include <string>
 #include <vector>
@@ -92,15 +95,39 @@ TEST(CommandLine, BeadListsEverySubcommandAndNamesAWrongOne) {
   EXPECT_NE(out.find("'mesure' is not a subcommand"), std::string::npos) << out;
 }
 
-// `bead measure` starts without loading what it does not use: its program
-// needs no OpenCV (which alone brings about 100 shared libraries).
-TEST(CommandLine, MeasureLoadsNoOpenCv) {
+// `bead measure`, `bead flow` and `bead batch` start without loading what
+// they do not use: no OpenCV (about 100 shared libraries), and no Ceres
+// (glog, SuiteSparse, BLAS: about 20), whose fit they load when it runs.
+TEST(CommandLine, MeasureFlowAndBatchLoadNoOpenCvNorCeres) {
   test::TempDir dir;
-  const std::string cmd = "ldd " + std::string(BEAD_CLI) + "-measure > " + (dir / "ldd.txt");
-  ASSERT_EQ(std::system(cmd.c_str()), 0);
-  const std::string libs = test::ReadText(dir / "ldd.txt");
-  EXPECT_NE(libs.find("libyaml-cpp"), std::string::npos) << libs;  // it reads rig files
-  EXPECT_EQ(libs.find("libopencv"), std::string::npos) << libs;
+  for (const char* sub : {"measure", "flow", "batch"}) {
+    const std::string cmd = "ldd " + std::string(BEAD_CLI) + "-" + sub + " > " + (dir / "ldd.txt");
+    ASSERT_EQ(std::system(cmd.c_str()), 0);
+    const std::string libs = test::ReadText(dir / "ldd.txt");
+    EXPECT_NE(libs.find("libyaml-cpp"), std::string::npos) << sub << libs;  // it reads rig files
+    for (const char* absent : {"libopencv", "libceres", "libglog", "libcholmod"})
+      EXPECT_EQ(libs.find(absent), std::string::npos) << sub << " loads " << absent << ":\n" << libs;
+  }
+}
+
+// The fit is loaded when it runs; a program without its module says what
+// to do, and runs with --occlusion none.
+TEST(CommandLine, MeasureWithoutItsOcclusionModuleSaysSo) {
+  namespace fs = std::filesystem;
+  test::TempDir dir;
+  const fs::path lone = dir / "bead-measure";
+  fs::copy_file(std::string(BEAD_CLI) + "-measure", lone);
+  const std::string sample = std::string(BEAD_SOURCE_DIR) + "/testdata/sample/";
+  const std::string args = " measure --rig " + sample + "rig.yaml " + sample + "run.h5 -o " + (dir / "g.csv");
+  const int pooled = std::system((lone.string() + args + " > " + (dir / "out.txt") + " 2>&1").c_str());
+  EXPECT_EQ(WEXITSTATUS(pooled), 1);
+  const std::string out = test::ReadText(dir / "out.txt");
+  EXPECT_NE(out.find("bead-occlusion-fit.so"), std::string::npos) << out;
+  EXPECT_NE(out.find("--occlusion none"), std::string::npos) << out;
+  EXPECT_FALSE(fs::exists(dir / "g.csv"));
+  const int none = std::system((lone.string() + args + " --occlusion none > " + (dir / "out.txt") + " 2>&1").c_str());
+  EXPECT_EQ(WEXITSTATUS(none), 0) << test::ReadText(dir / "out.txt");
+  EXPECT_TRUE(fs::exists(dir / "g.csv"));
 }
 
 }  // namespace
