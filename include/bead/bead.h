@@ -144,7 +144,8 @@ BEAD_API int bead_flow_push_profile(bead_flow* flow, double t_s, int64_t raw_enc
 /* 1 and *out filled when a finished sample is ready (in profile order),
  * 0 when none is yet, -1 on bad arguments. */
 BEAD_API int bead_flow_pop(bead_flow* flow, bead_flow_sample* out);
-/* No more input: finish the last samples with truncated windows. */
+/* No more input: finish the last samples (windows truncated at the end,
+ * the speed fitted to the log's last window, as `bead flow` does). */
 BEAD_API int bead_flow_finish(bead_flow* flow);
 BEAD_API void bead_flow_destroy(bead_flow* flow);
 

@@ -28,6 +28,11 @@ StreamingFlow::StreamingFlow(const Rig& rig, const FlowOptions& options, double 
   const int window = SpeedWindowSamples(options, dt_);
   sg_half_ = window / 2;
   sg_weights_ = SavgolWeights(window, std::min(options.speed_order, window - 1), 1, dt_, sg_half_);
+  // The weights of the last window's fit (Finish), made here: Finish allocates nothing either.
+  for (int p = 0; p < sg_half_; ++p) {
+    const auto tail = SavgolWeights(window, std::min(options.speed_order, window - 1), 1, dt_, window - 1 - p);
+    sg_tail_weights_.insert(sg_tail_weights_.end(), tail.begin(), tail.end());
+  }
   hampel_half_ = std::max(1, static_cast<int>(std::lround(options.speed_hampel_s / dt_)));
   // The log: history_s and the filters' windows, twice over (compacted
   // by half when full).
@@ -83,10 +88,11 @@ void StreamingFlow::PushLog(double t_s, int64_t raw, double screw_rpm) {
   ProcessProfiles();
 }
 
-void StreamingFlow::PushProfile(double t_s, int64_t raw, const BeadGeometry& g, double area_c) {
+void StreamingFlow::PushProfile(double t_s, int64_t raw, const BeadGeometry& g, double area_c, double area_c_sigma) {
   CompactProfiles();
   const double a = g.valid() ? g.area_mm2 : (g.status == ProfileStatus::kNoBead ? 0.0 : kNaN);
-  profiles_.push_back({static_cast<int64_t>(next_profile_++), t_s, raw, a, g.valid() && !std::isnan(area_c) ? area_c : a});
+  profiles_.push_back(
+      {static_cast<int64_t>(next_profile_++), t_s, raw, a, g.valid() && !std::isnan(area_c) ? area_c : a, area_c_sigma});
   area_window_.push_back(a);
   if (g.valid() && std::isfinite(g.area_sigma_mm2)) area_sigmas_.push_back(g.area_sigma_mm2), ++sigmas_seen_;
   area_c_window_.push_back(profiles_.back().area_c);
@@ -111,6 +117,17 @@ void StreamingFlow::ProcessLog() {
     double acc = 0.0;
     for (std::size_t j = 0; j < w; ++j) acc += sg_weights_[j] * counts_[speed_raw_upto_ - sg_half_ + j];
     speed_raw_[speed_raw_upto_++] = acc;
+  }
+  if (finished_ && n >= w && speed_raw_upto_ + sg_half_ == n) {
+    // The run's last samples: the polynomial fitted to the last window, as
+    // the batch's interp mode (SavgolFilter).
+    for (std::size_t p = static_cast<std::size_t>(sg_half_); p-- > 0;) {
+      const double* tail = sg_tail_weights_.data() + p * w;
+      double acc = 0.0;
+      for (std::size_t j = 0; j < w; ++j) acc += tail[j] * counts_[n - w + j];
+      speed_raw_[n - 1 - p] = acc;
+    }
+    speed_raw_upto_ = n;
   }
   if (speed_raw_upto_ < static_cast<std::size_t>(sg_half_)) {
     // The run's first samples: the interp edge fit, once a whole window is in.
@@ -176,6 +193,9 @@ void StreamingFlow::ProcessProfiles() {
     s.area_corrected_mm2 =
         HampelAt(area_c_window_.data(), have, j, options_.area_hampel_half, options_.hampel_nsigma, &out, scratch, floor);
     s.flow_mm3_s = s.surface_speed_mm_s * s.area_corrected_mm2;
+    s.occlusion_bias_mm2 = s.area_mm2 - s.area_corrected_mm2;
+    s.area_corrected_sigma_mm2 = p.area_c_sigma;
+    s.flow_sigma_mm3_s = s.surface_speed_mm_s * p.area_c_sigma;
     s.screw_rpm = InterpolateLinear(t_.data(), rpm_.data(), repaired_upto_, t_e);
     s.valid = std::isfinite(s.t_s) && std::isfinite(s.flow_mm3_s);
     ready_.push_back(s);

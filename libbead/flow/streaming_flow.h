@@ -7,18 +7,23 @@
 //  - its extrusion time lies in the past, so the log already holds it.
 // The delay is therefore bounded by max(speed_window_s / 2 + speed_hampel_s,
 // area_hampel_half / profile rate) plus one log sample (the missed-read check).
-// The arithmetic is the batch's: away from the run's first and last windows
-// the results are identical. Differences, by design: encoder glitches use
-// the fixed threshold min_glitch_counts (the batch can also raise it from
-// the whole run's noise); unless area_sigma_floor_mm2 is given, the area
-// Hampel's floor is the running median of the sigmas seen so far,
-// refreshed as their count doubles (the batch's is the whole run's); the optional area smoothing is batch-only.
+// The arithmetic is the batch's, from the run's first profile to its last
+// (the speed's last window is fitted at Finish as the batch's interp mode
+// fits it), occlusion bias and uncertainty included: identical to rounding
+// (tested). Differences, by design: encoder glitches use the fixed
+// threshold min_glitch_counts (the batch can also raise it from the whole
+// run's noise); unless area_sigma_floor_mm2 is given, the area Hampel's
+// floor is the running median of the sigmas seen so far, refreshed as
+// their count doubles (the batch's is the whole run's); the log step is
+// 1 / log_rate_hz (the batch's the median step); the optional area
+// smoothing is batch-only; an extrusion time older than history_s is NaN.
 // Memory is bounded and reserved at construction: it keeps history_s of
 // log (about 20 kB per second at 500 Hz; the extrusion time of a profile
 // must lie within it: the nozzle-to-laser travel at the slowest wheel
 // speed), at least 1024 profiles' areas and the last 8192 area sigmas for the
 // floor's median. Once the log's first Savitzky-Golay window is in, no
-// call allocates (tested), so long as finished samples are popped.
+// call allocates, Finish included (tested), so long as finished samples
+// are popped.
 #pragma once
 
 #include <cstdint>
@@ -38,8 +43,11 @@ class StreamingFlow {
   StreamingFlow(const Rig& rig, const FlowOptions& options, double log_rate_hz, double history_s = 600.0);
 
   void PushLog(double t_s, int64_t raw_encoder, double screw_rpm);
+  // `area_corrected_mm2` and its standard uncertainty: the occlusion
+  // stage's (NaN: none ran; the measured area is taken, its sigma NaN).
   void PushProfile(double t_s, int64_t raw_encoder, const BeadGeometry& geometry,
-                   double area_corrected_mm2 = std::numeric_limits<double>::quiet_NaN());
+                   double area_corrected_mm2 = std::numeric_limits<double>::quiet_NaN(),
+                   double area_corrected_sigma_mm2 = std::numeric_limits<double>::quiet_NaN());
   // The next finished flow sample, if any.
   bool Pop(FlowSample& out);
   // No more input: finish what can be finished with truncated windows.
@@ -55,7 +63,7 @@ class StreamingFlow {
   FlowOptions options_;
   double dt_;
   int sg_half_, hampel_half_;
-  std::vector<double> sg_weights_;
+  std::vector<double> sg_weights_, sg_tail_weights_;  // tail: sg_half_ rows of the window's length
   EncoderUnwrapper unwrapper_;
   // Log history (unwrapped counts; repaired one sample late).
   std::vector<double> t_, counts_, rpm_, speed_raw_, speed_;
@@ -67,7 +75,7 @@ class StreamingFlow {
     int64_t index;
     double t_s;
     int64_t raw;
-    double area, area_c;
+    double area, area_c, area_c_sigma;
   };
   std::vector<Pending> profiles_;  // waiting from profiles_head_ on
   std::size_t profiles_head_ = 0;
