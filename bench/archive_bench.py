@@ -7,13 +7,15 @@
                its time against the read floor (target <= 0.75x) and its
                peak memory; the same for a 60-minute archive (--sixty):
                flat memory means the same peak; bead flow's time and peak
-               on both (it keeps ~150 B per profile and the log)
+               on both (streamed too: a 56-byte row per profile goes to a
+               scratch file, not memory)
   small        a 12000 x 128 archive: bead measure against a NumPy script
                doing the same geometry end to end (target >= 20x)
   start        bead --help and bead measure --help (process start alone),
                bead measure on a 2-second archive with --occlusion none and
-               pooled (the fit's module loaded); with --baseline BEAD,
-               another build's times beside ours
+               pooled (the fit's module loaded)
+  baseline     with --baseline BEAD, another build's flow and start times
+               beside ours, in the same run
 
 Archives are made with `bead simulate` (and the 60-minute one by repeating
 the 10-minute one six times, time and encoder running on) into --work,
@@ -22,6 +24,7 @@ and reused when they are there. Needs python3-h5py and python3-numpy.
 Usage: archive_bench.py --bead build/tools/bead [--work /tmp/bead-bench] [--sixty] [--baseline OTHER/bead]
 """
 import argparse
+import filecmp
 import os
 import subprocess
 import sys
@@ -118,7 +121,7 @@ def main():
     ap.add_argument("--bead", required=True)
     ap.add_argument("--work", default="/tmp/bead-bench")
     ap.add_argument("--sixty", action="store_true", help="also the 60-minute archive (about 1.8 GB)")
-    ap.add_argument("--baseline", help="another build's bead: its start times printed beside ours")
+    ap.add_argument("--baseline", help="another build's bead: its flow and start times printed beside ours")
     ap.add_argument("--repeat", nargs=3, metavar=("SRC", "DST", "TIMES"), help=argparse.SUPPRESS)
     a = ap.parse_args()
     if a.repeat:
@@ -146,7 +149,12 @@ def main():
     flow_out = os.path.join(a.work, "flow.csv")
     for name, path in (("10", ten),) + ((("60", sixty),) if a.sixty else ()):
         s, mb = run_timed([a.bead, "flow", "--rig", rig, path, "-o", flow_out])
-        print(f"{name}-minute archive: bead flow {s:.2f} s, peak {mb:.0f} MB")
+        line = f"{name}-minute archive: bead flow {s:.2f} s, peak {mb:.0f} MB"
+        if a.baseline:
+            bs, bmb = run_timed([a.baseline, "flow", "--rig", rig, path, "-o", flow_out + ".baseline"])
+            same = filecmp.cmp(flow_out, flow_out + ".baseline", shallow=False)
+            line += f"; baseline {bs:.2f} s, peak {bmb:.0f} MB; CSVs {'identical' if same else 'DIFFER'}"
+        print(line)
 
     small_rig = os.path.join(a.work, "small", "rig.yaml")
     # Best of several: one process's time on a shared machine moves by tens of per cent.

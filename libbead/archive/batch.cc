@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "libbead/archive/measured_run.h"
+#include "libbead/archive/streamed_flow.h"
 #include "libbead/archive/open_run.h"
 #include "libbead/core/error.h"
 #include "libbead/io/atomic_file.h"
@@ -121,41 +122,66 @@ RunResult ProcessRun(const BatchRun& job, const BatchOptions& options, WorkerPoo
   try {
     const Rig rig = ReadRig(job.rig);
     r.offset_counts = rig.offset_counts;
-    OpenedRun opened = OpenRun(job.run, pool);
-    const MotionGap gap = MissingMotion(opened.run, "the flow");
     MeasureRunOptions measure;
     measure.profile = options.profile;
     measure.occlusion = options.occlusion;
     measure.estimate = options.estimate;
     measure.progress = progress;
-    GeometryCsvWriter geometry((dir / "geometry.csv").string());
-    const MeasuredRun m = MeasureWholeRun(std::move(opened), rig, pool, measure,
-                                          [&](const GeometryRow& row) { geometry.Append(row); });
-    geometry.Commit();
-    r.profiles = m.summary.profiles;
-    r.valid = m.summary.valid;
-    if (options.occlusion == OcclusionMode::kPooled) {
-      if (m.summary.pooled.ok)
-        r.occlusion_fraction = m.summary.pooled.bias_fraction;
-      else
-        r.warnings.push_back("occlusion: " + m.summary.pooled.note);
+    auto measured = [&](const MeasureRunSummary& summary) {
+      r.profiles = summary.profiles;
+      r.valid = summary.valid;
+      if (options.occlusion == OcclusionMode::kPooled) {
+        if (summary.pooled.ok)
+          r.occlusion_fraction = summary.pooled.bias_fraction;
+        else
+          r.warnings.push_back("occlusion: " + summary.pooled.note);
+      }
+      if (r.valid == 0 && r.profiles > 0) {
+        // Why, in the words of the geometry CSV's status column: the most common reason.
+        const auto& by = summary.by_status;
+        const std::size_t most = static_cast<std::size_t>(std::max_element(by.begin() + 1, by.end()) - by.begin());
+        r.warnings.push_back("no profile could be measured (" + std::to_string(by[most]) + " of " +
+                             std::to_string(r.profiles) + ": " + StatusName(static_cast<ProfileStatus>(most)) + ")");
+      }
+    };
+    const std::string geometry_csv = (dir / "geometry.csv").string(), flow_csv = (dir / "flow.csv").string();
+    OpenedRun opened = OpenRun(job.run, pool, /*with_log=*/false);
+    const MotionGap gap = MissingMotionUnread(opened, job.run, "the flow");
+    bool done = false;
+    if (gap.none() && StreamableFlow(options.flow)) {
+      // In fixed memory (streamed_flow.h), unless the run needs its whole log.
+      GeometryCsvWriter geometry(geometry_csv);
+      FlowCsvWriter flow(flow_csv);
+      const StreamedFlow f = StreamRunFlow(
+          std::move(opened), job.run, rig, pool, measure, options.flow, [&](const FlowSample& s) { flow.Append(s); },
+          [&](const GeometryRow& row) { geometry.Append(row); });
+      if (f.complete) {
+        geometry.Commit();
+        flow.Commit();
+        measured(f.measure);
+        r.flow_samples = f.valid;
+        r.total_volume_mm3 = f.total_volume_mm3;
+        r.warnings.insert(r.warnings.end(), f.warnings.begin(), f.warnings.end());
+        done = true;
+      }
     }
-    if (r.valid == 0 && r.profiles > 0) {
-      // Why, in the words of the geometry CSV's status column: the most common reason.
-      const auto& by = m.summary.by_status;
-      const std::size_t most = static_cast<std::size_t>(std::max_element(by.begin() + 1, by.end()) - by.begin());
-      r.warnings.push_back("no profile could be measured (" + std::to_string(by[most]) + " of " +
-                           std::to_string(r.profiles) + ": " + StatusName(static_cast<ProfileStatus>(most)) + ")");
-    }
-    if (gap.none()) {
-      const FlowResult flow = ComputeFlow(rig, m.run.profiles, m.geometry, *m.run.log, options.flow, m.corrected, m.sigma);
-      WriteFlowCsv((dir / "flow.csv").string(), flow);
-      for (const FlowSample& s : flow.samples) r.flow_samples += s.valid;
-      r.total_volume_mm3 = flow.total_volume_mm3;
-      r.warnings.insert(r.warnings.end(), flow.warnings.begin(), flow.warnings.end());
-    } else {
-      fs::remove(dir / "flow.csv", ec);
-      r.warnings.push_back("no flow: " + gap.dataset + " " + gap.why);
+    if (!done) {
+      GeometryCsvWriter geometry(geometry_csv);
+      const MeasuredRun m = MeasureWholeRun(OpenRun(job.run, pool), rig, pool, measure,
+                                            [&](const GeometryRow& row) { geometry.Append(row); });
+      geometry.Commit();
+      measured(m.summary);
+      if (gap.none()) {
+        const FlowResult flow =
+            ComputeFlow(rig, m.run.profiles, m.geometry, *m.run.log, options.flow, m.corrected, m.sigma);
+        WriteFlowCsv(flow_csv, flow);
+        for (const FlowSample& s : flow.samples) r.flow_samples += s.valid;
+        r.total_volume_mm3 = flow.total_volume_mm3;
+        r.warnings.insert(r.warnings.end(), flow.warnings.begin(), flow.warnings.end());
+      } else {
+        fs::remove(dir / "flow.csv", ec);
+        r.warnings.push_back("no flow: " + gap.dataset + " " + gap.why);
+      }
     }
   } catch (const std::exception& e) {
     r.status = std::string("failed: ") + e.what();

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "libbead/core/worker_pool.h"
@@ -15,6 +16,7 @@ namespace bead {
 struct OpenedRun {
   RunArchive run;  // log and attributes; run.profiles stays empty
   std::unique_ptr<ProfileStream> profiles;
+  bool archive = false;  // an HDF5 run archive (a CSV has no log)
 };
 
 // `pool` decompresses the archive's chunks; it must outlive the stream.
@@ -29,6 +31,9 @@ struct MotionGap {
   bool none() const { return why.empty(); }
 };
 MotionGap MissingMotion(const RunArchive& run, const std::string& needs);
+// The same from what is known without reading the log: its length
+// (nullopt: the run has none).
+MotionGap MissingMotion(bool encoder_absent, std::optional<std::size_t> log_samples, const std::string& needs);
 // Throws bead::Error naming `path` and the dataset when something lacks.
 void RequireMotion(const RunArchive& run, const std::string& path, const std::string& needs);
 

@@ -51,36 +51,44 @@ double AreaSigmaFloor(const std::vector<BeadGeometry>& geometry) {
   return sigmas.empty() ? 0.0 : MedianInPlace(sigmas.data(), sigmas.size());
 }
 
+std::vector<std::string> FlowWarnings(const FlowRunFacts& f) {
+  std::vector<std::string> out;
+  char buf[320];
+  if (f.outside > 0 && f.profiles > 0) {
+    std::snprintf(buf, sizeof buf,
+                  "%zu of %zu profiles lie outside the acquisition log's time span (log %.3f to %.3f s, profiles "
+                  "%.3f to %.3f s): they have no flow; are the two on one clock?",
+                  f.outside, f.profiles, f.log_first_s, f.log_last_s, f.profile_first_s, f.profile_last_s);
+    out.emplace_back(buf);
+  }
+  if (f.counts_max - f.counts_min < 1.0) {
+    std::snprintf(buf, sizeof buf,
+                  "the wheel never moved (the encoder reads %.0f counts throughout the log): no material was carried "
+                  "to the laser, so the flow is not measured",
+                  f.counts_min);
+    out.emplace_back(buf);
+  }
+  if (f.profiles > 0 && f.beads == 0) out.emplace_back("no profile holds a measurable bead: every area is missing or zero");
+  if (f.profiles > 0 && f.valid == 0) out.emplace_back("no sample has a flow: the total volume is not a measurement");
+  return out;
+}
+
 namespace {
 
 void Warn(const ProfileBlock& profiles, const std::vector<BeadGeometry>& geometry, const AcquisitionLog& log,
           const std::vector<double>& counts, FlowResult& r) {
-  const std::size_t n = profiles.size();
-  char buf[320];
-  std::size_t outside = 0, beads = 0, valid = 0;
-  for (std::size_t k = 0; k < n; ++k) {
-    outside += !(profiles.t_s[k] >= log.t_s.front() && profiles.t_s[k] <= log.t_s.back());
-    beads += geometry[k].valid();
-    valid += r.samples[k].valid;
+  FlowRunFacts f;
+  f.profiles = profiles.size();
+  for (std::size_t k = 0; k < f.profiles; ++k) {
+    f.outside += !(profiles.t_s[k] >= log.t_s.front() && profiles.t_s[k] <= log.t_s.back());
+    f.beads += geometry[k].valid();
+    f.valid += r.samples[k].valid;
   }
-  if (outside > 0 && n > 0) {
-    std::snprintf(buf, sizeof buf,
-                  "%zu of %zu profiles lie outside the acquisition log's time span (log %.3f to %.3f s, profiles "
-                  "%.3f to %.3f s): they have no flow; are the two on one clock?",
-                  outside, n, log.t_s.front(), log.t_s.back(), profiles.t_s.front(), profiles.t_s.back());
-    r.warnings.emplace_back(buf);
-  }
-  double lo = counts.front(), hi = counts.front();
-  for (double c : counts) lo = std::min(lo, c), hi = std::max(hi, c);
-  if (hi - lo < 1.0) {
-    std::snprintf(buf, sizeof buf,
-                  "the wheel never moved (the encoder reads %.0f counts throughout the log): no material was carried "
-                  "to the laser, so the flow is not measured",
-                  lo);
-    r.warnings.emplace_back(buf);
-  }
-  if (n > 0 && beads == 0) r.warnings.emplace_back("no profile holds a measurable bead: every area is missing or zero");
-  if (n > 0 && valid == 0) r.warnings.emplace_back("no sample has a flow: the total volume is not a measurement");
+  f.log_first_s = log.t_s.front(), f.log_last_s = log.t_s.back();
+  if (f.profiles > 0) f.profile_first_s = profiles.t_s.front(), f.profile_last_s = profiles.t_s.back();
+  f.counts_min = f.counts_max = counts.front();
+  for (double c : counts) f.counts_min = std::min(f.counts_min, c), f.counts_max = std::max(f.counts_max, c);
+  r.warnings = FlowWarnings(f);
 }
 
 }  // namespace

@@ -64,6 +64,16 @@ struct FlowResult {
   std::vector<std::string> warnings;
 };
 
+// What the run's warnings are made of, counted over the whole run (a
+// streamed run counts them on the way).
+struct FlowRunFacts {
+  std::size_t profiles = 0, outside = 0, beads = 0, valid = 0;  // outside the log's span; valid geometry; with flow
+  double log_first_s = 0, log_last_s = 0, profile_first_s = 0, profile_last_s = 0;
+  double counts_min = 0, counts_max = 0;  // the repaired encoder positions' range
+};
+// FlowResult::warnings from them.
+std::vector<std::string> FlowWarnings(const FlowRunFacts& facts);
+
 // The Hampel sigma floor for the area series: the median area_sigma_mm2 of
 // the valid profiles (0 when there are none).
 double AreaSigmaFloor(const std::vector<BeadGeometry>& geometry);

@@ -24,7 +24,11 @@ void DropFront(std::vector<T>& v, std::size_t n) {
 }  // namespace
 
 StreamingFlow::StreamingFlow(const Rig& rig, const FlowOptions& options, double log_rate_hz, double history_s)
-    : rig_(rig), options_(options), dt_(1.0 / log_rate_hz), unwrapper_(rig.encoder) {
+    : StreamingFlow(rig, options, WholeLogFacts{1.0 / log_rate_hz, EncoderOptions{}.min_glitch_counts}, history_s) {}
+
+StreamingFlow::StreamingFlow(const Rig& rig, const FlowOptions& options, const WholeLogFacts& log, double history_s)
+    : rig_(rig), options_(options), dt_(log.step_s), glitch_counts_(log.glitch_counts), unwrapper_(rig.encoder) {
+  const double log_rate_hz = 1.0 / dt_;
   const int window = SpeedWindowSamples(options, dt_);
   sg_half_ = window / 2;
   sg_weights_ = SavgolWeights(window, std::min(options.speed_order, window - 1), 1, dt_, sg_half_);
@@ -58,7 +62,8 @@ void StreamingFlow::CompactLog() {
   if (drop == 0) return;
   for (auto* v : {&t_, &counts_, &rpm_, &speed_raw_, &speed_}) DropFront(*v, drop);
   DropFront(raw_, drop);
-  repaired_upto_ -= drop, speed_raw_upto_ -= drop, speed_upto_ -= drop;
+  repaired_upto_ -= drop, speed_raw_upto_ -= drop, speed_upto_ -= drop, ranged_upto_ -= drop;
+  log_dropped_ += drop;
 }
 
 // The same for the profiles' areas and the queues.
@@ -105,11 +110,13 @@ void StreamingFlow::ProcessLog() {
   while (repaired_upto_ + 1 < n) {
     const std::size_t i = repaired_upto_;
     double value = 0.0;
-    if (i >= 1 && RepairEncoderSample(counts_.data(), raw_.data(), t_.data(), i, EncoderOptions{}.min_glitch_counts,
-                                      &value) != EncoderRepair::kNone)
-      counts_[i] = value;
+    if (i >= 1 &&
+        RepairEncoderSample(counts_.data(), raw_.data(), t_.data(), i, glitch_counts_, &value) != EncoderRepair::kNone)
+      counts_[i] = value, ++encoder_repairs_;
     ++repaired_upto_;
   }
+  for (; ranged_upto_ < repaired_upto_; ++ranged_upto_)
+    counts_min_ = std::min(counts_min_, counts_[ranged_upto_]), counts_max_ = std::max(counts_max_, counts_[ranged_upto_]);
   // Speed by the Savitzky-Golay derivative once its window is final.
   speed_raw_.resize(n, kNaN);
   const std::size_t w = sg_weights_.size();
@@ -149,6 +156,7 @@ void StreamingFlow::ProcessLog() {
   while (speed_upto_ + hampel_half_ < speed_raw_upto_ || (finished_ && speed_upto_ < speed_raw_upto_)) {
     bool out = false;
     const double v = HampelAt(speed_raw_.data(), speed_raw_upto_, speed_upto_, hampel_half_, options_.hampel_nsigma, &out, scratch);
+    speed_outliers_ += out;
     speed_[speed_upto_++] = v * mpc;
   }
 }
@@ -190,6 +198,8 @@ void StreamingFlow::ProcessProfiles() {
     s.surface_speed_mm_s = InterpolateLinear(t_.data(), speed_.data(), speed_upto_, t_e) * rig_.SurfaceSpeedFactor(p_k);
     s.area_mm2 =
         HampelAt(area_window_.data(), have, j, options_.area_hampel_half, options_.hampel_nsigma, &out, scratch, floor);
+    area_outliers_ += out;
+    if (std::isnan(t_e) && log_dropped_ > 0) ++history_misses_;
     s.area_corrected_mm2 =
         HampelAt(area_c_window_.data(), have, j, options_.area_hampel_half, options_.hampel_nsigma, &out, scratch, floor);
     s.flow_mm3_s = s.surface_speed_mm_s * s.area_corrected_mm2;

@@ -36,11 +36,20 @@
 
 namespace bead {
 
+// What an off-line pass knows of the whole log before streaming it
+// (archive/streamed_flow.h): with these, and the area floor given in
+// FlowOptions, the stream is the batch bit for bit.
+struct WholeLogFacts {
+  double step_s;         // the median step, as the batch's
+  double glitch_counts;  // the batch's threshold: max(min_glitch_counts, 8 robust sigmas)
+};
+
 class StreamingFlow {
  public:
   // `log_rate_hz` fixes the Savitzky-Golay window in samples, as the batch
   // derives it from the log's median step.
   StreamingFlow(const Rig& rig, const FlowOptions& options, double log_rate_hz, double history_s = 600.0);
+  StreamingFlow(const Rig& rig, const FlowOptions& options, const WholeLogFacts& log, double history_s = 600.0);
 
   void PushLog(double t_s, int64_t raw_encoder, double screw_rpm);
   // `area_corrected_mm2` and its standard uncertainty: the occlusion
@@ -53,6 +62,17 @@ class StreamingFlow {
   // No more input: finish what can be finished with truncated windows.
   void Finish();
 
+  // So far: encoder reads repaired, speed and area samples the Hampel
+  // filters replaced (as FlowResult's), the range of the repaired encoder
+  // positions, and extrusion times not found once older log had been let
+  // go (the batch, holding the whole log, might have found them).
+  int encoder_repairs() const { return encoder_repairs_; }
+  int speed_outliers() const { return speed_outliers_; }
+  int area_outliers() const { return area_outliers_; }
+  double counts_min() const { return counts_min_; }
+  double counts_max() const { return counts_max_; }
+  std::size_t history_misses() const { return history_misses_; }
+
  private:
   void ProcessLog();
   void ProcessProfiles();
@@ -61,7 +81,7 @@ class StreamingFlow {
 
   Rig rig_;
   FlowOptions options_;
-  double dt_;
+  double dt_, glitch_counts_;
   int sg_half_, hampel_half_;
   std::vector<double> sg_weights_, sg_tail_weights_;  // tail: sg_half_ rows of the window's length
   EncoderUnwrapper unwrapper_;
@@ -89,6 +109,10 @@ class StreamingFlow {
   std::size_t log_keep_ = 0;      // samples of log history kept (at least)
   std::vector<double> scratch_, floor_scratch_;
   bool finished_ = false;
+  int encoder_repairs_ = 0, speed_outliers_ = 0, area_outliers_ = 0;
+  double counts_min_ = std::numeric_limits<double>::infinity(), counts_max_ = -counts_min_;
+  std::size_t ranged_upto_ = 0;  // samples [0, ranged_upto_) in counts_min_ / counts_max_
+  std::size_t log_dropped_ = 0, history_misses_ = 0;
 };
 
 }  // namespace bead

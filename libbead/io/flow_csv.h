@@ -9,8 +9,20 @@
 #include <string>
 
 #include "libbead/flow/flow.h"
+#include "libbead/io/atomic_file.h"
 
 namespace bead {
+
+// Samples appended one at a time (a streamed run), committed atomically.
+class FlowCsvWriter {
+ public:
+  explicit FlowCsvWriter(const std::string& path);
+  void Append(const FlowSample& sample);
+  void Commit();
+
+ private:
+  AtomicFile out_;
+};
 
 void WriteFlowCsv(const std::string& path, const FlowResult& flow);
 
