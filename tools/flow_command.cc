@@ -76,6 +76,9 @@ Run AddFlow(CLI::App& app) {
         area_outliers = f.area_outliers, speed_outliers = f.speed_outliers, repairs = f.encoder_repairs;
         warnings = f.warnings;
         done = true;
+      } else {
+        std::fprintf(stderr, "note: %s: the flow is computed on the whole run in memory: %s\n", args->run.c_str(),
+                     f.why.c_str());
       }
     }
     if (!done) {

@@ -163,6 +163,8 @@ RunResult ProcessRun(const BatchRun& job, const BatchOptions& options, WorkerPoo
         r.total_volume_mm3 = f.total_volume_mm3;
         r.warnings.insert(r.warnings.end(), f.warnings.begin(), f.warnings.end());
         done = true;
+      } else {
+        r.warnings.push_back("the flow was computed on the whole run in memory: " + f.why);
       }
     }
     if (!done) {

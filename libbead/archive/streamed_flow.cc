@@ -127,8 +127,11 @@ StreamedFlow StreamRunFlow(OpenedRun opened, const std::string& path, const Rig&
   StreamedFlow out;
   const LogPass lp = WalkLog(*log, rig);
   // A log shorter than the speed's window: the batch narrows the window to it.
-  if (log->size() < static_cast<std::size_t>(SpeedWindowSamples(options, lp.facts.step_s))) {
+  const int window = SpeedWindowSamples(options, lp.facts.step_s);
+  if (log->size() < static_cast<std::size_t>(window)) {
     out.complete = false;
+    out.why = "the log's " + std::to_string(log->size()) + " samples are fewer than the speed window's " +
+              std::to_string(window) + ": the window is narrowed to the whole log";
     return out;
   }
 
@@ -194,6 +197,14 @@ StreamedFlow StreamRunFlow(OpenedRun opened, const std::string& path, const Rig&
   drain();
 
   out.complete = flow.history_misses() == 0;
+  if (!out.complete) {
+    char line[200];
+    std::snprintf(line, sizeof line,
+                  "%zu profile(s) were extruded more than %.0f s before they were measured (the wheel stood "
+                  "still?): older than the log the stream keeps",
+                  flow.history_misses(), history_s);
+    out.why = line;
+  }
   out.area_outliers = flow.area_outliers();
   out.speed_outliers = flow.speed_outliers();
   out.encoder_repairs = flow.encoder_repairs();

@@ -30,6 +30,7 @@ namespace bead {
 struct StreamedFlow {
   MeasureRunSummary measure;
   bool complete = true;  // false: redo the run whole (see above); the samples handed on are not the batch's
+  std::string why;       // when not complete: why, in a line for the user
   std::size_t samples = 0, valid = 0;
   double total_volume_mm3 = 0.0;
   int area_outliers = 0, speed_outliers = 0, encoder_repairs = 0;

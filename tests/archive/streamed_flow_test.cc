@@ -8,13 +8,18 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
+#include <sstream>
 #include <random>
 
+#include "libbead/archive/batch.h"
 #include "libbead/archive/measured_run.h"
 #include "libbead/archive/streamed_flow.h"
 #include "libbead/core/error.h"
 #include "libbead/core/median.h"
 #include "libbead/core/median_by_walks.h"
+#include "libbead/io/flow_csv.h"
+#include "libbead/io/rig_yaml.h"
 #include "libbead/io/run_archive.h"
 #include "libbead/occlusion/occlusion_fit.h"
 #include "libbead/sim/rig_simulator.h"
@@ -153,10 +158,63 @@ TEST_F(StreamedFlowTest, AHistoryShorterThanTheTravelIsNotTakenForTheFlow) {
   const StreamedFlow s = StreamRunFlow(OpenRun(path, pool, false), path, rig, pool, Measure(4096), {},
                                        [&](const FlowSample& f) { valid += f.valid; }, {}, 1.0);
   EXPECT_FALSE(s.complete);
+  EXPECT_NE(s.why.find("more than 1 s before they were measured"), std::string::npos) << s.why;
   const StreamedFlow enough = StreamRunFlow(OpenRun(path, pool, false), path, rig, pool, Measure(4096), {},
                                             [](const FlowSample&) {}, {}, 3.0);
   EXPECT_TRUE(enough.complete);
+  EXPECT_TRUE(enough.why.empty()) << enough.why;
   EXPECT_GT(enough.valid, valid);  // what the short history lost
+}
+
+// A log shorter than the speed's Savitzky-Golay window (the batch narrows
+// the window to the log): the stream leaves the run to the whole-run path
+// and says why; the batch takes that path by itself, its flow.csv is the
+// whole-run flow's byte for byte and its summary row says what happened.
+TEST_F(StreamedFlowTest, ALogShorterThanTheSpeedWindowTakesTheWholeRunPath) {
+  RunArchive cut = sim_->run;
+  AcquisitionLog& log = *cut.log;
+  const double dt = log.t_s[1] - log.t_s[0];
+  const int window = SpeedWindowSamples({}, dt);
+  ASSERT_GT(window, 5);
+  const std::size_t keep = static_cast<std::size_t>(window) - 2;
+  const std::size_t from = log.size() / 2;  // the middle of the run, where profiles were measured
+  for (auto* v : {&log.t_s, &log.screw_rpm, &log.extruder_cmd_v, &log.wheel_cmd_v})
+    if (!v->empty()) *v = std::vector<double>(v->begin() + from, v->begin() + from + keep);
+  log.encoder = std::vector<int64_t>(log.encoder.begin() + from, log.encoder.begin() + from + keep);
+  const std::string path = *dir_ / "short_log.h5", rig_path = *dir_ / "rig.yaml";
+  WriteRunArchive(path, cut);
+  WriteRigFile(rig_path, MakeRigFile(sim_->rig_file));
+  WorkerPool pool(2);
+  const StreamedFlow s = StreamRunFlow(OpenRun(path, pool, false), path, sim_->rig_file, pool, Measure(4096), {},
+                                       [](const FlowSample&) {});
+  EXPECT_FALSE(s.complete);
+  EXPECT_NE(s.why.find("the log's " + std::to_string(keep) + " samples are fewer than the speed window's " +
+                       std::to_string(window)),
+            std::string::npos)
+      << s.why;
+
+  BatchOptions options;
+  options.out = *dir_ / "batch";
+  options.estimate = occlusion::EstimateOcclusion;
+  const RunResult r = ProcessRun({path, rig_path, "short_log"}, options, pool);
+  ASSERT_TRUE(r.ok()) << r.status;
+  ASSERT_FALSE(r.warnings.empty());
+  EXPECT_NE(r.warnings[0].find("the flow was computed on the whole run in memory: the log's"), std::string::npos)
+      << r.warnings[0];
+  const MeasuredRun m = MeasureWholeRun(OpenRun(path, pool), sim_->rig_file, pool, Measure(4096));
+  const FlowResult whole = ComputeFlow(sim_->rig_file, m.run.profiles, m.geometry, *m.run.log, {}, m.corrected, m.sigma);
+  std::size_t valid = 0;
+  for (const FlowSample& f : whole.samples) valid += f.valid;
+  EXPECT_GT(valid, 0u);  // profiles inside the short log have a flow
+  EXPECT_EQ(r.flow_samples, valid);
+  WriteFlowCsv(*dir_ / "whole_flow.csv", whole);
+  auto text = [](const std::string& file) {
+    std::ifstream in(file, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  };
+  EXPECT_EQ(text(options.out + "/short_log/flow.csv"), text(*dir_ / "whole_flow.csv"));
 }
 
 // What the flow cannot do without is named, as the whole-run path names it.
