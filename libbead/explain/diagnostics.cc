@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <numbers>
+
+#include "libbead/series/fourier_sums.h"
 
 namespace bead::explain {
 namespace {
@@ -123,22 +126,32 @@ Spectrum ResidualSpectrum(const std::vector<double>& t, const std::vector<double
   var /= static_cast<double>(n - 1);
   const double span = ts.back() - ts.front();
   if (!(span > 0) || !(var > 0)) return s;
-  // Frequencies from 1/span to the mean Nyquist, four per independent one.
+  // Frequencies from 1/(4 span) to the mean Nyquist, four per independent one.
   const double f_nyq = 0.5 * static_cast<double>(n - 1) / span;
   const double df = 1.0 / (4.0 * span);
   const auto nf = static_cast<std::size_t>(std::min(f_nyq, max_hz) / df);
+  // Scargle's sums through Fourier sums at the uneven times (Press &
+  // Rybicki, ApJ 338, 1989, eqs. 5-9: tau, and the sums of cos^2 and sin^2,
+  // from Sum exp(2 i w t)): Y(w) = Sum e_i exp(i w t_i), W(2w) = Sum
+  // exp(2 i w t_i), with t from the first sample (the periodogram does not
+  // depend on where time starts). O(n + nf log nf): an hour of profiles in
+  // well under a second, where the direct sums took minutes.
+  std::vector<double> x(n), ones(n, 1.0);
+  for (std::size_t i = 0; i < n; ++i) x[i] = 2.0 * std::numbers::pi * df * (ts[i] - ts.front());
+  const FourierSums sums = UnevenFourierSums(x, es, ones, 2 * nf);
+  const double nn = static_cast<double>(n);
   for (std::size_t j = 1; j <= nf; ++j) {
-    const double w = 2.0 * std::numbers::pi * df * static_cast<double>(j);
-    double s2 = 0, c2 = 0;
-    for (double ti : ts) s2 += std::sin(2 * w * ti), c2 += std::cos(2 * w * ti);
-    const double tau = std::atan2(s2, c2) / (2 * w);
-    double yc = 0, ys = 0, cc = 0, ss = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      const double a = w * (ts[i] - tau), c = std::cos(a), si = std::sin(a);
-      yc += es[i] * c, ys += es[i] * si, cc += c * c, ss += si * si;
-    }
+    const std::complex<double> w2 = sums.b[2 * j];  // Sum cos 2wt + i Sum sin 2wt
+    const double two_w_tau = std::atan2(w2.imag(), w2.real());
+    const std::complex<double> z = sums.a[j] * std::polar(1.0, -0.5 * two_w_tau);
+    const double yc = z.real(), ys = z.imag();
+    // Sum cos^2 w(t - tau) = n/2 + |W|/2, Sum sin^2 = n/2 - |W|/2; a sum
+    // within the Fourier sums' rounding of 0 (evenly sampled at exactly
+    // the Nyquist rate) carries no power.
+    const double cc = 0.5 * (nn + std::abs(w2)), ss = 0.5 * (nn - std::abs(w2));
+    const double floor = 1e-9 * nn;
     s.frequency_hz.push_back(df * static_cast<double>(j));
-    s.power.push_back(0.5 * ((cc > 0 ? yc * yc / cc : 0) + (ss > 0 ? ys * ys / ss : 0)) / var);
+    s.power.push_back(0.5 * ((cc > floor ? yc * yc / cc : 0) + (ss > floor ? ys * ys / ss : 0)) / var);
   }
   // Local maxima, significance with F = the number of independent frequencies.
   const double independent = std::max(1.0, f_nyq * span);

@@ -49,7 +49,8 @@ struct Spectrum {
 // Finite samples only (NaN skipped, the rest taken in order).
 Whiteness ResidualWhiteness(const std::vector<double>& e, int lags = 25);
 InputCorrelation ResidualInputCorrelation(const std::vector<double>& e, const std::vector<double>& u, int lags = 25);
-// Frequencies from 1/span up to the smaller of max_hz and the mean Nyquist.
+// Frequencies in steps of 1/(4 span) up to the smaller of max_hz and the
+// mean Nyquist.
 Spectrum ResidualSpectrum(const std::vector<double>& t, const std::vector<double>& e, double max_hz = 20.0,
                           int max_peaks = 5);
 

@@ -39,6 +39,7 @@ RunSeries MakeRunSeries(const Rig& rig, const ProfileBlock& profiles, const std:
   const model::StateResponses free = model::ComputeStateResponses(den, tf.delay_s, log.t_s, log.screw_rpm,
                                                                   WholeRecord(log.size()));
   st->finder = std::make_unique<ExtrusionTimeFinder>(st->log_t, st->log_counts);
+  st->finder->BuildIndex();  // a search per sample for every shift tried
   st->offset = rig.offset_counts;
   // The screw's angle: the integral of its speed.
   std::vector<double> screw(log.size(), 0.0);

@@ -8,6 +8,17 @@ namespace bead {
 ExtrusionTimeFinder::ExtrusionTimeFinder(const std::vector<double>& log_t_s, const std::vector<double>& log_counts)
     : t_(log_t_s), p_(log_counts) {}
 
+void ExtrusionTimeFinder::BuildIndex() {
+  const std::size_t blocks = p_.empty() ? 0 : (p_.size() - 1) / kBlock;
+  block_min_.resize(blocks);
+  block_max_.resize(blocks);
+  for (std::size_t b = 0; b < blocks; ++b) {
+    const auto [lo, hi] = std::minmax_element(p_.begin() + static_cast<std::ptrdiff_t>(b * kBlock),
+                                              p_.begin() + static_cast<std::ptrdiff_t>((b + 1) * kBlock + 1));
+    block_min_[b] = *lo, block_max_[b] = *hi;
+  }
+}
+
 double ExtrusionTimeFinder::PositionAt(double t) const {
   if (t_.empty()) return std::nan("");
   if (t <= t_.front()) return p_.front();
@@ -28,7 +39,18 @@ double ExtrusionTimeFinder::Find(double t_measured, double target) const {
   double hi_p = PositionAt(hi_t);
   if (hi_p == target) return hi_t;
   // Walk back segment by segment: [t_[k], hi_t] with positions [p_[k], hi_p].
-  for (std::size_t k = std::min(j, n) - 1;; --k) {
+  for (std::size_t k = std::min(j, n) - 1, first = 1;; --k, first = 0) {
+    // Past the first segment its upper end is the sample k + 1. When that
+    // ends a block whose positions all miss the target, none of the
+    // block's segments holds a crossing: on to the sample that starts it.
+    while (!first && !block_min_.empty() && (k + 1) % kBlock == 0) {
+      const std::size_t b = (k + 1) / kBlock - 1;
+      if (target >= block_min_[b] && target <= block_max_[b]) break;
+      if (b == 0) return std::nan("");
+      k -= kBlock;
+      hi_t = t_[k + 1];
+      hi_p = p_[k + 1];
+    }
     const double lo_t = t_[k], lo_p = p_[k];
     if ((lo_p - target) * (hi_p - target) <= 0.0 && lo_p != hi_p) {
       // The latest crossing in this segment is found from its upper end.

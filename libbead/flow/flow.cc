@@ -104,7 +104,8 @@ FlowResult ComputeFlow(const Rig& rig, const ProfileBlock& profiles, const std::
   const EncoderTrack track = UnwrapEncoder(log.encoder, rig.encoder, log.t_s);
   r.encoder_repairs = track.missed_reads + track.glitches;
   const std::vector<double> speed = SurfaceSpeed(rig, log.t_s, track.counts, o, &r.speed_outliers);
-  const ExtrusionTimeFinder finder(log.t_s, track.counts);
+  ExtrusionTimeFinder finder(log.t_s, track.counts);
+  finder.BuildIndex();  // one search per profile over the whole log
 
   const std::size_t n = profiles.size();
   std::vector<double> area(n), area_c(n);

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <random>
 
 namespace bead {
 namespace {
@@ -49,6 +51,41 @@ TEST(ExtrusionTime, ReversalGivesTheLatestPass) {
   EXPECT_NEAR(f.Find(9.5, 400.0), 8.0, 1e-9);
   EXPECT_NEAR(f.Find(7.5, 400.0), 6.0, 1e-9);
   EXPECT_NEAR(f.Find(5.5, 400.0), 4.0, 1e-9);
+}
+
+
+// The block index changes no answer: over a log that runs forward, stands
+// (whole blocks flat at a value a target hits exactly), runs backward and
+// holds whole counts, every search gives the plain walk's time bit for bit
+// (NaN where it is NaN), for targets at samples, between them, before the
+// log and beyond it, and profile times anywhere.
+TEST(ExtrusionTime, TheBlockIndexGivesThePlainWalksAnswer) {
+  std::mt19937_64 rng(4);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<double> t, p;
+  double pos = 0;
+  for (int i = 0; i < 5000; ++i) {
+    t.push_back(0.002 * i + 1e-4 * u(rng));
+    const int phase = (i / 700) % 4;  // forward, standing, backward, forward fast
+    if (phase == 0) pos += std::floor(3 * u(rng));
+    if (phase == 2) pos -= std::floor(2 * u(rng));
+    if (phase == 3) pos += 5;
+    p.push_back(pos);
+  }
+  const ExtrusionTimeFinder plain(t, p);
+  ExtrusionTimeFinder indexed(t, p);
+  indexed.BuildIndex();
+  const auto same = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+  int found = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const double tm = -0.5 + 11.0 * u(rng);
+    double target = -50 + (pos + 100) * u(rng);
+    if (trial % 3 == 0) target = p[static_cast<std::size_t>(u(rng) * (p.size() - 1))];  // a sample's value
+    const double a = plain.Find(tm, target), b = indexed.Find(tm, target);
+    ASSERT_TRUE(same(a, b) || (std::isnan(a) && std::isnan(b))) << tm << " " << target << ": " << a << " vs " << b;
+    found += std::isfinite(a);
+  }
+  EXPECT_GT(found, 5000);  // the searches found crossings, not only NaN
 }
 
 }  // namespace
