@@ -1,5 +1,6 @@
 #include "libbead/io/hdf5_rows.h"
 
+#include <libdeflate.h>
 #include <zlib.h>
 
 #include <algorithm>
@@ -53,10 +54,43 @@ void RowReader::ReadThroughHdf5(std::size_t begin, std::size_t count, void* out)
                             " (damaged?)"));
 }
 
+namespace {
+
+// Inflates a zlib stream (HDF5's deflate filter) of exactly `bytes` into
+// `to`: libdeflate when it takes the stream whole; zlib otherwise, which
+// also words the error. Both check the stream's Adler-32.
+void Inflate(libdeflate_decompressor* inflater, const uint8_t* data, std::size_t size, uint8_t* to,
+             std::size_t bytes, const std::string& file, const std::string& where) {
+  std::size_t got = 0;
+  if (inflater && libdeflate_zlib_decompress(inflater, data, size, to, bytes, &got) == LIBDEFLATE_SUCCESS &&
+      got == bytes)
+    return;
+  uLongf zgot = bytes;
+  const int rc = uncompress(to, &zgot, data, size);
+  if (rc != Z_OK || zgot != bytes)
+    throw Error(Located(file, where,
+                        "damaged compressed data (inflates to " + std::to_string(zgot) + " bytes, a chunk is " +
+                            std::to_string(bytes) + ")"));
+}
+
+// HDF5's shuffle filter stores byte b of value i at b * values + i; the
+// values are float32 little-endian on a little-endian host (the reader is
+// direct only then), so a value's bytes assemble into one word. Word by
+// word is 2.5x the byte scatter.
+void Unshuffle4(const uint8_t* planes, std::size_t values, uint8_t* to) {
+  const uint8_t *p0 = planes, *p1 = p0 + values, *p2 = p1 + values, *p3 = p2 + values;
+  for (std::size_t i = 0; i < values; ++i) {
+    const uint32_t word = uint32_t{p0[i]} | uint32_t{p1[i]} << 8 | uint32_t{p2[i]} << 16 | uint32_t{p3[i]} << 24;
+    std::memcpy(to + 4 * i, &word, 4);
+  }
+}
+
+}  // namespace
+
 // Undoes the filters of chunk k of those read (the last filter first).
 // The raw bytes stay as read; each step writes the worker's other scratch
 // buffer.
-const uint8_t* RowReader::Decode(std::size_t k, std::vector<uint8_t>* scratch) const {
+const uint8_t* RowReader::Decode(std::size_t k, Scratch& scratch) const {
   const std::size_t values = chunk_rows_ * row_length_, bytes = values * sizeof(float);
   const std::string where = name_ + " chunk at row " + std::to_string(raw_first_row_[k]);
   const uint8_t* data = raw_[k].data();
@@ -64,22 +98,14 @@ const uint8_t* RowReader::Decode(std::size_t k, std::vector<uint8_t>* scratch) c
   int next = 0;  // the scratch buffer the next step writes
   for (std::size_t f = filters_.size(); f-- > 0;) {
     if (masks_[k] & (1u << f)) continue;  // filter skipped for this chunk
-    std::vector<uint8_t>& to = scratch[next];
+    std::vector<uint8_t>& to = scratch.buffers[next];
     to.resize(bytes);
     if (filters_[f] == H5Z_FILTER_DEFLATE) {
-      uLongf got = bytes;
-      const int rc = uncompress(to.data(), &got, data, size);
-      if (rc != Z_OK || got != bytes)
-        throw Error(Located(file_->name(), where,
-                            "damaged compressed data (inflates to " + std::to_string(got) + " bytes, a chunk is " +
-                                std::to_string(bytes) + ")"));
-    } else {  // shuffle: byte b of value i was stored at b * values + i
+      if (!scratch.inflater) scratch.inflater = {libdeflate_alloc_decompressor(), libdeflate_free_decompressor};
+      Inflate(scratch.inflater.get(), data, size, to.data(), bytes, file_->name(), where);
+    } else {  // shuffle
       if (size != bytes) throw Error(Located(file_->name(), where, "damaged chunk (wrong size)"));
-      for (std::size_t b = 0; b < sizeof(float); ++b) {
-        const uint8_t* plane = data + b * values;
-        uint8_t* dst = to.data() + b;
-        for (std::size_t i = 0; i < values; ++i) dst[i * sizeof(float)] = plane[i];
-      }
+      Unshuffle4(data, values, to.data());
     }
     data = to.data();
     size = bytes;
@@ -94,7 +120,7 @@ const uint8_t* RowReader::Decode(std::size_t k, std::vector<uint8_t>* scratch) c
 void RowReader::DecodeEach(const std::function<void(std::size_t, const uint8_t*)>& use, WorkerPool* pool) {
   const unsigned workers = pool ? pool->size() : 1;
   if (scratch_.size() < workers) scratch_.resize(workers);
-  auto decode = [&](std::size_t k, unsigned worker) { use(k, Decode(k, scratch_[worker].data())); };
+  auto decode = [&](std::size_t k, unsigned worker) { use(k, Decode(k, scratch_[worker])); };
   if (pool)
     pool->Run(raw_.size(), decode);
   else

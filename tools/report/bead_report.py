@@ -173,8 +173,14 @@ def pins_figure(points, fits, offset):
         ax.set_xlim((lo + hi) / 2 - span / 2, (lo + hi) / 2 + span / 2)
     ax.set_xlabel("counts since the pin stood under the nozzle")
     ax.set_ylabel("chord width, mm")
-    ax.legend(fontsize=7, ncol=2)
+    # Beside the axes: inside, it covers the chords' feet.
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
     return png(fig)
+
+
+def number(value, form):
+    """A JSON number as text; empty where there is none."""
+    return form % value if isinstance(value, (int, float)) and math.isfinite(value) else ""
 
 
 def table(header, rows):
@@ -238,9 +244,12 @@ def main(argv):
             explain.get("fit_before_pct", math.nan), explain.get("fit_after_pct", math.nan),
             explain.get("rms_before", math.nan), explain.get("rms_after", math.nan))
         body += table(["effect added", "parameters", "fit before, %", "fit after, %"], rows or [("none", "", "", "")])
-        unexplained = [(u.get("what", ""), u.get("tracks", "")) for u in explain.get("unexplained", [])]
+        # The frequency and power tell apart two peaks that track the same
+        # part (both within the run's frequency resolution of its rate).
+        unexplained = [(u.get("what", ""), number(u.get("frequency_hz"), "%.4g"), u.get("tracks", ""),
+                        number(u.get("power"), "%.3g")) for u in explain.get("unexplained", [])]
         if unexplained:
-            body += "<h3>Unexplained</h3>" + table(["what", "tracks"], unexplained)
+            body += "<h3>Unexplained</h3>" + table(["what", "frequency, Hz", "tracks", "power"], unexplained)
         if explain.get("spectrum"):
             body += "<h3>Residual spectrum</h3><p>Peaks marked with what they track (the wheel's and the screw's " \
                     "rates where the run has them).</p>" + spectrum_figure(explain["spectrum"])
