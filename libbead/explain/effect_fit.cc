@@ -32,8 +32,11 @@ void Shifted(const SeriesData& d, const EffectSet& set, std::vector<double>& y, 
   if (initial) {
     *initial = d.initial;
     if (delayed)
-      for (std::size_t c = 0; c < initial->size(); ++c)
-        for (std::size_t i = 0; i < d.size(); ++i) (*initial)[c][i] = InterpolateLinear(d.t, d.initial[c], d.t[i] - delay[i]);
+      for (std::size_t c = 0; c < initial->size(); ++c) {
+        std::size_t at = 0;  // the delayed times run nearly in order
+        for (std::size_t i = 0; i < d.size(); ++i)
+          (*initial)[c][i] = InterpolateLinearNear(d.t, d.initial[c], d.t[i] - delay[i], at);
+      }
   }
   if (shift == 0.0 && !delayed) {
     y = d.y;

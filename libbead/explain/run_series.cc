@@ -19,7 +19,8 @@ namespace {
 struct RunState {
   std::vector<double> log_t, log_counts, speed, model_flow;
   std::unique_ptr<ExtrusionTimeFinder> finder;
-  std::vector<double> t_measured, counts_measured, area;
+  std::vector<double> counts_measured, area;
+  std::vector<ExtrusionTimeFinder::Start> start;  // each profile's search start, the same at every shift
   double offset = 0.0;
 };
 
@@ -61,7 +62,7 @@ RunSeries MakeRunSeries(const Rig& rig, const ProfileBlock& profiles, const std:
     const double t_k = profiles.t_s[k];
     const double p_k = UnwrapNear(profiles.encoder[k], rig.encoder, st->finder->PositionAt(t_k));
     out.profile.push_back(k);
-    st->t_measured.push_back(t_k);
+    st->start.push_back(st->finder->StartAt(t_k));
     st->counts_measured.push_back(p_k);
     st->area.push_back(s.area_corrected_mm2);
     d.t.push_back(s.t_s);
@@ -105,17 +106,19 @@ RunSeries MakeRunSeries(const Rig& rig, const ProfileBlock& profiles, const std:
   }
   d.shifted = [st](double counts, const std::vector<double>& extra_delay, std::vector<double>& y,
                    std::vector<double>& base) {
-    const std::size_t n = st->t_measured.size();
+    const std::size_t n = st->start.size();
     y.resize(n);
     base.resize(n);
+    std::size_t at_speed = 0, at_model = 0;  // the extrusion times run nearly in order: searches start at the last
     for (std::size_t i = 0; i < n; ++i) {
-      const double t_e = st->finder->Find(st->t_measured[i], st->counts_measured[i] - st->offset - counts);
+      const double t_e = st->finder->Find(st->start[i], st->counts_measured[i] - st->offset - counts);
       if (!std::isfinite(t_e)) {
         y[i] = base[i] = std::numeric_limits<double>::quiet_NaN();
         continue;
       }
-      y[i] = InterpolateLinear(st->log_t, st->speed, t_e) * st->area[i];
-      base[i] = InterpolateLinear(st->log_t, st->model_flow, t_e - (extra_delay.empty() ? 0.0 : extra_delay[i]));
+      y[i] = InterpolateLinearNear(st->log_t, st->speed, t_e, at_speed) * st->area[i];
+      base[i] = InterpolateLinearNear(st->log_t, st->model_flow, t_e - (extra_delay.empty() ? 0.0 : extra_delay[i]),
+                                      at_model);
     }
   };
   return out;
