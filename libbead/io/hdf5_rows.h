@@ -6,11 +6,11 @@
 // compressed only with HDF5's shuffle and deflate filters (what libbead
 // and h5py with compression="gzip", shuffle=True write), the chunks are
 // read raw (H5Dread_chunk, on the calling thread: libhdf5 is not
-// thread-safe) and inflated (libdeflate, 1.7x zlib's speed on these
-// chunks; zlib names what libdeflate refuses) and unshuffled on the worker
-// pool. Anything
-// else (other filters or types, contiguous storage, a chunk never
-// written) goes through HDF5's own H5Dread of the rows, which converts.
+// thread-safe), then inflated (libdeflate, 1.7x zlib's speed on these
+// chunks; zlib words the error on a chunk libdeflate refuses) and
+// unshuffled on the worker pool. Anything else (other filters or types,
+// contiguous storage, a chunk never written) goes through HDF5's own
+// H5Dread of the rows, which converts.
 #pragma once
 
 #include <array>
