@@ -187,6 +187,19 @@ Series ReadSeries(const SeriesSpec& given) {
   return s;
 }
 
+ChannelColumns ReadChannelColumns(const std::string& path, const std::string& time, const std::vector<std::string>& names) {
+  std::vector<std::string> all = {time};
+  all.insert(all.end(), names.begin(), names.end());
+  Columns c = Read(path, all, true);
+  if (c.v[0].size() < 2)
+    throw Error(Located(path, "", "fewer than 2 rows where every channel (" + std::to_string(names.size()) +
+                                      ") is a number"));
+  ChannelColumns out;
+  out.t = std::move(c.v[0]);
+  for (std::size_t k = 1; k < c.v.size(); ++k) out.values.push_back(std::move(c.v[k]));
+  return out;
+}
+
 ProcessOn SeriesStretches(const Series& s, const std::string& path, bool keep_off, const std::string& purpose) {
   ProcessOn on;
   if (keep_off) {

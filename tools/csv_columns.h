@@ -30,6 +30,15 @@ struct SeriesSpec {
 Series ReadColumns(const std::string& path, const std::string& time, const std::string& input, const std::string& output);
 Series ReadSeries(const SeriesSpec& spec);
 
+// Other columns (or .mat variables) of `path` on its own clock (`time`;
+// empty: the row number), for explain's recorded channels: the rows where
+// every one of them is a finite number.
+struct ChannelColumns {
+  std::vector<double> t;
+  std::vector<std::vector<double>> values;  // one per name
+};
+ChannelColumns ReadChannelColumns(const std::string& path, const std::string& time, const std::vector<std::string>& names);
+
 // The stretches of `s` to fit (the whole record with keep_off), what was
 // left out printed on stdout ("PATH: left out of the fit: process off
 // ..."); no stretch at all is an error naming the file (`purpose`: what

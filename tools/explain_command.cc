@@ -3,6 +3,7 @@
 // time when they earn it, and the error before and after.
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -56,6 +57,13 @@ json Parameters(const std::vector<explain::FittedParameter>& ps) {
   return params;
 }
 
+json Confounded(const explain::ExplainReport& r) {
+  json out = json::array();
+  for (const auto& c : r.confounded)
+    out.push_back({{"first", c.first}, {"second", c.second}, {"correlation", c.correlation}, {"note", c.note}});
+  return out;
+}
+
 json ReportJson(const explain::ExplainReport& r, const model::TransferFunction& tf, double offset,
                 const std::string& model_source) {
   json effects = json::array();
@@ -100,6 +108,7 @@ json ReportJson(const explain::ExplainReport& r, const model::TransferFunction& 
             {"heldout_rms_before", r.base.rms_before},
             {"heldout_rms_with_correction", r.base.rms_after}}},
           {"effects_added", effects},
+          {"confounded", Confounded(r)},
           {"unexplained", unexplained},
           {"diagnostics",
            {{"whiteness_before", ToJson(r.before.whiteness)},
@@ -147,6 +156,31 @@ void PrintReport(const explain::ExplainReport& r, const std::string& unit) {
   for (const auto& u : r.unexplained)
     std::printf("unexplained: %s, tracks %s (power %.1f, false alarm %.2g)\n", u.what.c_str(), u.tracks.c_str(),
                 u.power, u.false_alarm);
+  for (const auto& c : r.confounded)
+    std::printf("confounded: %s and %s trade (correlation %+.3f): %s\n", c.first.c_str(), c.second.c_str(),
+                c.correlation, c.note.c_str());
+}
+
+// Keeps the recorded channels named (all with an empty list); an unknown
+// name is an error listing what the file has.
+void SelectChannels(std::vector<explain::Channel>& channels, const std::vector<std::string>& names, bool none,
+                    const std::string& path) {
+  if (none) {
+    channels.clear();
+    return;
+  }
+  if (names.empty()) return;
+  std::vector<explain::Channel> kept;
+  for (const std::string& n : names) {
+    const auto it = std::find_if(channels.begin(), channels.end(), [&](const explain::Channel& c) { return c.name == n; });
+    if (it == channels.end()) {
+      std::string have;
+      for (const auto& c : channels) have += (have.empty() ? "" : ", ") + c.name;
+      throw Error(Located(path, "/log/" + n, "no such recorded channel (the log has: " + (have.empty() ? "none" : have) + ")"));
+    }
+    kept.push_back(*it);
+  }
+  channels = kept;
 }
 
 void Write(const std::string& path, const json& j) {
@@ -165,7 +199,8 @@ Run AddExplain(CLI::App& app) {
     int poles = 2, zeros = 2;
     double max_delay_s = 1.0, alpha = 0.01;
     int max_effects = 5;
-    bool keep_off = false;
+    bool keep_off = false, no_channels = false;
+    std::vector<std::string> channels;
   };
   auto args = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand("explain", Summary("explain"));
@@ -219,7 +254,14 @@ Run AddExplain(CLI::App& app) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--pins", args->pins, "Run mode: pin scans of this rig, to compare the offsets")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--flow-out", args->flow_out, "Run mode: the corrected flow CSV to write (atomically)");
+  cmd->add_option("--flow-out", args->flow_out,
+                  "Run mode: the corrected flow CSV to write (atomically), only if the correction lowers the "
+                  "held-out error");
+  cmd->add_option("--channels", args->channels,
+                  "The recorded channels to try as causes: run mode /log/<name> (default: every one); CSV/.mat "
+                  "mode columns or variables of DATA on its --time clock (default: none)")
+      ->delimiter(',');
+  cmd->add_flag("--no-channels", args->no_channels, "Try no recorded channel");
   cmd->add_option("--poles", args->poles, "Identified model: poles")->capture_default_str()->check(CLI::Range(1, 6));
   cmd->add_option("--zeros", args->zeros, "Identified model: zeros")->capture_default_str()->check(CLI::Range(0, 6));
   cmd->add_option("--structure", args->structure, "Identified model: tf, or P1D, P1DZ, P2D, P2DZ, P3D, P3DZ")
@@ -297,10 +339,17 @@ Run AddExplain(CLI::App& app) {
         return explain::MakeRunSeries(rig, m.measured.run.profiles, m.measured.geometry, *m.measured.run.log, m.flow,
                                       mdl.tf, mdl.offset);
       };
-      const explain::RunSeries series = series_of(*main_run);
+      explain::RunSeries series = series_of(*main_run);
+      SelectChannels(series.data.channels, args->channels, args->no_channels, args->data);
+      for (const auto& c : series.data.channels)
+        std::printf("recorded channel: %s (%s), tried as a cause\n", c.name.c_str(), c.unit.empty() ? "no unit" : c.unit.c_str());
       std::optional<explain::RunSeries> other;
       if (!args->validate.empty()) {
         other = series_of(*measure(args->validate));
+        SelectChannels(other->data.channels, args->channels, args->no_channels, args->validate);
+        if (other->data.channels.size() != series.data.channels.size())
+          throw Error(Located(args->validate, "/log", "does not record the same channels as " + args->data +
+                                                          " (name them with --channels, or --no-channels)"));
         options.validation = &other->data;
         std::printf("held-out data: %s (%zu samples)\n", args->validate.c_str(), other->data.size());
       }
@@ -311,17 +360,25 @@ Run AddExplain(CLI::App& app) {
       PrintReport(r, "mm^3/s");
       const explain::ShiftProfile& sp = r.shift_profile;
       const double offset = rig.offset_counts + r.position_shift_counts;
-      std::printf("encoder offset from the run: %.1f counts, 95 %% interval %.1f to %.1f%s%s; rig file: %.1f counts\n",
-                  offset, rig.offset_counts + sp.lo, rig.offset_counts + sp.hi,
-                  sp.lo_at_edge || sp.hi_at_edge ? " (reaches the searched range: the run does not pin it" : "",
-                  sp.lo_at_edge || sp.hi_at_edge ? "; at a constant wheel speed the offset trades against the delay)" : "",
-                  rig.offset_counts);
+      if (sp.lo_at_edge || sp.hi_at_edge)
+        std::printf("encoder offset from the run: NOT pinned by this run: its 95 %% interval %.1f to %.1f counts reaches "
+                    "the searched range (lowest error at %.1f; the wheel's speed changes too little to tell a position "
+                    "error from a time error); rig file: %.1f counts\n",
+                    rig.offset_counts + sp.lo, rig.offset_counts + sp.hi, offset, rig.offset_counts);
+      else
+        std::printf("encoder offset from the run: %.1f counts, 95 %% interval %.1f to %.1f (the residual's colour and the "
+                    "delay refitted at every offset accounted for); rig file: %.1f counts%s\n",
+                    offset, rig.offset_counts + sp.lo, rig.offset_counts + sp.hi, rig.offset_counts,
+                    sp.lo > 0 || sp.hi < 0 ? " -- OUTSIDE the run's interval" : "");
       std::printf("profile time stamps against the log: %+.4f +- %.4f s (a sensor latency shows here)\n",
                   series.timestamp_offset_s, series.timestamp_offset_ci95_s);
       json j = ReportJson(r, mdl.tf, mdl.offset, mdl.source);
       j["mode"] = "run";
       j["offset_from_run_counts"] = offset;
-      j["offset_from_run_ci95_counts"] = r.position_shift_ci95_counts;
+      j["offset_from_run_ci95_counts"] = Finite(r.position_shift_ci95_counts);  // null: the run does not pin it
+      j["offset_from_run_pinned"] = !(sp.lo_at_edge || sp.hi_at_edge);
+      j["offset_delay_correlation"] = Finite(r.shift_delay_correlation);
+      j["offset_profile_threshold_q"] = sp.q;  // SSE_min + 3.84 q bounds the interval
       j["offset_profile"] = {{"offset_counts", json::array()},
                              {"sse", sp.sse},
                              {"ci95_low_counts", rig.offset_counts + sp.lo},
@@ -336,29 +393,57 @@ Run AddExplain(CLI::App& app) {
         const calibration::OffsetCalibration cal = calibration::CalibrateOffset(rig, ReadPinScanArchive(args->pins));
         if (!cal.ok) throw Error(Located(args->pins, "", "cannot calibrate: " + cal.reason));
         const double diff = offset - cal.offset_counts;
-        const double combined = std::hypot(r.position_shift_ci95_counts, cal.ci95_counts);
-        std::printf("pin scans (%s): %.1f +- %.1f counts; the run's offset differs by %+.1f counts (%s)\n",
-                    args->pins.c_str(), cal.offset_counts, cal.ci95_counts, diff,
-                    std::abs(diff) <= combined ? "they agree within their 95 % intervals" : "they DISAGREE");
+        const double run_sd = r.position_shift_ci95_counts / 1.96, pin_sd = cal.ci95_counts / 1.96;
+        const bool run_pinned = !(sp.lo_at_edge || sp.hi_at_edge) && run_sd > 0;
+        const bool agree = std::abs(diff) <= 1.96 * std::hypot(run_sd, pin_sd);
+        std::printf("pin scans (%s): %.1f +- %.1f counts; the run's offset differs by %+.1f counts\n", args->pins.c_str(),
+                    cal.offset_counts, cal.ci95_counts, diff);
         j["pin_offset_counts"] = cal.offset_counts;
         j["pin_offset_ci95_counts"] = cal.ci95_counts;
-        j["offsets_agree"] = std::abs(diff) <= combined;
+        j["offsets_agree"] = agree;
+        if (!run_pinned) {
+          std::printf("offset: the run does not pin it; the pins' %.1f +- %.1f counts stands alone\n", cal.offset_counts,
+                      cal.ci95_counts);
+        } else if (agree) {
+          // Inverse-variance weighting of two independent estimates.
+          const double w_run = 1 / (run_sd * run_sd), w_pin = 1 / (pin_sd * pin_sd);
+          const double combined = (w_run * offset + w_pin * cal.offset_counts) / (w_run + w_pin);
+          const double combined_ci = 1.96 / std::sqrt(w_run + w_pin);
+          std::printf("offset, run and pins combined: %.1f +- %.1f counts (they agree within their intervals)\n",
+                      combined, combined_ci);
+          j["combined_offset_counts"] = combined;
+          j["combined_offset_ci95_counts"] = combined_ci;
+        } else {
+          std::printf("offset: the run (%.1f +- %.1f) and the pins (%.1f +- %.1f) DISAGREE by %.1f counts, more than "
+                      "their intervals allow: a pin placed off the nozzle's centre, a slipped encoder, or an effect "
+                      "the run's model lacks; they are not combined\n",
+                      offset, r.position_shift_ci95_counts, cal.offset_counts, cal.ci95_counts, diff);
+        }
       }
       if (!args->flow_out.empty()) {
         const explain::CorrectedFlow cf =
             explain::CorrectFlow(rig, main_run->measured.run.profiles, main_run->measured.geometry,
                                  *main_run->measured.run.log, main_run->measured.corrected, main_run->measured.sigma,
                                  r, mdl.tf, mdl.offset);
-        WriteFlowCsv(args->flow_out, cf.flow);
         std::string undone;
         for (const auto& u : cf.undone) undone += (undone.empty() ? "" : ", ") + u;
-        std::printf("corrected flow: %s undone (offset %.1f counts); RMS against the model %.4g -> %.4g mm^3/s; "
-                    "total volume %.1f mm^3\nwrote %s\n",
-                    undone.empty() ? "nothing to undo (no kept effect acts on the measurement)" : undone.c_str(),
-                    cf.offset_counts, cf.rms_before, cf.rms_after, cf.flow.total_volume_mm3, args->flow_out.c_str());
-        j["corrected_flow"] = {{"path", args->flow_out},   {"undone", cf.undone},
-                               {"offset_counts", cf.offset_counts}, {"rms_before", cf.rms_before},
-                               {"rms_after", cf.rms_after}, {"total_volume_mm3", cf.flow.total_volume_mm3}};
+        j["corrected_flow"] = {{"path", args->flow_out},          {"undone", cf.undone},
+                               {"offset_counts", cf.offset_counts}, {"heldout_rms_before", cf.rms_before},
+                               {"heldout_rms_after", cf.rms_after}, {"written", cf.lowers_error}};
+        if (cf.lowers_error) {
+          WriteFlowCsv(args->flow_out, cf.flow);
+          j["corrected_flow"]["total_volume_mm3"] = cf.flow.total_volume_mm3;
+          std::printf("corrected flow: %s undone (offset %.1f counts); held-out RMS against the model %.4g -> %.4g "
+                      "mm^3/s; total volume %.1f mm^3\nwrote %s\n",
+                      undone.c_str(), cf.offset_counts, cf.rms_before, cf.rms_after, cf.flow.total_volume_mm3,
+                      args->flow_out.c_str());
+        } else {
+          j["corrected_flow"]["why_not"] = cf.why_not;
+          std::printf("corrected flow NOT written (%s): %s%s%s\n", args->flow_out.c_str(), cf.why_not.c_str(),
+                      undone.empty() ? "" : "; tried: ", undone.c_str());
+          if (!undone.empty())
+            std::printf("  held-out RMS against the model %.4g -> %.4g mm^3/s\n", cf.rms_before, cf.rms_after);
+        }
       }
       Write(args->out, j);
       return 0;
@@ -384,12 +469,21 @@ Run AddExplain(CLI::App& app) {
     if (!s.note.empty()) std::printf("%s\n", s.note.c_str());
     const ProcessOn on = stretches(s, args->data);
     const Model mdl = model_for(s.t, s.u, s.y, on.segments, args->data);
-    const explain::SeriesData data = explain::ModelSeries(s.t, s.u, s.y, mdl.tf, mdl.offset, on.segments, args->output);
+    // Named columns of the data file as recorded channels, on its clock.
+    auto with_channels = [&](explain::SeriesData d, const std::string& path) {
+      if (args->channels.empty() || args->no_channels) return d;
+      const ChannelColumns c = ReadChannelColumns(path, args->time, args->channels);
+      for (std::size_t k = 0; k < args->channels.size(); ++k) d.channels.push_back({args->channels[k], "", c.t, c.values[k]});
+      return d;
+    };
+    const explain::SeriesData data =
+        with_channels(explain::ModelSeries(s.t, s.u, s.y, mdl.tf, mdl.offset, on.segments, args->output), args->data);
     std::optional<explain::SeriesData> other;
     if (!args->validate.empty()) {
       const Series v = read(args->validate);
       const ProcessOn von = stretches(v, args->validate);
-      other = explain::ModelSeries(v.t, v.u, v.y, mdl.tf, mdl.offset, von.segments, args->output);
+      other = with_channels(explain::ModelSeries(v.t, v.u, v.y, mdl.tf, mdl.offset, von.segments, args->output),
+                            args->validate);
       options.validation = &*other;
       std::printf("held-out data: %s (%zu rows)\n", args->validate.c_str(), v.t.size());
     }

@@ -1,18 +1,18 @@
-// main() of one subcommand's program, bead-<name> (built once per
-// subcommand with BEAD_SUBCOMMAND_ADD naming its Add* function). `bead`
-// hands over to it with argv = {"bead", "<name>", ...}. Every error is one
-// line naming the file and place (exit 1); usage errors exit 2.
+#include "tools/subcommand_main.h"
+
 #include <cstdio>
 #include <exception>
 
 #include "libbead/core/error.h"
 #include "tools/commands.h"
 
-int main(int argc, char** argv) {
+namespace bead::tools {
+
+int SubcommandMain(int argc, char** argv, AddSubcommand add) {
   CLI::App app{"bead: bead cross-sections and volumetric flow from laser line profiles (libbead)", "bead"};
   app.footer("Run 'bead --help' for the list of subcommands.");
   app.require_subcommand(1);
-  const bead::tools::Run run = bead::tools::BEAD_SUBCOMMAND_ADD(app);
+  const Run run = add(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -27,3 +27,5 @@ int main(int argc, char** argv) {
     return 1;
   }
 }
+
+}  // namespace bead::tools

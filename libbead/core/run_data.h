@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "libbead/core/profile_view.h"
@@ -35,6 +36,14 @@ struct ProfileBlock {
   }
 };
 
+// Any other quantity the acquisition recorded on the log's clock (a barrel
+// temperature, heater power, melt pressure, motor current): /log/<name>.
+struct LogChannel {
+  std::string name;
+  std::string unit;  // "" when the file does not say
+  std::vector<double> values;  // [M]
+};
+
 // The acquisition log (thesis 3.1: the wheel's encoder and the screw's RPM,
 // sampled on their own clock).
 struct AcquisitionLog {
@@ -43,6 +52,7 @@ struct AcquisitionLog {
   std::vector<double> screw_rpm;
   std::vector<double> extruder_cmd_v;  // empty when absent
   std::vector<double> wheel_cmd_v;     // empty when absent
+  std::vector<LogChannel> channels;    // the other recorded channels, by name
   std::size_t size() const { return t_s.size(); }
 };
 

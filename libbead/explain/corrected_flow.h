@@ -5,9 +5,13 @@
 //    run's offset profile excludes the rig file's offset;
 //  - once/twice per revolution of the wheel: the surface speed at the
 //    nozzle divided by the term (an eccentric wheel's speed error);
-//  - cooling_shrink: the area divided by (1 - shrink at its time to laser),
-//    the material's size when laid;
+//  - cooling_shrink: the area divided by the shrink's change with the time
+//    to laser (only that change is in the data: its constant part is a
+//    gain, taken by the base model, and stays);
 //  - height_dependence: the area divided by the term (occlusion left over).
+// Each corrected sample's sigma adds the kept terms' parameter covariance
+// and the offset's interval to the measurement's own. The correction is
+// for writing only when it lowers the held-out error (lowers_error).
 // Effects of the process (the screw's pulsation, build-up, drift, a gain
 // or lag that changes with level) are real flow and stay.
 #pragma once
@@ -30,9 +34,12 @@ struct CorrectedFlow {
   FlowResult flow;
   double offset_counts = 0.0;       // the offset the flow was computed with
   std::vector<std::string> undone;  // the effects undone
-  // RMS of flow - the model (the base and the process's own effects,
-  // refitted to each flow), mm^3/s, before and after.
+  // Held-out RMS of flow - the model (the base and the process's own
+  // effects fitted to each flow on every other of 20 time blocks, the
+  // error taken on the blocks between), mm^3/s, before and after.
   double rms_before = 0.0, rms_after = 0.0;
+  bool lowers_error = false;  // write it only then
+  std::string why_not;        // when not: why, in words
 };
 
 // `corrected_area` and `corrected_sigma`: the occlusion stage's columns

@@ -29,7 +29,16 @@ void Shifted(const SeriesData& d, const EffectSet& set, std::vector<double>& y, 
       delayed = true;
     }
   }
-  if (initial) {
+  ShiftMemo& memo = d.shift_memo.memo;
+  if (memo.valid && memo.shift == shift && memo.delay == delay) {
+    y = memo.y;
+    base = memo.base;
+    if (initial) *initial = memo.initial;
+    return;
+  }
+  std::vector<std::vector<double>> own_initial;
+  if (!initial) initial = &own_initial;
+  {
     *initial = d.initial;
     if (delayed)
       for (std::size_t c = 0; c < initial->size(); ++c) {
@@ -47,6 +56,12 @@ void Shifted(const SeriesData& d, const EffectSet& set, std::vector<double>& y, 
     y = d.y;
     base = d.base_delayed(delay);
   }
+  memo.valid = true;
+  memo.shift = shift;
+  memo.delay = std::move(delay);
+  memo.y = y;
+  memo.base = base;
+  memo.initial = *initial;
 }
 
 // Where each effect's nonlinear parameters sit (effect, index).
@@ -209,7 +224,9 @@ void Refine(const SeriesData& d, EffectSet& set, const std::vector<std::size_t>&
 
 void Fit(const SeriesData& d, EffectSet& set, const std::vector<std::size_t>& rows, std::size_t first_free) {
   Active& last = set.back();
-  if (last.nl() == 1) {
+  // The first nonlinear parameter from its grid, any others held at their
+  // start (0, inside their range).
+  if (last.nl() >= 1) {
     double best = kInf, best_value = 0.0;
     for (double v : last.effect.grid[0]) {
       set.back().params[0] = v;
@@ -220,57 +237,6 @@ void Fit(const SeriesData& d, EffectSet& set, const std::vector<std::size_t>& ro
     set.back().params[0] = best_value;
   }
   Refine(d, set, rows, 30, first_free);
-}
-
-std::vector<std::vector<double>> ParameterSd(const SeriesData& d, const EffectSet& set,
-                                             const std::vector<std::size_t>& rows, double sigma) {
-  // Central differences of the residual in every parameter (linear ones
-  // not re-solved: this is the Jacobian of the whole set).
-  std::vector<std::pair<std::size_t, std::size_t>> all;
-  for (std::size_t e = 0; e < set.size(); ++e)
-    for (std::size_t k = 0; k < set[e].params.size(); ++k) all.push_back({e, k});
-  const std::size_t P = all.size();
-  Eigen::MatrixXd J(rows.size(), P);
-  for (std::size_t c = 0; c < P; ++c) {
-    const auto [e, k] = all[c];
-    EffectSet plus = set, minus = set;
-    const double v = set[e].params[k];
-    double h = 1e-5 * std::max(std::abs(v), 1e-3);
-    if (k < set[e].nl()) {
-      const auto& grid = set[e].effect.grid[k];
-      h = 1e-3 * (grid.back() - grid.front());
-    }
-    plus[e].params[k] = v + h;
-    minus[e].params[k] = v - h;
-    const std::vector<double> rp = Residual(d, plus), rm = Residual(d, minus);
-    for (std::size_t r = 0; r < rows.size(); ++r) {
-      const double a = rp[rows[r]], b = rm[rows[r]];
-      J(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = std::isfinite(a) && std::isfinite(b) ? (a - b) / (2 * h) : 0.0;
-    }
-  }
-  Eigen::MatrixXd H = J.transpose() * J;
-  Eigen::VectorXd scale(static_cast<Eigen::Index>(P));
-  for (Eigen::Index i = 0; i < H.rows(); ++i) scale(i) = H(i, i) > 0 ? 1.0 / std::sqrt(H(i, i)) : 0.0;
-  H = scale.asDiagonal() * H * scale.asDiagonal();
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(H);
-  const Eigen::VectorXd lambda = eig.eigenvalues();
-  const Eigen::MatrixXd V = eig.eigenvectors();
-  const double tol = 1e-10 * std::max(lambda.maxCoeff(), 1e-300);
-  std::vector<std::vector<double>> sd;
-  for (const Active& a : set) sd.emplace_back(a.params.size(), 0.0);
-  for (std::size_t c = 0; c < P; ++c) {
-    double var = 0, null_weight = 0;
-    for (Eigen::Index j = 0; j < lambda.size(); ++j) {
-      const double v = V(static_cast<Eigen::Index>(c), j);
-      if (lambda(j) > tol)
-        var += v * v / lambda(j);
-      else
-        null_weight += v * v;
-    }
-    const double s = scale(static_cast<Eigen::Index>(c));
-    sd[all[c].first][all[c].second] = (null_weight > 0.01 || s == 0.0) ? kInf : sigma * std::sqrt(var) * s;
-  }
-  return sd;
 }
 
 double LagOneCorrelation(const std::vector<double>& r) {

@@ -2,8 +2,7 @@
 //   base(shifted) * (1 + sum of multiplicative terms) + sum of additive terms,
 // the linear parameters solved by least squares at every trial of the
 // nonlinear ones (variable projection), the nonlinear ones by Ceres within
-// their search grid; and the parameters' standard deviations from the
-// Jacobian of the whole set (a parameter the data cannot pin: infinite).
+// their search grid (their intervals: parameter_covariance.h).
 #pragma once
 
 #include <vector>
@@ -43,11 +42,6 @@ void SolveLinear(const SeriesData& d, EffectSet& set, const std::vector<std::siz
 // alone, the rest held (an initial state is local: the held-out test
 // re-solves it on the held-out samples for both sides).
 void SolveLinearOf(const SeriesData& d, EffectSet& set, const std::vector<std::size_t>& rows, const std::string& feature);
-
-// Standard deviations per effect and parameter, scaled by `sigma` (the
-// residual's standard deviation, inflated for its correlation).
-std::vector<std::vector<double>> ParameterSd(const SeriesData& d, const EffectSet& set,
-                                             const std::vector<std::size_t>& rows, double sigma);
 
 double LagOneCorrelation(const std::vector<double>& r);
 

@@ -41,6 +41,32 @@ Effect Make(std::string name, std::string description, Effect::Kind kind, std::s
   return e;
 }
 
+// A channel's deviation from its mean through a first-order lag tau (exact
+// for an input held between its samples) and a delay, at the times t.
+std::vector<double> LaggedChannel(const Channel& ch, double tau, double delay, const std::vector<double>& t) {
+  const std::size_t m = ch.t.size();
+  std::vector<double> lagged(m);
+  const double mean = Mean(ch.values);
+  double state = ch.values.front() - mean;  // at rest at the first reading
+  double last_dt = -1.0, a = 1.0;  // a log's steps repeat: exp only when one changes
+  for (std::size_t k = 0; k < m; ++k) {
+    const double dt = k ? ch.t[k] - ch.t[k - 1] : 0.0;
+    if (dt != last_dt) a = std::exp(-dt / std::max(tau, 1e-6)), last_dt = dt;
+    state = a * state + (1 - a) * (ch.values[k] - mean);
+    lagged[k] = state;
+  }
+  std::vector<double> out(t.size());
+  std::size_t j = 0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const double at = t[i] - delay;
+    while (j + 1 < m && ch.t[j + 1] <= at) ++j;
+    if (at <= ch.t.front()) out[i] = lagged.front();
+    else if (j + 1 >= m) out[i] = lagged.back();
+    else out[i] = lagged[j] + (lagged[j + 1] - lagged[j]) * (at - ch.t[j]) / (ch.t[j + 1] - ch.t[j]);
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<std::vector<double>> Effect::Columns(const SeriesData& d, const double* nl) const {
@@ -56,6 +82,7 @@ std::vector<std::vector<double>> Effect::Columns(const SeriesData& d, const doub
     return cols;
   }
   if (feature == "dynamics") return d.dynamics;
+  if (feature == "channel") return {LaggedChannel(d.channels[static_cast<std::size_t>(channel)], nl[0], nl[1], d.t)};
   if (feature == "initial") return d.initial;
   std::vector<double> c(n, 0.0);
   if (feature == "scale" || feature == "bias") {
@@ -171,6 +198,20 @@ std::vector<Effect> Catalogue(const SeriesData& d, const CatalogueOptions& o) {
     e.nonlinear = {"tau_s"};
     e.grid = {Logspace(span / 200.0, span, 25)};
     e.linear = {"amplitude_" + d.y_unit};
+    out.push_back(e);
+  }
+  for (std::size_t k = 0; k < d.channels.size(); ++k) {
+    const Channel& ch = d.channels[k];
+    if (ch.t.size() < 2 || !(Sd(ch.values) > 0)) continue;  // a constant channel explains nothing
+    const std::string unit = ch.unit.empty() ? "unit" : ch.unit;
+    Effect e = Make("channel[" + ch.name + "]",
+                    "the output follows the recorded channel " + ch.name + " through its own lag and delay",
+                    K::kMultiplicative, "channel");
+    e.channel = static_cast<int>(k);
+    e.tracks = ch.name;
+    e.nonlinear = {"lag_s", "delay_s"};
+    e.grid = {Logspace(0.05, std::max(1.0, span / 4), 21), Linspace(0.0, std::min(2.0, span / 10), 11)};
+    e.linear = {"rel_per_" + unit};
     out.push_back(e);
   }
   Effect level = Make("level_gain", "the gain changes with the operating level", K::kMultiplicative, "level");

@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <numbers>
 
 #include "libbead/core/error.h"
 #include "libbead/explain/effect_fit.h"
+#include "libbead/explain/parameter_covariance.h"
 #include "libbead/model/fit_metrics.h"
 
 namespace bead::explain {
@@ -107,16 +109,6 @@ double FitOf(const SeriesData& d, const Set& set) {
   return model::FitPercent(y, pred);
 }
 
-// The residual's standard deviation, times sqrt(N / N_eff) for its lag-one
-// correlation (N_eff = N (1 - rho) / (1 + rho)): the scale of the
-// parameters' standard deviations.
-double Inflation(const SeriesData& d, const Set& set, const std::vector<std::size_t>& rows) {
-  const std::vector<double> r = Residual(d, set);
-  const double dof = std::max(1.0, static_cast<double>(rows.size()) - static_cast<double>(ParameterCount(set)));
-  const double rho = std::clamp(LagOneCorrelation(r), 0.0, 0.99);
-  return std::sqrt(Sse(r, rows) / dof) * std::sqrt((1 + rho) / (1 - rho));
-}
-
 Diagnosis Diagnose(const SeriesData& d, const Set& set, const ExplainOptions& o) {
   Diagnosis g;
   g.residual = Residual(d, set);
@@ -174,72 +166,100 @@ Test TryEffect(const SeriesData& d, const SeriesData& v, const Set& null, const 
   return t;
 }
 
-// The fit against the wheel-position shift: at each shift of a grid over
-// the searched range the rest refitted (continuing from the neighbour);
-// the interval where the SSE stays within SSE_min (1 + chi2_1(0.95) / N_eff).
-ShiftProfile ProfileShift(const SeriesData& d, const Set& current, const Effect& shift_effect,
-                          const std::vector<std::size_t>& rows) {
-  ShiftProfile p;
-  // Everything but a position shift, refitted at each shift held.
-  Set walking;
-  for (const Active& a : current)
-    if (a.effect.kind != Effect::Kind::kPositionShift) walking.push_back(a);
-  const std::vector<double>& grid = shift_effect.grid[0];
-  p.shift_counts = grid;
-  std::vector<std::vector<double>> residuals(grid.size());
-  // From the middle (the rig file's offset) outward, each shift continuing
-  // from its neighbour's values.
-  const std::size_t mid = static_cast<std::size_t>(std::min_element(grid.begin(), grid.end(), [](double a, double b) {
-                                                     return std::abs(a) < std::abs(b);
-                                                   }) - grid.begin());
-  const Set start = walking;
-  for (int dir : {+1, -1}) {
-    walking = start;
-    for (long k = static_cast<long>(mid); k >= 0 && k < static_cast<long>(grid.size()); k += dir) {
-      if (dir < 0 && k == static_cast<long>(mid)) continue;
-      const double g = grid[static_cast<std::size_t>(k)];
-      SeriesData held = d;
-      const auto hook = d.shifted;
-      held.shifted = [hook, g](double counts, const std::vector<double>& delay, std::vector<double>& y,
-                               std::vector<double>& base) { hook(counts + g, delay, y, base); };
-      Refine(held, walking, rows, 10);
-      residuals[static_cast<std::size_t>(k)] = Residual(held, walking);
-    }
-  }
-  // Compared over the samples every shift keeps (a shift pushes some out
-  // of the record at its ends, and those need not fit like the rest).
-  std::vector<std::size_t> common;
-  for (std::size_t i : rows)
-    if (std::all_of(residuals.begin(), residuals.end(), [i](const std::vector<double>& r) { return std::isfinite(r[i]); }))
-      common.push_back(i);
-  if (common.size() < rows.size() / 2) common = rows;  // too few in common: each its own, scaled
-  double best_sse = kInf;
-  std::vector<double> best_residual;
-  for (std::size_t k = 0; k < residuals.size(); ++k) {
-    p.sse.push_back(Sse(residuals[k], common));
-    if (p.sse.back() < best_sse) best_sse = p.sse.back(), p.best = p.shift_counts[k], best_residual = residuals[k];
-  }
-  std::vector<double> used;
-  for (std::size_t i : common) used.push_back(best_residual[i]);
-  const double rho = std::clamp(LagOneCorrelation(used), 0.0, 0.99);
-  const double n_eff = static_cast<double>(common.size()) * (1 - rho) / (1 + rho);
-  const double limit = best_sse * (1.0 + 3.841 / std::max(n_eff, 1.0));
-  const std::size_t ib = static_cast<std::size_t>(std::find(p.shift_counts.begin(), p.shift_counts.end(), p.best) - p.shift_counts.begin());
-  // The outermost shifts within the limit (a flat profile, with the
-  // refits' own scatter on it, is not cut short at its first bump).
-  std::size_t a = ib, b = ib;
-  for (std::size_t k = 0; k < p.sse.size(); ++k)
-    if (p.sse[k] <= limit) a = std::min(a, k), b = std::max(b, k);
-  auto cross = [&](std::size_t inside, std::size_t outside) {
-    const double s0 = p.sse[inside], s1 = p.sse[outside];
-    const double f = s1 > s0 ? (limit - s0) / (s1 - s0) : 0.0;
-    return p.shift_counts[inside] + f * (p.shift_counts[outside] - p.shift_counts[inside]);
+// Pairs of parameters whose estimates correlate beyond 0.9, at least one
+// of them an effect's (the base model's gain and operating point always
+// trade a little, and say nothing).
+std::vector<Confounding> Confounded(const Set& set, const ParameterCovariance& cov, std::size_t base_terms) {
+  std::vector<Confounding> out;
+  const std::size_t P = cov.index.size();
+  auto name = [&](std::size_t slot) {
+    const Active& a = set[cov.index[slot].first];
+    const std::size_t k = cov.index[slot].second;
+    return a.effect.name + "." + (k < a.nl() ? a.effect.nonlinear[k] : a.effect.linear[k - a.nl()]);
   };
-  p.lo_at_edge = a == 0;
-  p.hi_at_edge = b + 1 == p.sse.size();
-  p.lo = p.lo_at_edge ? p.shift_counts.front() : cross(a, a - 1);
-  p.hi = p.hi_at_edge ? p.shift_counts.back() : cross(b, b + 1);
-  return p;
+  for (std::size_t i = 0; i < P; ++i)
+    for (std::size_t j = i + 1; j < P; ++j) {
+      const std::size_t ei = cov.index[i].first, ej = cov.index[j].first;
+      if (ei == ej || (ei < base_terms && ej < base_terms)) continue;
+      const double r = cov.correlation[i * P + j];
+      if (!(std::abs(r) > 0.9)) continue;
+      const bool shrink = set[ei].effect.feature == "scale" && set[ej].effect.feature == "time_to_laser";
+      out.push_back({name(i), name(j), r,
+                     shrink ? "a constant shrink is a gain: only the shrink's change with the time to the laser is "
+                              "in the data, and only that part is undone in a corrected flow"
+                            : "the data pins their combination better than either: each interval is the one with "
+                              "the other free"});
+    }
+  return out;
+}
+
+// What a fitted term adds to the prediction at each sample.
+std::vector<double> Contribution(const SeriesData& d, const Active& a) {
+  const auto cols = a.effect.Columns(d, a.params.data());
+  std::vector<double> out(d.size(), 0.0);
+  for (std::size_t j = 0; j < cols.size(); ++j)
+    for (std::size_t i = 0; i < d.size(); ++i)
+      out[i] += a.params[a.nl() + j] * cols[j][i] * (a.effect.kind == Effect::Kind::kMultiplicative ? d.base[i] : 1.0);
+  return out;
+}
+
+double Correlation(const std::vector<double>& a, const std::vector<double>& b) {
+  double ma = 0, mb = 0, saa = 0, sbb = 0, sab = 0;
+  const double n = static_cast<double>(a.size());
+  for (std::size_t i = 0; i < a.size(); ++i) ma += a[i] / n, mb += b[i] / n;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    saa += (a[i] - ma) * (a[i] - ma), sbb += (b[i] - mb) * (b[i] - mb), sab += (a[i] - ma) * (b[i] - mb);
+  return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : NAN;
+}
+
+// Two candidates that both passed in the round one of them was kept in,
+// the other never added after it: the data cannot tell them apart when
+// what they explain correlates.
+void SayAlternative(const SeriesData& d, const Active& kept, const Active& alt, ExplainReport& report) {
+  for (const AddedEffect& e : report.effects_added)
+    if (e.name == alt.effect.name) return;  // added in a later round: told apart
+  const double r = Correlation(Contribution(d, kept), Contribution(d, alt));
+  if (!(std::abs(r) > 0.5)) return;
+  report.confounded.push_back(
+      {kept.effect.name, alt.effect.name, r,
+       "both pass the held-out test alone and the second adds nothing beside the first: the data cannot tell "
+       "these two causes apart (the one kept lowers the BIC more); a run that varies them apart can"});
+}
+
+// The offset from the run: the profile, widened to the joint fit's
+// interval at its best (the shift beside every other term), and the
+// shift's correlation with the base model's delay.
+void EstimateShift(const SeriesData& d, const Set& current, const Effect& shift, const std::vector<std::size_t>& rows,
+                   ExplainReport& report) {
+  ShiftProfile& p = report.shift_profile;
+  p = ProfileShift(d, current, shift, rows);
+  Set joint = p.refit_at_best;
+  joint.push_back(Activate(shift));
+  joint.back().params[0] = p.best;
+  const ParameterCovariance jc = Covariance(d, joint, rows);
+  const double sd = jc.sd.back()[0];
+  ShiftInterval(p, jc.variance_along.back()[0]);
+  p.profile_lo = p.lo, p.profile_hi = p.hi, p.joint_sd_counts = sd;
+  const std::vector<double>& grid = shift.grid[0];
+  if (!std::isfinite(sd)) {
+    p.lo = grid.front(), p.hi = grid.back(), p.lo_at_edge = p.hi_at_edge = true;
+  } else {
+    if (p.best - 1.96 * sd < p.lo) p.lo = std::max(grid.front(), p.best - 1.96 * sd), p.lo_at_edge |= p.lo <= grid.front();
+    if (p.best + 1.96 * sd > p.hi) p.hi = std::min(grid.back(), p.best + 1.96 * sd), p.hi_at_edge |= p.hi >= grid.back();
+  }
+  report.position_shift_estimated = true;
+  report.position_shift_counts = p.best;
+  // Half-width, the larger side; unbounded where the interval reaches the
+  // searched range (the run does not pin the offset).
+  report.position_shift_ci95_counts = p.lo_at_edge || p.hi_at_edge ? kInf : std::max(p.hi - p.best, p.best - p.lo);
+  for (std::size_t e = 0; e + 1 < joint.size(); ++e)
+    if (joint[e].effect.kind == Effect::Kind::kDelay)
+      report.shift_delay_correlation = jc.Correlation(joint.size() - 1, 0, e, 0);
+  if (std::abs(report.shift_delay_correlation) > 0.9)
+    report.confounded.push_back(
+        {"encoder_offset.shift_counts", "delay.shift_s", report.shift_delay_correlation,
+         "at a steady wheel speed a position error is a time error: the run pins the offset only through the "
+         "changes of the wheel's speed, and its interval is as wide as they allow (pin scans pin it alone)"});
 }
 
 }  // namespace
@@ -282,6 +302,7 @@ ExplainReport Explain(const SeriesData& d, const ExplainOptions& o) {
   const Effect dynamics = DynamicsCorrection(d);
 
   std::vector<bool> used(catalogue.size(), false);
+  std::vector<std::pair<Active, Active>> alternatives;  // (kept, another that passed in its round)
   for (int round = 0; round < o.max_effects; ++round) {
     Set current_est = current;
     Refine(d, current_est, estimation);
@@ -309,6 +330,7 @@ ExplainReport Explain(const SeriesData& d, const ExplainOptions& o) {
     int best = -1;
     double best_drop = 0.0, best_t = 0.0;
     Set best_set;
+    std::vector<Active> passed;  // every candidate that passed this round, as fitted
     for (std::size_t c = 0; c < catalogue.size(); ++c) {
       if (used[c]) continue;
       // Screened with the base model's delay held; what passes is fitted
@@ -332,9 +354,12 @@ ExplainReport Explain(const SeriesData& d, const ExplainOptions& o) {
         ok = t.f > surrogate;
       }
       report.candidates.push_back({round, catalogue[c].name, t.bic_drop, t.f, surrogate, guarded, false});
+      if (ok) passed.push_back(t.fitted.back());
       if (ok && t.bic_drop > best_drop) best = static_cast<int>(c), best_drop = t.bic_drop, best_t = t.f, best_set = t.fitted;
     }
     if (best < 0) break;
+    for (const Active& alt : passed)
+      if (alt.effect.name != best_set.back().effect.name) alternatives.push_back({best_set.back(), alt});
     for (auto& cand : report.candidates)
       if (cand.round == round && cand.name == catalogue[static_cast<std::size_t>(best)].name) cand.accepted = true;
     used[static_cast<std::size_t>(best)] = true;
@@ -357,17 +382,22 @@ ExplainReport Explain(const SeriesData& d, const ExplainOptions& o) {
   }
   // Every parameter from the final joint fit, with its interval.
   Refine(d, current, all);
-  {
-    const auto sd = ParameterSd(d, current, all, Inflation(d, current, all));
-    for (std::size_t e = 0; e < current.size(); ++e) {
-      if (e < base_terms) {
-        report.base_refit.push_back(Describe(current[e], sd[e]));
-      } else {
-        report.effects_added[e - base_terms].parameters = Describe(current[e], sd[e]).parameters;
-      }
-    }
+  const ParameterCovariance cov = Covariance(d, current, all);
+  for (std::size_t e = 0; e < current.size(); ++e) {
+    if (e < base_terms)
+      report.base_refit.push_back(Describe(current[e], cov.sd[e]));
+    else
+      report.effects_added[e - base_terms].parameters = Describe(current[e], cov.sd[e]).parameters;
   }
-
+  const std::size_t slots = cov.index.size();
+  report.final_covariance.assign(slots * slots, NAN);
+  for (std::size_t i = 0; i < slots; ++i)
+    for (std::size_t j = 0; j < slots; ++j)
+      report.final_covariance[i * slots + j] = cov.correlation[i * slots + j] *
+                                               cov.sd[cov.index[i].first][cov.index[i].second] *
+                                               cov.sd[cov.index[j].first][cov.index[j].second];
+  report.confounded = Confounded(current, cov, base_terms);
+  for (const auto& [kept, alt] : alternatives) SayAlternative(d, kept, alt, report);
   for (const Active& a : current) {
     report.final_effects.push_back(a.effect);
     report.final_params.push_back(a.params);
@@ -375,14 +405,8 @@ ExplainReport Explain(const SeriesData& d, const ExplainOptions& o) {
   report.base_terms = base_terms;
 
   // The wheel-position shift that best aligns the data, profiled.
-  for (const Effect& e : catalogue) {
-    if (e.kind != Effect::Kind::kPositionShift || !d.shifted) continue;
-    report.shift_profile = ProfileShift(d, current, e, all);
-    report.position_shift_estimated = true;
-    report.position_shift_counts = report.shift_profile.best;
-    report.position_shift_ci95_counts =
-        std::max(report.shift_profile.hi - report.shift_profile.best, report.shift_profile.best - report.shift_profile.lo);
-  }
+  for (const Effect& e : catalogue)
+    if (e.kind == Effect::Kind::kPositionShift && d.shifted) EstimateShift(d, current, e, all, report);
 
   report.after = Diagnose(d, current, o);
 

@@ -21,19 +21,22 @@
 //     effect. When that correction is itself significant the base model is
 //     misspecified, and the report says so.
 // Kept effects are refitted on the whole record for the report, each
-// parameter with a 95 % interval from the Ceres covariance, scaled by the
-// residual variance and by N / N_eff for the residual's lag-one correlation.
+// parameter with a 95 % interval from the sandwich covariance under the
+// residual's own AR noise model (parameter_covariance.h); pairs whose
+// estimates correlate beyond 0.9 are reported as confounded, in words.
 // Afterwards, every significant peak left in the residual spectrum is
 // checked against the rotating parts (their mean rate and first two
 // harmonics) and reported as unexplained with what it tracks.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
 #include "libbead/explain/diagnostics.h"
 #include "libbead/explain/effects.h"
 #include "libbead/explain/series_data.h"
+#include "libbead/explain/shift_profile.h"
 
 namespace bead::explain {
 
@@ -92,13 +95,13 @@ struct BaseAdequacy {
   bool misspecified = false;
 };
 
-// The fit against the wheel-position shift, everything else refitted at
-// each shift: its minimum and where it rises by the 95 % chi-square
-// quantile over the residual's effective sample count.
-struct ShiftProfile {
-  std::vector<double> shift_counts, sse;
-  double best = 0.0, lo = 0.0, hi = 0.0;  // 95 % interval [lo, hi]
-  bool lo_at_edge = false, hi_at_edge = false;  // the interval reaches the searched range there
+// Two parameters the data cannot tell apart: their estimates' correlation
+// is this close to +-1, so one's error is taken up by the other and each
+// interval holds only with the other free (the intervals printed are so).
+struct Confounding {
+  std::string first, second;  // "effect.parameter"
+  double correlation = 0.0;
+  std::string note;  // what it means, in words
 };
 
 struct ExplainReport {
@@ -111,13 +114,20 @@ struct ExplainReport {
   Diagnosis before, after;  // the base model alone, and with the effects kept
   // The wheel-position shift that best aligns the data (whether or not it
   // was kept as an effect), with its 95 % interval; NaN without a wheel.
-  double position_shift_counts = 0, position_shift_ci95_counts = 0;  // half-width: the larger side
+  double position_shift_counts = 0, position_shift_ci95_counts = 0;  // half-width: the larger side; infinite: not pinned
   bool position_shift_estimated = false;
+  // The shift's correlation with the base model's delay in the joint fit
+  // at the best shift (NaN: not estimated): near +-1 at a steady wheel speed.
+  double shift_delay_correlation = NAN;
+  std::vector<Confounding> confounded;
   // The final set, for re-evaluating it on other data (corrected_flow.h):
   // the base model's refit terms first (base_terms of them), then the effects kept.
   std::vector<Effect> final_effects;
   std::vector<std::vector<double>> final_params;
   std::size_t base_terms = 0;
+  // The final set's parameter covariance, flattened over its (effect,
+  // parameter) slots in order; NaN where a parameter is not pinned.
+  std::vector<double> final_covariance;
 };
 
 ExplainReport Explain(const SeriesData& data, const ExplainOptions& options = {});

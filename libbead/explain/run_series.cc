@@ -80,6 +80,7 @@ RunSeries MakeRunSeries(const Rig& rig, const ProfileBlock& profiles, const std:
     if (std::isfinite(t_at)) latency.push_back(t_k - t_at);
   }
   d.parts = {wheel, screw_part};
+  for (const LogChannel& c : log.channels) d.channels.push_back({c.name, c.unit, log.t_s, c.values});
   // The height the model implies, not the one measured: a measured height
   // carries the measured flow's own deviations, and a term in it would
   // explain the output by itself. The run's own height-area relation

@@ -18,6 +18,34 @@ struct RotatingPart {
   std::vector<double> angle_rad;  // unwrapped
 };
 
+// Another recorded quantity (a barrel temperature, a pressure) on its own
+// clock: a candidate cause acting on the output through a lag and delay.
+struct Channel {
+  std::string name, unit;
+  std::vector<double> t, values;  // same length, t increasing
+};
+
+// The last shifted evaluation (effect_fit.cc), so that a fit whose
+// parameters do not move the data (a channel's lag, a periodic term) does
+// not re-find every extrusion time at each trial. A copy of the data starts
+// with an empty memo: a copy may be given other hooks.
+struct ShiftMemo {
+  bool valid = false;
+  double shift = 0.0;
+  std::vector<double> delay, y, base;
+  std::vector<std::vector<double>> initial;
+};
+class ShiftMemoSlot {
+ public:
+  ShiftMemoSlot() = default;
+  ShiftMemoSlot(const ShiftMemoSlot&) {}
+  ShiftMemoSlot& operator=(const ShiftMemoSlot&) {
+    memo.valid = false;
+    return *this;
+  }
+  ShiftMemo memo;
+};
+
 struct SeriesData {
   std::vector<double> t, u, y, base;  // same length, finite
   std::string y_unit = "";            // for the report
@@ -25,6 +53,7 @@ struct SeriesData {
   std::vector<double> time_to_laser_s;  // empty when not known
   std::vector<double> height_mm;        // the bead height the model implies (never the measured one); empty: not known
   std::vector<double> segment_time_s;   // time since the process (re)started
+  std::vector<Channel> channels;        // the other recorded channels
   // The model's input through a basis of linear filters (the states of
   // 1 / (s + p)^K and the input itself, p from the model's own poles): any
   // linear correction of the model's dynamics is a combination of these.
@@ -43,6 +72,9 @@ struct SeriesData {
                      std::vector<double>& base)>
       shifted;
   std::function<std::vector<double>(const std::vector<double>& extra_delay_s)> base_delayed;
+  // Set the hooks before the first evaluation: the memo is keyed on the
+  // shift and the delays only.
+  mutable ShiftMemoSlot shift_memo;
 
   std::size_t size() const { return t.size(); }
 };

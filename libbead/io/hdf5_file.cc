@@ -42,6 +42,14 @@ void Handle::reset() {
   id_ = H5I_INVALID_HID;
 }
 
+File File::OpenReadWrite(const std::string& path) {
+  File f = OpenRead(path);  // the same checks and messages
+  f.handle_.reset();        // one open of a file at a time (HDF5 refuses a second with other rights)
+  f.handle_ = Handle(H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose);
+  if (!f.handle_.valid()) throw Error(Located(path, "", "cannot open for writing"));
+  return f;
+}
+
 File File::OpenRead(const std::string& path) {
   SilenceHdf5();
   File f;

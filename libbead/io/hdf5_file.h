@@ -51,6 +51,7 @@ struct Array {
 class File {
  public:
   static File OpenRead(const std::string& path);
+  static File OpenReadWrite(const std::string& path);  // to add to a file in place (tests, tools)
   static File Create(const std::string& path, const std::string& display_name);
 
   const std::string& name() const { return name_; }

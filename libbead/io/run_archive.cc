@@ -89,6 +89,39 @@ void CheckLogShape(const h5::File& f) {
   }
 }
 
+// The spec's own log datasets; every other float dataset [M] under /log is
+// a recorded channel (docs/data-formats.md).
+bool IsSpecLogDataset(const std::string& name) {
+  return name == "t_s" || name == "encoder" || name == "screw_rpm" || name == "extruder_cmd_v" ||
+         name == "wheel_cmd_v";
+}
+
+// The other channels: float datasets of rank 1 and the log's length, their
+// unit from a string attribute `unit` when there is one. Anything else
+// under /log (a group, an integer counter, another length) is not a
+// channel and is left alone.
+std::vector<LogChannel> ReadChannels(const h5::File& f, std::size_t samples) {
+  std::vector<LogChannel> out;
+  for (const std::string& name : f.Members("/log")) {
+    if (IsSpecLogDataset(name)) continue;
+    const std::string path = "/log/" + name;
+    std::vector<hsize_t> dims;
+    try {
+      f.OpenDataset(path, {1}, h5::Kind::kFloat, dims);
+    } catch (const Error&) {
+      continue;  // not a float vector
+    }
+    if (dims.empty() || dims[0] != samples) continue;
+    LogChannel c;
+    c.name = name;
+    c.values = f.ReadDouble(path, {1}).data;
+    const auto attributes = f.ReadStringAttributes(path);
+    if (const auto it = attributes.find("unit"); it != attributes.end()) c.unit = it->second;
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
 }  // namespace
 
 void CheckProfileShapes(const std::string& file, const std::string& group, std::size_t profiles,
@@ -143,6 +176,11 @@ void ValidateLog(const AcquisitionLog& log, const std::string& file, const std::
     CheckLength(log.extruder_cmd_v.size(), log.size(), file, Join(where, "extruder_cmd_v"), t_name);
   if (!log.wheel_cmd_v.empty())
     CheckLength(log.wheel_cmd_v.size(), log.size(), file, Join(where, "wheel_cmd_v"), t_name);
+  for (const LogChannel& c : log.channels) {
+    if (c.name.empty() || IsSpecLogDataset(c.name) || c.name.find('/') != std::string::npos)
+      throw Error(Located(file, Join(where, c.name), "a recorded channel needs its own name (not a spec dataset's, no '/')"));
+    CheckLength(c.values.size(), log.size(), file, Join(where, c.name), t_name);
+  }
   CheckTime(log.t_s, file, t_name);
 }
 
@@ -160,6 +198,7 @@ RunArchive ReadRunArchive(const std::string& path, bool with_profiles, bool with
     log.screw_rpm = f.ReadDouble("/log/screw_rpm", {1}).data;
     if (f.Exists("/log/extruder_cmd_v")) log.extruder_cmd_v = f.ReadDouble("/log/extruder_cmd_v", {1}).data;
     if (f.Exists("/log/wheel_cmd_v")) log.wheel_cmd_v = f.ReadDouble("/log/wheel_cmd_v", {1}).data;
+    log.channels = ReadChannels(f, log.size());
     ValidateLog(log, path, "/log");
     run.log = std::move(log);
   }
@@ -181,6 +220,10 @@ void WriteRunArchive(const std::string& path, const RunArchive& run) {
       f.Write("/log/screw_rpm", run.log->screw_rpm, {m});
       if (!run.log->extruder_cmd_v.empty()) f.Write("/log/extruder_cmd_v", run.log->extruder_cmd_v, {m});
       if (!run.log->wheel_cmd_v.empty()) f.Write("/log/wheel_cmd_v", run.log->wheel_cmd_v, {m});
+      for (const LogChannel& c : run.log->channels) {
+        f.Write("/log/" + c.name, c.values, {m});
+        if (!c.unit.empty()) f.WriteStringAttribute("/log/" + c.name, "unit", c.unit);
+      }
     }
     for (const auto& [key, value] : run.attributes) f.WriteStringAttribute("/", key, value);
     f.Flush();

@@ -44,6 +44,7 @@ struct Timeline {
   double dt = 0;
   double t0 = 0;  // time of the first sample (before 0 for a warm start)
   std::vector<double> command_v, wheel_cmd_v, rpm, flow, angle, speed, area;
+  std::vector<double> barrel_c, ambient_c;  // the recorded channels (empty when not simulated)
 
   double Index(double t) const { return (t - t0) / dt; }
   double Time(double index) const { return t0 + index * dt; }
@@ -115,6 +116,15 @@ Timeline RunDynamics(const SimConfig& c, std::mt19937_64& rng) {
   const double noise_alpha = std::exp(-c.dt_s / 0.2);
   const double noise_gain = std::sqrt((1 + noise_alpha) / (1 - noise_alpha));
   double flow_noise = 0.0;
+  // The barrel on a stream of its own: a run without it keeps its noise.
+  const bool barrel_on = c.barrel.record || c.barrel.record_ambient || c.barrel.flow_per_c != 0.0;
+  std::optional<Barrel> barrel;
+  std::mt19937_64 barrel_rng(c.seed ^ 0xba77e1ULL);
+  if (barrel_on) {
+    barrel.emplace(c.barrel, c.dt_s);
+    tl.barrel_c.assign(n, 0.0);
+    tl.ambient_c.assign(n, 0.0);
+  }
 
   for (std::size_t i = 0; i < n; ++i) {
     const double t = tl.Time(static_cast<double>(i));
@@ -123,6 +133,12 @@ Timeline RunDynamics(const SimConfig& c, std::mt19937_64& rng) {
     const double u_flow = i >= flow_lag ? tl.rpm[i - flow_lag] : rpm_before;
     flow_noise = noise_alpha * flow_noise + (1 - noise_alpha) * gauss(rng);
     tl.flow[i] = std::max(0.0, to_flow.Step(u_flow) * (1.0 + c.extruder.flow_noise_frac * noise_gain * flow_noise));
+    if (barrel) {
+      barrel->Step(barrel_rng);
+      tl.flow[i] *= barrel->flow_factor();
+      tl.barrel_c[i] = barrel->reading_c();
+      tl.ambient_c[i] = barrel->ambient_c();
+    }
 
 
     // The wheel: its command, then its first-order response (thesis 3.3.3).
@@ -280,6 +296,14 @@ void SimulateLog(const SimConfig& c, const Timeline& tl, std::mt19937_64& rng, S
     flow.surface_speed_mm_s.push_back(At(tl.speed, i));
     flow.screw_rpm.push_back(At(tl.rpm, i));
   }
+  // Recorded channels, sampled like the rest of the log.
+  auto channel = [&](const char* name, const char* unit, const std::vector<double>& series) {
+    LogChannel ch{name, unit, {}};
+    for (double t : log.t_s) ch.values.push_back(At(series, tl.Index(t)));
+    log.channels.push_back(std::move(ch));
+  };
+  if (c.barrel.record) channel("barrel_temp_c", "C", tl.barrel_c);
+  if (c.barrel.record_ambient) channel("ambient_temp_c", "C", tl.ambient_c);
   out.run.log = std::move(log);
   double volume = 0.0;  // laid during the record, t >= 0
   for (std::size_t i = 1; i < tl.flow.size(); ++i)

@@ -9,6 +9,7 @@
 
 #include "libbead/core/rig.h"
 #include "libbead/model/transfer_function.h"
+#include "libbead/sim/barrel.h"
 
 namespace bead::sim {
 
@@ -112,6 +113,7 @@ struct SimConfig {
   SensorConfig sensor;
   PinConfig pins;
   EffectsConfig effects;
+  BarrelConfig barrel;  // the barrel's temperature: a recorded channel, and an effect on the flow
 
   SimConfig();
 };

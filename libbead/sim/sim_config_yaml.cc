@@ -13,7 +13,9 @@
 //   sensor: {rate_hz, points, x_min_mm, x_max_mm, fan, z_sigma_mm, z_quantum_mm, dropout_prob,
 //            spike_prob, spike_mm, dropped_profile_prob, roll_deg, runout_mm},
 //   pins: {scans, placement_sigma_mm, diameter_mm, height_mm, scan_speed_mm_s, scan_half_length_mm},
-//   effects: {eccentricity_mm, shrink_frac, shrink_tau_s, rig_offset_error_counts, sensor_latency_s}
+//   effects: {eccentricity_mm, shrink_frac, shrink_tau_s, rig_offset_error_counts, sensor_latency_s},
+//   barrel: {record, control (bang_bang | pid), setpoint_c, band_c, heater_c, ambient_c, wall_tau_s,
+//            sensor_tau_s, melt_tau_s, noise_c, kp, ki, kd, flow_per_c, record_ambient}
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
@@ -138,10 +140,38 @@ class Reader {
   std::string file_;
 };
 
+void ParseBarrel(const YAML::Node& root, const Reader& r, BarrelConfig& b) {
+  const YAML::Node ba = r.Section(root, "barrel", {"record", "control", "setpoint_c", "band_c", "heater_c", "ambient_c",
+                                                   "wall_tau_s", "sensor_tau_s", "melt_tau_s", "noise_c", "kp", "ki",
+                                                   "kd", "flow_per_c", "record_ambient"});
+  r.GetBool(ba, "barrel.", "record", b.record);
+  r.GetBool(ba, "barrel.", "record_ambient", b.record_ambient);
+  if (ba && ba["control"]) {
+    const std::string k = r.Text(ba["control"], "barrel.control");
+    if (k == "bang_bang") b.control = BarrelConfig::Control::kBangBang;
+    else if (k == "pid") b.control = BarrelConfig::Control::kPid;
+    else r.Fail(ba["control"], "barrel.control", "must be bang_bang or pid, not '" + k + "'");
+  }
+  r.Get(ba, "barrel.", "setpoint_c", b.setpoint_c, -50, 600);
+  r.Get(ba, "barrel.", "band_c", b.band_c, 0, 100);
+  r.Get(ba, "barrel.", "heater_c", b.heater_c, -50, 1000);
+  r.Get(ba, "barrel.", "ambient_c", b.ambient_c, -50, 600);
+  r.Get(ba, "barrel.", "wall_tau_s", b.wall_tau_s, 0.01, 1e5);
+  r.Get(ba, "barrel.", "sensor_tau_s", b.sensor_tau_s, 1e-3, 1e4);
+  r.Get(ba, "barrel.", "melt_tau_s", b.melt_tau_s, 1e-3, 1e4);
+  r.Get(ba, "barrel.", "noise_c", b.noise_c, 0, 100);
+  r.Get(ba, "barrel.", "kp", b.kp, 0, 1e3);
+  r.Get(ba, "barrel.", "ki", b.ki, 0, 1e3);
+  r.Get(ba, "barrel.", "kd", b.kd, 0, 1e3);
+  r.Get(ba, "barrel.", "flow_per_c", b.flow_per_c, -1, 1);
+  if (!(b.heater_c > b.setpoint_c && b.setpoint_c > b.ambient_c))
+    r.Fail(ba, "barrel", "needs ambient_c < setpoint_c < heater_c (the heater must be able to reach the setpoint)");
+}
+
 void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
   if (!root.IsMap()) r.Fail(root, "", "a simulation config must be a YAML mapping");
   const std::set<std::string> top = {"seed", "duration_s", "dt_s", "log_rate_hz", "warm_start", "rig", "extruder", "wheel",
-                                     "encoder", "bead", "sensor", "pins", "effects"};
+                                     "encoder", "bead", "sensor", "pins", "effects", "barrel"};
   for (const auto& kv : root)
     if (const std::string k = r.Text(kv.first, "<key>"); !top.count(k)) r.Fail(kv.first, k, "unknown key (misspelt?)");
   r.GetInt(root, "", "seed", c.seed, 0, 9.0e15);
@@ -268,6 +298,7 @@ void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
   r.Get(ef, "effects.", "shrink_tau_s", c.effects.shrink_tau_s, 1e-3, 1e4);
   r.Get(ef, "effects.", "rig_offset_error_counts", c.effects.rig_offset_error_counts, -1e9, 1e9);
   r.Get(ef, "effects.", "sensor_latency_s", c.effects.sensor_latency_s, -10, 10);
+  ParseBarrel(root, r, c.barrel);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <numbers>
 
 #include "libbead/explain/corrected_flow.h"
 #include "libbead/explain/explain_loop.h"
@@ -316,6 +317,45 @@ TEST(ExplainWarmRun, AMisspecifiedBaseModelBuysNoEffect) {
               r.base.heldout_f, r.base.threshold);
   EXPECT_TRUE(r.effects_added.empty()) << Names(r);
   EXPECT_TRUE(r.base.misspecified);
+}
+
+
+// The rig's log also records the barrel temperature (a heater under
+// bang-bang control, a cycle of about 20 s), and the flow follows the
+// melt's temperature, 1 % per degree (seed 003, section 3.4: throughput
+// depends on screw speed and barrel temperature). Explain must name the
+// channel. The melt lags the wall by 2 s and the reading by 1 s, so at the
+// cycle's rate (0.05 Hz) the flow moves |1 + j w 1 s| / |1 + j w 2 s| =
+// 0.89 times 1 % per degree of the reading.
+TEST(ExplainWarmRun, ATemperatureDrivenFlowGetsAnEffectNamingItsChannel) {
+  sim::SimConfig c = Warm(25);
+  c.duration_s = 48.0;
+  c.barrel.record = true;
+  c.barrel.flow_per_c = 0.01;
+  const Outcome o = ExplainRun(c);
+  const AddedEffect* e = Find(o.report, "channel[barrel_temp_c]");
+  ASSERT_NE(e, nullptr) << Names(o.report);
+  EXPECT_EQ(e->tracks, "barrel_temp_c");
+  double ci = 0;
+  const double gain = Param(*e, "rel_per_C", &ci);
+  const double w = 2 * std::numbers::pi * 0.05;
+  const double expected = 0.01 * std::hypot(1.0, w * 1.0) / std::hypot(1.0, w * 2.0);
+  std::printf("barrel temperature: %.5f +- %.5f per C (expected about %.5f); fit %.2f -> %.2f %%\n", gain, ci, expected,
+              e->fit_before_pct, e->fit_after_pct);
+  EXPECT_NEAR(gain, expected, 1.5 * ci + 0.1 * expected);  // 10 %: the cycle is a triangle, not a sine
+  EXPECT_GT(e->fit_after_pct, e->fit_before_pct);
+}
+
+// The same log with the flow not depending on the temperature, and a room
+// temperature that wanders on its own: no channel is an effect.
+TEST(ExplainWarmRun, ChannelsThatActOnNothingGetNoEffect) {
+  sim::SimConfig c = Warm(26);
+  c.duration_s = 48.0;
+  c.barrel.record = true;
+  c.barrel.record_ambient = true;
+  const Outcome o = ExplainRun(c);
+  ASSERT_EQ(o.series.data.channels.size(), 2u);
+  for (const auto& e : o.report.effects_added) EXPECT_EQ(e.name.rfind("channel[", 0), std::string::npos) << Names(o.report);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "libbead/core/error.h"
+#include "libbead/io/hdf5_file.h"
 #include "tests/support/temp_dir.h"
 
 namespace bead {
@@ -79,6 +80,41 @@ TEST(RunArchive, LogIsOptional) {
   run.log.reset();
   WriteRunArchive(dir / "profiles_only.h5", run);
   EXPECT_FALSE(ReadRunArchive(dir / "profiles_only.h5").log.has_value());
+}
+
+// Acquisition software records more than the spec's five log datasets:
+// every other float [M] dataset under /log is a channel, its unit from a
+// string attribute `unit`; what is not a float vector of the log's length
+// (an integer counter, a vector of another length) is left alone.
+TEST(RunArchive, RecordedLogChannelsRoundTripWithTheirUnits) {
+  test::TempDir dir;
+  RunArchive run = SmallRun(true);
+  run.log->channels.push_back({"barrel_temp_c", "C", {199.5, 200.0, 200.5, 201.0, 200.0}});
+  run.log->channels.push_back({"melt_pressure", "", {10, 11, 12, 13, 14}});
+  const std::string path = dir / "channels.h5";
+  WriteRunArchive(path, run);
+  {  // another tool's extras beside them
+    h5::File f = h5::File::OpenReadWrite(path);
+    f.Write("/log/heater_cycles", std::vector<int64_t>{1, 1, 2, 2, 3}, {5});
+    f.Write("/log/calibration", std::vector<double>{1.0, 2.0}, {2});
+  }
+  const RunArchive back = ReadRunArchive(path);
+  ASSERT_TRUE(back.log.has_value());
+  ASSERT_EQ(back.log->channels.size(), 2u);
+  EXPECT_EQ(back.log->channels[0].name, "barrel_temp_c");
+  EXPECT_EQ(back.log->channels[0].unit, "C");
+  EXPECT_EQ(back.log->channels[0].values, run.log->channels[0].values);
+  EXPECT_EQ(back.log->channels[1].name, "melt_pressure");
+  EXPECT_EQ(back.log->channels[1].unit, "");
+}
+
+TEST(RunArchive, AChannelOfTheWrongLengthOrNameIsRefusedByTheWriter) {
+  test::TempDir dir;
+  RunArchive run = SmallRun(true);
+  run.log->channels.push_back({"barrel_temp_c", "C", {199.5, 200.0}});
+  EXPECT_THROW(WriteRunArchive(dir / "short.h5", run), Error);
+  run.log->channels.back() = {"screw_rpm", "", std::vector<double>(5, 1.0)};
+  EXPECT_THROW(WriteRunArchive(dir / "spec_name.h5", run), Error);
 }
 
 TEST(PinScanArchive, RoundTrips) {
