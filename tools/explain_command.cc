@@ -13,7 +13,9 @@
 #include "libbead/core/error.h"
 #include "calibration/pin_offset.h"
 #include "libbead/explain/corrected_flow.h"
+#include "libbead/explain/explain_json.h"
 #include "libbead/explain/explain_loop.h"
+#include "libbead/explain/run_explain.h"
 #include "libbead/explain/model_series.h"
 #include "libbead/explain/run_series.h"
 #include "libbead/flow/flow.h"
@@ -35,89 +37,6 @@ namespace bead::tools {
 namespace {
 
 using nlohmann::json;
-
-json ToJson(const explain::Whiteness& w) {
-  return {{"lags", w.lags}, {"acf", w.acf}, {"bound", w.bound}, {"outside", w.outside},
-          {"chi2", w.chi2}, {"chi2_limit_99", w.chi2_limit}, {"white", w.white}};
-}
-json ToJson(const explain::InputCorrelation& x) {
-  return {{"lags", x.lags}, {"ccf", x.ccf}, {"bound", x.bound}, {"outside", x.outside}, {"independent", x.independent}};
-}
-json ToJson(const explain::Spectrum& s) {
-  json peaks = json::array();
-  for (const auto& p : s.peaks)
-    peaks.push_back({{"frequency_hz", p.frequency_hz}, {"power", p.power}, {"false_alarm", p.false_alarm}});
-  return {{"frequency_hz", s.frequency_hz}, {"power", s.power}, {"peaks", peaks}};
-}
-json Finite(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
-
-json Parameters(const std::vector<explain::FittedParameter>& ps) {
-  json params = json::object();
-  for (const auto& p : ps) params[p.name] = {{"value", p.value}, {"ci95", Finite(p.ci95)}};
-  return params;
-}
-
-json Confounded(const explain::ExplainReport& r) {
-  json out = json::array();
-  for (const auto& c : r.confounded)
-    out.push_back({{"first", c.first}, {"second", c.second}, {"correlation", c.correlation}, {"note", c.note}});
-  return out;
-}
-
-json ReportJson(const explain::ExplainReport& r, const model::TransferFunction& tf, double offset,
-                const std::string& model_source) {
-  json effects = json::array();
-  for (const auto& e : r.effects_added)
-    effects.push_back({{"name", e.name},
-                       {"description", e.description},
-                       {"tracks", e.tracks},
-                       {"parameters", Parameters(e.parameters)},
-                       {"fit_before_pct", e.fit_before_pct},
-                       {"fit_after_pct", e.fit_after_pct},
-                       {"rms_before", e.rms_before},
-                       {"rms_after", e.rms_after},
-                       {"bic_drop", e.bic_drop},
-                       {"heldout_f", e.heldout_f}});
-  json base = json::object();
-  for (const auto& e : r.base_refit) base[e.name] = Parameters(e.parameters);
-  json unexplained = json::array();
-  for (const auto& u : r.unexplained)
-    unexplained.push_back({{"what", u.what},
-                           {"tracks", u.tracks},
-                           {"frequency_hz", u.frequency_hz},
-                           {"power", u.power},
-                           {"false_alarm", u.false_alarm}});
-  json candidates = json::array();
-  for (const auto& c : r.candidates)
-    candidates.push_back({{"round", c.round}, {"name", c.name}, {"bic_drop", c.bic_drop}, {"heldout_f", c.heldout_f},
-                          {"surrogate_f", Finite(c.surrogate_f)}, {"guarded_f", Finite(c.guarded_f)},
-                          {"accepted", c.accepted}});
-  return {{"model",
-           {{"num", tf.num}, {"den", tf.den}, {"delay_s", tf.delay_s}, {"operating_point", {{"offset", offset}}},
-            {"source", model_source}}},
-          {"fit_before_pct", r.before.fit_pct},
-          {"fit_after_pct", r.after.fit_pct},
-          {"rms_before", r.before.rms},
-          {"rms_after", r.after.rms},
-          {"base_refit", base},
-          {"base_model",
-           {{"tested", r.base.tested},
-            {"misspecified", r.base.misspecified},
-            {"dynamics_correction_heldout_f", r.base.heldout_f},
-            {"threshold_f", r.base.threshold},
-            {"heldout_rms_before", r.base.rms_before},
-            {"heldout_rms_with_correction", r.base.rms_after}}},
-          {"effects_added", effects},
-          {"confounded", Confounded(r)},
-          {"unexplained", unexplained},
-          {"diagnostics",
-           {{"whiteness_before", ToJson(r.before.whiteness)},
-            {"whiteness_after", ToJson(r.after.whiteness)},
-            {"input_correlation_before", ToJson(r.before.input)},
-            {"input_correlation_after", ToJson(r.after.input)},
-            {"candidates", candidates}}},
-          {"spectrum", {{"before", ToJson(r.before.spectrum)}, {"after", ToJson(r.after.spectrum)}}}};
-}
 
 void PrintReport(const explain::ExplainReport& r, const std::string& unit) {
   std::printf("\nthe model as given: fit %.2f %%, RMS error %.4g %s; residual %s (chi2 %.1f, 99 %% limit %.1f), %s the input\n",
@@ -161,26 +80,54 @@ void PrintReport(const explain::ExplainReport& r, const std::string& unit) {
                 c.correlation, c.note.c_str());
 }
 
-// Keeps the recorded channels named (all with an empty list); an unknown
-// name is an error listing what the file has.
-void SelectChannels(std::vector<explain::Channel>& channels, const std::vector<std::string>& names, bool none,
-                    const std::string& path) {
-  if (none) {
-    channels.clear();
+void PrintRun(const explain::RunExplanation& e, const Rig& rig, const std::string& path, const std::string& validate) {
+  for (const auto& c : e.series.data.channels)
+    std::printf("recorded channel: %s (%s), tried as a cause\n", c.name.c_str(), c.unit.empty() ? "no unit" : c.unit.c_str());
+  if (!validate.empty()) std::printf("held-out data: %s\n", validate.c_str());
+  std::printf("%s: %zu samples of flow in extrusion time\n", path.c_str(), e.series.data.size());
+  PrintReport(e.report, "mm^3/s");
+  const explain::OffsetFromRun& o = e.offset;
+  if (!o.pinned)
+    std::printf("encoder offset from the run: NOT pinned by this run: its 95 %% interval %.1f to %.1f counts reaches "
+                "the searched range (lowest error at %.1f; the wheel's speed changes too little to tell a position "
+                "error from a time error); rig file: %.1f counts\n",
+                o.lo_counts, o.hi_counts, o.counts, rig.offset_counts);
+  else
+    std::printf("encoder offset from the run: %.1f counts, 95 %% interval %.1f to %.1f (the residual's colour and the "
+                "delay refitted at every offset accounted for); rig file: %.1f counts%s\n",
+                o.counts, o.lo_counts, o.hi_counts, rig.offset_counts, o.excludes_rig ? " -- OUTSIDE the run's interval" : "");
+  std::printf("profile time stamps against the log: %+.4f +- %.4f s (a sensor latency shows here)\n",
+              e.series.timestamp_offset_s, e.series.timestamp_offset_ci95_s);
+}
+
+void PrintPins(const explain::OffsetComparison& c, const explain::OffsetFromRun& run, const std::string& path) {
+  std::printf("pin scans (%s): %.1f +- %.1f counts; the run's offset differs by %+.1f counts\n", path.c_str(),
+              c.pins_counts, c.pins_ci95_counts, c.difference);
+  if (!c.run_pinned)
+    std::printf("offset: the run does not pin it; the pins' %.1f +- %.1f counts stands alone\n", c.pins_counts,
+                c.pins_ci95_counts);
+  else if (c.agree)
+    std::printf("offset, run and pins combined: %.1f +- %.1f counts (they agree within their intervals)\n",
+                c.combined_counts, c.combined_ci95_counts);
+  else
+    std::printf("offset: the run (%.1f +- %.1f) and the pins (%.1f +- %.1f) DISAGREE by %.1f counts, more than their "
+                "intervals allow: a pin placed off the nozzle's centre, a slipped encoder, or an effect the run's "
+                "model lacks; they are not combined\n",
+                run.counts, run.ci95_counts, c.pins_counts, c.pins_ci95_counts, c.difference);
+}
+
+void PrintCorrected(const explain::CorrectedFlow& cf, const std::string& path) {
+  std::string undone;
+  for (const auto& u : cf.undone) undone += (undone.empty() ? "" : ", ") + u;
+  if (cf.lowers_error) {
+    std::printf("corrected flow: %s undone (offset %.1f counts); held-out RMS against the model %.4g -> %.4g mm^3/s; "
+                "total volume %.1f mm^3\nwrote %s\n",
+                undone.c_str(), cf.offset_counts, cf.rms_before, cf.rms_after, cf.flow.total_volume_mm3, path.c_str());
     return;
   }
-  if (names.empty()) return;
-  std::vector<explain::Channel> kept;
-  for (const std::string& n : names) {
-    const auto it = std::find_if(channels.begin(), channels.end(), [&](const explain::Channel& c) { return c.name == n; });
-    if (it == channels.end()) {
-      std::string have;
-      for (const auto& c : channels) have += (have.empty() ? "" : ", ") + c.name;
-      throw Error(Located(path, "/log/" + n, "no such recorded channel (the log has: " + (have.empty() ? "none" : have) + ")"));
-    }
-    kept.push_back(*it);
-  }
-  channels = kept;
+  std::printf("corrected flow NOT written (%s): %s%s%s\n", path.c_str(), cf.why_not.c_str(),
+              undone.empty() ? "" : "; tried: ", undone.c_str());
+  if (!undone.empty()) std::printf("  held-out RMS against the model %.4g -> %.4g mm^3/s\n", cf.rms_before, cf.rms_after);
 }
 
 void Write(const std::string& path, const json& j) {
@@ -335,116 +282,35 @@ Run AddExplain(CLI::App& app) {
       };
       const auto main_run = measure(args->data);
       const Model mdl = model_for(main_run->t, main_run->u, main_run->y, {}, args->data);
-      auto series_of = [&](const Measured& m) {
-        return explain::MakeRunSeries(rig, m.measured.run.profiles, m.measured.geometry, *m.measured.run.log, m.flow,
-                                      mdl.tf, mdl.offset);
+      std::unique_ptr<Measured> other;
+      if (!args->validate.empty()) other = measure(args->validate);
+      auto view = [](const Measured& m, const std::string& path) {
+        return explain::MeasuredFlow{path, &m.measured.run.profiles, &m.measured.geometry, &*m.measured.run.log,
+                                     &m.flow, &m.measured.corrected, &m.measured.sigma};
       };
-      explain::RunSeries series = series_of(*main_run);
-      SelectChannels(series.data.channels, args->channels, args->no_channels, args->data);
-      for (const auto& c : series.data.channels)
-        std::printf("recorded channel: %s (%s), tried as a cause\n", c.name.c_str(), c.unit.empty() ? "no unit" : c.unit.c_str());
-      std::optional<explain::RunSeries> other;
-      if (!args->validate.empty()) {
-        other = series_of(*measure(args->validate));
-        SelectChannels(other->data.channels, args->channels, args->no_channels, args->validate);
-        if (other->data.channels.size() != series.data.channels.size())
-          throw Error(Located(args->validate, "/log", "does not record the same channels as " + args->data +
-                                                          " (name them with --channels, or --no-channels)"));
-        options.validation = &other->data;
-        std::printf("held-out data: %s (%zu samples)\n", args->validate.c_str(), other->data.size());
-      }
-      options.catalogue.has_wheel = true;
-      options.catalogue.position_range_counts = rig.encoder.counts_per_rev / 20.0;
-      std::printf("%s: %zu samples of flow in extrusion time; explaining...\n", args->data.c_str(), series.data.size());
-      const explain::ExplainReport r = explain::Explain(series.data, options);
-      PrintReport(r, "mm^3/s");
-      const explain::ShiftProfile& sp = r.shift_profile;
-      const double offset = rig.offset_counts + r.position_shift_counts;
-      if (sp.lo_at_edge || sp.hi_at_edge)
-        std::printf("encoder offset from the run: NOT pinned by this run: its 95 %% interval %.1f to %.1f counts reaches "
-                    "the searched range (lowest error at %.1f; the wheel's speed changes too little to tell a position "
-                    "error from a time error); rig file: %.1f counts\n",
-                    rig.offset_counts + sp.lo, rig.offset_counts + sp.hi, offset, rig.offset_counts);
-      else
-        std::printf("encoder offset from the run: %.1f counts, 95 %% interval %.1f to %.1f (the residual's colour and the "
-                    "delay refitted at every offset accounted for); rig file: %.1f counts%s\n",
-                    offset, rig.offset_counts + sp.lo, rig.offset_counts + sp.hi, rig.offset_counts,
-                    sp.lo > 0 || sp.hi < 0 ? " -- OUTSIDE the run's interval" : "");
-      std::printf("profile time stamps against the log: %+.4f +- %.4f s (a sensor latency shows here)\n",
-                  series.timestamp_offset_s, series.timestamp_offset_ci95_s);
-      json j = ReportJson(r, mdl.tf, mdl.offset, mdl.source);
-      j["mode"] = "run";
-      j["offset_from_run_counts"] = offset;
-      j["offset_from_run_ci95_counts"] = Finite(r.position_shift_ci95_counts);  // null: the run does not pin it
-      j["offset_from_run_pinned"] = !(sp.lo_at_edge || sp.hi_at_edge);
-      j["offset_delay_correlation"] = Finite(r.shift_delay_correlation);
-      j["offset_profile_threshold_q"] = sp.q;  // SSE_min + 3.84 q bounds the interval
-      j["offset_profile"] = {{"offset_counts", json::array()},
-                             {"sse", sp.sse},
-                             {"ci95_low_counts", rig.offset_counts + sp.lo},
-                             {"ci95_high_counts", rig.offset_counts + sp.hi},
-                             {"low_at_search_edge", sp.lo_at_edge},
-                             {"high_at_search_edge", sp.hi_at_edge}};
-      for (double g : sp.shift_counts) j["offset_profile"]["offset_counts"].push_back(rig.offset_counts + g);
-      j["rig_offset_counts"] = rig.offset_counts;
-      j["diagnostics"]["timestamp_offset_s"] = series.timestamp_offset_s;
-      j["diagnostics"]["timestamp_offset_ci95_s"] = series.timestamp_offset_ci95_s;
+      explain::RunExplainOptions run_options;
+      run_options.explain = options;
+      run_options.channels = args->channels;
+      run_options.no_channels = args->no_channels;
+      run_options.correct_flow = !args->flow_out.empty();
+      const explain::MeasuredFlow main_view = view(*main_run, args->data);
+      const explain::MeasuredFlow other_view = other ? view(*other, args->validate) : explain::MeasuredFlow{};
+      std::printf("%s: explaining the flow in extrusion time...\n", args->data.c_str());
+      const explain::RunExplanation e = explain::ExplainMeasuredRun(rig, main_view, other ? &other_view : nullptr,
+                                                                    mdl.tf, mdl.offset, run_options);
+      PrintRun(e, rig, args->data, args->validate);
+      std::optional<explain::OffsetComparison> pins;
       if (!args->pins.empty()) {
         const calibration::OffsetCalibration cal = calibration::CalibrateOffset(rig, ReadPinScanArchive(args->pins));
         if (!cal.ok) throw Error(Located(args->pins, "", "cannot calibrate: " + cal.reason));
-        const double diff = offset - cal.offset_counts;
-        const double run_sd = r.position_shift_ci95_counts / 1.96, pin_sd = cal.ci95_counts / 1.96;
-        const bool run_pinned = !(sp.lo_at_edge || sp.hi_at_edge) && run_sd > 0;
-        const bool agree = std::abs(diff) <= 1.96 * std::hypot(run_sd, pin_sd);
-        std::printf("pin scans (%s): %.1f +- %.1f counts; the run's offset differs by %+.1f counts\n", args->pins.c_str(),
-                    cal.offset_counts, cal.ci95_counts, diff);
-        j["pin_offset_counts"] = cal.offset_counts;
-        j["pin_offset_ci95_counts"] = cal.ci95_counts;
-        j["offsets_agree"] = agree;
-        if (!run_pinned) {
-          std::printf("offset: the run does not pin it; the pins' %.1f +- %.1f counts stands alone\n", cal.offset_counts,
-                      cal.ci95_counts);
-        } else if (agree) {
-          // Inverse-variance weighting of two independent estimates.
-          const double w_run = 1 / (run_sd * run_sd), w_pin = 1 / (pin_sd * pin_sd);
-          const double combined = (w_run * offset + w_pin * cal.offset_counts) / (w_run + w_pin);
-          const double combined_ci = 1.96 / std::sqrt(w_run + w_pin);
-          std::printf("offset, run and pins combined: %.1f +- %.1f counts (they agree within their intervals)\n",
-                      combined, combined_ci);
-          j["combined_offset_counts"] = combined;
-          j["combined_offset_ci95_counts"] = combined_ci;
-        } else {
-          std::printf("offset: the run (%.1f +- %.1f) and the pins (%.1f +- %.1f) DISAGREE by %.1f counts, more than "
-                      "their intervals allow: a pin placed off the nozzle's centre, a slipped encoder, or an effect "
-                      "the run's model lacks; they are not combined\n",
-                      offset, r.position_shift_ci95_counts, cal.offset_counts, cal.ci95_counts, diff);
-        }
+        pins = explain::CompareOffsets(e.offset, cal.offset_counts, cal.ci95_counts);
+        PrintPins(*pins, e.offset, args->pins);
       }
-      if (!args->flow_out.empty()) {
-        const explain::CorrectedFlow cf =
-            explain::CorrectFlow(rig, main_run->measured.run.profiles, main_run->measured.geometry,
-                                 *main_run->measured.run.log, main_run->measured.corrected, main_run->measured.sigma,
-                                 r, mdl.tf, mdl.offset);
-        std::string undone;
-        for (const auto& u : cf.undone) undone += (undone.empty() ? "" : ", ") + u;
-        j["corrected_flow"] = {{"path", args->flow_out},          {"undone", cf.undone},
-                               {"offset_counts", cf.offset_counts}, {"heldout_rms_before", cf.rms_before},
-                               {"heldout_rms_after", cf.rms_after}, {"written", cf.lowers_error}};
-        if (cf.lowers_error) {
-          WriteFlowCsv(args->flow_out, cf.flow);
-          j["corrected_flow"]["total_volume_mm3"] = cf.flow.total_volume_mm3;
-          std::printf("corrected flow: %s undone (offset %.1f counts); held-out RMS against the model %.4g -> %.4g "
-                      "mm^3/s; total volume %.1f mm^3\nwrote %s\n",
-                      undone.c_str(), cf.offset_counts, cf.rms_before, cf.rms_after, cf.flow.total_volume_mm3,
-                      args->flow_out.c_str());
-        } else {
-          j["corrected_flow"]["why_not"] = cf.why_not;
-          std::printf("corrected flow NOT written (%s): %s%s%s\n", args->flow_out.c_str(), cf.why_not.c_str(),
-                      undone.empty() ? "" : "; tried: ", undone.c_str());
-          if (!undone.empty())
-            std::printf("  held-out RMS against the model %.4g -> %.4g mm^3/s\n", cf.rms_before, cf.rms_after);
-        }
+      if (e.corrected) {
+        if (e.corrected->lowers_error) WriteFlowCsv(args->flow_out, e.corrected->flow);
+        PrintCorrected(*e.corrected, args->flow_out);
       }
+      const json j = explain::RunJson(e, rig, mdl.tf, mdl.offset, mdl.source, pins, args->flow_out);
       Write(args->out, j);
       return 0;
     }
@@ -489,7 +355,7 @@ Run AddExplain(CLI::App& app) {
     }
     const explain::ExplainReport r = explain::Explain(data, options);
     PrintReport(r, args->output);
-    json j = ReportJson(r, mdl.tf, mdl.offset, mdl.source);
+    json j = explain::ReportJson(r, mdl.tf, mdl.offset, mdl.source);
     j["mode"] = "csv";
     j["offset_from_run_counts"] = nullptr;  // no wheel in a plain series
     j["offset_from_run_ci95_counts"] = nullptr;

@@ -1,0 +1,109 @@
+#include "libbead/explain/confounding.h"
+
+#include <cmath>
+#include <limits>
+
+namespace bead::explain {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+}  // namespace
+
+// Pairs of parameters whose estimates correlate beyond 0.9, at least one
+// of them an effect's (the base model's gain and operating point always
+// trade a little, and say nothing).
+std::vector<Confounding> Confounded(const EffectSet& set, const ParameterCovariance& cov, std::size_t base_terms) {
+  std::vector<Confounding> out;
+  const std::size_t P = cov.index.size();
+  auto name = [&](std::size_t slot) {
+    const Active& a = set[cov.index[slot].first];
+    const std::size_t k = cov.index[slot].second;
+    return a.effect.name + "." + (k < a.nl() ? a.effect.nonlinear[k] : a.effect.linear[k - a.nl()]);
+  };
+  for (std::size_t i = 0; i < P; ++i)
+    for (std::size_t j = i + 1; j < P; ++j) {
+      const std::size_t ei = cov.index[i].first, ej = cov.index[j].first;
+      if (ei == ej || (ei < base_terms && ej < base_terms)) continue;
+      const double r = cov.correlation[i * P + j];
+      if (!(std::abs(r) > 0.9)) continue;
+      const bool shrink = set[ei].effect.feature == "scale" && set[ej].effect.feature == "time_to_laser";
+      out.push_back({name(i), name(j), r,
+                     shrink ? "a constant shrink is a gain: only the shrink's change with the time to the laser is "
+                              "in the data, and only that part is undone in a corrected flow"
+                            : "the data pins their combination better than either: each interval is the one with "
+                              "the other free"});
+    }
+  return out;
+}
+
+// What a fitted term adds to the prediction at each sample.
+static std::vector<double> Contribution(const SeriesData& d, const Active& a) {
+  const auto cols = a.effect.Columns(d, a.params.data());
+  std::vector<double> out(d.size(), 0.0);
+  for (std::size_t j = 0; j < cols.size(); ++j)
+    for (std::size_t i = 0; i < d.size(); ++i)
+      out[i] += a.params[a.nl() + j] * cols[j][i] * (a.effect.kind == Effect::Kind::kMultiplicative ? d.base[i] : 1.0);
+  return out;
+}
+
+static double Correlation(const std::vector<double>& a, const std::vector<double>& b) {
+  double ma = 0, mb = 0, saa = 0, sbb = 0, sab = 0;
+  const double n = static_cast<double>(a.size());
+  for (std::size_t i = 0; i < a.size(); ++i) ma += a[i] / n, mb += b[i] / n;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    saa += (a[i] - ma) * (a[i] - ma), sbb += (b[i] - mb) * (b[i] - mb), sab += (a[i] - ma) * (b[i] - mb);
+  return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : NAN;
+}
+
+// Two candidates that both passed in the round one of them was kept in,
+// the other never added after it: the data cannot tell them apart when
+// what they explain correlates.
+void SayAlternative(const SeriesData& d, const Active& kept, const Active& alt, ExplainReport& report) {
+  for (const AddedEffect& e : report.effects_added)
+    if (e.name == alt.effect.name) return;  // added in a later round: told apart
+  const double r = Correlation(Contribution(d, kept), Contribution(d, alt));
+  if (!(std::abs(r) > 0.5)) return;
+  report.confounded.push_back(
+      {kept.effect.name, alt.effect.name, r,
+       "both pass the held-out test alone and the second adds nothing beside the first: the data cannot tell "
+       "these two causes apart (the one kept lowers the BIC more); a run that varies them apart can"});
+}
+
+// The offset from the run: the profile, widened to the joint fit's
+// interval at its best (the shift beside every other term), and the
+// shift's correlation with the base model's delay.
+void EstimateShift(const SeriesData& d, const EffectSet& current, const Effect& shift, const std::vector<std::size_t>& rows,
+                   ExplainReport& report) {
+  ShiftProfile& p = report.shift_profile;
+  p = ProfileShift(d, current, shift, rows);
+  EffectSet joint = p.refit_at_best;
+  joint.push_back(Activate(shift));
+  joint.back().params[0] = p.best;
+  const ParameterCovariance jc = Covariance(d, joint, rows);
+  const double sd = jc.sd.back()[0];
+  ShiftInterval(p, jc.variance_along.back()[0]);
+  p.profile_lo = p.lo, p.profile_hi = p.hi, p.joint_sd_counts = sd;
+  const std::vector<double>& grid = shift.grid[0];
+  if (!std::isfinite(sd)) {
+    p.lo = grid.front(), p.hi = grid.back(), p.lo_at_edge = p.hi_at_edge = true;
+  } else {
+    if (p.best - 1.96 * sd < p.lo) p.lo = std::max(grid.front(), p.best - 1.96 * sd), p.lo_at_edge |= p.lo <= grid.front();
+    if (p.best + 1.96 * sd > p.hi) p.hi = std::min(grid.back(), p.best + 1.96 * sd), p.hi_at_edge |= p.hi >= grid.back();
+  }
+  report.position_shift_estimated = true;
+  report.position_shift_counts = p.best;
+  // Half-width, the larger side; unbounded where the interval reaches the
+  // searched range (the run does not pin the offset).
+  report.position_shift_ci95_counts = p.lo_at_edge || p.hi_at_edge ? kInf : std::max(p.hi - p.best, p.best - p.lo);
+  for (std::size_t e = 0; e + 1 < joint.size(); ++e)
+    if (joint[e].effect.kind == Effect::Kind::kDelay)
+      report.shift_delay_correlation = jc.Correlation(joint.size() - 1, 0, e, 0);
+  if (std::abs(report.shift_delay_correlation) > 0.9)
+    report.confounded.push_back(
+        {"encoder_offset.shift_counts", "delay.shift_s", report.shift_delay_correlation,
+         "at a steady wheel speed a position error is a time error: the run pins the offset only through the "
+         "changes of the wheel's speed, and its interval is as wide as they allow (pin scans pin it alone)"});
+}
+
+}  // namespace bead::explain

@@ -1,0 +1,31 @@
+// explain's report as JSON (explain.json): the loop's answers with their
+// intervals, the diagnostics, and in run mode the offset from the run, the
+// pin scans beside it and the corrected flow. The layout is docs'.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "libbead/core/rig.h"
+#include "libbead/explain/explain_loop.h"
+#include "libbead/explain/run_explain.h"
+#include "libbead/model/transfer_function.h"
+
+namespace bead::explain {
+
+// The loop's report and the model it started from (any mode).
+nlohmann::json ReportJson(const ExplainReport& r, const model::TransferFunction& tf, double offset,
+                          const std::string& model_source);
+
+// Run mode: ReportJson's fields and the offset, the time stamps, the pins
+// (when compared) and the corrected flow (when computed; `flow_out` the
+// path it was or would have been written to).
+nlohmann::json RunJson(const RunExplanation& e, const Rig& rig, const model::TransferFunction& tf, double offset,
+                       const std::string& model_source, const std::optional<OffsetComparison>& pins,
+                       const std::string& flow_out);
+
+// A number, or null where it is not finite (an unpinned interval).
+nlohmann::json Finite(double v);
+
+}  // namespace bead::explain
