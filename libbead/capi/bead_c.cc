@@ -198,13 +198,6 @@ bead_flow* bead_flow_create(const bead_rig* rig, const bead_flow_options* option
       return nullptr;
     }
     if (!ReadVersioned(rig, r, where) || !ReadVersioned(options, o, where)) return nullptr;
-    if (!(r.counts_per_rev > 0) || !(r.wheel_diameter_mm > 0) || !std::isfinite(r.offset_counts) ||
-        (r.encoder_direction != 1 && r.encoder_direction != -1) || r.encoder_bits < 0 || r.encoder_bits > 63 ||
-        !(std::abs(r.wheel_eccentricity_mm) < 0.5 * r.wheel_diameter_mm)) {
-      SetError(where, "rig: counts_per_rev and wheel_diameter_mm must be > 0, offset_counts finite, direction +-1, "
-                      "bits 0..63, eccentricity under the radius");
-      return nullptr;
-    }
     if (!(log_rate_hz > 0) || !std::isfinite(log_rate_hz) || !(o.speed_window_s > 0) || !(o.speed_hampel_s > 0) ||
         o.area_hampel_half < 1 || !(o.hampel_nsigma > 0) || !(o.history_s > 0)) {
       SetError(where, "log_rate_hz, the windows, hampel_nsigma and history_s must be > 0, area_hampel_half >= 1");
@@ -218,6 +211,10 @@ bead_flow* bead_flow_create(const bead_rig* rig, const bead_flow_options* option
     cr.offset_counts = r.offset_counts;
     cr.wheel_eccentricity_mm = r.wheel_eccentricity_mm;
     cr.wheel_eccentricity_phase_deg = r.wheel_eccentricity_phase_deg;
+    if (std::string key, error; !bead::IsValid(cr, false, &key, &error)) {  // the rig file's rules (core/rig.h)
+      SetError(where, ("rig: " + key + " " + error).c_str());
+      return nullptr;
+    }
     bead::FlowOptions fo;
     fo.speed_window_s = o.speed_window_s;
     fo.speed_hampel_s = o.speed_hampel_s;

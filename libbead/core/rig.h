@@ -49,4 +49,18 @@ struct Rig {
   double SurfaceSpeedFactor(double counts) const;
 };
 
+// The rules every rig obeys, whatever it came from (the rig file, the C
+// interface, the simulator's config), in one place in the manner of Ceres'
+// Solver::Options::IsValid: true, or false with `key` the rig file's key of
+// the first rule broken ("encoder.bits") and `error` what it must be.
+//  - encoder.counts_per_rev finite and > 0; encoder.bits 0 (never wraps) or
+//    a counter width of 8 to 64; encoder.direction +1 or -1;
+//  - wheel.diameter_mm finite and > 0; wheel.eccentricity_mm 0 or more and
+//    under a tenth of the diameter, its phase within +-360 degrees;
+//  - offset.counts finite;
+//  - with `with_areas`: each reference area a finite, non-empty x range,
+//    the left one ending before the right one begins (the bead lies in the
+//    gap); a laser origin, when given, finite.
+bool IsValid(const Rig& rig, bool with_areas, std::string* key, std::string* error);
+
 }  // namespace bead

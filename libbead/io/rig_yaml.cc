@@ -1,5 +1,6 @@
 #include "libbead/io/rig_yaml.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "libbead/core/error.h"
@@ -62,30 +63,21 @@ class RigParser {
     const YAML::Node enc = Child(root, "", "encoder");
     const YAML::Node cpr = Child(enc, "encoder", "counts_per_rev");
     rig.encoder.counts_per_rev = Number(cpr, "encoder.counts_per_rev");
-    if (!(rig.encoder.counts_per_rev > 0)) Fail(cpr, "encoder.counts_per_rev", "must be positive");
-    const YAML::Node bits = Child(enc, "encoder", "bits");
-    const long b = Integer(bits, "encoder.bits");
-    if (b < 0 || b > 64 || (b > 0 && b < 8))
-      Fail(bits, "encoder.bits", "must be 0 (never wraps) or a counter width from 8 to 64, got " + std::to_string(b));
-    rig.encoder.bits = static_cast<int>(b);
-    const YAML::Node dir = Child(enc, "encoder", "direction");
-    const long d = Integer(dir, "encoder.direction");
-    if (d != 1 && d != -1) Fail(dir, "encoder.direction", "must be 1 or -1, got " + std::to_string(d));
-    rig.encoder.direction = static_cast<int>(d);
+    // Whole numbers, held in an int only once within +-2^31 (the rules'
+    // range check comes after, IsValid).
+    const long b = Integer(Child(enc, "encoder", "bits"), "encoder.bits");
+    rig.encoder.bits = static_cast<int>(std::clamp(b, -1L, 65L));
+    const long d = Integer(Child(enc, "encoder", "direction"), "encoder.direction");
+    rig.encoder.direction = static_cast<int>(std::clamp(d, -2L, 2L));
 
     const YAML::Node wheel = Child(root, "", "wheel");
     const YAML::Node diam = Child(wheel, "wheel", "diameter_mm");
     rig.wheel_diameter_mm = Number(diam, "wheel.diameter_mm");
-    if (!(rig.wheel_diameter_mm > 0)) Fail(diam, "wheel.diameter_mm", "must be positive");
     // Optional, from `bead calibrate wheel`.
     if (const YAML::Node e = wheel["eccentricity_mm"]; e.IsDefined()) {
       rig.wheel_eccentricity_mm = Number(e, "wheel.eccentricity_mm");
-      if (!(rig.wheel_eccentricity_mm >= 0 && rig.wheel_eccentricity_mm < 0.1 * rig.wheel_diameter_mm))
-        Fail(e, "wheel.eccentricity_mm", "must be 0 or more and under a tenth of the diameter");
       const YAML::Node phase = Child(wheel, "wheel", "eccentricity_phase_deg");
       rig.wheel_eccentricity_phase_deg = Number(phase, "wheel.eccentricity_phase_deg");
-      if (!(std::abs(rig.wheel_eccentricity_phase_deg) <= 360.0))
-        Fail(phase, "wheel.eccentricity_phase_deg", "must be an angle within +-360 degrees");
     }
 
     const YAML::Node offset = Child(root, "", "offset");
@@ -104,13 +96,9 @@ class RigParser {
     for (int i = 0; i < 2 && has_areas; ++i) {
       const std::string key = "sensor.reference_areas_mm[" + std::to_string(i) + "]";
       const auto [lo, hi] = Pair(areas[i], key);
-      if (!(hi > lo)) Fail(areas[i], key, "is empty: the second x must be larger than the first");
       ra[i] = ReferenceArea{lo, hi};
     }
     if (ra[0].x_min_mm > ra[1].x_min_mm) std::swap(ra[0], ra[1]);
-    if (has_areas && ra[0].x_max_mm >= ra[1].x_min_mm)
-      Fail(areas, "sensor.reference_areas_mm",
-           "the two reference areas overlap: the bead must lie in a gap between them");
     rig.reference_left = ra[0];
     rig.reference_right = ra[1];
     if (YAML::Node origin = Child(sensor, "sensor", "laser_origin_mm", false); origin.IsDefined()) {
@@ -119,6 +107,39 @@ class RigParser {
     }
     return rig;
   }
+
+  // The rules (core/rig.h IsValid), a broken one named at its key's line.
+  void Check(const YAML::Node& root, const Rig& rig, bool has_areas) const {
+    std::string key, error;
+    if (IsValid(rig, has_areas, &key, &error)) return;
+    Fail(NodeAt(root, key), key, error);
+  }
+
+ private:
+  // The node of a dotted key ("encoder.bits", "sensor.reference_areas_mm[1]"),
+  // or the deepest one there is.
+  static YAML::Node NodeAt(const YAML::Node& root, const std::string& key) {
+    YAML::Node n = root;
+    std::size_t start = 0;
+    while (start < key.size()) {
+      const std::size_t dot = key.find('.', start);
+      std::string part = key.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+      int index = -1;
+      if (const std::size_t b = part.find('['); b != std::string::npos) {
+        index = std::stoi(part.substr(b + 1));
+        part = part.substr(0, b);
+      }
+      YAML::Node next = n[part];
+      if (!next.IsDefined()) return n;
+      n = next;
+      if (index >= 0 && n.IsSequence() && static_cast<std::size_t>(index) < n.size()) n = n[static_cast<std::size_t>(index)];
+      if (dot == std::string::npos) break;
+      start = dot + 1;
+    }
+    return n;
+  }
+
+ public:
 
  private:
   std::string file_;
@@ -129,7 +150,9 @@ class RigParser {
 RigFile ParseRig(const std::string& text, const std::string& name, bool areas_required) {
   RigFile out;
   out.document = ParseYamlText(text, name);
-  out.rig = RigParser(name).Parse(out.document, areas_required, out.has_reference_areas);
+  const RigParser parser(name);
+  out.rig = parser.Parse(out.document, areas_required, out.has_reference_areas);
+  parser.Check(out.document, out.rig, out.has_reference_areas);
   return out;
 }
 

@@ -187,7 +187,6 @@ void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
     r.Get(rig, "rig.", "counts_per_rev", c.rig.encoder.counts_per_rev, 1, 1e9);
     r.GetInt(rig, "rig.", "bits", c.rig.encoder.bits, 0, 64);
     r.GetInt(rig, "rig.", "direction", c.rig.encoder.direction, -1, 1);
-    if (c.rig.encoder.direction == 0) r.Fail(rig["direction"], "rig.direction", "must be 1 or -1");
     r.Get(rig, "rig.", "diameter_mm", c.rig.wheel_diameter_mm, 1, 1e5);
     r.Get(rig, "rig.", "offset_counts", c.rig.offset_counts, 0, 1e9);
     std::vector<double> areas;
@@ -204,6 +203,12 @@ void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
       if (o.size() != 2) r.Fail(rig["laser_origin_mm"], "rig.laser_origin_mm", "must be [x, z]");
       c.rig.laser_origin = LaserOrigin{o[0], o[1]};
     }
+  }
+  // The rig file's rules (core/rig.h), keys named as this file spells them.
+  if (std::string key, error; !IsValid(c.rig, true, &key, &error)) {
+    const std::string leaf = key.substr(key.rfind('.') + 1);
+    const std::string here = leaf.rfind("reference_areas_mm", 0) == 0 ? "reference_areas_mm" : leaf;
+    r.Fail(rig.IsDefined() && rig[here].IsDefined() ? rig[here] : root, "rig." + here, error + " (" + key + ")");
   }
 
   const YAML::Node ex = r.Section(root, "extruder", {"command", "voltage_to_rpm", "rpm_to_flow", "rpm_noise", "flow_noise_frac"});

@@ -53,6 +53,12 @@ TEST(CInterface, BadArgumentsAreErrorsWithAMessage) {
   bead_rig_init(&rig);  // counts and diameter left 0
   EXPECT_EQ(bead_flow_create(&rig, nullptr, 500.0), nullptr);
   EXPECT_NE(std::string(bead_last_error()).find("counts_per_rev"), std::string::npos) << bead_last_error();
+  // The rig file's rules (core/rig.h IsValid), named by the rig file's key.
+  rig.counts_per_rev = 20480.0;
+  rig.wheel_diameter_mm = 254.762;
+  rig.encoder_bits = 4;
+  EXPECT_EQ(bead_flow_create(&rig, nullptr, 500.0), nullptr);
+  EXPECT_NE(std::string(bead_last_error()).find("encoder.bits"), std::string::npos) << bead_last_error();
   EXPECT_STREQ(bead_status_name(99), "unknown");
   EXPECT_STREQ(bead_version(), BEAD_VERSION_TEXT);
 }

@@ -15,7 +15,21 @@ cmake --build "$work/consumer" >/dev/null
 "$work/consumer/core_consumer"
 "$work/consumer/c_consumer"
 "$work/consumer/io_consumer" "$src/testdata/sample/rig.yaml"
-if readelf -d "$work/consumer/core_consumer" | grep -Ei 'NEEDED.*(hdf5|ceres|opencv|yaml|glog)'; then
+# A CXX-only project and a C-only one find the package without the full
+# components' packages (HDF5's find module needs C; none is looked up).
+for kind in cxx c; do
+  cmake -S "$src/tests/install/consumer_$kind" -B "$work/consumer_$kind" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+    -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_RPATH="$prefix/lib" >"$work/consumer_$kind.log" 2>&1 ||
+    { cat "$work/consumer_$kind.log" >&2; echo "the $kind-only consumer does not configure" >&2; exit 1; }
+  if grep -qi 'hdf5\|ceres\|opencv' "$work/consumer_$kind/CMakeCache.txt"; then
+    echo "the $kind-only consumer looked up the full components' packages" >&2
+    exit 1
+  fi
+  cmake --build "$work/consumer_$kind" >/dev/null
+done
+"$work/consumer_cxx/core_consumer"
+"$work/consumer_c/c_consumer"
+if readelf -d "$work/consumer_cxx/core_consumer" | grep -Ei 'NEEDED.*(hdf5|ceres|opencv|yaml|glog)'; then
   echo "core_consumer links what bead::core must not need" >&2
   exit 1
 fi

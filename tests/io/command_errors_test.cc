@@ -42,7 +42,9 @@ TEST(CommandErrors, EachCommandNamesTheFileAndThePlace) {
                   "  - [110.0, 120.0, -20.0, 30.0]\n  - [872.0, 118.0, 20.0, 30.0]\n");
   test::WriteText(dir / "frame.png", "not an image");
   test::WriteText(dir / "sim.yaml", "seed: x\n");
-  test::WriteText(dir / "rig.yaml", "encoder: {counts_per_rev: -5, bits: 32, direction: 1}\n");
+  test::WriteText(dir / "rig.yaml",
+                  "encoder: {counts_per_rev: -5, bits: 32, direction: 1}\nwheel: {diameter_mm: 254.762}\n"
+                  "offset: {counts: 3071.5}\nsensor: {reference_areas_mm: [[-24, -12], [12, 24]]}\n");
   test::WriteText(dir / "manifest.csv", "run,placement\nrun/run.h5,run/rig.yaml\n");
   sim::SimConfig c;
   c.duration_s = 0.1;
