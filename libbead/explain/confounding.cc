@@ -85,7 +85,11 @@ void EstimateShift(const SeriesData& d, const EffectSet& current, const Effect& 
   ShiftInterval(p, jc.variance_along.back()[0]);
   p.profile_lo = p.lo, p.profile_hi = p.hi, p.joint_sd_counts = sd;
   const std::vector<double>& grid = shift.grid[0];
-  if (!std::isfinite(sd)) {
+  // Not pinned: the joint fit cannot tell the shift, or the profile is
+  // lowest at an end of the searched range (the data prefer an offset
+  // outside it, or none; the range, +-counts_per_rev / 20, is arbitrary,
+  // and an interval cut from it would be as arbitrary).
+  if (!std::isfinite(sd) || p.best <= grid.front() || p.best >= grid.back()) {
     p.lo = grid.front(), p.hi = grid.back(), p.lo_at_edge = p.hi_at_edge = true;
   } else {
     if (p.best - 1.96 * sd < p.lo) p.lo = std::max(grid.front(), p.best - 1.96 * sd), p.lo_at_edge |= p.lo <= grid.front();

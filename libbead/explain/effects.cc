@@ -59,6 +59,7 @@ std::vector<double> LaggedChannel(const Channel& ch, double tau, double delay, c
   std::size_t j = 0;
   for (std::size_t i = 0; i < t.size(); ++i) {
     const double at = t[i] - delay;
+    while (j > 0 && ch.t[j] > at) --j;  // the times run nearly, not strictly, in order
     while (j + 1 < m && ch.t[j + 1] <= at) ++j;
     if (at <= ch.t.front()) out[i] = lagged.front();
     else if (j + 1 >= m) out[i] = lagged.back();
