@@ -62,8 +62,16 @@ void Identify(benchmark::State& state, bool uneven) {
 
 void BM_Identify2p2zEven(benchmark::State& s) { Identify(s, false); }
 void BM_Identify2p2zUneven(benchmark::State& s) { Identify(s, true); }
-BENCHMARK(BM_Identify2p2zEven)->Unit(benchmark::kMillisecond)->Iterations(3)->Repetitions(3)->ReportAggregatesOnly(false);
-BENCHMARK(BM_Identify2p2zUneven)->Unit(benchmark::kMillisecond)->Iterations(3)->Repetitions(3)->ReportAggregatesOnly(false);
+BENCHMARK(BM_Identify2p2zEven)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3)
+    ->Repetitions(3)
+    ->ReportAggregatesOnly(false);
+BENCHMARK(BM_Identify2p2zUneven)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3)
+    ->Repetitions(3)
+    ->ReportAggregatesOnly(false);
 
 }  // namespace
 

@@ -70,7 +70,8 @@ void BM_ProfileGeometry(benchmark::State& state) {
   }
   benchmark::DoNotOptimize(sum);
   state.SetItemsProcessed(state.iterations());
-  state.counters["profiles_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["profiles_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 // Nine repetitions: this kind of shared machine moves a single figure by
 // +-20 %; the summary gives their median and their best.
@@ -102,7 +103,8 @@ void BM_ProfileGeometryPooledCorrection(benchmark::State& state) {
   }
   benchmark::DoNotOptimize(sum);
   state.SetItemsProcessed(state.iterations());
-  state.counters["profiles_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["profiles_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_ProfileGeometryPooledCorrection)->Arg(640);
 
@@ -112,7 +114,8 @@ void BM_PoolOcclusion(benchmark::State& state) {
   std::vector<bead::BeadGeometry> geometry;
   auto view = [&](std::size_t k) { return ViewOf(p, k); };
   for (std::size_t k = 0; k < kProfiles; ++k) geometry.push_back(processor.Process(view(k)));
-  for (auto _ : state) benchmark::DoNotOptimize(bead::occlusion::PoolOcclusion(kProfiles, view, geometry, {}).bias_fraction);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(bead::occlusion::PoolOcclusion(kProfiles, view, geometry, {}).bias_fraction);
 }
 BENCHMARK(BM_PoolOcclusion)->Unit(benchmark::kMillisecond)->Iterations(3);
 
@@ -181,8 +184,10 @@ int main(int argc, char** argv) {
   std::printf("Target: >= 1e6 profiles/s at 640 points on one core.\n");
   const std::string plain = "BM_ProfileGeometry/640", corrected = "BM_ProfileGeometryPooledCorrection/640";
   if (reporter.Has(plain) && reporter.Has(corrected))
-    std::printf("\nOcclusion, pooled shape: %.0f profiles/s against %.0f uncorrected (medians): cost ratio %.2fx (target <= 2x).\n",
-                reporter.Median(corrected), reporter.Median(plain), reporter.Median(plain) / reporter.Median(corrected));
+    std::printf(
+        "\nOcclusion, pooled shape: %.0f profiles/s against %.0f uncorrected (medians): cost ratio %.2fx (target <= "
+        "2x).\n",
+        reporter.Median(corrected), reporter.Median(plain), reporter.Median(plain) / reporter.Median(corrected));
   benchmark::Shutdown();
   return 0;
 }

@@ -28,7 +28,8 @@ Board ParseBoard(const std::string& text, double square_mm) {
   if (b.squares_x < 3 || b.squares_y < 3 || b.squares_x > 100 || b.squares_y > 100)
     throw Error("--board '" + text + "': each side needs 3 to 100 squares (2 or more inner corners)");
   if (b.squares_x == b.squares_y)
-    throw Error("--board '" + text + "': a square board's corners have no unique order; use a board with an "
+    throw Error("--board '" + text +
+                "': a square board's corners have no unique order; use a board with an "
                 "odd and an even side (e.g. 8x7)");
   if (!(square_mm > 0.0) || !std::isfinite(square_mm)) throw Error("--square-mm: must be a positive length, mm");
   b.square_mm = square_mm;
@@ -103,15 +104,22 @@ CameraFit FitCamera(const Board& board, const std::vector<std::vector<cv::Point2
   std::vector<cv::Mat> rvecs, tvecs;
   int flags = 0;
   switch (lens) {
-    case LensTerms::kK1: flags = cv::CALIB_FIX_K2 | cv::CALIB_FIX_K3 | cv::CALIB_ZERO_TANGENT_DIST; break;
-    case LensTerms::kK1K2: flags = cv::CALIB_FIX_K3 | cv::CALIB_ZERO_TANGENT_DIST; break;
-    case LensTerms::kK1K2P: flags = cv::CALIB_FIX_K3; break;
-    case LensTerms::kFull: break;
+    case LensTerms::kK1:
+      flags = cv::CALIB_FIX_K2 | cv::CALIB_FIX_K3 | cv::CALIB_ZERO_TANGENT_DIST;
+      break;
+    case LensTerms::kK1K2:
+      flags = cv::CALIB_FIX_K3 | cv::CALIB_ZERO_TANGENT_DIST;
+      break;
+    case LensTerms::kK1K2P:
+      flags = cv::CALIB_FIX_K3;
+      break;
+    case LensTerms::kFull:
+      break;
   }
   CameraFit fit;
-  fit.rms_px = cv::calibrateCamera(object, views, image_size, k, d, rvecs, tvecs, sd_intrinsics, sd_extrinsics,
-                                   per_view, flags,
-                                   cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 100, 1e-12));
+  fit.rms_px =
+      cv::calibrateCamera(object, views, image_size, k, d, rvecs, tvecs, sd_intrinsics, sd_extrinsics, per_view, flags,
+                          cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 100, 1e-12));
   fit.camera.matrix = cv::Matx33d(k);
   for (int i = 0; i < 5; ++i) fit.camera.distortion[static_cast<std::size_t>(i)] = d.at<double>(i);
   fit.camera.image_size = image_size;

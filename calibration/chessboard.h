@@ -31,8 +31,8 @@ std::vector<cv::Point2f> FindBoard(const cv::Mat& grey, const Board& board);
 
 struct CameraFit {
   vision::CameraModel camera;
-  double rms_px = 0.0;                // over all corners of all views
-  std::vector<double> view_rms_px;    // per view
+  double rms_px = 0.0;                  // over all corners of all views
+  std::vector<double> view_rms_px;      // per view
   std::vector<cv::Vec3d> rvecs, tvecs;  // board -> camera, per view (mm)
   // One standard deviation of fx, fy, cx, cy (px) and k1, k2, p1, p2, k3
   // from the fit's covariance (OpenCV's stdDeviationsIntrinsics).
@@ -43,7 +43,7 @@ struct CameraFit {
 // handful of views determines the higher terms poorly (their standard
 // deviations say how poorly).
 enum class LensTerms { kK1, kK1K2, kK1K2P, kFull };  // full: k1 k2 p1 p2 k3
-LensTerms ParseLensTerms(const std::string& text);  // "k1", "k1k2", "k1k2p", "full"
+LensTerms ParseLensTerms(const std::string& text);   // "k1", "k1k2", "k1k2p", "full"
 
 // Views: each view's corners (FindBoard).
 CameraFit FitCamera(const Board& board, const std::vector<std::vector<cv::Point2f>>& views, cv::Size image_size,

@@ -37,8 +37,7 @@ std::vector<cv::Point3d> Lift(const vision::StripeCentres& stripe, const vision:
     if (!(lambda > 0.0)) continue;
     const cv::Vec3d p = lambda * ray;
     const cv::Vec3d b = r.t() * (p - tvec);  // on the board, mm from its first inner corner
-    if (b[0] < -margin_mm || b[1] < -margin_mm || b[0] > extent.width + margin_mm ||
-        b[1] > extent.height + margin_mm) {
+    if (b[0] < -margin_mm || b[1] < -margin_mm || b[0] > extent.width + margin_mm || b[1] > extent.height + margin_mm) {
       ++beyond;
       continue;
     }

@@ -35,7 +35,7 @@ struct LaserView {
   double reprojection_rms_px = 0.0;
   vision::StripeStats stripe;
   int beyond_margin = 0;  // stripe points farther from the board than the margin, left out
-  int plane_points = 0;  // the view's stripe points within the common plane's inlier band
+  int plane_points = 0;   // the view's stripe points within the common plane's inlier band
   int outliers = 0;
   double plane_rms_mm = 0.0;   // of its inliers' distances to the common plane
   double plane_mean_mm = 0.0;  // their mean: a view whose board pose is off sits to one side

@@ -18,8 +18,7 @@ namespace {
 
 // Chord of a cylinder crossing the laser plane.
 struct ChordResidual {
-  ChordResidual(double counts, double width_mm, double mm_per_count)
-      : c(counts), w(width_mm), k(mm_per_count) {}
+  ChordResidual(double counts, double width_mm, double mm_per_count) : c(counts), w(width_mm), k(mm_per_count) {}
   template <typename T>
   bool operator()(const T* center, const T* radius, const T* base, T* residual) const {
     const T u = (T(c) - center[0]) * T(k);
@@ -104,8 +103,9 @@ PinScanFit FitPinScan(const Rig& rig, const PinScan& scan, const OffsetOptions& 
   // Width resolution: two point spacings (each edge is located within one).
   const double resolution = 2.0 * PointSpacing(b.view(0));
   for (std::size_t i = 0; i < c.size(); ++i)
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<ChordResidual, 1, 1, 1, 1>(new ChordResidual(c[i], w[i], k)),
-                             new ceres::CauchyLoss(std::max(resolution, 1e-3)), &center, &radius, &base);
+    problem.AddResidualBlock(
+        new ceres::AutoDiffCostFunction<ChordResidual, 1, 1, 1, 1>(new ChordResidual(c[i], w[i], k)),
+        new ceres::CauchyLoss(std::max(resolution, 1e-3)), &center, &radius, &base);
   problem.SetParameterLowerBound(&radius, 0, 1e-3);
   const ceres::Solver::Options so = fit::QuietDenseOptions(100);
   ceres::Solver::Summary summary;

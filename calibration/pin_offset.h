@@ -31,16 +31,16 @@ namespace bead::calibration {
 
 struct PinScanFit {
   int64_t start_encoder = 0;
-  int profiles = 0;           // profiles in the scan
-  int profiles_on_pin = 0;    // profiles that saw the pin
-  double center_counts = 0;   // c0: counts from the start to the pin centre
+  int profiles = 0;          // profiles in the scan
+  int profiles_on_pin = 0;   // profiles that saw the pin
+  double center_counts = 0;  // c0: counts from the start to the pin centre
   double center_se_counts = 0;
   double radius_mm = 0;
-  double rms_mm = 0;          // RMS chord-width residual of the fit
-  double argmax_counts = 0;   // the thesis' estimate, for comparison
+  double rms_mm = 0;         // RMS chord-width residual of the fit
+  double argmax_counts = 0;  // the thesis' estimate, for comparison
   bool ok = false;
   bool outlier = false;
-  std::string reason;         // why not ok
+  std::string reason;  // why not ok
 };
 
 struct OffsetOptions {
@@ -53,9 +53,9 @@ struct OffsetCalibration {
   std::vector<PinScanFit> scans;
   double offset_counts = 0;
   double offset_mm = 0;
-  double ci95_counts = 0;   // half width
+  double ci95_counts = 0;  // half width
   double ci95_mm = 0;
-  double sd_counts = 0;     // scan-to-scan standard deviation
+  double sd_counts = 0;  // scan-to-scan standard deviation
   int used = 0;
   int total = 0;
   bool ok = false;

@@ -34,8 +34,9 @@ cv::Vec4d LeastSquares(const std::vector<cv::Point3d>& points, const std::vector
   cv::Matx33d vectors;
   cv::eigen(scatter, values, vectors);  // descending: the last row is the normal
   if (!(values(1) > 1e-9 * values(0)))
-    throw Error("the stripe points lie on one line: the laser plane is undetermined (the board needs "
-                "different heights or tilts across the views)");
+    throw Error(
+        "the stripe points lie on one line: the laser plane is undetermined (the board needs "
+        "different heights or tilts across the views)");
   const cv::Vec3d n(vectors(2, 0), vectors(2, 1), vectors(2, 2));
   return {n[0], n[1], n[2], -n.dot(cv::Vec3d(c))};
 }

@@ -13,7 +13,7 @@ struct PlaneFit {
   double sigma_mm = 0.0;     // robust spread of the distances (1.4826 MAD)
   std::vector<bool> inlier;  // within 3 sigma of the plane (and of 0.01 mm)
   int inliers = 0;
-  double rms_mm = 0.0;       // over the inliers
+  double rms_mm = 0.0;  // over the inliers
 };
 
 // Least squares (the smallest singular vector of the centred points)

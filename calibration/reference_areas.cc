@@ -155,8 +155,7 @@ void ReferenceSurveyor::Add(const ProfileView& profile) {
     }
     std::size_t j = i;
     double integral = points_[i].second;
-    while (j + 1 < points_.size() && up_[j + 1] &&
-           points_[j + 1].first - points_[j].first <= options_.max_gap_mm)
+    while (j + 1 < points_.size() && up_[j + 1] && points_[j + 1].first - points_[j].first <= options_.max_gap_mm)
       integral += points_[++j].second;
     // A run reaching the field's end is a rim or a clamp, not the bead.
     if (j - i + 1 >= 3 && integral > best && i > 0 && j + 1 < points_.size()) {
@@ -205,7 +204,8 @@ ReferenceSurvey ReferenceSurveyor::Propose() const {
            raised_count_[b] <= options_.max_raised_fraction * double(with_line_);
   };
   auto describe = [&](ProposedArea& a, std::size_t first, std::size_t last) {  // bins [first, last]
-    a.area = {std::max(field_min_, x0_ + double(first) * bin_mm_), std::min(field_max_, x0_ + double(last + 1) * bin_mm_)};
+    a.area = {std::max(field_min_, x0_ + double(first) * bin_mm_),
+              std::min(field_max_, x0_ + double(last + 1) * bin_mm_)};
     double points = 0;
     for (std::size_t b = first; b <= last; ++b) points += point_count_[b];
     a.points_per_profile = points / double(with_line_);

@@ -26,14 +26,14 @@
 namespace bead::calibration {
 
 struct ReferenceSurveyOptions {
-  double threshold_mm = 0.05;     // detection threshold, as bead measure's default
-  double threshold_sigmas = 6.0;  // ... or this many line RMS, when larger
-  double max_gap_mm = 1.0;        // a bead's run bridges dropouts this long
-  double margin_mm = 1.0;         // from the bead's outermost edge to an area
-  double edge_quantile = 0.001;   // the bead's outermost edges: this quantile of each side
-  double min_data_fraction = 0.9; // a bin belongs to an area when it holds data this often ...
+  double threshold_mm = 0.05;          // detection threshold, as bead measure's default
+  double threshold_sigmas = 6.0;       // ... or this many line RMS, when larger
+  double max_gap_mm = 1.0;             // a bead's run bridges dropouts this long
+  double margin_mm = 1.0;              // from the bead's outermost edge to an area
+  double edge_quantile = 0.001;        // the bead's outermost edges: this quantile of each side
+  double min_data_fraction = 0.9;      // a bin belongs to an area when it holds data this often ...
   double max_raised_fraction = 0.005;  // ... and is raised at most this often
-  double min_area_mm = 2.0;       // an area narrower is an error
+  double min_area_mm = 2.0;            // an area narrower is an error
 };
 
 struct ProposedArea {
@@ -67,7 +67,7 @@ class ReferenceSurveyor {
   };
   std::size_t Bin(double x) const;
   ReferenceSurveyOptions options_;
-  std::vector<double> seg_x_, seg_z_;  // scratch of the surface line
+  std::vector<double> seg_x_, seg_z_;            // scratch of the surface line
   std::vector<std::pair<float, float>> points_;  // x, height of one profile
   std::vector<uint8_t> up_;                      // ... standing up
   bool grid_ = false;

@@ -51,8 +51,9 @@ WheelRunout FitWheelRunout(const Rig& rig, const std::vector<double>& t_s, const
   }
   const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
   if (qr.rank() < 8)
-    throw Error("the wheel's angle and the time do not separate in this run (a wheel turning in step with the "
-                "drift?): no runout can be told from it");
+    throw Error(
+        "the wheel's angle and the time do not separate in this run (a wheel turning in step with the "
+        "drift?): no runout can be told from it");
   const Eigen::VectorXd p = qr.solve(y);
   const Eigen::VectorXd res = y - a * p;
   const double ss = res.squaredNorm();
@@ -73,7 +74,8 @@ WheelRunout FitWheelRunout(const Rig& rig, const std::vector<double>& t_s, const
     amp_ci = 1.96 * std::sqrt(std::max(0.0, amp_var));
     phase_deg = Wrap360(std::atan2(s, c) * kDeg / order);
     if (phase_ci) {
-      const double ph_var = amp > 0 ? (s * s * vc + c * c * vs - 2 * c * s * vcs) / (amp * amp * amp * amp) : M_PI * M_PI;
+      const double ph_var =
+          amp > 0 ? (s * s * vc + c * c * vs - 2 * c * s * vcs) / (amp * amp * amp * amp) : M_PI * M_PI;
       *phase_ci = std::min(180.0, 1.96 * std::sqrt(std::max(0.0, ph_var)) * kDeg / order);
     }
   };

@@ -27,18 +27,18 @@ namespace bead::calibration {
 
 struct WheelRunout {
   int profiles_used = 0;
-  double turns = 0.0;                 // revolutions the run covers
-  double eccentricity_mm = 0.0;       // once-per-revolution amplitude, e
+  double turns = 0.0;            // revolutions the run covers
+  double eccentricity_mm = 0.0;  // once-per-revolution amplitude, e
   double eccentricity_ci95_mm = 0.0;
-  double phase_deg = 0.0;             // encoder angle at which h is highest, [0, 360)
+  double phase_deg = 0.0;  // encoder angle at which h is highest, [0, 360)
   double phase_ci95_deg = 0.0;
-  double twice_mm = 0.0;              // twice-per-revolution amplitude (an oval wheel)
+  double twice_mm = 0.0;  // twice-per-revolution amplitude (an oval wheel)
   double twice_ci95_mm = 0.0;
-  double twice_phase_deg = 0.0;       // the first of its two highs
-  double runout_mm = 0.0;             // peak to peak of the fitted once + twice curve (a dial's reading)
-  double drift_mm = 0.0;              // range of the fitted drift over the run
+  double twice_phase_deg = 0.0;  // the first of its two highs
+  double runout_mm = 0.0;        // peak to peak of the fitted once + twice curve (a dial's reading)
+  double drift_mm = 0.0;         // range of the fitted drift over the run
   double residual_rms_mm = 0.0;
-  double inflation = 1.0;             // the variance inflation for correlated residuals
+  double inflation = 1.0;  // the variance inflation for correlated residuals
 };
 
 // counts: each profile's unwrapped wheel position (encoder counts,

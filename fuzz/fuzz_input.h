@@ -27,7 +27,7 @@ inline std::string WriteInput(const uint8_t* data, size_t size, const char* exte
 }  // namespace bead::fuzz
 
 // Every target's body: `call` reads the file at `path`.
-#define BEAD_FUZZ_READER(extension, call)                                  \
+#define BEAD_FUZZ_READER(extension, call)                                   \
   extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) { \
     const std::string path = bead::fuzz::WriteInput(data, size, extension); \
     try {                                                                   \

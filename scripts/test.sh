@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Builds libbead and runs the whole test suite: once optimised, once under
+# Checks the house style, builds libbead and runs the whole test suite:
+# once optimised, once under
 # AddressSanitizer + UndefinedBehaviorSanitizer; then the tests that run
 # threads under ThreadSanitizer, and every fuzz target for 15 s
 # (scripts/fuzz.sh). BEAD_SKIP_SANITIZE=1, BEAD_SKIP_TSAN=1 and
@@ -7,6 +8,12 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc)
+
+# The house style (.clang-format): every C and C++ file follows it
+# (clang-format -i on a file puts it right).
+if [ -d .git ]; then
+  git ls-files '*.cc' '*.h' '*.c' | xargs clang-format --dry-run --Werror
+fi
 
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j "$jobs"

@@ -68,9 +68,11 @@ Run AddBatch(CLI::App& app) {
   cmd->add_flag("--redo", args->redo, "Redo runs even when their results are complete");
   auto& b = args->options.profile.bead;
   cmd->add_option("--threshold-mm", b.min_threshold_mm, "Least height that counts as bead, mm")
-      ->capture_default_str()->check(CLI::PositiveNumber);
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--spike-mm", b.spike_mm, "A point this far off its neighbours' median is a spike, mm")
-      ->capture_default_str()->check(CLI::PositiveNumber);
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   AddOcclusionOption(cmd, args->occlusion);
 
   return [args]() {
@@ -80,8 +82,7 @@ Run AddBatch(CLI::App& app) {
         throw CLI::ValidationError("--manifest", "give either --manifest or --rig with runs, not both");
       runs = RunsFromManifest(args->manifest);
     } else {
-      if (args->runs.empty() || args->rig.empty())
-        throw CLI::RequiredError("runs and --rig (or --manifest runs.csv)");
+      if (args->runs.empty() || args->rig.empty()) throw CLI::RequiredError("runs and --rig (or --manifest runs.csv)");
       runs = RunsFromPaths(args->runs, args->rig);
     }
     BatchOptions& options = args->options;
@@ -126,7 +127,8 @@ Run AddBatch(CLI::App& app) {
       auto progress = [&](std::size_t done, std::size_t total) {
         if (!tty) return;
         const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        const double now = done_bytes + bytes * static_cast<double>(done) / static_cast<double>(std::max<std::size_t>(total, 1));
+        const double now =
+            done_bytes + bytes * static_cast<double>(done) / static_cast<double>(std::max<std::size_t>(total, 1));
         const double rate = elapsed > 0 ? static_cast<double>(profiles_done + done) / elapsed : 0;
         std::fprintf(stderr, "\r[%zu/%zu] %s: %zu/%zu profiles, %.0f profiles/s, %s left   ", k + 1, mine.size(),
                      run.name.c_str(), done, total, rate,
@@ -143,7 +145,8 @@ Run AddBatch(CLI::App& app) {
         std::printf("[%zu/%zu] %s: %s\n", k + 1, mine.size(), run.name.c_str(), r.status.c_str());
       } else {
         char volume[64] = "no flow";
-        if (!std::isnan(r.total_volume_mm3)) std::snprintf(volume, sizeof volume, "volume %.1f mm^3", r.total_volume_mm3);
+        if (!std::isnan(r.total_volume_mm3))
+          std::snprintf(volume, sizeof volume, "volume %.1f mm^3", r.total_volume_mm3);
         std::printf("[%zu/%zu] %s: %zu profiles, %zu valid, %zu with flow, %s, %.2f s\n", k + 1, mine.size(),
                     run.name.c_str(), r.profiles, r.valid, r.flow_samples, volume, seconds);
         for (const std::string& w : r.warnings) std::printf("  warning: %s\n", w.c_str());

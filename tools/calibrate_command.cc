@@ -10,8 +10,8 @@
 
 namespace bead::tools {
 
-Run AddCalibrateLaser(CLI::App* cal);  // calibrate_laser_command.cc
-Run AddCalibrateWheel(CLI::App* cal);  // calibrate_wheel_command.cc
+Run AddCalibrateLaser(CLI::App* cal);      // calibrate_laser_command.cc
+Run AddCalibrateWheel(CLI::App* cal);      // calibrate_wheel_command.cc
 Run AddCalibrateReference(CLI::App* cal);  // calibrate_reference_command.cc
 
 namespace {
@@ -41,11 +41,13 @@ Run AddCalibrateOffset(CLI::App* cal) {
     const double mpc = rig.rig.MmPerCount();
     std::printf("%4s %12s %8s %12s %8s %9s %8s %12s  %s\n", "scan", "start", "on_pin", "centre", "se", "radius", "rms",
                 "argmax", "used");
-    std::printf("%4s %12s %8s %12s %8s %9s %8s %12s\n", "", "counts", "profiles", "counts", "counts", "mm", "mm", "counts");
+    std::printf("%4s %12s %8s %12s %8s %9s %8s %12s\n", "", "counts", "profiles", "counts", "counts", "mm", "mm",
+                "counts");
     for (std::size_t k = 0; k < cal.scans.size(); ++k) {
       const auto& s = cal.scans[k];
       if (!s.ok) {
-        std::printf("%4zu %12lld %8d %s\n", k, static_cast<long long>(s.start_encoder), s.profiles_on_pin, s.reason.c_str());
+        std::printf("%4zu %12lld %8d %s\n", k, static_cast<long long>(s.start_encoder), s.profiles_on_pin,
+                    s.reason.c_str());
         continue;
       }
       std::printf("%4zu %12lld %8d %12.2f %8.2f %9.3f %8.4f %12.1f  %s\n", k, static_cast<long long>(s.start_encoder),
@@ -58,9 +60,10 @@ Run AddCalibrateOffset(CLI::App* cal) {
     if (!cal.note.empty()) std::printf("warning: %s: %s\n", args->pins.c_str(), cal.note.c_str());
     const double rig_offset = rig.rig.offset_counts;
     if (std::abs(rig_offset - cal.offset_counts) > cal.ci95_counts)
-      std::printf("warning: the rig file's offset, %.2f counts, lies outside this interval (%.2f counts away): "
-                  "the rig has moved or the file is stale; consider -o to write the new offset\n",
-                  rig_offset, rig_offset - cal.offset_counts);
+      std::printf(
+          "warning: the rig file's offset, %.2f counts, lies outside this interval (%.2f counts away): "
+          "the rig has moved or the file is stale; consider -o to write the new offset\n",
+          rig_offset, rig_offset - cal.offset_counts);
     if (!args->output.empty()) {
       rig.rig.offset_counts = cal.offset_counts;
       WriteRigFile(args->output, rig);
@@ -77,10 +80,11 @@ Run AddCalibrateOffset(CLI::App* cal) {
 Run AddCalibrate(CLI::App& app) {
   CLI::App* cal = app.add_subcommand("calibrate", Summary("calibrate"));
   cal->require_subcommand(1);
-  cal->footer("Subcommands: offset (nozzle-to-laser encoder offset from pin scans), laser (camera, lens and\n"
-              "laser plane from chessboard images), wheel (runout and eccentricity from a run), reference\n"
-              "(reference areas from a run).\n"
-              "`bead calibrate SUB --help` for each.");
+  cal->footer(
+      "Subcommands: offset (nozzle-to-laser encoder offset from pin scans), laser (camera, lens and\n"
+      "laser plane from chessboard images), wheel (runout and eccentricity from a run), reference\n"
+      "(reference areas from a run).\n"
+      "`bead calibrate SUB --help` for each.");
   Run offset = AddCalibrateOffset(cal);
   Run laser = AddCalibrateLaser(cal);
   Run wheel = AddCalibrateWheel(cal);
@@ -89,7 +93,10 @@ Run AddCalibrate(CLI::App& app) {
   CLI::App* laser_app = cal->get_subcommand("laser");
   CLI::App* wheel_app = cal->get_subcommand("wheel");
   return [=]() {
-    return offset_app->parsed() ? offset() : laser_app->parsed() ? laser() : wheel_app->parsed() ? wheel() : reference();
+    return offset_app->parsed()  ? offset()
+           : laser_app->parsed() ? laser()
+           : wheel_app->parsed() ? wheel()
+                                 : reference();
   };
 }
 

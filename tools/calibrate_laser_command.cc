@@ -88,11 +88,12 @@ Run AddCalibrateLaser(CLI::App* cal) {
     for (const calibration::LaserView& v : c.views)
       if (v.plane_points > 0) lo = std::min(lo, v.plane_mean_mm), hi = std::max(hi, v.plane_mean_mm);
     if (hi - lo > 2.0 * c.plane.sigma_mm && hi - lo > 0.05)
-      std::printf("warning: the images disagree: their mean distances from the plane span %.3f to %.3f mm against a "
-                  "spread of %.3f mm within them; the board's plane may not hold where the stripe falls (the edge "
-                  "of its plate, a lifted sheet) or the lens is poorly determined; compare --board-margin-mm 10 and "
-                  "--lens k1\n",
-                  lo, hi, c.plane.sigma_mm);
+      std::printf(
+          "warning: the images disagree: their mean distances from the plane span %.3f to %.3f mm against a "
+          "spread of %.3f mm within them; the board's plane may not hold where the stripe falls (the edge "
+          "of its plate, a lifted sheet) or the lens is poorly determined; compare --board-margin-mm 10 and "
+          "--lens k1\n",
+          lo, hi, c.plane.sigma_mm);
     const auto& k = c.sensor.camera.matrix;
     const auto& d = c.sensor.camera.distortion;
     const auto& sd = c.camera.sd;
@@ -108,9 +109,10 @@ Run AddCalibrateLaser(CLI::App* cal) {
     }
     std::printf("\n");
     const cv::Vec4d& p = c.sensor.plane;
-    std::printf("laser plane: %.5f x + %.5f y + %.5f z + %.3f = 0 (camera coordinates, mm); "
-                "robust spread %.4f mm, %d of %zu points on it\n",
-                p[0], p[1], p[2], p[3], c.plane.sigma_mm, c.plane.inliers, c.plane.inlier.size());
+    std::printf(
+        "laser plane: %.5f x + %.5f y + %.5f z + %.3f = 0 (camera coordinates, mm); "
+        "robust spread %.4f mm, %d of %zu points on it\n",
+        p[0], p[1], p[2], p[3], c.plane.sigma_mm, c.plane.inliers, c.plane.inlier.size());
     std::printf("stripe: axis %s, method %s\n", vision::Name(c.sensor.stripe.axis).c_str(),
                 vision::Name(c.sensor.stripe.method).c_str());
     if (!args->output.empty()) {

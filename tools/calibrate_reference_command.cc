@@ -69,9 +69,10 @@ Run AddCalibrateReference(CLI::App* cal) {
     std::printf("%s: %zu profiles, %zu surveyed (every %zu), %zu with a surface line, %zu with a bead\n",
                 args->run.c_str(), n, s.profiles, stride, s.with_line, s.with_bead);
     std::printf("field x %.2f .. %.2f mm, %.3f mm between points\n", s.field_min_mm, s.field_max_mm, s.spacing_mm);
-    std::printf("bead edges over the run: left %.2f mm (median %.2f), right %.2f mm (median %.2f); outermost = the "
-                "0.1 %% quantile\n",
-                s.bead_left_mm[0], s.bead_left_mm[1], s.bead_right_mm[0], s.bead_right_mm[1]);
+    std::printf(
+        "bead edges over the run: left %.2f mm (median %.2f), right %.2f mm (median %.2f); outermost = the "
+        "0.1 %% quantile\n",
+        s.bead_left_mm[0], s.bead_left_mm[1], s.bead_right_mm[0], s.bead_right_mm[1]);
     std::printf("%-8s %10s %10s %10s %10s %10s\n", "area", "x_min", "x_max", "width", "points", "clear");
     std::printf("%-8s %10s %10s %10s %10s %10s\n", "", "mm", "mm", "mm", "/profile", "%");
     for (const auto& [name, a] : {std::pair{"left", s.left}, std::pair{"right", s.right}})
@@ -84,16 +85,18 @@ Run AddCalibrateReference(CLI::App* cal) {
                   r.reference_left.x_min_mm, r.reference_left.x_max_mm, 100.0 * cl, r.reference_right.x_min_mm,
                   r.reference_right.x_max_mm, 100.0 * cr);
       if (std::min(cl, cr) < 0.99)
-        std::printf("warning: %s: something stands up in the rig file's areas in over 1 %% of the profiles: their "
-                    "reference line is pulled up there; consider -o\n",
-                    args->rig.c_str());
+        std::printf(
+            "warning: %s: something stands up in the rig file's areas in over 1 %% of the profiles: their "
+            "reference line is pulled up there; consider -o\n",
+            args->rig.c_str());
     } else {
       std::printf("the rig file has no reference areas\n");
     }
     if (!args->output.empty()) {
       // To 0.01 mm, rounded away from the bead.
       s.left.area = {std::ceil(s.left.area.x_min_mm * 100.0) / 100.0, std::floor(s.left.area.x_max_mm * 100.0) / 100.0};
-      s.right.area = {std::ceil(s.right.area.x_min_mm * 100.0) / 100.0, std::floor(s.right.area.x_max_mm * 100.0) / 100.0};
+      s.right.area = {std::ceil(s.right.area.x_min_mm * 100.0) / 100.0,
+                      std::floor(s.right.area.x_max_mm * 100.0) / 100.0};
       file.rig.reference_left = s.left.area;
       file.rig.reference_right = s.right.area;
       WriteRigFile(args->output, file);

@@ -49,8 +49,8 @@ Run AddCalibrateWheel(CLI::App* cal) {
     const ProfileBlock& b = m.run.profiles;
     const EncoderTrack track = UnwrapEncoder(b.encoder, rig.encoder, b.t_s);
     // The reference line's height midway between the reference areas.
-    const double x = 0.25 * (rig.reference_left.x_min_mm + rig.reference_left.x_max_mm +
-                             rig.reference_right.x_min_mm + rig.reference_right.x_max_mm);
+    const double x = 0.25 * (rig.reference_left.x_min_mm + rig.reference_left.x_max_mm + rig.reference_right.x_min_mm +
+                             rig.reference_right.x_max_mm);
     std::vector<double> height(b.size(), NAN);
     for (std::size_t k = 0; k < b.size(); ++k) {
       const ReferenceLine& l = m.geometry[k].reference;
@@ -66,17 +66,18 @@ Run AddCalibrateWheel(CLI::App* cal) {
                 w.profiles_used, w.turns);
     std::printf("%-22s %12s %12s %12s\n", "term", "amplitude", "ci95", "phase");
     std::printf("%-22s %12s %12s %12s\n", "", "mm", "mm", "deg");
-    std::printf("%-22s %12.4f %12.4f %8.1f +- %.1f\n", "once per revolution", w.eccentricity_mm,
-                w.eccentricity_ci95_mm, w.phase_deg, w.phase_ci95_deg);
+    std::printf("%-22s %12.4f %12.4f %8.1f +- %.1f\n", "once per revolution", w.eccentricity_mm, w.eccentricity_ci95_mm,
+                w.phase_deg, w.phase_ci95_deg);
     std::printf("%-22s %12.4f %12.4f %12.1f\n", "twice per revolution", w.twice_mm, w.twice_ci95_mm, w.twice_phase_deg);
     std::printf("drift over the run %.4f mm; residual %.4f mm RMS (correlated: intervals widened %.1fx in variance)\n",
                 w.drift_mm, w.residual_rms_mm, w.inflation);
     const double radius = 0.5 * rig.wheel_diameter_mm;
     std::printf("surface speed under the nozzle varies by +-%.3f %% (e / R)\n", 100.0 * w.eccentricity_mm / radius);
     if (w.eccentricity_mm < w.eccentricity_ci95_mm)
-      std::printf("warning: %s: the once-per-revolution term is within its interval of zero: the wheel is centred "
-                  "as far as this run can tell\n",
-                  args->run.c_str());
+      std::printf(
+          "warning: %s: the once-per-revolution term is within its interval of zero: the wheel is centred "
+          "as far as this run can tell\n",
+          args->run.c_str());
     if (!args->output.empty()) {
       file.rig.wheel_eccentricity_mm = w.eccentricity_mm;
       file.rig.wheel_eccentricity_phase_deg = w.phase_deg;

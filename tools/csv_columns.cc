@@ -36,7 +36,8 @@ void AddRow(Columns& out, const std::vector<double>& v, bool ok, bool first_is_t
 }
 
 bool IsMat(const std::string& path) {
-  return path.size() > 4 && (path.compare(path.size() - 4, 4, ".mat") == 0 || path.compare(path.size() - 4, 4, ".MAT") == 0);
+  return path.size() > 4 &&
+         (path.compare(path.size() - 4, 4, ".mat") == 0 || path.compare(path.size() - 4, 4, ".MAT") == 0);
 }
 
 // The same from a .mat file: each name a vector variable, all of one
@@ -63,9 +64,10 @@ Columns ReadMat(const std::string& path, const std::vector<std::string>& names, 
       std::string sizes;
       for (const MatVector* w : vars)
         if (w) sizes += "'" + w->name + "' " + std::to_string(w->values.size()) + ", ";
-      throw Error(Located(path, "", "'" + name + "' holds " + std::to_string(v->values.size()) + " values, " + sizes +
-                                        "not the same: they are on different clocks; name the input's with "
-                                        "--input-time and the output's with --output-time"));
+      throw Error(Located(path, "",
+                          "'" + name + "' holds " + std::to_string(v->values.size()) + " values, " + sizes +
+                              "not the same: they are on different clocks; name the input's with "
+                              "--input-time and the output's with --output-time"));
     }
     n = v->values.size();
     vars.push_back(v);
@@ -79,7 +81,8 @@ Columns ReadMat(const std::string& path, const std::vector<std::string>& names, 
       v[k] = vars[k] ? vars[k]->values[i] : double(i);
       if (!std::isfinite(v[k])) {
         ok = false;
-        if (out.first_skip.empty()) out.first_skip = "element " + std::to_string(i + 1) + " of '" + names[k] + "': not finite";
+        if (out.first_skip.empty())
+          out.first_skip = "element " + std::to_string(i + 1) + " of '" + names[k] + "': not finite";
       }
     }
     AddRow(out, v, ok, first_is_time, [&](const std::string& why) {
@@ -137,7 +140,8 @@ Columns Read(const std::string& path, const std::vector<std::string>& names, boo
 
 }  // namespace
 
-Series ReadColumns(const std::string& path, const std::string& time, const std::string& input, const std::string& output) {
+Series ReadColumns(const std::string& path, const std::string& time, const std::string& input,
+                   const std::string& output) {
   return ReadSeries({path, time, input, output, "", ""});
 }
 
@@ -155,7 +159,8 @@ Series ReadSeries(const SeriesSpec& given) {
     s.first_skip = c.first_skip;
   } else {
     if (spec.time.empty() || spec.input_time.empty())
-      throw Error(Located(spec.input_path, "", "an input on its own clock needs --output-time (or --time) and --input-time"));
+      throw Error(
+          Located(spec.input_path, "", "an input on its own clock needs --output-time (or --time) and --input-time"));
     Columns out = Read(spec.path, {spec.time, spec.output}, true);
     Columns in = Read(spec.input_path, {spec.input_time, spec.input}, true);
     if (in.v[0].empty()) throw Error(Located(spec.input_path, "", "no usable input rows"));
@@ -174,26 +179,28 @@ Series ReadSeries(const SeriesSpec& given) {
       s.y.push_back(out.v[1][i]);
     }
     char buf[256];
-    std::snprintf(buf, sizeof buf, "input '%s' from %s (%zu rows, %d skipped) held at each of the output's times%s",
-                  spec.input.c_str(), spec.input_path.c_str(), in.v[0].size(), in.skipped,
-                  before ? (", " + std::to_string(before) + " output rows before the first input left out").c_str() : "");
+    std::snprintf(
+        buf, sizeof buf, "input '%s' from %s (%zu rows, %d skipped) held at each of the output's times%s",
+        spec.input.c_str(), spec.input_path.c_str(), in.v[0].size(), in.skipped,
+        before ? (", " + std::to_string(before) + " output rows before the first input left out").c_str() : "");
     s.note = buf;
   }
   if (s.t.size() < 20)
-    throw Error(Located(spec.path, "", "fewer than 20 usable rows (" + std::to_string(s.t.size()) + ")" +
-                                           (s.skipped ? "; " + std::to_string(s.skipped) +
-                                                            " skipped, the first at " + s.first_skip
-                                                      : std::string())));
+    throw Error(Located(
+        spec.path, "",
+        "fewer than 20 usable rows (" + std::to_string(s.t.size()) + ")" +
+            (s.skipped ? "; " + std::to_string(s.skipped) + " skipped, the first at " + s.first_skip : std::string())));
   return s;
 }
 
-ChannelColumns ReadChannelColumns(const std::string& path, const std::string& time, const std::vector<std::string>& names) {
+ChannelColumns ReadChannelColumns(const std::string& path, const std::string& time,
+                                  const std::vector<std::string>& names) {
   std::vector<std::string> all = {time};
   all.insert(all.end(), names.begin(), names.end());
   Columns c = Read(path, all, true);
   if (c.v[0].size() < 2)
-    throw Error(Located(path, "", "fewer than 2 rows where every channel (" + std::to_string(names.size()) +
-                                      ") is a number"));
+    throw Error(
+        Located(path, "", "fewer than 2 rows where every channel (" + std::to_string(names.size()) + ") is a number"));
   ChannelColumns out;
   out.t = std::move(c.v[0]);
   for (std::size_t k = 1; k < c.v.size(); ++k) out.values.push_back(std::move(c.v[k]));

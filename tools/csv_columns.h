@@ -17,7 +17,7 @@ struct Series {
   std::vector<double> t, u, y;
   int skipped = 0;
   std::string first_skip;  // where and why the first skipped row was skipped
-  std::string note;  // how the input was joined, when it came from its own file
+  std::string note;        // how the input was joined, when it came from its own file
 };
 
 struct SeriesSpec {
@@ -27,7 +27,8 @@ struct SeriesSpec {
 
 // Without a time column, rows are unit-spaced. Throws bead::Error naming
 // the file and line.
-Series ReadColumns(const std::string& path, const std::string& time, const std::string& input, const std::string& output);
+Series ReadColumns(const std::string& path, const std::string& time, const std::string& input,
+                   const std::string& output);
 Series ReadSeries(const SeriesSpec& spec);
 
 // Other columns (or .mat variables) of `path` on its own clock (`time`;
@@ -37,7 +38,8 @@ struct ChannelColumns {
   std::vector<double> t;
   std::vector<std::vector<double>> values;  // one per name
 };
-ChannelColumns ReadChannelColumns(const std::string& path, const std::string& time, const std::vector<std::string>& names);
+ChannelColumns ReadChannelColumns(const std::string& path, const std::string& time,
+                                  const std::vector<std::string>& names);
 
 // The stretches of `s` to fit (the whole record with keep_off), what was
 // left out printed on stdout ("PATH: left out of the fit: process off

@@ -39,24 +39,26 @@ namespace {
 using nlohmann::json;
 
 void PrintReport(const explain::ExplainReport& r, const std::string& unit) {
-  std::printf("\nthe model as given: fit %.2f %%, RMS error %.4g %s; residual %s (chi2 %.1f, 99 %% limit %.1f), %s the input\n",
-              r.before.fit_pct, r.before.rms, unit.c_str(), r.before.whiteness.white ? "white" : "not white",
-              r.before.whiteness.chi2, r.before.whiteness.chi2_limit,
-              r.before.input.independent ? "independent of" : "correlated with");
+  std::printf(
+      "\nthe model as given: fit %.2f %%, RMS error %.4g %s; residual %s (chi2 %.1f, 99 %% limit %.1f), %s the input\n",
+      r.before.fit_pct, r.before.rms, unit.c_str(), r.before.whiteness.white ? "white" : "not white",
+      r.before.whiteness.chi2, r.before.whiteness.chi2_limit,
+      r.before.input.independent ? "independent of" : "correlated with");
   std::string refit;
   for (const auto& e : r.base_refit)
     for (const auto& p : e.parameters) {
       char buf[96];
-      std::snprintf(buf, sizeof buf, "%s%s %s = %.4g +- %.2g", refit.empty() ? " " : ", ", e.name.c_str(), p.name.c_str(),
-                    p.value, p.ci95);
+      std::snprintf(buf, sizeof buf, "%s%s %s = %.4g +- %.2g", refit.empty() ? " " : ", ", e.name.c_str(),
+                    p.name.c_str(), p.value, p.ci95);
       refit += buf;
     }
   std::printf("base model refitted with every candidate:%s\n", refit.c_str());
   if (r.base.misspecified)
-    std::printf("warning: the base model's dynamics are misspecified: a linear correction of them lowers the held-out "
-                "RMS %.4g -> %.4g (F %.1f > %.1f); re-identify it (more poles or zeros, another delay). Effects are "
-                "only added beyond that correction.\n",
-                r.base.rms_before, r.base.rms_after, r.base.heldout_f, r.base.threshold);
+    std::printf(
+        "warning: the base model's dynamics are misspecified: a linear correction of them lowers the held-out "
+        "RMS %.4g -> %.4g (F %.1f > %.1f); re-identify it (more poles or zeros, another delay). Effects are "
+        "only added beyond that correction.\n",
+        r.base.rms_before, r.base.rms_after, r.base.heldout_f, r.base.threshold);
   std::printf("\n%-32s %-44s %9s %9s %11s %11s\n", "effect", "parameters (95 % interval)", "fit_bef_%", "fit_aft_%",
               "rms_before", "rms_after");
   if (r.effects_added.empty()) std::printf("%-32s\n", "(none added)");
@@ -82,20 +84,23 @@ void PrintReport(const explain::ExplainReport& r, const std::string& unit) {
 
 void PrintRun(const explain::RunExplanation& e, const Rig& rig, const std::string& path, const std::string& validate) {
   for (const auto& c : e.series.data.channels)
-    std::printf("recorded channel: %s (%s), tried as a cause\n", c.name.c_str(), c.unit.empty() ? "no unit" : c.unit.c_str());
+    std::printf("recorded channel: %s (%s), tried as a cause\n", c.name.c_str(),
+                c.unit.empty() ? "no unit" : c.unit.c_str());
   if (!validate.empty()) std::printf("held-out data: %s\n", validate.c_str());
   std::printf("%s: %zu samples of flow in extrusion time\n", path.c_str(), e.series.data.size());
   PrintReport(e.report, "mm^3/s");
   const explain::OffsetFromRun& o = e.offset;
   if (!o.pinned)
-    std::printf("encoder offset from the run: NOT pinned by this run: its 95 %% interval %.1f to %.1f counts reaches "
-                "the searched range (lowest error at %.1f; the wheel's speed changes too little to tell a position "
-                "error from a time error); rig file: %.1f counts\n",
-                o.lo_counts, o.hi_counts, o.counts, rig.offset_counts);
+    std::printf(
+        "encoder offset from the run: NOT pinned by this run: its 95 %% interval %.1f to %.1f counts reaches "
+        "the searched range (lowest error at %.1f; the wheel's speed changes too little to tell a position "
+        "error from a time error); rig file: %.1f counts\n",
+        o.lo_counts, o.hi_counts, o.counts, rig.offset_counts);
   else
-    std::printf("encoder offset from the run: %.1f counts, 95 %% interval %.1f to %.1f (the residual's colour and the "
-                "delay refitted at every offset accounted for); rig file: %.1f counts%s\n",
-                o.counts, o.lo_counts, o.hi_counts, rig.offset_counts, o.excludes_rig ? " -- OUTSIDE the run's interval" : "");
+    std::printf(
+        "encoder offset from the run: %.1f counts, 95 %% interval %.1f to %.1f (the residual's colour and the "
+        "delay refitted at every offset accounted for); rig file: %.1f counts%s\n",
+        o.counts, o.lo_counts, o.hi_counts, rig.offset_counts, o.excludes_rig ? " -- OUTSIDE the run's interval" : "");
   std::printf("profile time stamps against the log: %+.4f +- %.4f s (a sensor latency shows here)\n",
               e.series.timestamp_offset_s, e.series.timestamp_offset_ci95_s);
 }
@@ -110,24 +115,27 @@ void PrintPins(const explain::OffsetComparison& c, const explain::OffsetFromRun&
     std::printf("offset, run and pins combined: %.1f +- %.1f counts (they agree within their intervals)\n",
                 c.combined_counts, c.combined_ci95_counts);
   else
-    std::printf("offset: the run (%.1f +- %.1f) and the pins (%.1f +- %.1f) DISAGREE by %.1f counts, more than their "
-                "intervals allow: a pin placed off the nozzle's centre, a slipped encoder, or an effect the run's "
-                "model lacks; they are not combined\n",
-                run.counts, run.ci95_counts, c.pins_counts, c.pins_ci95_counts, c.difference);
+    std::printf(
+        "offset: the run (%.1f +- %.1f) and the pins (%.1f +- %.1f) DISAGREE by %.1f counts, more than their "
+        "intervals allow: a pin placed off the nozzle's centre, a slipped encoder, or an effect the run's "
+        "model lacks; they are not combined\n",
+        run.counts, run.ci95_counts, c.pins_counts, c.pins_ci95_counts, c.difference);
 }
 
 void PrintCorrected(const explain::CorrectedFlow& cf, const std::string& path) {
   std::string undone;
   for (const auto& u : cf.undone) undone += (undone.empty() ? "" : ", ") + u;
   if (cf.lowers_error) {
-    std::printf("corrected flow: %s undone (offset %.1f counts); held-out RMS against the model %.4g -> %.4g mm^3/s; "
-                "total volume %.1f mm^3\nwrote %s\n",
-                undone.c_str(), cf.offset_counts, cf.rms_before, cf.rms_after, cf.flow.total_volume_mm3, path.c_str());
+    std::printf(
+        "corrected flow: %s undone (offset %.1f counts); held-out RMS against the model %.4g -> %.4g mm^3/s; "
+        "total volume %.1f mm^3\nwrote %s\n",
+        undone.c_str(), cf.offset_counts, cf.rms_before, cf.rms_after, cf.flow.total_volume_mm3, path.c_str());
     return;
   }
   std::printf("corrected flow NOT written (%s): %s%s%s\n", path.c_str(), cf.why_not.c_str(),
               undone.empty() ? "" : "; tried: ", undone.c_str());
-  if (!undone.empty()) std::printf("  held-out RMS against the model %.4g -> %.4g mm^3/s\n", cf.rms_before, cf.rms_after);
+  if (!undone.empty())
+    std::printf("  held-out RMS against the model %.4g -> %.4g mm^3/s\n", cf.rms_before, cf.rms_after);
 }
 
 void Write(const std::string& path, const json& j) {
@@ -141,8 +149,8 @@ void Write(const std::string& path, const json& j) {
 
 Run AddExplain(CLI::App& app) {
   struct Args {
-    std::string rig, data, model, out, input, output, time, input_file, input_time, validate, validate_input_file, pins, flow_out,
-        structure = "tf", occlusion = "pooled";
+    std::string rig, data, model, out, input, output, time, input_file, input_time, validate, validate_input_file, pins,
+        flow_out, structure = "tf", occlusion = "pooled";
     int poles = 2, zeros = 2;
     double max_delay_s = 1.0, alpha = 0.01;
     int max_effects = 5;
@@ -183,16 +191,20 @@ Run AddExplain(CLI::App& app) {
       "  bead explain width.csv --time t --output w --input-file wfs.csv --input-time t --input wfs -o explain.json\n"
       "  bead explain bead1.mat --input wfs --input-time powersource_state_time --output width_f_array \\\n"
       "       --output-time width_f_time -o explain.json");
-  cmd->add_option("data", args->data, "RUN.h5 (with --rig), DATA.csv or DATA.mat")->required()->check(CLI::ExistingFile);
+  cmd->add_option("data", args->data, "RUN.h5 (with --rig), DATA.csv or DATA.mat")
+      ->required()
+      ->check(CLI::ExistingFile);
   cmd->add_option("--rig", args->rig, "Rig file (YAML): run mode")->check(CLI::ExistingFile);
   cmd->add_option("--model", args->model, "Model JSON (bead identify -o); else identified on the data")
       ->check(CLI::ExistingFile);
   cmd->add_option("--input", args->input, "CSV mode: input column");
   cmd->add_option("--output", args->output, "CSV mode: output column");
-  cmd->add_option("--time,--output-time", args->time, "CSV/.mat mode: time column or variable (s) of the output (and the input)");
+  cmd->add_option("--time,--output-time", args->time,
+                  "CSV/.mat mode: time column or variable (s) of the output (and the input)");
   cmd->add_option("--input-file", args->input_file, "CSV mode: the input's own CSV (its own clock)")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--input-time", args->input_time, "CSV/.mat mode: the input's own time column or variable (in --input-file, else in DATA)");
+  cmd->add_option("--input-time", args->input_time,
+                  "CSV/.mat mode: the input's own time column or variable (in --input-file, else in DATA)");
   cmd->add_flag("--keep-off", args->keep_off, "CSV mode: explain the stretches where the process was off too");
   cmd->add_option("--validate", args->validate, "Another run (same rig, or same columns): the held-out data")
       ->check(CLI::ExistingFile);
@@ -213,8 +225,10 @@ Run AddExplain(CLI::App& app) {
   cmd->add_option("--zeros", args->zeros, "Identified model: zeros")->capture_default_str()->check(CLI::Range(0, 6));
   cmd->add_option("--structure", args->structure, "Identified model: tf, or P1D, P1DZ, P2D, P2DZ, P3D, P3DZ")
       ->capture_default_str();
-  cmd->add_option("--max-delay-s", args->max_delay_s, "Identified model: largest delay searched")->capture_default_str();
-  cmd->add_option("--alpha", args->alpha, "Significance level of the held-out test")->capture_default_str()
+  cmd->add_option("--max-delay-s", args->max_delay_s, "Identified model: largest delay searched")
+      ->capture_default_str();
+  cmd->add_option("--alpha", args->alpha, "Significance level of the held-out test")
+      ->capture_default_str()
       ->check(CLI::Range(1e-6, 0.2));
   cmd->add_option("--max-effects", args->max_effects, "At most this many effects")->capture_default_str();
   cmd->add_option("-o,--out", args->out, "explain.json to write (atomically)")->required();
@@ -274,7 +288,8 @@ Run AddExplain(CLI::App& app) {
         const MeasuredRun& r = m->measured;
         if (const std::string line = OcclusionLine(r.summary); !line.empty()) std::printf("%s\n", line.c_str());
         m->flow = ComputeFlow(rig, r.run.profiles, r.geometry, *r.run.log, {}, r.corrected, r.sigma);
-        for (const std::string& w : m->flow.warnings) std::fprintf(stderr, "warning: %s: %s\n", path.c_str(), w.c_str());
+        for (const std::string& w : m->flow.warnings)
+          std::fprintf(stderr, "warning: %s: %s\n", path.c_str(), w.c_str());
         for (const auto& s : m->flow.samples)
           if (s.valid) m->t.push_back(s.t_s), m->u.push_back(s.screw_rpm), m->y.push_back(s.flow_mm3_s);
         if (m->t.size() < 50) throw Error(Located(path, "", "fewer than 50 profiles with a flow: nothing to explain"));
@@ -285,8 +300,8 @@ Run AddExplain(CLI::App& app) {
       std::unique_ptr<Measured> other;
       if (!args->validate.empty()) other = measure(args->validate);
       auto view = [](const Measured& m, const std::string& path) {
-        return explain::MeasuredFlow{path, &m.measured.run.profiles, &m.measured.geometry, &*m.measured.run.log,
-                                     &m.flow, &m.measured.corrected, &m.measured.sigma};
+        return explain::MeasuredFlow{path,    &m.measured.run.profiles, &m.measured.geometry, &*m.measured.run.log,
+                                     &m.flow, &m.measured.corrected,    &m.measured.sigma};
       };
       explain::RunExplainOptions run_options;
       run_options.explain = options;
@@ -296,8 +311,8 @@ Run AddExplain(CLI::App& app) {
       const explain::MeasuredFlow main_view = view(*main_run, args->data);
       const explain::MeasuredFlow other_view = other ? view(*other, args->validate) : explain::MeasuredFlow{};
       std::printf("%s: explaining the flow in extrusion time...\n", args->data.c_str());
-      const explain::RunExplanation e = explain::ExplainMeasuredRun(rig, main_view, other ? &other_view : nullptr,
-                                                                    mdl.tf, mdl.offset, run_options);
+      const explain::RunExplanation e =
+          explain::ExplainMeasuredRun(rig, main_view, other ? &other_view : nullptr, mdl.tf, mdl.offset, run_options);
       PrintRun(e, rig, args->data, args->validate);
       std::optional<explain::OffsetComparison> pins;
       if (!args->pins.empty()) {
@@ -339,7 +354,8 @@ Run AddExplain(CLI::App& app) {
     auto with_channels = [&](explain::SeriesData d, const std::string& path) {
       if (args->channels.empty() || args->no_channels) return d;
       const ChannelColumns c = ReadChannelColumns(path, args->time, args->channels);
-      for (std::size_t k = 0; k < args->channels.size(); ++k) d.channels.push_back({args->channels[k], "", c.t, c.values[k]});
+      for (std::size_t k = 0; k < args->channels.size(); ++k)
+        d.channels.push_back({args->channels[k], "", c.t, c.values[k]});
       return d;
     };
     const explain::SeriesData data =
@@ -361,7 +377,8 @@ Run AddExplain(CLI::App& app) {
     j["offset_from_run_ci95_counts"] = nullptr;
     j["rig_offset_counts"] = nullptr;
     json left = json::array();
-    for (const auto& e : on.excluded) left.push_back({{"t_begin_s", e.t_begin_s}, {"t_end_s", e.t_end_s}, {"reason", e.reason}});
+    for (const auto& e : on.excluded)
+      left.push_back({{"t_begin_s", e.t_begin_s}, {"t_end_s", e.t_end_s}, {"reason", e.reason}});
     j["excluded"] = left;
     Write(args->out, j);
     return 0;

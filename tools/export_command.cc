@@ -39,7 +39,8 @@ Run AddExport(CLI::App& app) {
   cmd->add_option("run", args->run, "Run archive (.h5) or profiles CSV (.csv)")->required()->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", args->output, "Point cloud to write (.ply or .pcd)")->required();
   cmd->add_option("--every", args->options.every, "Keep every N-th profile")
-      ->capture_default_str()->check(CLI::PositiveNumber);
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--surface-speed-mm-s", args->options.surface_speed_mm_s,
                   "Place s = v t at this surface speed, mm/s (for runs without encoder readings)")
       ->check(CLI::PositiveNumber);
@@ -58,10 +59,11 @@ Run AddExport(CLI::App& app) {
     WritePointCloud(args->output, cloud);
     const auto [s_lo, s_hi] = std::minmax_element(cloud.s_mm.begin(), cloud.s_mm.end());
     const auto [z_lo, z_hi] = std::minmax_element(cloud.z_mm.begin(), cloud.z_mm.end());
-    std::printf("%s: %zu points of %zu profiles (%zu left out: no reference line); s %.2f .. %.2f mm, "
-                "z %.3f .. %.3f mm; wrote %s\n",
-                args->run.c_str(), count.points, count.profiles - count.no_reference, count.no_reference, *s_lo,
-                *s_hi, *z_lo, *z_hi, args->output.c_str());
+    std::printf(
+        "%s: %zu points of %zu profiles (%zu left out: no reference line); s %.2f .. %.2f mm, "
+        "z %.3f .. %.3f mm; wrote %s\n",
+        args->run.c_str(), count.points, count.profiles - count.no_reference, count.no_reference, *s_lo, *s_hi, *z_lo,
+        *z_hi, args->output.c_str());
     return 0;
   };
 }

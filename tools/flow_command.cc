@@ -36,9 +36,12 @@ Run AddFlow(CLI::App& app) {
   cmd->add_option("run", args->run, "Run archive (.h5)")->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", args->output, "Flow CSV to write (atomically)");
   cmd->add_option("--speed-window-s", args->flow.speed_window_s, "Savitzky-Golay window of the wheel speed, s")
-      ->capture_default_str()->check(CLI::PositiveNumber);
-  cmd->add_option("--area-smooth", args->flow.area_smooth_window, "Odd Savitzky-Golay window on the area, profiles (0: none)")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--area-smooth", args->flow.area_smooth_window,
+                  "Odd Savitzky-Golay window on the area, profiles (0: none)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   AddOcclusionOption(cmd, args->occlusion);
   return [args]() {
     if (args->rig.empty() && args->run.empty()) {

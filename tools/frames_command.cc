@@ -39,14 +39,16 @@ Run AddFrames(CLI::App& app) {
       "Example:\n"
       "  bead frames --sensor sensor.yaml --rate-hz 200 frames/*.png -o run.h5\n"
       "  bead measure --rig rig.yaml run.h5 -o geometry.csv");
-  auto* plane = cmd->add_option("--plane", args->plane, "Laser plane file of point pairs (YAML)")->check(CLI::ExistingFile);
+  auto* plane =
+      cmd->add_option("--plane", args->plane, "Laser plane file of point pairs (YAML)")->check(CLI::ExistingFile);
   auto* sensor = cmd->add_option("--sensor", args->sensor, "Sensor file from `bead calibrate laser` (YAML)")
                      ->check(CLI::ExistingFile);
   plane->excludes(sensor);
   cmd->add_option("frames", args->frames, "Frames, in time order")->required()->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", args->output, "Run archive to write (.h5, written atomically)")->required();
   cmd->add_option("--rate-hz", args->rate_hz, "Frames per second (the profiles' time)")
-      ->required()->check(CLI::PositiveNumber);
+      ->required()
+      ->check(CLI::PositiveNumber);
   AddStripeFlags(cmd, args->stripe);
 
   return [args]() {
@@ -80,8 +82,9 @@ Run AddFrames(CLI::App& app) {
         sensor.stripe.axis = stripe.axis;  // one axis for the run
       }
       if (x.size() != columns)
-        throw Error(Located(path, "", std::to_string(x.size()) + " lines, the first frame has " +
-                                          std::to_string(columns) + ": frames of one run share a size"));
+        throw Error(Located(path, "",
+                            std::to_string(x.size()) + " lines, the first frame has " + std::to_string(columns) +
+                                ": frames of one run share a size"));
       total += stripe.stats;
       b.t_s.push_back(static_cast<double>(k) / args->rate_hz);
       b.encoder.push_back(0);
@@ -95,7 +98,8 @@ Run AddFrames(CLI::App& app) {
     run.attributes[kEncoderAttribute] = kEncoderAbsent;
     run.attributes[args->sensor.empty() ? "laser_plane" : "sensor"] =
         std::filesystem::path(args->sensor.empty() ? args->plane : args->sensor).filename().string();
-    run.attributes["stripe"] = "axis=" + vision::Name(sensor.stripe.axis) + " method=" + vision::Name(sensor.stripe.method);
+    run.attributes["stripe"] =
+        "axis=" + vision::Name(sensor.stripe.axis) + " method=" + vision::Name(sensor.stripe.method);
     WriteRunArchive(args->output, run);  // validates the block
     std::printf("stripe: axis %s (one point per %s), method %s; %s\n", vision::Name(sensor.stripe.axis).c_str(),
                 sensor.stripe.axis == vision::StripeAxis::kRows ? "column" : "row",
@@ -103,8 +107,9 @@ Run AddFrames(CLI::App& app) {
     std::printf("%zu frames of %zu lines: %zu stripe points (%.1f %%); wrote %s\n", b.size(), columns, points,
                 100.0 * static_cast<double>(points) / static_cast<double>(b.size() * columns), args->output.c_str());
     if (points == 0)
-      std::printf("warning: no stripe point in any frame: see the counts above (--min-peak, --threshold, "
-                  "--max-width-px, --stripe-axis)\n");
+      std::printf(
+          "warning: no stripe point in any frame: see the counts above (--min-peak, --threshold, "
+          "--max-width-px, --stripe-axis)\n");
     return 0;
   };
 }

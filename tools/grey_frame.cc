@@ -13,7 +13,8 @@ cv::Mat ReadGreyFrame(const std::string& path) {
   if (frame.channels() == 3) cv::cvtColor(frame, frame, cv::COLOR_BGR2GRAY);
   if (frame.channels() == 4) cv::cvtColor(frame, frame, cv::COLOR_BGRA2GRAY);
   if (frame.channels() != 1)
-    throw Error(Located(path, "", std::to_string(frame.channels()) + " channels: expected grey, colour or colour with alpha"));
+    throw Error(
+        Located(path, "", std::to_string(frame.channels()) + " channels: expected grey, colour or colour with alpha"));
   return frame;
 }
 

@@ -22,7 +22,8 @@ void ApplyStructure(const std::string& structure, model::IdentifyOptions& o) {
     const char* name;
     int poles, zeros;
   };
-  static const Form forms[] = {{"P1D", 1, 0}, {"P1DZ", 1, 1}, {"P2D", 2, 0}, {"P2DZ", 2, 1}, {"P3D", 3, 0}, {"P3DZ", 3, 1}};
+  static const Form forms[] = {{"P1D", 1, 0},  {"P1DZ", 1, 1}, {"P2D", 2, 0},
+                               {"P2DZ", 2, 1}, {"P3D", 3, 0},  {"P3DZ", 3, 1}};
   for (const Form& f : forms)
     if (structure == f.name) {
       o.poles = f.poles;
@@ -35,7 +36,8 @@ void ApplyStructure(const std::string& structure, model::IdentifyOptions& o) {
 
 Run AddIdentify(CLI::App& app) {
   struct Args {
-    std::string data, input, output, time, input_file, input_time, delay = "auto", validate, validate_input_file, out, structure = "tf";
+    std::string data, input, output, time, input_file, input_time, delay = "auto", validate, validate_input_file, out,
+                                                                   structure = "tf";
     int poles = 2, zeros = 1;
     double max_delay_s = 1.0;
     bool orders = false, from_rest = false, keep_off = false;
@@ -67,7 +69,8 @@ Run AddIdentify(CLI::App& app) {
   cmd->add_option("--output", args->output, "Output column")->required();
   cmd->add_option("--time,--output-time", args->time, "Time column or .mat variable (s) of the output (and the input)");
   cmd->add_option("--input-file", args->input_file, "The input's own CSV (its own clock)")->check(CLI::ExistingFile);
-  cmd->add_option("--input-time", args->input_time, "The input's own time column or variable (in --input-file, else in DATA)");
+  cmd->add_option("--input-time", args->input_time,
+                  "The input's own time column or variable (in --input-file, else in DATA)");
   cmd->add_option("--poles", args->poles, "Number of poles")->capture_default_str()->check(CLI::Range(1, 6));
   cmd->add_option("--zeros", args->zeros, "Number of zeros (<= poles)")->capture_default_str()->check(CLI::Range(0, 6));
   cmd->add_option("--structure", args->structure, "tf, or a process model: P1D, P1DZ, P2D, P2DZ, P3D, P3DZ")
@@ -138,8 +141,18 @@ Run AddIdentify(CLI::App& app) {
         sb = val_on->segments;
       } else {  // estimate on the first half, validate on the second
         const std::size_t h = est.t.size() / 2;
-        a = {{est.t.begin(), est.t.begin() + h}, {est.u.begin(), est.u.begin() + h}, {est.y.begin(), est.y.begin() + h}, 0, {}, {}};
-        b = {{est.t.begin() + h, est.t.end()}, {est.u.begin() + h, est.u.end()}, {est.y.begin() + h, est.y.end()}, 0, {}, {}};
+        a = {{est.t.begin(), est.t.begin() + h},
+             {est.u.begin(), est.u.begin() + h},
+             {est.y.begin(), est.y.begin() + h},
+             0,
+             {},
+             {}};
+        b = {{est.t.begin() + h, est.t.end()},
+             {est.u.begin() + h, est.u.end()},
+             {est.y.begin() + h, est.y.end()},
+             0,
+             {},
+             {}};
         sa.clear();
         sb.clear();
         for (const Segment& s : on.segments) {
@@ -150,8 +163,8 @@ Run AddIdentify(CLI::App& app) {
       }
       std::printf("\n%6s %6s %12s %12s %12s %10s\n", "poles", "zeros", "fit_est_%", "fit_val_%", "AICc", "delay_s");
       for (const auto& r : model::OrderTable(a.t, a.u, a.y, b.t, b.u, b.y, o, sa, sb))
-        std::printf("%6d %6d %12.2f %12.2f %12.6g %10.4f\n", r.poles, r.zeros, r.fit_estimation, r.fit_validation, r.aicc,
-                    r.delay_s);
+        std::printf("%6d %6d %12.2f %12.2f %12.6g %10.4f\n", r.poles, r.zeros, r.fit_estimation, r.fit_validation,
+                    r.aicc, r.delay_s);
     }
     if (!args->out.empty()) {
       nlohmann::json j = ModelJson(m, o, args->input, args->output, est.t, on.segments, on.excluded);

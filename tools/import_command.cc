@@ -42,10 +42,12 @@ void PrintSummary(const std::string& input, const std::string& output, const Imp
   }
   std::printf("%s: %zu points in %zu profiles (%zu to %zu points each) over %.3f s; wrote %s\n", input.c_str(),
               imported.rows, b.size(), fewest, most, b.t_s.back() - b.t_s.front(), output.c_str());
-  std::printf("  x %.4g .. %.4g mm, z (height) %.4g .. %.4g mm: the rig's reference_areas_mm must lie in this x range\n",
-              x_lo, x_hi, z_lo, z_hi);
+  std::printf(
+      "  x %.4g .. %.4g mm, z (height) %.4g .. %.4g mm: the rig's reference_areas_mm must lie in this x range\n", x_lo,
+      x_hi, z_lo, z_hi);
   if (EncoderAbsent(imported.run))
-    std::printf("  no encoder column: /profiles/encoder holds 0, marked encoder=absent (flow needs the wheel's motion)\n");
+    std::printf(
+        "  no encoder column: /profiles/encoder holds 0, marked encoder=absent (flow needs the wheel's motion)\n");
 }
 
 }  // namespace
@@ -80,7 +82,8 @@ Run AddImport(CLI::App& app) {
       "       --z-column z_sensor --encoder-column encoder");
   auto& c = args->columns;
   cmd->add_option("file", args->input, "The file to import: .csv, .mat, .ply or .pcd")
-      ->required()->check(CLI::ExistingFile);
+      ->required()
+      ->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", args->output, "Run archive to write (.h5, written atomically)")->required();
   cmd->add_option("--profile-column", c.profile,
                   "Column of the profile id (CSV: whole numbers; PLY/PCD: the field ordering the scan lines)");
@@ -89,7 +92,8 @@ Run AddImport(CLI::App& app) {
   cmd->add_option("--z-column", c.z, "Column (variable, field) of z, mm")->required();
   cmd->add_option("--encoder-column", c.encoder, "Column of the raw wheel encoder counter (if the file has one)");
   cmd->add_option("--time-scale", c.time_scale, "The time column times this is seconds (0.001 for ms)")
-      ->capture_default_str()->check(CLI::PositiveNumber);
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   cmd->add_flag("--z-distance", c.z_is_distance, "z is the distance from the sensor (grows away from it)");
 
   return [args]() {

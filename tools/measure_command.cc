@@ -38,14 +38,18 @@ Run AddMeasure(CLI::App& app) {
   cmd->add_option("-o,--output", args->output, "Geometry CSV to write (written atomically)")->required();
   auto& o = args->options;
   cmd->add_option("--threshold-mm", o.bead.min_threshold_mm, "Least height that counts as bead, mm")
-      ->capture_default_str()->check(CLI::PositiveNumber);
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--threshold-sigmas", o.bead.threshold_sigmas,
                   "Threshold in reference-line residual RMS, when larger than --threshold-mm")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--spike-mm", o.bead.spike_mm, "A point this far off its neighbours' median is a spike, mm")
-      ->capture_default_str()->check(CLI::PositiveNumber);
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--max-gap-mm", o.bead.max_gap_mm, "Longest dropout bridged inside a bead, mm")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--threads", args->threads, "Worker threads (0: all cores)")->capture_default_str();
   AddOcclusionOption(cmd, args->occlusion);
 
@@ -71,13 +75,13 @@ Run AddMeasure(CLI::App& app) {
     std::printf("%s: %zu profiles, %zu valid, measured in %.3f s; wrote %s\n", args->run.c_str(), s.profiles, s.valid,
                 s.seconds, args->output.c_str());
     for (std::size_t k = 1; k < s.by_status.size(); ++k)
-      if (s.by_status[k])
-        std::printf("  %zu invalid: %s\n", s.by_status[k], StatusName(static_cast<ProfileStatus>(k)));
+      if (s.by_status[k]) std::printf("  %zu invalid: %s\n", s.by_status[k], StatusName(static_cast<ProfileStatus>(k)));
     if (s.valid == 0 && s.by_status[static_cast<std::size_t>(ProfileStatus::kNoReference)] > 0)
-      std::printf("  no profile has enough points in the reference areas [%g, %g] and [%g, %g] mm: check the rig's\n"
-                  "  reference_areas_mm against the profiles' x (no area is measured without bare surface)\n",
-                  rig.reference_left.x_min_mm, rig.reference_left.x_max_mm, rig.reference_right.x_min_mm,
-                  rig.reference_right.x_max_mm);
+      std::printf(
+          "  no profile has enough points in the reference areas [%g, %g] and [%g, %g] mm: check the rig's\n"
+          "  reference_areas_mm against the profiles' x (no area is measured without bare surface)\n",
+          rig.reference_left.x_min_mm, rig.reference_left.x_max_mm, rig.reference_right.x_min_mm,
+          rig.reference_right.x_max_mm);
     if (EncoderAbsent(opened.run)) std::printf("  the archive has no encoder readings: the encoder column holds 0\n");
     return 0;
   };

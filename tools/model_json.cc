@@ -46,8 +46,10 @@ ModelFile ReadModelFile(const std::string& path) {
       f.has_operating_point = true;
     }
   } catch (const json::exception& e) {
-    throw Error(Located(path, "", std::string("needs num, den (arrays of numbers), delay_s and optionally "
-                                              "operating_point.offset (a number): ") + e.what()));
+    throw Error(Located(path, "",
+                        std::string("needs num, den (arrays of numbers), delay_s and optionally "
+                                    "operating_point.offset (a number): ") +
+                            e.what()));
   }
   try {
     f.tf.Validate();
@@ -63,7 +65,8 @@ json ModelJson(const model::IdentifiedModel& m, const model::IdentifyOptions& o,
                const std::vector<Exclusion>& excluded) {
   json basins = json::array();
   for (const auto& b : m.delay_profile.basins)
-    basins.push_back({{"delay_s", b.delay_s}, {"profile_loss", Finite(b.profile_loss)}, {"refined_loss", Finite(b.refined_loss)}});
+    basins.push_back(
+        {{"delay_s", b.delay_s}, {"profile_loss", Finite(b.profile_loss)}, {"refined_loss", Finite(b.refined_loss)}});
   json loss = json::array();
   for (double l : m.delay_profile.loss) loss.push_back(Finite(l));
   json initial = json::array();
@@ -72,36 +75,38 @@ json ModelJson(const model::IdentifiedModel& m, const model::IdentifyOptions& o,
                        {"from", segments[s].process_starts ? "rest: the process started" : "estimated"},
                        {"free_response", m.initial_state[s]}});
   json left_out = json::array();
-  for (const auto& e : excluded) left_out.push_back({{"t_begin_s", e.t_begin_s}, {"t_end_s", e.t_end_s}, {"reason", e.reason}});
-  json j = {{"format", "bead model 2"},
-            {"input", input},
-            {"output", output},
-            {"num", m.tf.num},
-            {"den", m.tf.den},
-            {"delay_s", m.tf.delay_s},
-            {"poles", o.poles},
-            {"zeros", o.zeros},
-            {"structure", o.real_poles ? "process (real poles)" : "transfer function"},
-            {"operating_point",
-             {{"offset", m.offset}, {"input_level", m.input_level}, {"output_level", m.output_level}}},
-            {"initial_state", initial},
-            {"parameters", m.parameters},
-            {"fit_estimation_pct", m.fit_percent},
-            {"aic", m.criteria.aic},
-            {"aicc", m.criteria.aicc},
-            {"bic", m.criteria.bic},
-            {"fpe", m.criteria.fpe},
-            {"poles_real", m.poles_real},
-            {"poles_imag", m.poles_imag},
-            {"delay_profile",
-             {{"delay_s", m.delay_profile.delay_s},
-              {"loss", loss},
-              {"basins", basins},
-              {"ambiguous", m.delay_profile.ambiguous},
-              {"note", m.delay_profile.note}}},
-            {"excluded", left_out}};
+  for (const auto& e : excluded)
+    left_out.push_back({{"t_begin_s", e.t_begin_s}, {"t_end_s", e.t_end_s}, {"reason", e.reason}});
+  json j = {
+      {"format", "bead model 2"},
+      {"input", input},
+      {"output", output},
+      {"num", m.tf.num},
+      {"den", m.tf.den},
+      {"delay_s", m.tf.delay_s},
+      {"poles", o.poles},
+      {"zeros", o.zeros},
+      {"structure", o.real_poles ? "process (real poles)" : "transfer function"},
+      {"operating_point", {{"offset", m.offset}, {"input_level", m.input_level}, {"output_level", m.output_level}}},
+      {"initial_state", initial},
+      {"parameters", m.parameters},
+      {"fit_estimation_pct", m.fit_percent},
+      {"aic", m.criteria.aic},
+      {"aicc", m.criteria.aicc},
+      {"bic", m.criteria.bic},
+      {"fpe", m.criteria.fpe},
+      {"poles_real", m.poles_real},
+      {"poles_imag", m.poles_imag},
+      {"delay_profile",
+       {{"delay_s", m.delay_profile.delay_s},
+        {"loss", loss},
+        {"basins", basins},
+        {"ambiguous", m.delay_profile.ambiguous},
+        {"note", m.delay_profile.note}}},
+      {"excluded", left_out}};
   if (m.process.valid) {
-    j["process"] = {{"K", m.process.K}, {"Tp_s", m.process.Tp_s}, {"Tz_s", Finite(m.process.Tz_s)}, {"Td_s", m.process.Td_s}};
+    j["process"] = {
+        {"K", m.process.K}, {"Tp_s", m.process.Tp_s}, {"Tz_s", Finite(m.process.Tz_s)}, {"Td_s", m.process.Td_s}};
   }
   return j;
 }

@@ -24,8 +24,8 @@ ModelFile ReadModelFile(const std::string& path);
 
 // The identified model as JSON (input and output name the columns).
 nlohmann::json ModelJson(const model::IdentifiedModel& m, const model::IdentifyOptions& o, const std::string& input,
-                         const std::string& output, const std::vector<double>& t,
-                         const std::vector<Segment>& segments, const std::vector<Exclusion>& excluded);
+                         const std::string& output, const std::vector<double>& t, const std::vector<Segment>& segments,
+                         const std::vector<Exclusion>& excluded);
 
 // Prints the model, its operating point, the delay's basins and what was
 // left out, as `bead identify` and `bead explain` show them.

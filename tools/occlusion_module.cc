@@ -13,9 +13,8 @@ extern "C" __attribute__((visibility("default"))) const char* bead_occlusion_mod
 }
 
 extern "C" __attribute__((visibility("default"))) int bead_occlusion_estimate(
-    const bead::ProfileView* view, const bead::BeadGeometry* geometry,
-    const bead::occlusion::OcclusionOptions* options, bead::occlusion::OcclusionEstimate* out,
-    std::string* error) {
+    const bead::ProfileView* view, const bead::BeadGeometry* geometry, const bead::occlusion::OcclusionOptions* options,
+    bead::occlusion::OcclusionEstimate* out, std::string* error) {
   try {
     *out = bead::occlusion::EstimateOcclusion(*view, *geometry, *options);
     return 0;

@@ -30,8 +30,8 @@ Entry Load() {
     const auto abi = reinterpret_cast<Abi>(dlsym(handle, "bead_occlusion_module_abi"));
     const auto entry = reinterpret_cast<Entry>(dlsym(handle, "bead_occlusion_estimate"));
     if (abi == nullptr || entry == nullptr || OcclusionModuleAbi() != abi()) {
-      tried += "; " + path + ": built from another build of bead (" + (abi ? abi() : "no version") +
-               ", this program " + OcclusionModuleAbi() + ")";
+      tried += "; " + path + ": built from another build of bead (" + (abi ? abi() : "no version") + ", this program " +
+               OcclusionModuleAbi() + ")";
       dlclose(handle);
       continue;
     }

@@ -1,6 +1,5 @@
 #include "tools/occlusion_step.h"
 
-
 namespace bead::tools {
 
 void AddOcclusionOption(CLI::App* cmd, std::string& mode) {

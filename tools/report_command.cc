@@ -59,7 +59,8 @@ void WriteSampleProfiles(const std::string& run_path, const MeasuredRun& m, Work
     again.profiles->Read(i, 1, block);
     const ProfileView v = block.view(0);
     for (std::size_t k = 0; k < v.x_mm.size(); ++k)
-      if (std::isfinite(v.x_mm[k]) && std::isfinite(v.z_mm[k])) pts << i << ',' << v.x_mm[k] << ',' << v.z_mm[k] << '\n';
+      if (std::isfinite(v.x_mm[k]) && std::isfinite(v.z_mm[k]))
+        pts << i << ',' << v.x_mm[k] << ',' << v.z_mm[k] << '\n';
     const BeadGeometry& g = m.geometry[i];
     const double corrected = i < m.corrected.size() ? m.corrected[i] : NAN;
     lines << i << ',' << v.t_s << ',' << g.valid() << ',' << StatusName(g.status) << ',' << g.reference.intercept_mm
@@ -100,7 +101,8 @@ Run AddReport(CLI::App& app) {
     std::string rig, run, pins, explain, output, occlusion = "pooled";
   };
   auto args = std::make_shared<Args>();
-  CLI::App* cmd = app.add_subcommand("report", "One self-contained HTML page about a run: profiles, geometry, flow, pins");
+  CLI::App* cmd =
+      app.add_subcommand("report", "One self-contained HTML page about a run: profiles, geometry, flow, pins");
   cmd->footer(
       "In:  RIG.yaml and RUN.h5; --pins PINS.h5 (pin scans of the rig), --explain explain.json (bead explain -o).\n"
       "Out: REPORT.html, one page that opens offline (pictures embedded, drawn by matplotlib through the\n"
@@ -113,7 +115,8 @@ Run AddReport(CLI::App& app) {
       "     fitted centre, and the offset with its interval against the rig file's. Written atomically.\n"
       "     Needs Debian's python3 with matplotlib (python3-matplotlib); BEAD_PYTHON names another python.\n"
       "Example:\n"
-      "  bead report --rig testdata/sample/rig.yaml testdata/sample/run.h5 --pins testdata/sample/pins.h5 -o report.html");
+      "  bead report --rig testdata/sample/rig.yaml testdata/sample/run.h5 --pins testdata/sample/pins.h5 -o "
+      "report.html");
   cmd->add_option("--rig", args->rig, "Rig file (YAML)")->required()->check(CLI::ExistingFile);
   cmd->add_option("run", args->run, "Run archive (.h5)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--pins", args->pins, "Pin-scan archive (.h5) of this rig")->check(CLI::ExistingFile);
@@ -162,8 +165,9 @@ Run AddReport(CLI::App& app) {
     if (!args->explain.empty()) cmdline += " --explain '" + args->explain + "'";
     const int status = std::system(cmdline.c_str());
     if (status != 0)
-      throw Error(Located(args->output, "", "the report script " + script +
-                                                " failed (is python3-matplotlib installed? its message is above)"));
+      throw Error(
+          Located(args->output, "",
+                  "the report script " + script + " failed (is python3-matplotlib installed? its message is above)"));
     std::printf("wrote %s\n", args->output.c_str());
     return 0;
   };

@@ -16,8 +16,7 @@ struct StripeFlags {
   // Which flags the user gave (a sensor file's stripe settings hold for
   // the rest).
   CLI::Option *axis_opt = nullptr, *method_opt = nullptr, *rule_opt = nullptr, *threshold_opt = nullptr,
-              *min_peak_opt = nullptr, *min_width_opt = nullptr, *max_width_opt = nullptr,
-              *min_relative_opt = nullptr;
+              *min_peak_opt = nullptr, *min_width_opt = nullptr, *max_width_opt = nullptr, *min_relative_opt = nullptr;
 };
 
 void AddStripeFlags(CLI::App* cmd, StripeFlags& flags);

@@ -43,27 +43,27 @@ extern "C" {
 /* Why a profile has no geometry (status of bead_geometry). */
 enum bead_status {
   BEAD_VALID = 0,
-  BEAD_TOO_FEW_POINTS = 1,           /* fewer valid points than min_profile_points */
-  BEAD_NO_REFERENCE = 2,             /* a reference area holds too few valid points */
-  BEAD_NO_BEAD = 3,                  /* nothing stands above the threshold */
-  BEAD_EDGE_NOT_SEEN = 4,            /* the bead's foot runs into a long dropout or far into an area */
-  BEAD_IN_REFERENCE_AREA = 5         /* the bead reaches into a reference area */
+  BEAD_TOO_FEW_POINTS = 1,   /* fewer valid points than min_profile_points */
+  BEAD_NO_REFERENCE = 2,     /* a reference area holds too few valid points */
+  BEAD_NO_BEAD = 3,          /* nothing stands above the threshold */
+  BEAD_EDGE_NOT_SEEN = 4,    /* the bead's foot runs into a long dropout or far into an area */
+  BEAD_IN_REFERENCE_AREA = 5 /* the bead reaches into a reference area */
 };
 
 typedef struct bead_geometry {
-  double area_mm2;        /* seen area between the reference line and the profile; NaN when not valid */
-  double area_sigma_mm2;  /* its standard uncertainty (edges, noise, the line's fit) */
-  double width_mm;        /* between the two edges */
-  double height_mm;       /* robust maximum height above the line */
-  double center_x_mm;     /* x of the area centroid */
+  double area_mm2;       /* seen area between the reference line and the profile; NaN when not valid */
+  double area_sigma_mm2; /* its standard uncertainty (edges, noise, the line's fit) */
+  double width_mm;       /* between the two edges */
+  double height_mm;      /* robust maximum height above the line */
+  double center_x_mm;    /* x of the area centroid */
   double left_edge_x_mm, right_edge_x_mm;
-  double threshold_mm;        /* detection threshold used */
-  double reference_rms_mm;    /* residual RMS of the reference line */
-  int32_t reference_points;   /* points the reference line used */
-  int32_t bead_points;        /* valid points above the threshold in the bead */
-  int32_t dropped_points;     /* missing or spike points between the edges */
-  int32_t valid;              /* 1 when status == BEAD_VALID */
-  int32_t status;             /* enum bead_status */
+  double threshold_mm;      /* detection threshold used */
+  double reference_rms_mm;  /* residual RMS of the reference line */
+  int32_t reference_points; /* points the reference line used */
+  int32_t bead_points;      /* valid points above the threshold in the bead */
+  int32_t dropped_points;   /* missing or spike points between the edges */
+  int32_t valid;            /* 1 when status == BEAD_VALID */
+  int32_t status;           /* enum bead_status */
 } bead_geometry;
 
 typedef struct bead_options {
@@ -98,34 +98,34 @@ BEAD_API void bead_processor_destroy(bead_processor* processor);
 
 /* The wheel and its encoder (the rig file's keys). */
 typedef struct bead_rig {
-  size_t size;                 /* sizeof(bead_rig): set by bead_rig_init */
-  double counts_per_rev;       /* encoder counts per wheel revolution */
-  int32_t encoder_bits;        /* counter width (wraps modulo 2^bits); 0: never wraps (32) */
-  int32_t encoder_direction;   /* +1: counts grow as the surface moves from nozzle to laser (1) */
+  size_t size;               /* sizeof(bead_rig): set by bead_rig_init */
+  double counts_per_rev;     /* encoder counts per wheel revolution */
+  int32_t encoder_bits;      /* counter width (wraps modulo 2^bits); 0: never wraps (32) */
+  int32_t encoder_direction; /* +1: counts grow as the surface moves from nozzle to laser (1) */
   double wheel_diameter_mm;
-  double offset_counts;        /* nozzle to laser, encoder counts */
-  double wheel_eccentricity_mm;        /* 0: a centred wheel */
+  double offset_counts;         /* nozzle to laser, encoder counts */
+  double wheel_eccentricity_mm; /* 0: a centred wheel */
   double wheel_eccentricity_phase_deg;
 } bead_rig;
 
 typedef struct bead_flow_options {
-  size_t size;                  /* sizeof(bead_flow_options): set by bead_flow_options_init */
-  double speed_window_s;        /* Savitzky-Golay window on the wheel speed (0.1) */
-  double speed_hampel_s;        /* Hampel half window on the speed (0.05) */
-  int32_t area_hampel_half;     /* Hampel half window on the area, profiles (5) */
-  double hampel_nsigma;         /* (3) */
-  double area_sigma_floor_mm2;  /* floor on the area Hampel's sigma; < 0: the running median (-1) */
-  double history_s;             /* log history kept: longer than the nozzle-to-laser travel (600) */
+  size_t size;                 /* sizeof(bead_flow_options): set by bead_flow_options_init */
+  double speed_window_s;       /* Savitzky-Golay window on the wheel speed (0.1) */
+  double speed_hampel_s;       /* Hampel half window on the speed (0.05) */
+  int32_t area_hampel_half;    /* Hampel half window on the area, profiles (5) */
+  double hampel_nsigma;        /* (3) */
+  double area_sigma_floor_mm2; /* floor on the area Hampel's sigma; < 0: the running median (-1) */
+  double history_s;            /* log history kept: longer than the nozzle-to-laser travel (600) */
 } bead_flow_options;
 
 typedef struct bead_flow_sample {
-  int64_t profile;              /* index of the profile, in the order pushed */
-  double t_s;                   /* extrusion time; NaN: laid before the log began */
-  int64_t encoder;              /* raw counter at extrusion time */
+  int64_t profile; /* index of the profile, in the order pushed */
+  double t_s;      /* extrusion time; NaN: laid before the log began */
+  int64_t encoder; /* raw counter at extrusion time */
   double surface_speed_mm_s;
-  double area_mm2;              /* after the Hampel filter */
-  double flow_mm3_s;            /* surface speed x area */
-  double screw_rpm;             /* at extrusion time */
+  double area_mm2;   /* after the Hampel filter */
+  double flow_mm3_s; /* surface speed x area */
+  double screw_rpm;  /* at extrusion time */
   int32_t valid;
 } bead_flow_sample;
 

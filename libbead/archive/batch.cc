@@ -31,8 +31,10 @@ constexpr const char* kResultHeader =
 // Text for a CSV field of ours: no commas, no line breaks.
 std::string Plain(std::string text) {
   for (char& c : text)
-    if (c == ',') c = ';';
-    else if (c == '\n' || c == '\r') c = ' ';
+    if (c == ',')
+      c = ';';
+    else if (c == '\n' || c == '\r')
+      c = ' ';
   return text;
 }
 
@@ -59,9 +61,9 @@ std::string Fingerprint(const BatchRun& run, const BatchOptions& o) {
   s << "rig " << run.rig << " text " << std::hex << Fnv1a(ReadText(run.rig)) << std::dec << "\n";
   const BeadOptions& b = o.profile.bead;
   s << "options occlusion " << static_cast<int>(o.occlusion) << " threshold_mm " << CsvNumber(b.min_threshold_mm)
-    << " threshold_sigmas " << CsvNumber(b.threshold_sigmas) << " spike_mm " << CsvNumber(b.spike_mm)
-    << " max_gap_mm " << CsvNumber(b.max_gap_mm) << " speed_window_s " << CsvNumber(o.flow.speed_window_s)
-    << " area_smooth " << o.flow.area_smooth_window << "\n";
+    << " threshold_sigmas " << CsvNumber(b.threshold_sigmas) << " spike_mm " << CsvNumber(b.spike_mm) << " max_gap_mm "
+    << CsvNumber(b.max_gap_mm) << " speed_window_s " << CsvNumber(o.flow.speed_window_s) << " area_smooth "
+    << o.flow.area_smooth_window << "\n";
   return s.str();
 }
 
@@ -69,9 +71,9 @@ std::string ResultLine(const RunResult& r) {
   std::string warnings;
   for (const std::string& w : r.warnings) warnings += (warnings.empty() ? "" : " | ") + w;
   std::ostringstream s;
-  s << Plain(r.name) << ',' << Plain(r.run) << ',' << Plain(r.rig) << ',' << Plain(r.status) << ',' << r.profiles
-    << ',' << r.valid << ',' << r.flow_samples << ',' << CsvNumber(r.total_volume_mm3) << ','
-    << CsvNumber(r.offset_counts) << ',' << CsvNumber(r.occlusion_fraction) << ',' << Plain(warnings);
+  s << Plain(r.name) << ',' << Plain(r.run) << ',' << Plain(r.rig) << ',' << Plain(r.status) << ',' << r.profiles << ','
+    << r.valid << ',' << r.flow_samples << ',' << CsvNumber(r.total_volume_mm3) << ',' << CsvNumber(r.offset_counts)
+    << ',' << CsvNumber(r.occlusion_fraction) << ',' << Plain(warnings);
   return s.str();
 }
 

@@ -38,9 +38,9 @@ struct RunResult {
   std::string name, run, rig;
   std::string status = "ok";  // or "failed: why"
   std::size_t profiles = 0, valid = 0, flow_samples = 0;
-  double total_volume_mm3 = kNaN;   // empty when the run has no flow
-  double offset_counts = kNaN;      // the rig's nozzle-to-laser offset used
-  double occlusion_fraction = kNaN; // pooled hidden fraction of the area
+  double total_volume_mm3 = kNaN;    // empty when the run has no flow
+  double offset_counts = kNaN;       // the rig's nozzle-to-laser offset used
+  double occlusion_fraction = kNaN;  // pooled hidden fraction of the area
   std::vector<std::string> warnings;
   bool ok() const { return status == "ok"; }
 };

@@ -105,9 +105,12 @@ Shard ResolveShard(const std::string& option, const std::function<const char*(co
   };
   if (const char* id = env("SLURM_ARRAY_TASK_ID"); id && env("SLURM_ARRAY_TASK_COUNT")) {
     const std::size_t count = Number(env("SLURM_ARRAY_TASK_COUNT"), "SLURM_ARRAY_TASK_COUNT");
-    const std::size_t min = env("SLURM_ARRAY_TASK_MIN") ? Number(env("SLURM_ARRAY_TASK_MIN"), "SLURM_ARRAY_TASK_MIN") : 0;
+    const std::size_t min =
+        env("SLURM_ARRAY_TASK_MIN") ? Number(env("SLURM_ARRAY_TASK_MIN"), "SLURM_ARRAY_TASK_MIN") : 0;
     const std::size_t step =
-        env("SLURM_ARRAY_TASK_STEP") ? std::max<std::size_t>(1, Number(env("SLURM_ARRAY_TASK_STEP"), "SLURM_ARRAY_TASK_STEP")) : 1;
+        env("SLURM_ARRAY_TASK_STEP")
+            ? std::max<std::size_t>(1, Number(env("SLURM_ARRAY_TASK_STEP"), "SLURM_ARRAY_TASK_STEP"))
+            : 1;
     const std::size_t task = Number(id, "SLURM_ARRAY_TASK_ID");
     if (task < min || count == 0 || (task - min) / step >= count)
       throw Error("SLURM_ARRAY_TASK_ID=" + std::string(id) + " is outside the array (min " + std::to_string(min) +

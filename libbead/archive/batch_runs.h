@@ -31,13 +31,14 @@ std::vector<BatchRun> RunsFromManifest(const std::string& manifest);
 struct Shard {
   std::size_t index = 0;  // 0-based
   std::size_t count = 1;
-  std::string source;     // where it came from, in words ("--shard 2/4", "Slurm array", ...)
+  std::string source;  // where it came from, in words ("--shard 2/4", "Slurm array", ...)
   bool Takes(std::size_t run) const { return run % count == index; }
 };
 
 // `option`: the --shard text ("" when not given). `env` reads the
 // environment (tests pass their own). Throws bead::Error naming what is wrong.
-Shard ResolveShard(const std::string& option,
-                   const std::function<const char*(const char*)>& env = [](const char* k) { return std::getenv(k); });
+Shard ResolveShard(
+    const std::string& option,
+    const std::function<const char*(const char*)>& env = [](const char* k) { return std::getenv(k); });
 
 }  // namespace bead

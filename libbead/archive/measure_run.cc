@@ -43,11 +43,12 @@ OcclusionMode ParseOcclusionMode(const std::string& text) {
   throw Error("occlusion mode '" + text + "' is none of none, pooled, each");
 }
 
-MeasureRunSummary MeasureRun(ProfileStream& stream, const Rig& rig, WorkerPool& pool,
-                             const MeasureRunOptions& options, const std::function<void(const GeometryRow&)>& sink) {
+MeasureRunSummary MeasureRun(ProfileStream& stream, const Rig& rig, WorkerPool& pool, const MeasureRunOptions& options,
+                             const std::function<void(const GeometryRow&)>& sink) {
   if (options.occlusion != OcclusionMode::kNone && options.estimate == nullptr)
-    throw Error("MeasureRun: an occlusion mode other than none needs MeasureRunOptions::estimate "
-                "(occlusion::EstimateOcclusion from bead::occlusion)");
+    throw Error(
+        "MeasureRun: an occlusion mode other than none needs MeasureRunOptions::estimate "
+        "(occlusion::EstimateOcclusion from bead::occlusion)");
   const auto start = std::chrono::steady_clock::now();
   MeasureRunSummary summary;
   summary.occlusion = options.occlusion;
@@ -123,9 +124,8 @@ MeasureRunSummary MeasureRun(ProfileStream& stream, const Rig& rig, WorkerPool& 
       geometry[j] = one[0].geometry;
     }
     std::vector<occlusion::OcclusionEstimate> fits(chosen.size());
-    pool.Run(chosen.size(), [&](std::size_t j, unsigned) {
-      fits[j] = options.estimate(profiles.view(j), geometry[j], occ);
-    });
+    pool.Run(chosen.size(),
+             [&](std::size_t j, unsigned) { fits[j] = options.estimate(profiles.view(j), geometry[j], occ); });
     summary.pooled = occlusion::PoolFromFits(fits, geometry);
   }
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -48,12 +48,12 @@ struct MeasureRunSummary {
   std::array<std::size_t, 8> by_status{};  // count per ProfileStatus
   double seconds = 0;                      // reading and measuring
   OcclusionMode occlusion = OcclusionMode::kNone;
-  occlusion::PooledOcclusion pooled;       // kPooled
+  occlusion::PooledOcclusion pooled;          // kPooled
   int each_fitted = 0, each_constrained = 0;  // kEach
 };
 
-MeasureRunSummary MeasureRun(ProfileStream& stream, const Rig& rig, WorkerPool& pool,
-                             const MeasureRunOptions& options, const std::function<void(const GeometryRow&)>& sink);
+MeasureRunSummary MeasureRun(ProfileStream& stream, const Rig& rig, WorkerPool& pool, const MeasureRunOptions& options,
+                             const std::function<void(const GeometryRow&)>& sink);
 
 // One line on the occlusion stage's outcome ("" for none).
 std::string OcclusionLine(const MeasureRunSummary& summary);

@@ -2,8 +2,8 @@
 
 namespace bead {
 
-MeasuredRun MeasureWholeRun(OpenedRun opened, const Rig& rig, WorkerPool& pool,
-                            const MeasureRunOptions& options, const std::function<void(const GeometryRow&)>& row) {
+MeasuredRun MeasureWholeRun(OpenedRun opened, const Rig& rig, WorkerPool& pool, const MeasureRunOptions& options,
+                            const std::function<void(const GeometryRow&)>& row) {
   MeasuredRun m;
   m.run = std::move(opened.run);
   const std::size_t n = opened.profiles->size();

@@ -25,8 +25,7 @@ struct MeasuredRun {
 
 // `opened`: from OpenRun (check its log first). `row`, when given, also sees every row in order (a geometry CSV written
 // on the way).
-MeasuredRun MeasureWholeRun(OpenedRun opened, const Rig& rig, WorkerPool& pool,
-                            const MeasureRunOptions& options,
+MeasuredRun MeasureWholeRun(OpenedRun opened, const Rig& rig, WorkerPool& pool, const MeasureRunOptions& options,
                             const std::function<void(const GeometryRow&)>& row = {});
 
 }  // namespace bead

@@ -22,8 +22,10 @@ OpenedRun OpenRun(const std::string& path, WorkerPool& pool, bool with_log) {
 
 MotionGap MissingMotion(bool encoder_absent, std::optional<std::size_t> log_samples, const std::string& needs) {
   if (encoder_absent)
-    return {"/profiles/encoder", "holds no readings (root attribute encoder=absent: imported without an encoder "
-                                 "column); " + needs + " needs the wheel's motion"};
+    return {"/profiles/encoder",
+            "holds no readings (root attribute encoder=absent: imported without an encoder "
+            "column); " +
+                needs + " needs the wheel's motion"};
   if (!log_samples) return {"/log", "missing: " + needs + " needs the acquisition log"};
   if (*log_samples < 3)
     return {"/log/t_s", "holds " + std::to_string(*log_samples) +
@@ -32,8 +34,7 @@ MotionGap MissingMotion(bool encoder_absent, std::optional<std::size_t> log_samp
 }
 
 MotionGap MissingMotion(const RunArchive& run, const std::string& needs) {
-  return MissingMotion(EncoderAbsent(run), run.log ? std::optional<std::size_t>(run.log->size()) : std::nullopt,
-                       needs);
+  return MissingMotion(EncoderAbsent(run), run.log ? std::optional<std::size_t>(run.log->size()) : std::nullopt, needs);
 }
 
 void RequireMotion(const RunArchive& run, const std::string& path, const std::string& needs) {

@@ -41,8 +41,9 @@ class Spill {
       if (!file_) close(fd);
     }
     if (!file_)
-      throw Error(Located(path, "", "cannot make a scratch file for the flow's rows in " +
-                                        name.substr(0, name.rfind('/')) + " (set TMPDIR to a writable folder)"));
+      throw Error(Located(path, "",
+                          "cannot make a scratch file for the flow's rows in " + name.substr(0, name.rfind('/')) +
+                              " (set TMPDIR to a writable folder)"));
   }
   void Append(const FlowRow& r) {
     if (std::fwrite(&r, sizeof r, 1, file_.get()) != 1)

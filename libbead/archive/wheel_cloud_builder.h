@@ -20,8 +20,8 @@ namespace bead {
 
 struct WheelCloudOptions {
   ProfileOptions profile;
-  std::size_t every = 1;             // keep every this-many-th profile
-  double surface_speed_mm_s = 0.0;   // > 0: s = v (t - t0) instead of the encoder
+  std::size_t every = 1;            // keep every this-many-th profile
+  double surface_speed_mm_s = 0.0;  // > 0: s = v (t - t0) instead of the encoder
 };
 
 struct WheelCloudCount {

@@ -25,8 +25,10 @@ struct bead_flow {
 
 namespace {
 
-static_assert(BEAD_VALID == int(bead::ProfileStatus::kValid) && BEAD_TOO_FEW_POINTS == int(bead::ProfileStatus::kTooFewPoints) &&
-              BEAD_NO_REFERENCE == int(bead::ProfileStatus::kNoReference) && BEAD_NO_BEAD == int(bead::ProfileStatus::kNoBead) &&
+static_assert(BEAD_VALID == int(bead::ProfileStatus::kValid) &&
+              BEAD_TOO_FEW_POINTS == int(bead::ProfileStatus::kTooFewPoints) &&
+              BEAD_NO_REFERENCE == int(bead::ProfileStatus::kNoReference) &&
+              BEAD_NO_BEAD == int(bead::ProfileStatus::kNoBead) &&
               BEAD_EDGE_NOT_SEEN == int(bead::ProfileStatus::kBeadEdgeNotSeen) &&
               BEAD_IN_REFERENCE_AREA == int(bead::ProfileStatus::kBeadInReferenceArea));
 
@@ -143,8 +145,8 @@ bead_processor* bead_processor_create_with(const double left_mm[2], const double
     po.bead.min_bead_points = o.min_bead_points;
     po.bead.min_profile_points = o.min_profile_points;
     po.reference.inlier_sigmas = o.inlier_sigmas;
-    return new bead_processor{bead::ProfileProcessor({left_mm[0], left_mm[1]}, {right_mm[0], right_mm[1]}, po,
-                                                     o.max_points)};
+    return new bead_processor{
+        bead::ProfileProcessor({left_mm[0], left_mm[1]}, {right_mm[0], right_mm[1]}, po, o.max_points)};
   });
 }
 

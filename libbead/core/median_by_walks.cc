@@ -116,9 +116,8 @@ std::vector<double> MediansByWalks(int sequences, const Walks& walk) {
 }
 
 double MedianByWalks(const Walk& walk) {
-  return MediansByWalks(1, [&](const std::function<void(int, double)>& visit) {
-    walk([&](double v) { visit(0, v); });
-  })[0];
+  return MediansByWalks(
+      1, [&](const std::function<void(int, double)>& visit) { walk([&](double v) { visit(0, v); }); })[0];
 }
 
 }  // namespace bead

@@ -5,9 +5,7 @@
 
 namespace bead {
 
-double Rig::MmPerCount() const {
-  return std::numbers::pi * wheel_diameter_mm / encoder.counts_per_rev;
-}
+double Rig::MmPerCount() const { return std::numbers::pi * wheel_diameter_mm / encoder.counts_per_rev; }
 
 double Rig::SurfaceSpeedFactor(double counts) const {
   if (wheel_eccentricity_mm == 0.0) return 1.0;

@@ -30,7 +30,7 @@ struct Rig {
   std::string name;
   EncoderSpec encoder;
   double wheel_diameter_mm = 0.0;
-  double offset_counts = 0.0;  // encoder counts from the nozzle to the laser line
+  double offset_counts = 0.0;     // encoder counts from the nozzle to the laser line
   ReferenceArea reference_left;   // the area at smaller x
   ReferenceArea reference_right;  // the area at larger x
   std::optional<LaserOrigin> laser_origin;

@@ -40,7 +40,7 @@ struct ProfileBlock {
 // temperature, heater power, melt pressure, motor current): /log/<name>.
 struct LogChannel {
   std::string name;
-  std::string unit;  // "" when the file does not say
+  std::string unit;            // "" when the file does not say
   std::vector<double> values;  // [M]
 };
 

@@ -13,13 +13,13 @@
 namespace bead {
 
 struct WheelCloud {
-  std::vector<float> x_mm;        // across the bead, the sensor's x
-  std::vector<float> s_mm;        // along the surface, from the first profile's position
-  std::vector<float> z_mm;        // perpendicular height above the profile's reference line
-  std::vector<float> z_sensor_mm; // the sensor's own z, as in the run (so the run comes back exactly)
-  std::vector<uint32_t> profile;  // the profile's index in the run
-  std::vector<double> t_s;        // the profile's time
-  std::vector<int64_t> encoder;   // the profile's raw encoder reading
+  std::vector<float> x_mm;         // across the bead, the sensor's x
+  std::vector<float> s_mm;         // along the surface, from the first profile's position
+  std::vector<float> z_mm;         // perpendicular height above the profile's reference line
+  std::vector<float> z_sensor_mm;  // the sensor's own z, as in the run (so the run comes back exactly)
+  std::vector<uint32_t> profile;   // the profile's index in the run
+  std::vector<double> t_s;         // the profile's time
+  std::vector<int64_t> encoder;    // the profile's raw encoder reading
 
   std::size_t size() const { return x_mm.size(); }
 };

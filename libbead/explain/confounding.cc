@@ -73,8 +73,8 @@ void SayAlternative(const SeriesData& d, const Active& kept, const Active& alt, 
 // The offset from the run: the profile, widened to the joint fit's
 // interval at its best (the shift beside every other term), and the
 // shift's correlation with the base model's delay.
-void EstimateShift(const SeriesData& d, const EffectSet& current, const Effect& shift, const std::vector<std::size_t>& rows,
-                   ExplainReport& report) {
+void EstimateShift(const SeriesData& d, const EffectSet& current, const Effect& shift,
+                   const std::vector<std::size_t>& rows, ExplainReport& report) {
   ShiftProfile& p = report.shift_profile;
   p = ProfileShift(d, current, shift, rows);
   EffectSet joint = p.refit_at_best;
@@ -92,8 +92,10 @@ void EstimateShift(const SeriesData& d, const EffectSet& current, const Effect& 
   if (!std::isfinite(sd) || p.best <= grid.front() || p.best >= grid.back()) {
     p.lo = grid.front(), p.hi = grid.back(), p.lo_at_edge = p.hi_at_edge = true;
   } else {
-    if (p.best - 1.96 * sd < p.lo) p.lo = std::max(grid.front(), p.best - 1.96 * sd), p.lo_at_edge |= p.lo <= grid.front();
-    if (p.best + 1.96 * sd > p.hi) p.hi = std::min(grid.back(), p.best + 1.96 * sd), p.hi_at_edge |= p.hi >= grid.back();
+    if (p.best - 1.96 * sd < p.lo)
+      p.lo = std::max(grid.front(), p.best - 1.96 * sd), p.lo_at_edge |= p.lo <= grid.front();
+    if (p.best + 1.96 * sd > p.hi)
+      p.hi = std::min(grid.back(), p.best + 1.96 * sd), p.hi_at_edge |= p.hi >= grid.back();
   }
   report.position_shift_estimated = true;
   report.position_shift_counts = p.best;

@@ -45,8 +45,10 @@ std::vector<double> VaryingTerm(const SeriesData& d, const Active& a) {
 // sample, from their parameters' covariance (numerical gradients).
 std::vector<double> FactorVariance(const SeriesData& d, const std::vector<Active>& kept,
                                    const std::vector<std::size_t>& first_slot, const ExplainReport& report) {
-  const std::size_t slots = report.final_effects.empty() ? 0 : static_cast<std::size_t>(std::llround(
-                                std::sqrt(static_cast<double>(report.final_covariance.size()))));
+  const std::size_t slots =
+      report.final_effects.empty()
+          ? 0
+          : static_cast<std::size_t>(std::llround(std::sqrt(static_cast<double>(report.final_covariance.size()))));
   std::vector<std::vector<double>> grad;  // [kept slot][sample]: d log(factor)
   std::vector<std::size_t> slot_of;
   for (std::size_t k = 0; k < kept.size(); ++k) {

@@ -11,7 +11,8 @@ namespace bead::explain {
 namespace {
 
 // The finite pairs, mean removed.
-void Centred(const std::vector<double>& a, const std::vector<double>* b, std::vector<double>& ca, std::vector<double>& cb) {
+void Centred(const std::vector<double>& a, const std::vector<double>* b, std::vector<double>& ca,
+             std::vector<double>& cb) {
   for (std::size_t i = 0; i < a.size(); ++i) {
     if (!std::isfinite(a[i]) || (b && !std::isfinite((*b)[i]))) continue;
     ca.push_back(a[i]);
@@ -40,12 +41,12 @@ double Covariance(const std::vector<double>& a, const std::vector<double>& b, lo
 
 double NormalQuantile(double p) {
   // Acklam's algorithm: rational approximations in the centre and the tails.
-  static const double a[] = {-3.969683028665376e+01, 2.209460984245205e+02, -2.759285104469687e+02,
-                             1.383577518672690e+02, -3.066479806614716e+01, 2.506628277459239e+00};
+  static const double a[] = {-3.969683028665376e+01, 2.209460984245205e+02,  -2.759285104469687e+02,
+                             1.383577518672690e+02,  -3.066479806614716e+01, 2.506628277459239e+00};
   static const double b[] = {-5.447609879822406e+01, 1.615858368580409e+02, -1.556989798598866e+02,
                              6.680131188771972e+01, -1.328068155288572e+01};
   static const double c[] = {-7.784894002430293e-03, -3.223964580411365e-01, -2.400758277161838e+00,
-                             -2.549732539343734e+00, 4.374664141464968e+00, 2.938163982698783e+00};
+                             -2.549732539343734e+00, 4.374664141464968e+00,  2.938163982698783e+00};
   static const double d[] = {7.784695709041462e-03, 3.224671290700398e-01, 2.445134137142996e+00,
                              3.754408661907416e+00};
   if (p <= 0) return -INFINITY;

@@ -166,10 +166,12 @@ void SolveLinear(const SeriesData& d, EffectSet& set, const std::vector<std::siz
   }
   const Eigen::VectorXd x = a.colPivHouseholderQr().solve(b).cwiseProduct(scale);
   for (std::size_t c = 0; c < columns.size(); ++c)
-    set[where[c].first].params[set[where[c].first].nl() + where[c].second] = std::isfinite(x(static_cast<Eigen::Index>(c))) ? x(static_cast<Eigen::Index>(c)) : 0.0;
+    set[where[c].first].params[set[where[c].first].nl() + where[c].second] =
+        std::isfinite(x(static_cast<Eigen::Index>(c))) ? x(static_cast<Eigen::Index>(c)) : 0.0;
 }
 
-void SolveLinearOf(const SeriesData& d, EffectSet& set, const std::vector<std::size_t>& rows, const std::string& feature) {
+void SolveLinearOf(const SeriesData& d, EffectSet& set, const std::vector<std::size_t>& rows,
+                   const std::string& feature) {
   for (std::size_t e = 0; e < set.size(); ++e) {
     if (set[e].effect.feature != feature || set[e].effect.kind != Effect::Kind::kAdditive) continue;
     for (std::size_t k = set[e].nl(); k < set[e].params.size(); ++k) set[e].params[k] = 0.0;
@@ -186,11 +188,13 @@ void SolveLinearOf(const SeriesData& d, EffectSet& set, const std::vector<std::s
     Eigen::VectorXd b(ok.size());
     for (std::size_t q = 0; q < ok.size(); ++q) {
       b(static_cast<Eigen::Index>(q)) = r[ok[q]];
-      for (std::size_t c = 0; c < cols.size(); ++c) a(static_cast<Eigen::Index>(q), static_cast<Eigen::Index>(c)) = cols[c][ok[q]];
+      for (std::size_t c = 0; c < cols.size(); ++c)
+        a(static_cast<Eigen::Index>(q), static_cast<Eigen::Index>(c)) = cols[c][ok[q]];
     }
     const Eigen::VectorXd x = a.colPivHouseholderQr().solve(b);
     for (std::size_t c = 0; c < cols.size(); ++c)
-      set[e].params[set[e].nl() + c] = std::isfinite(x(static_cast<Eigen::Index>(c))) ? x(static_cast<Eigen::Index>(c)) : 0.0;
+      set[e].params[set[e].nl() + c] =
+          std::isfinite(x(static_cast<Eigen::Index>(c))) ? x(static_cast<Eigen::Index>(c)) : 0.0;
   }
 }
 
@@ -204,7 +208,8 @@ void Refine(const SeriesData& d, EffectSet& set, const std::vector<std::size_t>&
   }
   std::vector<double> x;
   for (const auto& [e, k] : slots) x.push_back(set[e].params[k]);
-  auto* cost = new ceres::DynamicNumericDiffCostFunction<ProjectedCost, ceres::CENTRAL>(new ProjectedCost{d, set, rows, slots});
+  auto* cost =
+      new ceres::DynamicNumericDiffCostFunction<ProjectedCost, ceres::CENTRAL>(new ProjectedCost{d, set, rows, slots});
   cost->AddParameterBlock(static_cast<int>(x.size()));
   cost->SetNumResiduals(static_cast<int>(rows.size()));
   ceres::Problem problem;

@@ -41,7 +41,8 @@ void SolveLinear(const SeriesData& d, EffectSet& set, const std::vector<std::siz
 // The linear parameters of the additive effects built from `feature`
 // alone, the rest held (an initial state is local: the held-out test
 // re-solves it on the held-out samples for both sides).
-void SolveLinearOf(const SeriesData& d, EffectSet& set, const std::vector<std::size_t>& rows, const std::string& feature);
+void SolveLinearOf(const SeriesData& d, EffectSet& set, const std::vector<std::size_t>& rows,
+                   const std::string& feature);
 
 double LagOneCorrelation(const std::vector<double>& r);
 

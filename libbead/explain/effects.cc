@@ -48,7 +48,7 @@ std::vector<double> LaggedChannel(const Channel& ch, double tau, double delay, c
   std::vector<double> lagged(m);
   const double mean = Mean(ch.values);
   double state = ch.values.front() - mean;  // at rest at the first reading
-  double last_dt = -1.0, a = 1.0;  // a log's steps repeat: exp only when one changes
+  double last_dt = -1.0, a = 1.0;           // a log's steps repeat: exp only when one changes
   for (std::size_t k = 0; k < m; ++k) {
     const double dt = k ? ch.t[k] - ch.t[k - 1] : 0.0;
     if (dt != last_dt) a = std::exp(-dt / std::max(tau, 1e-6)), last_dt = dt;
@@ -61,9 +61,12 @@ std::vector<double> LaggedChannel(const Channel& ch, double tau, double delay, c
     const double at = t[i] - delay;
     while (j > 0 && ch.t[j] > at) --j;  // the times run nearly, not strictly, in order
     while (j + 1 < m && ch.t[j + 1] <= at) ++j;
-    if (at <= ch.t.front()) out[i] = lagged.front();
-    else if (j + 1 >= m) out[i] = lagged.back();
-    else out[i] = lagged[j] + (lagged[j + 1] - lagged[j]) * (at - ch.t[j]) / (ch.t[j + 1] - ch.t[j]);
+    if (at <= ch.t.front())
+      out[i] = lagged.front();
+    else if (j + 1 >= m)
+      out[i] = lagged.back();
+    else
+      out[i] = lagged[j] + (lagged[j + 1] - lagged[j]) * (at - ch.t[j]) / (ch.t[j + 1] - ch.t[j]);
   }
   return out;
 }
@@ -237,8 +240,8 @@ std::vector<Effect> BaseRefit(const SeriesData& d, const CatalogueOptions& o) {
     out.push_back(e);
   }
   if (d.shifted || d.base_delayed) {
-    Effect e = Make("delay", "the base model's delay, refitted (measurement and model shifted in time)", K::kDelay,
-                    "delay");
+    Effect e =
+        Make("delay", "the base model's delay, refitted (measurement and model shifted in time)", K::kDelay, "delay");
     e.nonlinear = {"shift_s"};
     e.grid = {Linspace(-o.delay_range_s, o.delay_range_s, 41)};
     out.push_back(e);

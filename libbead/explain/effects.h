@@ -18,9 +18,9 @@
 namespace bead::explain {
 
 struct Effect {
-  std::string name;         // e.g. "once_per_rev[wheel at the nozzle]"
-  std::string description;  // what it stands for, one line
-  std::string tracks;       // the rotating part a periodic term follows ("" otherwise)
+  std::string name;                            // e.g. "once_per_rev[wheel at the nozzle]"
+  std::string description;                     // what it stands for, one line
+  std::string tracks;                          // the rotating part a periodic term follows ("" otherwise)
   std::vector<std::string> nonlinear, linear;  // parameter names, with units
   std::vector<std::vector<double>> grid;       // start grid of each nonlinear parameter
   enum class Kind { kPositionShift, kDelay, kDelayDrift, kDelayLevel, kMultiplicative, kAdditive } kind;
@@ -34,14 +34,15 @@ struct Effect {
   void AddDelay(const SeriesData& data, const double* nonlinear_values, std::vector<double>& delay) const;
 
   // Which catalogued feature it is built from (set by the catalogue).
-  int part = -1;      // index into data.parts for periodic terms
-  int channel = -1;   // index into data.channels for a recorded channel's term
+  int part = -1;     // index into data.parts for periodic terms
+  int channel = -1;  // index into data.channels for a recorded channel's term
   int harmonic = 1;
-  std::string feature;  // "scale", "bias", "drift", "time_to_laser", "height", "buildup", "level", "dynamics", "channel"
+  std::string
+      feature;  // "scale", "bias", "drift", "time_to_laser", "height", "buildup", "level", "dynamics", "channel"
 };
 
 struct CatalogueOptions {
-  bool has_wheel = false;        // position shifts make sense
+  bool has_wheel = false;              // position shifts make sense
   double position_range_counts = 0.0;  // offset search +- this
   double delay_range_s = 0.5;
 };

@@ -8,8 +8,9 @@ using nlohmann::json;
 namespace {
 
 json ToJson(const Whiteness& w) {
-  return {{"lags", w.lags}, {"acf", w.acf}, {"bound", w.bound}, {"outside", w.outside},
-          {"chi2", w.chi2}, {"chi2_limit_99", w.chi2_limit}, {"white", w.white}};
+  return {{"lags", w.lags},       {"acf", w.acf},   {"bound", w.bound},
+          {"outside", w.outside}, {"chi2", w.chi2}, {"chi2_limit_99", w.chi2_limit},
+          {"white", w.white}};
 }
 json ToJson(const InputCorrelation& x) {
   return {{"lags", x.lags}, {"ccf", x.ccf}, {"bound", x.bound}, {"outside", x.outside}, {"independent", x.independent}};
@@ -63,11 +64,18 @@ json ReportJson(const ExplainReport& r, const model::TransferFunction& tf, doubl
                            {"false_alarm", u.false_alarm}});
   json candidates = json::array();
   for (const auto& c : r.candidates)
-    candidates.push_back({{"round", c.round}, {"name", c.name}, {"bic_drop", c.bic_drop}, {"heldout_f", c.heldout_f},
-                          {"surrogate_f", Finite(c.surrogate_f)}, {"guarded_f", Finite(c.guarded_f)},
+    candidates.push_back({{"round", c.round},
+                          {"name", c.name},
+                          {"bic_drop", c.bic_drop},
+                          {"heldout_f", c.heldout_f},
+                          {"surrogate_f", Finite(c.surrogate_f)},
+                          {"guarded_f", Finite(c.guarded_f)},
                           {"accepted", c.accepted}});
   return {{"model",
-           {{"num", tf.num}, {"den", tf.den}, {"delay_s", tf.delay_s}, {"operating_point", {{"offset", offset}}},
+           {{"num", tf.num},
+            {"den", tf.den},
+            {"delay_s", tf.delay_s},
+            {"operating_point", {{"offset", offset}}},
             {"source", model_source}}},
           {"fit_before_pct", r.before.fit_pct},
           {"fit_after_pct", r.after.fit_pct},
@@ -93,9 +101,9 @@ json ReportJson(const ExplainReport& r, const model::TransferFunction& tf, doubl
           {"spectrum", {{"before", ToJson(r.before.spectrum)}, {"after", ToJson(r.after.spectrum)}}}};
 }
 
-
 json RunJson(const RunExplanation& e, const Rig& rig, const model::TransferFunction& tf, double offset,
-             const std::string& model_source, const std::optional<OffsetComparison>& pins, const std::string& flow_out) {
+             const std::string& model_source, const std::optional<OffsetComparison>& pins,
+             const std::string& flow_out) {
   const ExplainReport& r = e.report;
   const ShiftProfile& sp = r.shift_profile;
   json j = ReportJson(r, tf, offset, model_source);
@@ -105,12 +113,9 @@ json RunJson(const RunExplanation& e, const Rig& rig, const model::TransferFunct
   j["offset_from_run_pinned"] = e.offset.pinned;
   j["offset_delay_correlation"] = Finite(e.offset.delay_correlation);
   j["offset_profile_threshold_q"] = sp.q;  // SSE_min + 3.84 q bounds the interval
-  j["offset_profile"] = {{"offset_counts", json::array()},
-                         {"sse", sp.sse},
-                         {"ci95_low_counts", e.offset.lo_counts},
-                         {"ci95_high_counts", e.offset.hi_counts},
-                         {"low_at_search_edge", sp.lo_at_edge},
-                         {"high_at_search_edge", sp.hi_at_edge}};
+  j["offset_profile"] = {{"offset_counts", json::array()},        {"sse", sp.sse},
+                         {"ci95_low_counts", e.offset.lo_counts}, {"ci95_high_counts", e.offset.hi_counts},
+                         {"low_at_search_edge", sp.lo_at_edge},   {"high_at_search_edge", sp.hi_at_edge}};
   for (double g : sp.shift_counts) j["offset_profile"]["offset_counts"].push_back(rig.offset_counts + g);
   j["rig_offset_counts"] = rig.offset_counts;
   j["diagnostics"]["timestamp_offset_s"] = e.series.timestamp_offset_s;

@@ -255,12 +255,14 @@ ExplainReport Explain(const SeriesData& d, const ExplainOptions& o) {
         ok = tg.f > critical;
       }
       if (ok && catalogue[c].part >= 0) {
-        surrogate = LargestSurrogateF(d, validation, o.validation != nullptr, current_est, catalogue[c], estimation, held_out);
+        surrogate =
+            LargestSurrogateF(d, validation, o.validation != nullptr, current_est, catalogue[c], estimation, held_out);
         ok = t.f > surrogate;
       }
       report.candidates.push_back({round, catalogue[c].name, t.bic_drop, t.f, surrogate, guarded, false});
       if (ok) passed.push_back(t.fitted.back());
-      if (ok && t.bic_drop > best_drop) best = static_cast<int>(c), best_drop = t.bic_drop, best_t = t.f, best_set = t.fitted;
+      if (ok && t.bic_drop > best_drop)
+        best = static_cast<int>(c), best_drop = t.bic_drop, best_t = t.f, best_set = t.fitted;
     }
     if (best < 0) break;
     for (const Active& alt : passed)
@@ -333,7 +335,8 @@ ExplainReport Explain(const SeriesData& d, const ExplainOptions& o) {
     report.unexplained.push_back(u);
   }
   if (!report.after.whiteness.white && report.unexplained.empty())
-    report.unexplained.push_back({"correlated residual", "no single frequency (not white: chi-square above its 99 % limit)", 0, 0, 1});
+    report.unexplained.push_back(
+        {"correlated residual", "no single frequency (not white: chi-square above its 99 % limit)", 0, 0, 1});
   return report;
 }
 

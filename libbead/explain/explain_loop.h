@@ -90,7 +90,7 @@ struct ExplainOptions {
 // The base model's dynamics against a linear correction of them.
 struct BaseAdequacy {
   bool tested = false;
-  double heldout_f = 0.0, threshold = 0.0;  // the correction's held-out F and the level it had to beat
+  double heldout_f = 0.0, threshold = 0.0;   // the correction's held-out F and the level it had to beat
   double rms_before = 0.0, rms_after = 0.0;  // held-out RMS without and with the correction
   bool misspecified = false;
 };
@@ -114,7 +114,8 @@ struct ExplainReport {
   Diagnosis before, after;  // the base model alone, and with the effects kept
   // The wheel-position shift that best aligns the data (whether or not it
   // was kept as an effect), with its 95 % interval; NaN without a wheel.
-  double position_shift_counts = 0, position_shift_ci95_counts = 0;  // half-width: the larger side; infinite: not pinned
+  double position_shift_counts = 0,
+         position_shift_ci95_counts = 0;  // half-width: the larger side; infinite: not pinned
   bool position_shift_estimated = false;
   // The shift's correlation with the base model's delay in the joint fit
   // at the best shift (NaN: not estimated): near +-1 at a steady wheel speed.

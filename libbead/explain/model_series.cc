@@ -46,7 +46,7 @@ SeriesData ModelSeries(const std::vector<double>& t, const std::vector<double>& 
       for (std::size_t k = 0; k < basis.size(); ++k) d.dynamics[k].push_back(basis[k][i]);
       for (std::size_t c = 0; c < d.initial.size(); ++c)
         d.initial[c].push_back(c >= first_column[si] && c < first_column[si] + n ? free.free[c - first_column[si]][i]
-                                                                                  : 0.0);
+                                                                                 : 0.0);
     }
   }
   // A delayed input: the same prediction read earlier (the model is time

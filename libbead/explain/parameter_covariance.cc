@@ -51,7 +51,8 @@ ParameterCovariance Covariance(const SeriesData& d, const EffectSet& set, const 
   ParameterCovariance out;
   for (std::size_t e = 0; e < set.size(); ++e)
     for (std::size_t k = 0; k < set[e].params.size(); ++k) out.index.push_back({e, k});
-  for (const Active& a : set) out.sd.emplace_back(a.params.size(), kInf), out.variance_along.emplace_back(a.params.size(), NAN);
+  for (const Active& a : set)
+    out.sd.emplace_back(a.params.size(), kInf), out.variance_along.emplace_back(a.params.size(), NAN);
   const std::size_t P = out.index.size();
   out.correlation.assign(P * P, NAN);
   if (P == 0 || rows.size() <= P) return out;
@@ -87,7 +88,8 @@ ParameterCovariance Covariance(const SeriesData& d, const EffectSet& set, const 
     const auto ci = static_cast<Eigen::Index>(c);
     pinned[c] = null_weight <= 0.01 && scale(ci) != 0.0 && C(ci, ci) > 0;
     out.sd[out.index[c].first][out.index[c].second] = pinned[c] ? std::sqrt(C(ci, ci)) * scale(ci) : kInf;
-    if (pinned[c] && Hinv(ci, ci) > 0) out.variance_along[out.index[c].first][out.index[c].second] = C(ci, ci) / Hinv(ci, ci);
+    if (pinned[c] && Hinv(ci, ci) > 0)
+      out.variance_along[out.index[c].first][out.index[c].second] = C(ci, ci) / Hinv(ci, ci);
   }
   for (std::size_t a = 0; a < P; ++a)
     for (std::size_t b = 0; b < P; ++b)

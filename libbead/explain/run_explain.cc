@@ -45,7 +45,8 @@ void SelectChannels(std::vector<Channel>& channels, const std::vector<std::strin
     if (it == channels.end()) {
       std::string have;
       for (const auto& c : channels) have += (have.empty() ? "" : ", ") + c.name;
-      throw Error(Located(path, "/log/" + n, "no such recorded channel (the log has: " + (have.empty() ? "none" : have) + ")"));
+      throw Error(
+          Located(path, "/log/" + n, "no such recorded channel (the log has: " + (have.empty() ? "none" : have) + ")"));
     }
     kept.push_back(*it);
   }
@@ -62,8 +63,9 @@ RunExplanation ExplainMeasuredRun(const Rig& rig, const MeasuredFlow& run, const
   if (held_out) {
     other = SeriesOf(rig, *held_out, model, model_offset, o);
     if (other->data.channels.size() != out.series.data.channels.size())
-      throw Error(Located(held_out->path, "/log", "does not record the same channels as " + run.path +
-                                                      " (name them with --channels, or --no-channels)"));
+      throw Error(Located(
+          held_out->path, "/log",
+          "does not record the same channels as " + run.path + " (name them with --channels, or --no-channels)"));
     options.validation = &other->data;
   }
   options.catalogue.has_wheel = true;
@@ -71,10 +73,9 @@ RunExplanation ExplainMeasuredRun(const Rig& rig, const MeasuredFlow& run, const
   out.report = Explain(out.series.data, options);
   out.offset = OffsetOf(rig, out.report);
   if (o.correct_flow)
-    out.corrected = CorrectFlow(rig, *run.profiles, *run.geometry, *run.log,
-                                run.corrected_area ? *run.corrected_area : std::vector<double>{},
-                                run.corrected_sigma ? *run.corrected_sigma : std::vector<double>{}, out.report, model,
-                                model_offset);
+    out.corrected = CorrectFlow(
+        rig, *run.profiles, *run.geometry, *run.log, run.corrected_area ? *run.corrected_area : std::vector<double>{},
+        run.corrected_sigma ? *run.corrected_sigma : std::vector<double>{}, out.report, model, model_offset);
   return out;
 }
 

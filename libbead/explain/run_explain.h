@@ -28,24 +28,24 @@ struct MeasuredFlow {
   const std::vector<BeadGeometry>* geometry = nullptr;
   const AcquisitionLog* log = nullptr;
   const FlowResult* flow = nullptr;
-  const std::vector<double>* corrected_area = nullptr;   // the occlusion stage's (may be empty)
+  const std::vector<double>* corrected_area = nullptr;  // the occlusion stage's (may be empty)
   const std::vector<double>* corrected_sigma = nullptr;
 };
 
 struct RunExplainOptions {
-  ExplainOptions explain;              // its `validation` is set by the call
-  std::vector<std::string> channels;   // the recorded channels to try (empty: every one)
-  bool no_channels = false;            // try none
-  bool correct_flow = false;           // compute the corrected flow
+  ExplainOptions explain;             // its `validation` is set by the call
+  std::vector<std::string> channels;  // the recorded channels to try (empty: every one)
+  bool no_channels = false;           // try none
+  bool correct_flow = false;          // compute the corrected flow
 };
 
 // The encoder offset the run implies, in counts of the rig file's scale.
 struct OffsetFromRun {
   bool estimated = false;
   double counts = NAN, lo_counts = NAN, hi_counts = NAN;  // best and 95 % interval
-  double ci95_counts = NAN;      // half-width (larger side); infinite: not pinned
-  bool pinned = false;           // the interval does not reach the searched range
-  bool excludes_rig = false;     // the rig file's offset lies outside it
+  double ci95_counts = NAN;                               // half-width (larger side); infinite: not pinned
+  bool pinned = false;                                    // the interval does not reach the searched range
+  bool excludes_rig = false;                              // the rig file's offset lies outside it
   double delay_correlation = NAN;
 };
 

@@ -37,8 +37,8 @@ RunSeries MakeRunSeries(const Rig& rig, const ProfileBlock& profiles, const std:
   std::vector<double> den = tf.den;
   for (double& c : den) c /= tf.den[0];
   const auto basis = model::FilterBasis(den, tf.delay_s, log.t_s, log.screw_rpm, WholeRecord(log.size()));
-  const model::StateResponses free = model::ComputeStateResponses(den, tf.delay_s, log.t_s, log.screw_rpm,
-                                                                  WholeRecord(log.size()));
+  const model::StateResponses free =
+      model::ComputeStateResponses(den, tf.delay_s, log.t_s, log.screw_rpm, WholeRecord(log.size()));
   st->finder = std::make_unique<ExtrusionTimeFinder>(st->log_t, st->log_counts);
   st->finder->BuildIndex();  // a search per sample for every shift tried
   st->offset = rig.offset_counts;
@@ -69,8 +69,10 @@ RunSeries MakeRunSeries(const Rig& rig, const ProfileBlock& profiles, const std:
     d.u.push_back(s.screw_rpm);
     d.y.push_back(s.flow_mm3_s);
     d.base.push_back(InterpolateLinear(st->log_t, st->model_flow, s.t_s));
-    for (std::size_t b = 0; b < basis.size(); ++b) d.dynamics[b].push_back(InterpolateLinear(st->log_t, basis[b], s.t_s));
-    for (std::size_t b = 0; b < free.free.size(); ++b) d.initial[b].push_back(InterpolateLinear(st->log_t, free.free[b], s.t_s));
+    for (std::size_t b = 0; b < basis.size(); ++b)
+      d.dynamics[b].push_back(InterpolateLinear(st->log_t, basis[b], s.t_s));
+    for (std::size_t b = 0; b < free.free.size(); ++b)
+      d.initial[b].push_back(InterpolateLinear(st->log_t, free.free[b], s.t_s));
     wheel.angle_rad.push_back(CountsToAngleRad(p_k - rig.offset_counts, rig.encoder));
     screw_part.angle_rad.push_back(InterpolateLinear(log.t_s, screw, s.t_s));
     d.time_to_laser_s.push_back(t_k - s.t_s);

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 
-
 namespace bead::explain {
 namespace {
 
@@ -45,7 +44,8 @@ std::vector<std::size_t> CommonRows(const std::vector<std::vector<double>>& resi
                                     const std::vector<std::size_t>& rows) {
   std::vector<std::size_t> common;
   for (std::size_t i : rows)
-    if (std::all_of(residuals.begin(), residuals.end(), [i](const std::vector<double>& r) { return std::isfinite(r[i]); }))
+    if (std::all_of(residuals.begin(), residuals.end(),
+                    [i](const std::vector<double>& r) { return std::isfinite(r[i]); }))
       common.push_back(i);
   if (common.size() < rows.size() / 2) common = rows;  // too few in common: each its own, scaled
   return common;
@@ -115,7 +115,7 @@ void ShiftInterval(ShiftProfile& p, double q) {
     const double curvature = p.sse[ib - 1] - 2 * p.sse[ib] + p.sse[ib + 1];
     if (curvature > 0) {
       const double half = std::sqrt(delta / (curvature / (2 * h * h)));  // SSE = s_min + b (s - best)^2
-      if (half <= h) {  // within the parabola's reach
+      if (half <= h) {                                                   // within the parabola's reach
         p.lo = p.best - half, p.hi = p.best + half;
         p.lo_at_edge = p.hi_at_edge = false;
         return;

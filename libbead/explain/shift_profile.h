@@ -21,13 +21,13 @@ namespace bead::explain {
 
 struct ShiftProfile {
   std::vector<double> shift_counts, sse;
-  double best = 0.0, lo = 0.0, hi = 0.0;  // 95 % interval [lo, hi]
+  double best = 0.0, lo = 0.0, hi = 0.0;        // 95 % interval [lo, hi]
   bool lo_at_edge = false, hi_at_edge = false;  // the interval reaches the searched range there
-  double q = 0.0;             // the threshold's scale (ShiftInterval)
-  double s_min = 0.0;         // the SSE at the refined best
-  EffectSet refit_at_best;    // every other term as refitted at the best grid shift
-  double profile_lo = 0.0, profile_hi = 0.0;  // the profile's own interval, before widening
-  double joint_sd_counts = NAN;  // the shift's standard deviation in the joint fit (sandwich)
+  double q = 0.0;                               // the threshold's scale (ShiftInterval)
+  double s_min = 0.0;                           // the SSE at the refined best
+  EffectSet refit_at_best;                      // every other term as refitted at the best grid shift
+  double profile_lo = 0.0, profile_hi = 0.0;    // the profile's own interval, before widening
+  double joint_sd_counts = NAN;                 // the shift's standard deviation in the joint fit (sandwich)
 };
 
 // The profile: SSE at every grid shift, the best (refined between grid

@@ -68,7 +68,8 @@ std::vector<std::string> FlowWarnings(const FlowRunFacts& f) {
                   f.counts_min);
     out.emplace_back(buf);
   }
-  if (f.profiles > 0 && f.beads == 0) out.emplace_back("no profile holds a measurable bead: every area is missing or zero");
+  if (f.profiles > 0 && f.beads == 0)
+    out.emplace_back("no profile holds a measurable bead: every area is missing or zero");
   if (f.profiles > 0 && f.valid == 0) out.emplace_back("no sample has a flow: the total volume is not a measurement");
   return out;
 }

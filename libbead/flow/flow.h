@@ -32,22 +32,22 @@ struct FlowOptions {
   // Floor on the area Hampel's sigma, mm^2; < 0: the batch takes the run's
   // median area_sigma_mm2, the streaming variant the running median so far.
   double area_sigma_floor_mm2 = -1.0;
-  int area_smooth_window = 0;    // odd: Savitzky-Golay smoothing of the area (0: none)
+  int area_smooth_window = 0;  // odd: Savitzky-Golay smoothing of the area (0: none)
   int area_smooth_order = 2;
-  int max_fill = 10;             // gaps up to this many profiles are bridged
+  int max_fill = 10;  // gaps up to this many profiles are bridged
 };
 
 struct FlowSample {
   int64_t profile = 0;
-  double t_s = 0.0;             // extrusion time (NaN: laid before the log began)
-  int64_t encoder = 0;          // raw counter at extrusion time
+  double t_s = 0.0;     // extrusion time (NaN: laid before the log began)
+  int64_t encoder = 0;  // raw counter at extrusion time
   double surface_speed_mm_s = 0.0;
-  double area_mm2 = 0.0;        // NaN: not measured
+  double area_mm2 = 0.0;  // NaN: not measured
   double area_corrected_mm2 = 0.0;
   double occlusion_bias_mm2 = 0.0;        // area - corrected area
   double area_corrected_sigma_mm2 = 0.0;  // NaN when no occlusion stage ran
   double flow_mm3_s = 0.0;
-  double flow_sigma_mm3_s = 0.0;          // v * area_corrected_sigma (the area's share)
+  double flow_sigma_mm3_s = 0.0;  // v * area_corrected_sigma (the area's share)
   double screw_rpm = 0.0;
   bool valid = false;
 };

@@ -70,8 +70,8 @@ void StreamingFlow::CompactLog() {
 void StreamingFlow::CompactProfiles() {
   const std::size_t areas = area_window_.capacity() / 2;
   if (area_window_.size() >= 2 * areas) {
-    const std::size_t oldest = profiles_head_ < profiles_.size() ? static_cast<std::size_t>(profiles_[profiles_head_].index)
-                                                                 : next_profile_;
+    const std::size_t oldest =
+        profiles_head_ < profiles_.size() ? static_cast<std::size_t>(profiles_[profiles_head_].index) : next_profile_;
     const std::size_t half = static_cast<std::size_t>(options_.area_hampel_half) + 1;
     const std::size_t keep_from = oldest > half ? oldest - half : 0;
     const std::size_t drop = std::min(areas, keep_from > area_base_ ? keep_from - area_base_ : 0);
@@ -96,8 +96,8 @@ void StreamingFlow::PushLog(double t_s, int64_t raw, double screw_rpm) {
 void StreamingFlow::PushProfile(double t_s, int64_t raw, const BeadGeometry& g, double area_c, double area_c_sigma) {
   CompactProfiles();
   const double a = g.valid() ? g.area_mm2 : (g.status == ProfileStatus::kNoBead ? 0.0 : kNaN);
-  profiles_.push_back(
-      {static_cast<int64_t>(next_profile_++), t_s, raw, a, g.valid() && !std::isnan(area_c) ? area_c : a, area_c_sigma});
+  profiles_.push_back({static_cast<int64_t>(next_profile_++), t_s, raw, a,
+                       g.valid() && !std::isnan(area_c) ? area_c : a, area_c_sigma});
   area_window_.push_back(a);
   if (g.valid() && std::isfinite(g.area_sigma_mm2)) area_sigmas_.push_back(g.area_sigma_mm2), ++sigmas_seen_;
   area_c_window_.push_back(profiles_.back().area_c);
@@ -116,7 +116,8 @@ void StreamingFlow::ProcessLog() {
     ++repaired_upto_;
   }
   for (; ranged_upto_ < repaired_upto_; ++ranged_upto_)
-    counts_min_ = std::min(counts_min_, counts_[ranged_upto_]), counts_max_ = std::max(counts_max_, counts_[ranged_upto_]);
+    counts_min_ = std::min(counts_min_, counts_[ranged_upto_]),
+    counts_max_ = std::max(counts_max_, counts_[ranged_upto_]);
   // Speed by the Savitzky-Golay derivative once its window is final.
   speed_raw_.resize(n, kNaN);
   const std::size_t w = sg_weights_.size();
@@ -155,7 +156,8 @@ void StreamingFlow::ProcessLog() {
   const double mpc = rig_.MmPerCount();
   while (speed_upto_ + hampel_half_ < speed_raw_upto_ || (finished_ && speed_upto_ < speed_raw_upto_)) {
     bool out = false;
-    const double v = HampelAt(speed_raw_.data(), speed_raw_upto_, speed_upto_, hampel_half_, options_.hampel_nsigma, &out, scratch);
+    const double v =
+        HampelAt(speed_raw_.data(), speed_raw_upto_, speed_upto_, hampel_half_, options_.hampel_nsigma, &out, scratch);
     speed_outliers_ += out;
     speed_[speed_upto_++] = v * mpc;
   }
@@ -200,8 +202,8 @@ void StreamingFlow::ProcessProfiles() {
         HampelAt(area_window_.data(), have, j, options_.area_hampel_half, options_.hampel_nsigma, &out, scratch, floor);
     area_outliers_ += out;
     if (std::isnan(t_e) && log_dropped_ > 0) ++history_misses_;
-    s.area_corrected_mm2 =
-        HampelAt(area_c_window_.data(), have, j, options_.area_hampel_half, options_.hampel_nsigma, &out, scratch, floor);
+    s.area_corrected_mm2 = HampelAt(area_c_window_.data(), have, j, options_.area_hampel_half, options_.hampel_nsigma,
+                                    &out, scratch, floor);
     s.flow_mm3_s = s.surface_speed_mm_s * s.area_corrected_mm2;
     s.occlusion_bias_mm2 = s.area_mm2 - s.area_corrected_mm2;
     s.area_corrected_sigma_mm2 = p.area_c_sigma;

@@ -100,13 +100,13 @@ class StreamingFlow {
   std::vector<Pending> profiles_;  // waiting from profiles_head_ on
   std::size_t profiles_head_ = 0;
   std::vector<double> area_window_, area_c_window_, area_sigmas_;
-  std::size_t area_base_ = 0;     // the profile index of area_window_[0]
-  double running_floor_ = 0.0;    // median of area_sigmas_ when floor_count_ had been seen
+  std::size_t area_base_ = 0;   // the profile index of area_window_[0]
+  double running_floor_ = 0.0;  // median of area_sigmas_ when floor_count_ had been seen
   std::size_t floor_count_ = 0, sigmas_seen_ = 0;
   std::size_t next_profile_ = 0;
   std::vector<FlowSample> ready_;  // finished from ready_head_ on
   std::size_t ready_head_ = 0;
-  std::size_t log_keep_ = 0;      // samples of log history kept (at least)
+  std::size_t log_keep_ = 0;  // samples of log history kept (at least)
   std::vector<double> scratch_, floor_scratch_;
   bool finished_ = false;
   int encoder_repairs_ = 0, speed_outliers_ = 0, area_outliers_ = 0;

@@ -52,10 +52,10 @@ AtomicFile::AtomicFile(std::string destination) : destination_(std::move(destina
   const std::string host = HostName();
   RemoveStaleTemporaries(dir, dest.filename().string(), host);
   std::string pattern =
-      (dir / ("." + dest.filename().string() + ".tmp-" + host + "-" + std::to_string(::getpid()) + "-XXXXXX"))
-          .string();
+      (dir / ("." + dest.filename().string() + ".tmp-" + host + "-" + std::to_string(::getpid()) + "-XXXXXX")).string();
   const int fd = mkstemp(pattern.data());
-  if (fd < 0) throw Error(Located(destination_, "", std::string("cannot create a temporary file: ") + std::strerror(errno)));
+  if (fd < 0)
+    throw Error(Located(destination_, "", std::string("cannot create a temporary file: ") + std::strerror(errno)));
   ::close(fd);
   temp_path_ = pattern;
 }

@@ -12,7 +12,9 @@ CsvReader::CsvReader(const std::string& path) : path_(path), in_(path) {
   if (!in_) throw Error(Located(path, "", "cannot open CSV file"));
 }
 
-void CsvReader::Fail(const std::string& what) const { throw Error(Located(path_, "line " + std::to_string(line_), what)); }
+void CsvReader::Fail(const std::string& what) const {
+  throw Error(Located(path_, "line " + std::to_string(line_), what));
+}
 
 void CsvReader::Split() {
   if (!text_.empty() && text_.back() == '\r') text_.pop_back();

@@ -131,8 +131,7 @@ Handle File::OpenDataset(const std::string& dataset, std::initializer_list<int> 
 }
 
 template <typename T>
-Array<T> File::Read(const std::string& dataset, std::initializer_list<int> ranks, Kind kind,
-                    hid_t mem_type) const {
+Array<T> File::Read(const std::string& dataset, std::initializer_list<int> ranks, Kind kind, hid_t mem_type) const {
   Array<T> out;
   const Handle ds = OpenDataset(dataset, ranks, kind, out.dims);
   hsize_t total = 1;
@@ -177,7 +176,8 @@ void File::WriteImpl(const std::string& dataset, const std::vector<T>& data, con
   Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose);
   Handle dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
   H5Pset_obj_track_times(dcpl.get(), 0);
-  if (const auto slash = dataset.rfind('/'); slash != std::string::npos && slash > 0) CreateGroup(dataset.substr(0, slash));
+  if (const auto slash = dataset.rfind('/'); slash != std::string::npos && slash > 0)
+    CreateGroup(dataset.substr(0, slash));
   if (total >= 4096 && !dims.empty() && dims[0] > 0) {
     // Chunks of whole rows, about 256 KiB, compressed.
     std::vector<hsize_t> chunk = dims;
@@ -189,8 +189,7 @@ void File::WriteImpl(const std::string& dataset, const std::vector<T>& data, con
   }
   Handle lcpl(H5Pcreate(H5P_LINK_CREATE), H5Pclose);
   H5Pset_create_intermediate_group(lcpl.get(), 1);
-  Handle ds(H5Dcreate2(id(), dataset.c_str(), file_type, space.get(), lcpl.get(), dcpl.get(), H5P_DEFAULT),
-            H5Dclose);
+  Handle ds(H5Dcreate2(id(), dataset.c_str(), file_type, space.get(), lcpl.get(), dcpl.get(), H5P_DEFAULT), H5Dclose);
   if (!ds.valid()) throw Error(Located(name_, dataset, "cannot create dataset"));
   if (total > 0 && H5Dwrite(ds.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) < 0)
     throw Error(Located(name_, dataset, "cannot write dataset (disk full?)"));
@@ -213,8 +212,7 @@ std::map<std::string, std::string> File::ReadStringAttributes(const std::string&
   H5O_info_t info;
   if (H5Oget_info(obj.get(), &info) < 0) return out;
   for (hsize_t i = 0; i < info.num_attrs; ++i) {
-    Handle attr(H5Aopen_by_idx(obj.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, H5P_DEFAULT, H5P_DEFAULT),
-                H5Aclose);
+    Handle attr(H5Aopen_by_idx(obj.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
     if (!attr.valid()) continue;
     char name[256] = {0};
     H5Aget_name(attr.get(), sizeof(name) - 1, name);

@@ -20,8 +20,7 @@ RowReader::RowReader(const File& file, const std::string& dataset, std::initiali
   Handle type(H5Dget_type(ds_.get()), H5Tclose);
   if (!dcpl.valid() || H5Pget_layout(dcpl.get()) != H5D_CHUNKED) return;
   std::vector<hsize_t> chunk(dims_.size());
-  if (H5Pget_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()) != static_cast<int>(chunk.size()))
-    return;
+  if (H5Pget_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()) != static_cast<int>(chunk.size())) return;
   chunk_rows_ = chunk.empty() ? 0 : chunk[0];
   // Direct reads: float32 LE in and out, chunks of whole rows.
   if (!(H5Tequal(type.get(), H5T_IEEE_F32LE) > 0 && H5Tequal(mem_type, H5T_NATIVE_FLOAT) > 0)) return;
@@ -33,8 +32,8 @@ RowReader::RowReader(const File& file, const std::string& dataset, std::initiali
   for (int i = 0; i < n; ++i) {
     unsigned flags = 0, config = 0;
     std::size_t nelmts = 0;
-    const H5Z_filter_t id = H5Pget_filter2(dcpl.get(), static_cast<unsigned>(i), &flags, &nelmts, nullptr, 0, nullptr,
-                                           &config);
+    const H5Z_filter_t id =
+        H5Pget_filter2(dcpl.get(), static_cast<unsigned>(i), &flags, &nelmts, nullptr, 0, nullptr, &config);
     if (id != H5Z_FILTER_DEFLATE && id != H5Z_FILTER_SHUFFLE) return;
     filters_.push_back(static_cast<int>(id));
   }
@@ -49,9 +48,9 @@ void RowReader::ReadThroughHdf5(std::size_t begin, std::size_t count, void* out)
   Handle mem(H5Screate_simple(static_cast<int>(size.size()), size.data(), nullptr), H5Sclose);
   if (H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start.data(), nullptr, size.data(), nullptr) < 0 ||
       H5Dread(ds_.get(), mem_type_, mem.get(), space.get(), H5P_DEFAULT, out) < 0)
-    throw Error(Located(file_->name(), name_,
-                        "cannot read rows " + std::to_string(begin) + " to " + std::to_string(begin + count - 1) +
-                            " (damaged?)"));
+    throw Error(Located(
+        file_->name(), name_,
+        "cannot read rows " + std::to_string(begin) + " to " + std::to_string(begin + count - 1) + " (damaged?)"));
 }
 
 namespace {
@@ -59,8 +58,8 @@ namespace {
 // Inflates a zlib stream (HDF5's deflate filter) of exactly `bytes` into
 // `to`: libdeflate when it takes the stream whole; zlib otherwise, which
 // also words the error. Both check the stream's Adler-32.
-void Inflate(libdeflate_decompressor* inflater, const uint8_t* data, std::size_t size, uint8_t* to,
-             std::size_t bytes, const std::string& file, const std::string& where) {
+void Inflate(libdeflate_decompressor* inflater, const uint8_t* data, std::size_t size, uint8_t* to, std::size_t bytes,
+             const std::string& file, const std::string& where) {
   std::size_t got = 0;
   if (inflater && libdeflate_zlib_decompress(inflater, data, size, to, bytes, &got) == LIBDEFLATE_SUCCESS &&
       got == bytes)
@@ -140,7 +139,8 @@ bool RowReader::ReadRaw(const std::vector<std::size_t>& chunks) {
       return false;  // never written (fill values), or odd: HDF5 decides
     raw_[k].resize(stored);
     if (H5Dread_chunk(ds_.get(), H5P_DEFAULT, offset.data(), &masks_[k], raw_[k].data()) < 0)
-      throw Error(Located(file_->name(), name_ + " chunk at row " + std::to_string(offset[0]), "cannot read (damaged?)"));
+      throw Error(
+          Located(file_->name(), name_ + " chunk at row " + std::to_string(offset[0]), "cannot read (damaged?)"));
     raw_first_row_[k] = offset[0];
   }
   return true;
@@ -160,7 +160,8 @@ void RowReader::Read(std::size_t begin, std::size_t count, void* out, WorkerPool
       [&](std::size_t k, const uint8_t* data) {  // the chunk's rows within [begin, begin + count)
         const std::size_t first = raw_first_row_[k];
         const std::size_t lo = std::max(first, begin), hi = std::min(first + chunk_rows_, begin + count);
-        if (hi > lo) std::memcpy(dest + (lo - begin) * row_bytes, data + (lo - first) * row_bytes, (hi - lo) * row_bytes);
+        if (hi > lo)
+          std::memcpy(dest + (lo - begin) * row_bytes, data + (lo - first) * row_bytes, (hi - lo) * row_bytes);
       },
       pool);
 }

@@ -31,8 +31,7 @@ class RowReader {
  public:
   // Opens and checks `dataset` (kind, rank among `ranks`, stored size).
   // mem_type: the native type rows are read as (H5T_NATIVE_FLOAT, ...).
-  RowReader(const File& file, const std::string& dataset, std::initializer_list<int> ranks, Kind kind,
-            hid_t mem_type);
+  RowReader(const File& file, const std::string& dataset, std::initializer_list<int> ranks, Kind kind, hid_t mem_type);
 
   const std::vector<hsize_t>& dims() const { return dims_; }
   std::size_t rows() const { return dims_.empty() ? 0 : dims_[0]; }

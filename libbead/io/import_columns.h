@@ -13,11 +13,11 @@
 namespace bead {
 
 struct ImportColumns {
-  std::string profile;  // whole-number profile id (CSV), the field ordering the scan lines (PLY/PCD)
-  std::string time;     // profile time (a profile takes its first point's)
-  std::string x;        // across the laser line
-  std::string z;        // height, or distance from the sensor (z_is_distance)
-  std::string encoder;  // empty: the file has none
+  std::string profile;         // whole-number profile id (CSV), the field ordering the scan lines (PLY/PCD)
+  std::string time;            // profile time (a profile takes its first point's)
+  std::string x;               // across the laser line
+  std::string z;               // height, or distance from the sensor (z_is_distance)
+  std::string encoder;         // empty: the file has none
   double time_scale = 1.0;     // the time column times this is seconds
   bool z_is_distance = false;  // z grows away from the sensor: height = -z
 };

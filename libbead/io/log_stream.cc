@@ -15,12 +15,13 @@ LogStream::LogStream(const std::string& path, std::size_t window)
   if (!file_->Exists("/log")) throw Error(Located(path, "/log", "the run has no acquisition log"));
   t_ = std::make_unique<h5::RowReader>(*file_, "/log/t_s", std::initializer_list<int>{1}, h5::Kind::kFloat,
                                        H5T_NATIVE_DOUBLE);
-  encoder_ = std::make_unique<h5::RowReader>(*file_, "/log/encoder", std::initializer_list<int>{1},
-                                             h5::Kind::kInteger, H5T_NATIVE_INT64);
+  encoder_ = std::make_unique<h5::RowReader>(*file_, "/log/encoder", std::initializer_list<int>{1}, h5::Kind::kInteger,
+                                             H5T_NATIVE_INT64);
   rpm_ = std::make_unique<h5::RowReader>(*file_, "/log/screw_rpm", std::initializer_list<int>{1}, h5::Kind::kFloat,
                                          H5T_NATIVE_DOUBLE);
   size_ = t_->rows();
-  for (const auto& [reader, name] : {std::pair{encoder_.get(), "/log/encoder"}, std::pair{rpm_.get(), "/log/screw_rpm"}})
+  for (const auto& [reader, name] :
+       {std::pair{encoder_.get(), "/log/encoder"}, std::pair{rpm_.get(), "/log/screw_rpm"}})
     if (reader->rows() != size_)
       throw Error(Located(path, name,
                           "holds " + std::to_string(reader->rows()) + " samples, /log/t_s " + std::to_string(size_)));
@@ -48,9 +49,9 @@ bool LogStream::Next(LogWindow& w, bool with_rpm) {
     auto at = [&]() { return "/log/t_s[" + std::to_string(next_ + i) + "]"; };
     if (!std::isfinite(t)) throw Error(Located(path_, at(), "time is not finite"));
     if (next_ + i > 0 && !(t > previous_t_))
-      throw Error(Located(path_, at(),
-                          "time does not increase (" + std::to_string(previous_t_) + " then " + std::to_string(t) +
-                              " s)"));
+      throw Error(
+          Located(path_, at(),
+                  "time does not increase (" + std::to_string(previous_t_) + " then " + std::to_string(t) + " s)"));
     previous_t_ = t;
   }
   next_ += count;

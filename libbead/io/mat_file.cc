@@ -24,22 +24,39 @@ using VarPtr = std::unique_ptr<matvar_t, VarFree>;
 
 const char* ClassName(matio_classes c) {
   switch (c) {
-    case MAT_C_CELL: return "a cell array";
-    case MAT_C_STRUCT: return "a struct";
-    case MAT_C_OBJECT: return "a MATLAB object";
-    case MAT_C_CHAR: return "text";
-    case MAT_C_SPARSE: return "a sparse matrix";
-    case MAT_C_FUNCTION: return "a function handle";
-    case MAT_C_OPAQUE: return "a MATLAB object (opaque)";
-    case MAT_C_EMPTY: return "empty";
-    default: return "not numeric";
+    case MAT_C_CELL:
+      return "a cell array";
+    case MAT_C_STRUCT:
+      return "a struct";
+    case MAT_C_OBJECT:
+      return "a MATLAB object";
+    case MAT_C_CHAR:
+      return "text";
+    case MAT_C_SPARSE:
+      return "a sparse matrix";
+    case MAT_C_FUNCTION:
+      return "a function handle";
+    case MAT_C_OPAQUE:
+      return "a MATLAB object (opaque)";
+    case MAT_C_EMPTY:
+      return "empty";
+    default:
+      return "not numeric";
   }
 }
 
 bool Numeric(matio_classes c) {
   switch (c) {
-    case MAT_C_DOUBLE: case MAT_C_SINGLE: case MAT_C_INT8: case MAT_C_UINT8: case MAT_C_INT16: case MAT_C_UINT16:
-    case MAT_C_INT32: case MAT_C_UINT32: case MAT_C_INT64: case MAT_C_UINT64:
+    case MAT_C_DOUBLE:
+    case MAT_C_SINGLE:
+    case MAT_C_INT8:
+    case MAT_C_UINT8:
+    case MAT_C_INT16:
+    case MAT_C_UINT16:
+    case MAT_C_INT32:
+    case MAT_C_UINT32:
+    case MAT_C_INT64:
+    case MAT_C_UINT64:
       return true;
     default:
       return false;
@@ -56,17 +73,38 @@ void Convert(const void* data, std::size_t n, std::vector<double>& out) {
 bool Values(const matvar_t* v, std::size_t n, std::vector<double>& out) {
   if (v->data == nullptr || (v->data_size > 0 && v->nbytes / v->data_size < n)) return false;
   switch (v->class_type) {
-    case MAT_C_DOUBLE: Convert<double>(v->data, n, out); return true;
-    case MAT_C_SINGLE: Convert<float>(v->data, n, out); return true;
-    case MAT_C_INT8: Convert<int8_t>(v->data, n, out); return true;
-    case MAT_C_UINT8: Convert<uint8_t>(v->data, n, out); return true;
-    case MAT_C_INT16: Convert<int16_t>(v->data, n, out); return true;
-    case MAT_C_UINT16: Convert<uint16_t>(v->data, n, out); return true;
-    case MAT_C_INT32: Convert<int32_t>(v->data, n, out); return true;
-    case MAT_C_UINT32: Convert<uint32_t>(v->data, n, out); return true;
-    case MAT_C_INT64: Convert<int64_t>(v->data, n, out); return true;
-    case MAT_C_UINT64: Convert<uint64_t>(v->data, n, out); return true;
-    default: return false;
+    case MAT_C_DOUBLE:
+      Convert<double>(v->data, n, out);
+      return true;
+    case MAT_C_SINGLE:
+      Convert<float>(v->data, n, out);
+      return true;
+    case MAT_C_INT8:
+      Convert<int8_t>(v->data, n, out);
+      return true;
+    case MAT_C_UINT8:
+      Convert<uint8_t>(v->data, n, out);
+      return true;
+    case MAT_C_INT16:
+      Convert<int16_t>(v->data, n, out);
+      return true;
+    case MAT_C_UINT16:
+      Convert<uint16_t>(v->data, n, out);
+      return true;
+    case MAT_C_INT32:
+      Convert<int32_t>(v->data, n, out);
+      return true;
+    case MAT_C_UINT32:
+      Convert<uint32_t>(v->data, n, out);
+      return true;
+    case MAT_C_INT64:
+      Convert<int64_t>(v->data, n, out);
+      return true;
+    case MAT_C_UINT64:
+      Convert<uint64_t>(v->data, n, out);
+      return true;
+    default:
+      return false;
   }
 }
 
@@ -122,17 +160,19 @@ MatMatrix ReadMatMatrix(const std::string& path, const std::string& name) {
     if (v->name == nullptr) continue;
     if (name == v->name && !found) {
       found = true;
-      if (!Numeric(v->class_type)) why = std::string("is ") + ClassName(v->class_type);
-      else if (v->isComplex) why = "is complex";
-      else if (v->rank != 2) why = "has " + std::to_string(v->rank) + " dimensions, not 2";
+      if (!Numeric(v->class_type))
+        why = std::string("is ") + ClassName(v->class_type);
+      else if (v->isComplex)
+        why = "is complex";
+      else if (v->rank != 2)
+        why = "has " + std::to_string(v->rank) + " dimensions, not 2";
       else if (!Fits(Elements(v.get()), v->class_type, file_bytes))
         why = "declares " + std::to_string(Elements(v.get())) + " values, more than the file could hold (corrupt)";
       if (why.empty()) {  // the rest of the file is read only to name what else is there, on an error
         if (Mat_VarReadDataAll(mat.get(), v.get()) != 0) throw Error(Located(path, name, "its data could not be read"));
         MatMatrix m{name, v->dims[0], v->dims[1], {}};
         if (m.rows * m.cols == 0) throw Error(Located(path, name, "is empty"));
-        if (!Values(v.get(), m.rows * m.cols, m.values))
-          throw Error(Located(path, name, "its data could not be read"));
+        if (!Values(v.get(), m.rows * m.cols, m.values)) throw Error(Located(path, name, "its data could not be read"));
         return m;
       }
     }
@@ -190,8 +230,7 @@ MatContents ReadMatVectors(const std::string& path) {
     }
     out.vectors.push_back(std::move(mv));
   }
-  if (unnamed > 0)
-    out.skipped.push_back(std::to_string(unnamed) + " unnamed: MATLAB's objects and function workspace");
+  if (unnamed > 0) out.skipped.push_back(std::to_string(unnamed) + " unnamed: MATLAB's objects and function workspace");
   return out;
 }
 

@@ -17,10 +17,10 @@ struct MatVector {
 };
 
 struct MatContents {
-  std::vector<MatVector> vectors;      // in file order, the first of a repeated name
-  std::vector<std::string> skipped;    // "name: why"
+  std::vector<MatVector> vectors;    // in file order, the first of a repeated name
+  std::vector<std::string> skipped;  // "name: why"
   const MatVector* Find(const std::string& name) const;
-  std::string Names() const;           // the usable vectors' names, comma separated
+  std::string Names() const;  // the usable vectors' names, comma separated
 };
 
 struct MatMatrix {

@@ -29,14 +29,16 @@ ImportedRun ReadMatRun(const std::string& path, const ImportColumns& c) {
   // Profiles as rows (N x P) or, when only that fits, as columns (P x N).
   const bool by_row = z.rows == n;
   if (!by_row && z.cols != n)
-    throw Error(Located(path, c.z, "is " + Shape(z) + ": neither side matches the " + std::to_string(n) +
-                                       " times of '" + c.time + "'"));
+    throw Error(
+        Located(path, c.z,
+                "is " + Shape(z) + ": neither side matches the " + std::to_string(n) + " times of '" + c.time + "'"));
   const std::size_t p = by_row ? z.cols : z.rows;
   auto z_at = [&](std::size_t i, std::size_t k) { return by_row ? z.at(i, k) : z.at(k, i); };
   const bool x_shared = (x.rows == 1 || x.cols == 1) && x.values.size() == p && !(x.rows == z.rows && x.cols == z.cols);
   if (!x_shared && !(x.rows == z.rows && x.cols == z.cols))
-    throw Error(Located(path, c.x, "is " + Shape(x) + ": x is a vector of " + std::to_string(p) +
-                                       " values or a matrix shaped as '" + c.z + "' (" + Shape(z) + ")"));
+    throw Error(Located(path, c.x,
+                        "is " + Shape(x) + ": x is a vector of " + std::to_string(p) +
+                            " values or a matrix shaped as '" + c.z + "' (" + Shape(z) + ")"));
 
   ImportedRun result;
   ProfileBlock& b = result.run.profiles;
@@ -59,8 +61,9 @@ ImportedRun ReadMatRun(const std::string& path, const ImportColumns& c) {
   if (!c.encoder.empty()) {
     const MatMatrix e = ReadMatMatrix(path, c.encoder);
     if ((e.rows != 1 && e.cols != 1) || e.values.size() != n)
-      throw Error(Located(path, c.encoder, "is " + Shape(e) + ": the encoder is a vector of " + std::to_string(n) +
-                                               " readings, one per time"));
+      throw Error(
+          Located(path, c.encoder,
+                  "is " + Shape(e) + ": the encoder is a vector of " + std::to_string(n) + " readings, one per time"));
     for (std::size_t i = 0; i < n; ++i) {
       const double v = e.values[i];
       if (!(std::isfinite(v) && v == std::floor(v) && std::fabs(v) < 9.0e15))

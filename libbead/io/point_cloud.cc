@@ -39,10 +39,10 @@ struct FieldSpec {
 };
 
 constexpr FieldSpec kFields[] = {
-    {"x", pcl::PCLPointField::FLOAT32, 4},        {"y", pcl::PCLPointField::FLOAT32, 4},
-    {"z", pcl::PCLPointField::FLOAT32, 4},        {"z_sensor", pcl::PCLPointField::FLOAT32, 4},
-    {"profile", pcl::PCLPointField::UINT32, 4},
-    {"t_s", pcl::PCLPointField::FLOAT64, 8},      {"encoder", pcl::PCLPointField::FLOAT64, 8},
+    {"x", pcl::PCLPointField::FLOAT32, 4},       {"y", pcl::PCLPointField::FLOAT32, 4},
+    {"z", pcl::PCLPointField::FLOAT32, 4},       {"z_sensor", pcl::PCLPointField::FLOAT32, 4},
+    {"profile", pcl::PCLPointField::UINT32, 4},  {"t_s", pcl::PCLPointField::FLOAT64, 8},
+    {"encoder", pcl::PCLPointField::FLOAT64, 8},
 };
 
 // One field of a loaded cloud, read as double whatever its stored type.
@@ -54,17 +54,28 @@ class FieldReader {
   double operator()(std::size_t point) const {
     const uint8_t* p = cloud_.data.data() + point * cloud_.point_step + offset_;
     switch (type_) {
-      case pcl::PCLPointField::INT8: return Load<int8_t>(p);
-      case pcl::PCLPointField::UINT8: return Load<uint8_t>(p);
-      case pcl::PCLPointField::INT16: return Load<int16_t>(p);
-      case pcl::PCLPointField::UINT16: return Load<uint16_t>(p);
-      case pcl::PCLPointField::INT32: return Load<int32_t>(p);
-      case pcl::PCLPointField::UINT32: return Load<uint32_t>(p);
-      case pcl::PCLPointField::INT64: return static_cast<double>(Load<int64_t>(p));
-      case pcl::PCLPointField::UINT64: return static_cast<double>(Load<uint64_t>(p));
-      case pcl::PCLPointField::FLOAT32: return Load<float>(p);
-      case pcl::PCLPointField::FLOAT64: return Load<double>(p);
-      default: return std::nan("");
+      case pcl::PCLPointField::INT8:
+        return Load<int8_t>(p);
+      case pcl::PCLPointField::UINT8:
+        return Load<uint8_t>(p);
+      case pcl::PCLPointField::INT16:
+        return Load<int16_t>(p);
+      case pcl::PCLPointField::UINT16:
+        return Load<uint16_t>(p);
+      case pcl::PCLPointField::INT32:
+        return Load<int32_t>(p);
+      case pcl::PCLPointField::UINT32:
+        return Load<uint32_t>(p);
+      case pcl::PCLPointField::INT64:
+        return static_cast<double>(Load<int64_t>(p));
+      case pcl::PCLPointField::UINT64:
+        return static_cast<double>(Load<uint64_t>(p));
+      case pcl::PCLPointField::FLOAT32:
+        return Load<float>(p);
+      case pcl::PCLPointField::FLOAT64:
+        return Load<double>(p);
+      default:
+        return std::nan("");
     }
   }
 
@@ -95,8 +106,9 @@ FieldReader Field(const std::string& path, const pcl::PCLPointCloud2& cloud, con
       throw Error(Located(path, "field " + name, std::string("the ") + role + " field is not a number per point"));
     return FieldReader(cloud, f);
   }
-  throw Error(Located(path, "", std::string("no field '") + name + "' for the " + role +
-                                    " (the cloud has: " + FieldNames(cloud) + ")"));
+  throw Error(
+      Located(path, "",
+              std::string("no field '") + name + "' for the " + role + " (the cloud has: " + FieldNames(cloud) + ")"));
 }
 
 }  // namespace
@@ -118,8 +130,9 @@ void WritePointCloud(const std::string& path, const WheelCloud& c) {
   cloud.point_step = offset;
   // PLY and PCD count a cloud's bytes in 32 bits (PCL's row_step).
   if (c.size() > UINT32_MAX / cloud.point_step)
-    throw Error(Located(path, "", std::to_string(c.size()) + " points are more than one PLY/PCD cloud holds (" +
-                                      std::to_string(UINT32_MAX / cloud.point_step) + "): thin the run (--every)"));
+    throw Error(Located(path, "",
+                        std::to_string(c.size()) + " points are more than one PLY/PCD cloud holds (" +
+                            std::to_string(UINT32_MAX / cloud.point_step) + "): thin the run (--every)"));
   cloud.width = static_cast<uint32_t>(c.size());
   cloud.height = 1;
   cloud.row_step = cloud.point_step * cloud.width;
@@ -168,8 +181,10 @@ ImportedRun ReadPointCloud(const std::string& path, const ImportColumns& c) {
     throw Error(Located(path, "", "the cloud's data is shorter than its header says"));
   const bool by_row = c.profile.empty();
   if (by_row && cloud.height < 2)
-    throw Error(Located(path, "", "name the field that numbers the scan lines (--profile-column); the cloud is not "
-                                  "organized in rows and has the fields: " + FieldNames(cloud)));
+    throw Error(Located(path, "",
+                        "name the field that numbers the scan lines (--profile-column); the cloud is not "
+                        "organized in rows and has the fields: " +
+                            FieldNames(cloud)));
   const FieldReader time = Field(path, cloud, c.time, "time");
   const FieldReader x = Field(path, cloud, c.x, "x");
   const FieldReader z = Field(path, cloud, c.z, "z");
@@ -184,7 +199,8 @@ ImportedRun ReadPointCloud(const std::string& path, const ImportColumns& c) {
     const FieldReader f = Field(path, cloud, c.profile, "scan line");
     for (std::size_t i = 0; i < n; ++i)
       if (!std::isfinite(v[i] = f(i)))
-        throw Error(Located(path, "point " + std::to_string(i), "the scan line field '" + c.profile + "' is not finite"));
+        throw Error(
+            Located(path, "point " + std::to_string(i), "the scan line field '" + c.profile + "' is not finite"));
     return v;
   }();
   std::vector<std::size_t> order(n);

@@ -25,8 +25,8 @@ ProfileStream::ProfileStream(const std::string& path, WorkerPool& pool)
   const h5::File& f = *file_;
   t_ = std::make_unique<h5::RowReader>(f, "/profiles/t_s", std::initializer_list<int>{1}, h5::Kind::kFloat,
                                        H5T_NATIVE_DOUBLE);
-  encoder_ = std::make_unique<h5::RowReader>(f, "/profiles/encoder", std::initializer_list<int>{1},
-                                             h5::Kind::kInteger, H5T_NATIVE_INT64);
+  encoder_ = std::make_unique<h5::RowReader>(f, "/profiles/encoder", std::initializer_list<int>{1}, h5::Kind::kInteger,
+                                             H5T_NATIVE_INT64);
   z_ = std::make_unique<h5::RowReader>(f, "/profiles/z_mm", std::initializer_list<int>{2}, h5::Kind::kFloat,
                                        H5T_NATIVE_FLOAT);
   x_ = std::make_unique<h5::RowReader>(f, "/profiles/x_mm", std::initializer_list<int>{1, 2}, h5::Kind::kFloat,
@@ -59,8 +59,9 @@ std::size_t ProfileStream::WindowRows(std::size_t target) const {
 
 void ProfileStream::Read(std::size_t begin, std::size_t count, ProfileBlock& b) {
   if (begin > size_ || count > size_ - begin)
-    throw Error(Located(name_, "/profiles", "internal: profiles " + std::to_string(begin) + "+" +
-                                                std::to_string(count) + " beyond " + std::to_string(size_)));
+    throw Error(Located(name_, "/profiles",
+                        "internal: profiles " + std::to_string(begin) + "+" + std::to_string(count) + " beyond " +
+                            std::to_string(size_)));
   b.points = points_;
   b.shared_x = shared_x_;
   if (memory_) {
@@ -94,7 +95,9 @@ void ProfileStream::Read(std::size_t begin, std::size_t count, ProfileBlock& b) 
 
 void ProfileStream::ReadRows(const std::vector<std::size_t>& rows, ProfileBlock& b) {
   for (std::size_t r : rows)
-    if (r >= size_) throw Error(Located(name_, "/profiles", "internal: profile " + std::to_string(r) + " beyond " + std::to_string(size_)));
+    if (r >= size_)
+      throw Error(
+          Located(name_, "/profiles", "internal: profile " + std::to_string(r) + " beyond " + std::to_string(size_)));
   const std::size_t n = rows.size();
   b.points = points_;
   b.shared_x = shared_x_;

@@ -132,7 +132,8 @@ class RigParser {
       YAML::Node next = n[part];
       if (!next.IsDefined()) return n;
       n = next;
-      if (index >= 0 && n.IsSequence() && static_cast<std::size_t>(index) < n.size()) n = n[static_cast<std::size_t>(index)];
+      if (index >= 0 && n.IsSequence() && static_cast<std::size_t>(index) < n.size())
+        n = n[static_cast<std::size_t>(index)];
       if (dot == std::string::npos) break;
       start = dot + 1;
     }
@@ -140,7 +141,6 @@ class RigParser {
   }
 
  public:
-
  private:
   std::string file_;
 };

@@ -14,7 +14,7 @@ namespace bead {
 
 struct RigFile {
   Rig rig;
-  YAML::Node document;  // the whole file as read
+  YAML::Node document;              // the whole file as read
   bool has_reference_areas = true;  // false: absent, and not required
 };
 

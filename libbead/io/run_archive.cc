@@ -17,25 +17,24 @@ std::string Join(const std::string& group, const std::string& name) {
 
 // `first`: the index of t[0] in the dataset; `previous`: the time before
 // it (NaN: none), for a dataset read window by window.
-void CheckTime(const std::vector<double>& t, const std::string& file, const std::string& dataset,
-               std::size_t first = 0, double previous = std::nan("")) {
+void CheckTime(const std::vector<double>& t, const std::string& file, const std::string& dataset, std::size_t first = 0,
+               double previous = std::nan("")) {
   auto at = [&](std::size_t i) { return dataset + "[" + std::to_string(first + i) + "]"; };
   for (std::size_t i = 0; i < t.size(); ++i) {
     if (!std::isfinite(t[i])) throw Error(Located(file, at(i), "time is not finite"));
     const double before = i > 0 ? t[i - 1] : previous;
     if ((i > 0 || !std::isnan(previous)) && !(t[i] > before))
-      throw Error(Located(file, at(i),
-                          "time does not increase (" + std::to_string(before) + " then " + std::to_string(t[i]) +
-                              " s)"));
+      throw Error(Located(
+          file, at(i), "time does not increase (" + std::to_string(before) + " then " + std::to_string(t[i]) + " s)"));
   }
 }
 
 void CheckLength(std::size_t got, std::size_t want, const std::string& file, const std::string& dataset,
                  const std::string& other) {
   if (got != want)
-    throw Error(Located(file, dataset,
-                        "length mismatch: " + std::to_string(got) + " values, but " + other + " has " +
-                            std::to_string(want)));
+    throw Error(
+        Located(file, dataset,
+                "length mismatch: " + std::to_string(got) + " values, but " + other + " has " + std::to_string(want)));
 }
 
 // Reads <group>/t_s, encoder, x_mm, z_mm.
@@ -92,8 +91,7 @@ void CheckLogShape(const h5::File& f) {
 // The spec's own log datasets; every other float dataset [M] under /log is
 // a recorded channel (docs/data-formats.md).
 bool IsSpecLogDataset(const std::string& name) {
-  return name == "t_s" || name == "encoder" || name == "screw_rpm" || name == "extruder_cmd_v" ||
-         name == "wheel_cmd_v";
+  return name == "t_s" || name == "encoder" || name == "screw_rpm" || name == "extruder_cmd_v" || name == "wheel_cmd_v";
 }
 
 // The other channels: float datasets of rank 1 and the log's length, their
@@ -124,9 +122,8 @@ std::vector<LogChannel> ReadChannels(const h5::File& f, std::size_t samples) {
 
 }  // namespace
 
-void CheckProfileShapes(const std::string& file, const std::string& group, std::size_t profiles,
-                        std::size_t encoders, const std::vector<std::size_t>& z_dims,
-                        const std::vector<std::size_t>& x_dims) {
+void CheckProfileShapes(const std::string& file, const std::string& group, std::size_t profiles, std::size_t encoders,
+                        const std::vector<std::size_t>& z_dims, const std::vector<std::size_t>& x_dims) {
   const std::string t_name = Join(group, "t_s"), x_name = Join(group, "x_mm"), z_name = Join(group, "z_mm");
   CheckLength(encoders, profiles, file, Join(group, "encoder"), t_name);
   if (z_dims[0] != profiles)
@@ -165,7 +162,8 @@ void ValidateProfileRows(const ProfileBlock& b, std::size_t first, double previo
         throw Error(Located(file, b.shared_x ? Join(where, "x_mm") + "[" + std::to_string(i) + "]" : place("x_mm", i),
                             "infinite coordinate (an unmeasured point must be NaN)"));
   for (std::size_t i = 0; i < b.z_mm.size(); ++i)
-    if (std::isinf(b.z_mm[i])) throw Error(Located(file, place("z_mm", i), "infinite height (an unmeasured point must be NaN)"));
+    if (std::isinf(b.z_mm[i]))
+      throw Error(Located(file, place("z_mm", i), "infinite height (an unmeasured point must be NaN)"));
 }
 
 void ValidateLog(const AcquisitionLog& log, const std::string& file, const std::string& where) {
@@ -178,7 +176,8 @@ void ValidateLog(const AcquisitionLog& log, const std::string& file, const std::
     CheckLength(log.wheel_cmd_v.size(), log.size(), file, Join(where, "wheel_cmd_v"), t_name);
   for (const LogChannel& c : log.channels) {
     if (c.name.empty() || IsSpecLogDataset(c.name) || c.name.find('/') != std::string::npos)
-      throw Error(Located(file, Join(where, c.name), "a recorded channel needs its own name (not a spec dataset's, no '/')"));
+      throw Error(
+          Located(file, Join(where, c.name), "a recorded channel needs its own name (not a spec dataset's, no '/')"));
     CheckLength(c.values.size(), log.size(), file, Join(where, c.name), t_name);
   }
   CheckTime(log.t_s, file, t_name);

@@ -55,9 +55,8 @@ void WritePinScanArchive(const std::string& path, const PinScanArchive& pins);
 // The shapes of a profiles group's datasets against each other, before
 // their values are used: encoder [N] like t_s, z_mm [N, P], x_mm [P] or
 // [N, P]. The dims are as HDF5 declares them (z_mm of rank 2).
-void CheckProfileShapes(const std::string& file, const std::string& group, std::size_t profiles,
-                        std::size_t encoders, const std::vector<std::size_t>& z_dims,
-                        const std::vector<std::size_t>& x_dims);
+void CheckProfileShapes(const std::string& file, const std::string& group, std::size_t profiles, std::size_t encoders,
+                        const std::vector<std::size_t>& z_dims, const std::vector<std::size_t>& x_dims);
 
 // Checks a block's internal consistency (lengths, finite increasing time,
 // no infinite coordinates); `file` and `where` name it in the error.

@@ -32,8 +32,8 @@ struct WheelModel {  // thesis 3.3.3: wheel voltage -> RPM
 
 struct FeedForwardOptions {
   double target_area_mm2 = 14.0;
-  double rate_hz = 100.0;          // controller rate
-  double pole = 0.01;              // thesis 4.2.1
+  double rate_hz = 100.0;  // controller rate
+  double pole = 0.01;      // thesis 4.2.1
   double min_speed_mm_s = 20.0;
   double max_voltage_v = 10.0;
 };

@@ -132,10 +132,12 @@ IdentifiedModel IdentifyTransferFunction(const std::vector<double>& t, const std
   // delay (when the user gave no lambda), within [lambda / 10, lambda];
   // kept only where it gives a start at some delay.
   if (o.filter_rad_s <= 0) {
-    const auto best_k = static_cast<std::size_t>(std::min_element(profile.loss.begin(), profile.loss.end()) - profile.loss.begin());
+    const auto best_k =
+        static_cast<std::size_t>(std::min_element(profile.loss.begin(), profile.loss.end()) - profile.loss.begin());
     if (!starts[best_k].empty()) {
       double fastest = 0;
-      for (const auto& r : Roots(FromSearch(starts[best_k].data(), n, o.real_poles))) fastest = std::max(fastest, std::abs(r));
+      for (const auto& r : Roots(FromSearch(starts[best_k].data(), n, o.real_poles)))
+        fastest = std::max(fastest, std::abs(r));
       const double lambda2 = std::clamp(2.0 * fastest, lambda / 10, lambda);
       if (std::isfinite(lambda2) && lambda2 < 0.8 * lambda) {
         const auto first_loss = profile.loss;
@@ -245,8 +247,9 @@ IdentifiedModel IdentifyTransferFunction(const std::vector<double>& t, const std
     for (const Refined& r : {f1, f2})
       if (r.loss < best.loss) best = r;
     // The basin it came from now ends where the polish did.
-    const auto basin = std::min_element(profile.basins.begin(), profile.basins.end(),
-                                         [](const DelayBasin& x, const DelayBasin& y) { return x.refined_loss < y.refined_loss; });
+    const auto basin =
+        std::min_element(profile.basins.begin(), profile.basins.end(),
+                         [](const DelayBasin& x, const DelayBasin& y) { return x.refined_loss < y.refined_loss; });
     if (basin != profile.basins.end() && best.loss < basin->refined_loss) {
       basin->delay_s = best.delay;
       basin->refined_loss = best.loss;
@@ -258,7 +261,8 @@ IdentifiedModel IdentifyTransferFunction(const std::vector<double>& t, const std
   // that one: reported once.
   std::vector<DelayBasin> distinct;
   for (const DelayBasin& b : profile.basins)
-    if (std::none_of(distinct.begin(), distinct.end(), [&](const DelayBasin& k) { return std::abs(k.delay_s - b.delay_s) < dt; }))
+    if (std::none_of(distinct.begin(), distinct.end(),
+                     [&](const DelayBasin& k) { return std::abs(k.delay_s - b.delay_s) < dt; }))
       distinct.push_back(b);
   profile.basins = distinct;
   if (!std::isfinite(best.loss)) {
@@ -306,9 +310,10 @@ IdentifiedModel IdentifyTransferFunction(const std::vector<double>& t, const std
   return out;
 }
 
-std::vector<OrderRow> OrderTable(const std::vector<double>& t, const std::vector<double>& u, const std::vector<double>& y,
-                                 const std::vector<double>& tv, const std::vector<double>& uv,
-                                 const std::vector<double>& yv, IdentifyOptions o, const std::vector<Segment>& segments,
+std::vector<OrderRow> OrderTable(const std::vector<double>& t, const std::vector<double>& u,
+                                 const std::vector<double>& y, const std::vector<double>& tv,
+                                 const std::vector<double>& uv, const std::vector<double>& yv, IdentifyOptions o,
+                                 const std::vector<Segment>& segments,
                                  const std::vector<Segment>& validation_segments) {
   std::vector<OrderRow> rows;
   for (int p = 1; p <= 3; ++p)

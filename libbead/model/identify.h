@@ -39,15 +39,15 @@ namespace bead::model {
 struct IdentifyOptions {
   int poles = 2;
   int zeros = 1;
-  bool real_poles = false;           // a process model: poles real, reported as time constants
-  std::optional<double> delay_s;     // fixed; none: estimated
+  bool real_poles = false;        // a process model: poles real, reported as time constants
+  std::optional<double> delay_s;  // fixed; none: estimated
   double max_delay_s = 1.0;
-  bool estimate_offset = true;       // the operating point (a constant term)
+  bool estimate_offset = true;         // the operating point (a constant term)
   bool estimate_initial_state = true;  // else each segment starts from rest
-  double filter_rad_s = 0.0;         // SVF lambda; 0: from the sampling (2 pi / (20 dt))
+  double filter_rad_s = 0.0;           // SVF lambda; 0: from the sampling (2 pi / (20 dt))
   int max_iterations = 50;
-  int basins = 3;                    // delay basins refined by output error
-  int max_profile_points = 250;      // delay profile resolution: a sample step, or coarser above this
+  int basins = 3;                // delay basins refined by output error
+  int max_profile_points = 250;  // delay profile resolution: a sample step, or coarser above this
 };
 
 struct DelayBasin {
@@ -73,12 +73,12 @@ struct IdentifiedModel {
   bool ok = false;
   std::string reason;
   TransferFunction tf;
-  double offset = 0.0;        // the constant term: y = offset + G(s) u
-  double input_level = 0.0;   // operating point: the mean input over the fitted samples ...
-  double output_level = 0.0;  // ... and the output the model holds there (offset + K input_level)
+  double offset = 0.0;                             // the constant term: y = offset + G(s) u
+  double input_level = 0.0;                        // operating point: the mean input over the fitted samples ...
+  double output_level = 0.0;                       // ... and the output the model holds there (offset + K input_level)
   std::vector<std::vector<double>> initial_state;  // per segment, canonical-form state at its first sample
-  int parameters = 0;         // counted in the criteria: poles, zeros + 1, offset, delay, initial states
-  double fit_percent = 0;     // on the fitted samples, as given (not deviations)
+  int parameters = 0;      // counted in the criteria: poles, zeros + 1, offset, delay, initial states
+  double fit_percent = 0;  // on the fitted samples, as given (not deviations)
   std::size_t fitted_samples = 0;
   InformationCriteria criteria;
   std::vector<double> poles_real, poles_imag;
@@ -103,9 +103,9 @@ struct OrderRow {
   double fit_estimation, fit_validation, aicc, delay_s;
   bool ok;
 };
-std::vector<OrderRow> OrderTable(const std::vector<double>& t, const std::vector<double>& u, const std::vector<double>& y,
-                                 const std::vector<double>& tv, const std::vector<double>& uv,
-                                 const std::vector<double>& yv, IdentifyOptions options,
+std::vector<OrderRow> OrderTable(const std::vector<double>& t, const std::vector<double>& u,
+                                 const std::vector<double>& y, const std::vector<double>& tv,
+                                 const std::vector<double>& uv, const std::vector<double>& yv, IdentifyOptions options,
                                  const std::vector<Segment>& segments = {},
                                  const std::vector<Segment>& validation_segments = {});
 

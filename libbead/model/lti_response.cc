@@ -55,7 +55,8 @@ StepMatrices<N> TaylorStep(const std::array<double, N * N>& A, double h) {
     for (int r = 0; r < N; ++r)
       for (int c = 0; c < N; ++c) {
         double acc = 0;
-        for (int m = 0; m < N; ++m) acc += term[static_cast<std::size_t>(r * N + m)] * Ah[static_cast<std::size_t>(m * N + c)];
+        for (int m = 0; m < N; ++m)
+          acc += term[static_cast<std::size_t>(r * N + m)] * Ah[static_cast<std::size_t>(m * N + c)];
         next[static_cast<std::size_t>(r * N + c)] = acc / k;
       }
     term = next;
@@ -74,7 +75,8 @@ StepMatrices<N> TaylorStep(const std::array<double, N * N>& A, double h) {
       G2[static_cast<std::size_t>(r)] = g;
       for (int c = 0; c < N; ++c) {
         double acc = 0;
-        for (int m = 0; m < N; ++m) acc += out.E[static_cast<std::size_t>(r * N + m)] * out.E[static_cast<std::size_t>(m * N + c)];
+        for (int m = 0; m < N; ++m)
+          acc += out.E[static_cast<std::size_t>(r * N + m)] * out.E[static_cast<std::size_t>(m * N + c)];
         E2[static_cast<std::size_t>(r * N + c)] = acc;
       }
     }
@@ -98,7 +100,8 @@ StepMatrices<N> ShortStep(const std::array<double, N * N>& A, double r) {
     for (int i = 0; i < N; ++i)
       for (int j = 0; j < N; ++j) {
         double acc = 0;
-        for (int m = 0; m < N; ++m) acc += Ar[static_cast<std::size_t>(i * N + m)] * M[static_cast<std::size_t>(m * N + j)];
+        for (int m = 0; m < N; ++m)
+          acc += Ar[static_cast<std::size_t>(i * N + m)] * M[static_cast<std::size_t>(m * N + j)];
         next[static_cast<std::size_t>(i * N + j)] = (i == j ? 1.0 : 0.0) + acc / d;
       }
     M = next;
@@ -165,7 +168,8 @@ class StepCache {
       out.G[static_cast<std::size_t>(a)] = gsum;
       for (int c = 0; c < N; ++c) {
         double acc = 0;
-        for (int m = 0; m < N; ++m) acc += g.E[static_cast<std::size_t>(a * N + m)] * r.E[static_cast<std::size_t>(m * N + c)];
+        for (int m = 0; m < N; ++m)
+          acc += g.E[static_cast<std::size_t>(a * N + m)] * r.E[static_cast<std::size_t>(m * N + c)];
         out.E[static_cast<std::size_t>(a * N + c)] = acc;
       }
     }
@@ -217,8 +221,9 @@ void WalkSegment(StepCache<N>& cache, double d, const std::vector<double>& t, co
   std::array<double, N * N> F{};  // row-major
   for (int k = 0; k < N; ++k) F[static_cast<std::size_t>(k * N + k)] = 1.0;
   std::array<double*, N> state, free;
-  for (int k = 0; k < N; ++k) state[static_cast<std::size_t>(k)] = r.state[static_cast<std::size_t>(k)].data(),
-                              free[static_cast<std::size_t>(k)] = r.free[static_cast<std::size_t>(k)].data();
+  for (int k = 0; k < N; ++k)
+    state[static_cast<std::size_t>(k)] = r.state[static_cast<std::size_t>(k)].data(),
+    free[static_cast<std::size_t>(k)] = r.free[static_cast<std::size_t>(k)].data();
   for (std::size_t i = seg.begin; i < seg.end; ++i) {
     for (int k = 0; k < N; ++k) {
       state[static_cast<std::size_t>(k)][i] = x[static_cast<std::size_t>(k)];
@@ -268,7 +273,8 @@ void Walk(const std::vector<double>& den, double d, const std::vector<double>& t
           const std::vector<Segment>& segments, double before, StateResponses& r) {
   std::array<double, N * N> A{};
   for (int k = 0; k + 1 < N; ++k) A[static_cast<std::size_t>(k * N + k + 1)] = 1.0;
-  for (int j = 0; j < N; ++j) A[static_cast<std::size_t>((N - 1) * N + j)] = -den[static_cast<std::size_t>(N - j)] / den[0];
+  for (int j = 0; j < N; ++j)
+    A[static_cast<std::size_t>((N - 1) * N + j)] = -den[static_cast<std::size_t>(N - j)] / den[0];
   const double mean_step = t.size() > 1 ? (t.back() - t.front()) / static_cast<double>(t.size() - 1) : 0.0;
   StepCache<N> cache(A, mean_step);
   for (const Segment& seg : segments)
@@ -294,13 +300,27 @@ StateResponses ComputeStateResponses(const std::vector<double>& den, double dela
   const double d = std::max(0.0, delay_s);
   const double before = before_in ? *before_in : u.front();
   switch (n) {
-    case 1: Walk<1>(den, d, t, u, segments, before, r); break;
-    case 2: Walk<2>(den, d, t, u, segments, before, r); break;
-    case 3: Walk<3>(den, d, t, u, segments, before, r); break;
-    case 4: Walk<4>(den, d, t, u, segments, before, r); break;
-    case 5: Walk<5>(den, d, t, u, segments, before, r); break;
-    case 6: Walk<6>(den, d, t, u, segments, before, r); break;
-    default: Walk<7>(den, d, t, u, segments, before, r); break;
+    case 1:
+      Walk<1>(den, d, t, u, segments, before, r);
+      break;
+    case 2:
+      Walk<2>(den, d, t, u, segments, before, r);
+      break;
+    case 3:
+      Walk<3>(den, d, t, u, segments, before, r);
+      break;
+    case 4:
+      Walk<4>(den, d, t, u, segments, before, r);
+      break;
+    case 5:
+      Walk<5>(den, d, t, u, segments, before, r);
+      break;
+    case 6:
+      Walk<6>(den, d, t, u, segments, before, r);
+      break;
+    default:
+      Walk<7>(den, d, t, u, segments, before, r);
+      break;
   }
   return r;
 }
@@ -309,8 +329,9 @@ StateResponses ComputeStateResponses(const std::vector<double>& den, double dela
 
 namespace bead::model {
 
-std::vector<std::vector<double>> FilterBasis(const std::vector<double>& den, double delay_s, const std::vector<double>& t,
-                                             const std::vector<double>& u, const std::vector<Segment>& segments, int K) {
+std::vector<std::vector<double>> FilterBasis(const std::vector<double>& den, double delay_s,
+                                             const std::vector<double>& t, const std::vector<double>& u,
+                                             const std::vector<Segment>& segments, int K) {
   const int n = static_cast<int>(den.size()) - 1;
   double p = 1.0;
   if (n > 0 && den[0] != 0.0 && den.back() != 0.0) p = std::pow(std::abs(den.back() / den[0]), 1.0 / n);

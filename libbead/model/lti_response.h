@@ -56,7 +56,8 @@ namespace bead::model {
 // own band) applied to the input delayed by `delay_s`, and that delayed
 // input itself. Any strictly proper correction with poles at p, plus a
 // direct term, is a combination of these K + 1 series.
-std::vector<std::vector<double>> FilterBasis(const std::vector<double>& den, double delay_s, const std::vector<double>& t,
-                                             const std::vector<double>& u, const std::vector<Segment>& segments, int K = 4);
+std::vector<std::vector<double>> FilterBasis(const std::vector<double>& den, double delay_s,
+                                             const std::vector<double>& t, const std::vector<double>& u,
+                                             const std::vector<Segment>& segments, int K = 4);
 
 }  // namespace bead::model

@@ -81,8 +81,14 @@ class OutputError : public ceres::CostFunction {
  public:
   OutputError(const ProjectionProblem& problem, int n, bool real_poles, std::optional<double> fixed_delay, double dt,
               double lo, double hi, double slowest)
-      : problem_(problem), n_(n), real_poles_(real_poles), fixed_delay_(fixed_delay), step_delay_(0.02 * dt), lo_(lo),
-        hi_(hi), slowest_(slowest) {
+      : problem_(problem),
+        n_(n),
+        real_poles_(real_poles),
+        fixed_delay_(fixed_delay),
+        step_delay_(0.02 * dt),
+        lo_(lo),
+        hi_(hi),
+        slowest_(slowest) {
     mutable_parameter_block_sizes()->push_back(n);
     if (!fixed_delay) mutable_parameter_block_sizes()->push_back(1);
     set_num_residuals(static_cast<int>(problem.rows.size()));
@@ -109,7 +115,8 @@ class OutputError : public ceres::CostFunction {
         }
         const double step = forward ? h : -h;
         for (std::size_t r = 0; r < R; ++r)
-          jacobians[0][r * static_cast<std::size_t>(n_) + static_cast<std::size_t>(k)] = (plus[r] - residuals[r]) / step;
+          jacobians[0][r * static_cast<std::size_t>(n_) + static_cast<std::size_t>(k)] =
+              (plus[r] - residuals[r]) / step;
       }
     }
     if (!fixed_delay_ && jacobians[1]) {

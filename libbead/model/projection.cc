@@ -30,12 +30,14 @@ class NormalEquations {
     const auto p = ata_.rows();
     Eigen::MatrixXd a = ata_.selfadjointView<Eigen::Lower>();
     Eigen::VectorXd scale(p);
-    for (Eigen::Index i = 0; i < p; ++i) scale(i) = a(i, i) > 0 && std::isfinite(a(i, i)) ? 1.0 / std::sqrt(a(i, i)) : 1.0;
+    for (Eigen::Index i = 0; i < p; ++i)
+      scale(i) = a(i, i) > 0 && std::isfinite(a(i, i)) ? 1.0 / std::sqrt(a(i, i)) : 1.0;
     a = scale.asDiagonal() * a * scale.asDiagonal();
     const Eigen::VectorXd b = scale.cwiseProduct(atb_);
     Eigen::VectorXd x;
     Eigen::LDLT<Eigen::MatrixXd> ldlt(a);
-    if (ldlt.info() == Eigen::Success && ldlt.isPositive() && ldlt.vectorD().minCoeff() > 1e-13 * ldlt.vectorD().maxCoeff()) {
+    if (ldlt.info() == Eigen::Success && ldlt.isPositive() &&
+        ldlt.vectorD().minCoeff() > 1e-13 * ldlt.vectorD().maxCoeff()) {
       x = ldlt.solve(b);
     } else {
       Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
@@ -83,7 +85,8 @@ Projection Project(const ProjectionProblem& p, const std::vector<double>& den, d
     std::fill(row.begin(), row.end(), 0.0);
     for (int k = 0; k <= m; ++k) row[static_cast<std::size_t>(k)] = forced(m - k, i);  // num in descending powers
     if (free_at[seg] >= 0)
-      for (int k = 0; k < n; ++k) row[static_cast<std::size_t>(free_at[seg] + k)] = r.free[static_cast<std::size_t>(k)][i];
+      for (int k = 0; k < n; ++k)
+        row[static_cast<std::size_t>(free_at[seg] + k)] = r.free[static_cast<std::size_t>(k)][i];
     if (p.offset) row[static_cast<std::size_t>(cols - 1)] = 1.0;
   };
   NormalEquations ne(cols);
@@ -100,8 +103,9 @@ Projection Project(const ProjectionProblem& p, const std::vector<double>& den, d
   out.offset = p.offset ? x(cols - 1) : 0.0;
   if (p.initial_state)
     for (std::size_t s = 0; s < S; ++s)
-      out.free_response.push_back(free_at[s] < 0 ? std::vector<double>(static_cast<std::size_t>(n), 0.0)
-                                                 : std::vector<double>(x.data() + free_at[s], x.data() + free_at[s] + n));
+      out.free_response.push_back(free_at[s] < 0
+                                      ? std::vector<double>(static_cast<std::size_t>(n), 0.0)
+                                      : std::vector<double>(x.data() + free_at[s], x.data() + free_at[s] + n));
   auto predict = [&](std::size_t i, std::size_t s) {
     fill(i, s);
     double v = 0;
@@ -184,9 +188,11 @@ std::optional<SvfEstimate> SvfDenominator(const ProjectionProblem& p, const SvfS
     const double f = j + 1 < t.size() && at > t[j] ? (at - t[j]) / (t[j + 1] - t[j]) : 0.0;
     for (int k = 0; k <= m; ++k) {
       const auto& uf = s.uf[static_cast<std::size_t>(m - k)];
-      row[static_cast<std::size_t>(n + k)] = at <= t[0] ? uf[0] : uf[j] + f * ((j + 1 < t.size() ? uf[j + 1] : uf[j]) - uf[j]);
+      row[static_cast<std::size_t>(n + k)] =
+          at <= t[0] ? uf[0] : uf[j] + f * ((j + 1 < t.size() ? uf[j + 1] : uf[j]) - uf[j]);
     }
-    for (int k = 0; k < S; ++k) row[static_cast<std::size_t>(n + m + 1 + k)] = k == static_cast<int>(segment) ? 1.0 : 0.0;
+    for (int k = 0; k < S; ++k)
+      row[static_cast<std::size_t>(n + m + 1 + k)] = k == static_cast<int>(segment) ? 1.0 : 0.0;
   };
   std::vector<std::size_t> rows, row_segment;
   for (std::size_t i : p.rows) {

@@ -26,7 +26,7 @@ struct ProjectionProblem {
 
 struct Projection {
   bool ok = false;
-  std::vector<double> num;         // descending powers of s
+  std::vector<double> num;  // descending powers of s
   double offset = 0.0;
   // Per segment (zeros where it starts from rest, Segment::process_starts):
   // the free response's value and first n-1 derivatives at

@@ -52,10 +52,9 @@ template <typename Family>
 double Fit(const Points& pts, double huber, double& center, std::vector<double>& p, const std::vector<double>& lo,
            const std::vector<double>& hi, ceres::Problem& problem) {
   for (std::size_t i = 0; i < pts.u.size(); ++i)
-    problem.AddResidualBlock(
-        new ceres::AutoDiffCostFunction<EnvelopeResidual<Family>, 1, 1, Family::kParams>(
-            new EnvelopeResidual<Family>(pts.u[i], pts.h[i])),
-        new ceres::HuberLoss(huber), &center, p.data());
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<EnvelopeResidual<Family>, 1, 1, Family::kParams>(
+                                 new EnvelopeResidual<Family>(pts.u[i], pts.h[i])),
+                             new ceres::HuberLoss(huber), &center, p.data());
   for (int k = 0; k < Family::kParams; ++k) {
     problem.SetParameterLowerBound(p.data(), k, lo[static_cast<std::size_t>(k)]);
     problem.SetParameterUpperBound(p.data(), k, hi[static_cast<std::size_t>(k)]);
@@ -87,7 +86,9 @@ bool ParamCovariance(ceres::Problem& problem, double* params, int k, double scal
   return true;
 }
 
-double Bic(double rss, int n, int k) { return n * std::log(std::max(rss, 1e-30) / n) + k * std::log(static_cast<double>(n)); }
+double Bic(double rss, int n, int k) {
+  return n * std::log(std::max(rss, 1e-30) / n) + k * std::log(static_cast<double>(n));
+}
 
 }  // namespace
 
@@ -108,7 +109,8 @@ OcclusionEstimate EstimateOcclusion(const ProfileView& view, const BeadGeometry&
   // Fan shadow of widest points at height c and half-width a about centre s0 (s frame ~ x frame).
   auto shadow = [&](double c, double s0, double a) {
     if (!o.laser_origin || c <= 0) return 0.0;
-    const double z_origin = o.laser_origin->z_mm - (g.reference.intercept_mm + g.reference.slope * o.laser_origin->x_mm);
+    const double z_origin =
+        o.laser_origin->z_mm - (g.reference.intercept_mm + g.reference.slope * o.laser_origin->x_mm);
     return FanShadowArea(c, (s0 - a) / norm, (s0 + a) / norm, o.laser_origin->x_mm, z_origin);
   };
 

@@ -30,7 +30,7 @@ namespace bead::occlusion {
 struct FamilyFit {
   std::string family;
   bool ok = false;
-  bool constrained = true;   // the data fixes its hidden part
+  bool constrained = true;  // the data fixes its hidden part
   int points = 0, params = 0;
   double rss = 0, bic = 0, weight = 0;
   double true_area_mm2 = 0, visible_area_mm2 = 0;

@@ -53,7 +53,8 @@ PooledOcclusion PoolFromFits(const std::vector<OcclusionEstimate>& fits, const s
                   return a.second < b.second;
                 })->first;
   pool.ok = true;
-  if (!pool.constrained) pool.note = "the hidden part is not constrained by the data (see the rounded rectangle's bottom radius)";
+  if (!pool.constrained)
+    pool.note = "the hidden part is not constrained by the data (see the rounded rectangle's bottom radius)";
   return pool;
 }
 

@@ -122,7 +122,7 @@ std::size_t FindSpikes(const Heights& g, float spike_mm, ProfileWorkspace& w) {
   if (n < 3) return 0;
   std::size_t count = 0;
   auto jump = [&](std::size_t k) { return std::abs(h[k + 1] - h[k]) > spike_mm; };  // between k and k + 1
-  auto test = [&](std::size_t k) {  // one point, 1 <= k <= n - 2
+  auto test = [&](std::size_t k) {                                                  // one point, 1 <= k <= n - 2
     const float med = (k >= 2 && k + 2 < n) ? Median5(h[k - 2], h[k - 1], h[k + 1], h[k + 2], h[k])
                                             : Median3(h[k - 1], h[k], h[k + 1]);
     if (std::abs(h[k] - med) > spike_mm) w.spikes[count++] = static_cast<int32_t>(k);
@@ -366,7 +366,8 @@ BeadGeometry MeasureBead(const PointSet& p, const ReferenceLine& line, const Ref
   // into an area marks the profile; what lies beyond the areas (the
   // wheel's rim, a clamp) is not looked at.
   const AreaIndices areas{LowerIndex(p, left.x_min_mm, w.area_hints[0]), UpperIndex(p, left.x_max_mm, w.area_hints[1]),
-                          LowerIndex(p, right.x_min_mm, w.area_hints[2]), UpperIndex(p, right.x_max_mm, w.area_hints[3])};
+                          LowerIndex(p, right.x_min_mm, w.area_hints[2]),
+                          UpperIndex(p, right.x_max_mm, w.area_hints[3])};
   const std::size_t left_end = areas.left_end, right_begin = areas.right_begin;
   const std::size_t begin = left_end > kAreaMargin ? (left_end - kAreaMargin) / 8 * 8 : 0;
   const std::size_t end = std::max(begin, std::min(p.n, right_begin + kAreaMargin));

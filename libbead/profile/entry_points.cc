@@ -60,12 +60,18 @@ double ReferenceLine::HeightAt(double x_mm, double z_mm) const {
 
 const char* StatusName(ProfileStatus status) {
   switch (status) {
-    case ProfileStatus::kValid: return "valid";
-    case ProfileStatus::kTooFewPoints: return "too_few_points";
-    case ProfileStatus::kNoReference: return "no_reference";
-    case ProfileStatus::kNoBead: return "no_bead";
-    case ProfileStatus::kBeadEdgeNotSeen: return "bead_edge_not_seen";
-    case ProfileStatus::kBeadInReferenceArea: return "bead_in_reference_area";
+    case ProfileStatus::kValid:
+      return "valid";
+    case ProfileStatus::kTooFewPoints:
+      return "too_few_points";
+    case ProfileStatus::kNoReference:
+      return "no_reference";
+    case ProfileStatus::kNoBead:
+      return "no_bead";
+    case ProfileStatus::kBeadEdgeNotSeen:
+      return "bead_edge_not_seen";
+    case ProfileStatus::kBeadInReferenceArea:
+      return "bead_in_reference_area";
   }
   return "unknown";
 }

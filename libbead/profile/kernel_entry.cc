@@ -15,8 +15,8 @@ BeadGeometry Process(const ProfileView& view, const ReferenceArea& left, const R
 
 #define BEAD_STRINGIFY_(x) #x
 #define BEAD_STRINGIFY(x) BEAD_STRINGIFY_(x)
-constexpr ProfileKernel kKernel{BEAD_STRINGIFY(BEAD_KERNEL), BEAD_KERNEL::PreparePoints, BEAD_KERNEL::CountFiniteZ,
-                                BEAD_KERNEL::FitReferenceLine, BEAD_KERNEL::MeasureBead, Process};
+constexpr ProfileKernel kKernel{BEAD_STRINGIFY(BEAD_KERNEL),   BEAD_KERNEL::PreparePoints, BEAD_KERNEL::CountFiniteZ,
+                                BEAD_KERNEL::FitReferenceLine, BEAD_KERNEL::MeasureBead,   Process};
 
 }  // namespace
 

@@ -4,8 +4,8 @@
 
 namespace bead {
 
-ProfileProcessor::ProfileProcessor(const ReferenceArea& left, const ReferenceArea& right,
-                                   const ProfileOptions& options, std::size_t max_points)
+ProfileProcessor::ProfileProcessor(const ReferenceArea& left, const ReferenceArea& right, const ProfileOptions& options,
+                                   std::size_t max_points)
     : left_(left), right_(right), options_(options), workspace_(max_points), kernel_(&ActiveKernel()) {}
 
 const BeadGeometry& ProfileProcessor::Process(const ProfileView& view) {

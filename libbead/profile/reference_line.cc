@@ -56,10 +56,17 @@ float CountingMedian(float* values, std::size_t n) {
   std::size_t c = 0;
   for (; c + 32 <= padded; c += 32) RankGroup<4>(values, n, c, k1, k2, pick1, pick2);
   switch ((padded - c) / 8) {
-    case 3: RankGroup<3>(values, n, c, k1, k2, pick1, pick2); break;
-    case 2: RankGroup<2>(values, n, c, k1, k2, pick1, pick2); break;
-    case 1: RankGroup<1>(values, n, c, k1, k2, pick1, pick2); break;
-    default: break;
+    case 3:
+      RankGroup<3>(values, n, c, k1, k2, pick1, pick2);
+      break;
+    case 2:
+      RankGroup<2>(values, n, c, k1, k2, pick1, pick2);
+      break;
+    case 1:
+      RankGroup<1>(values, n, c, k1, k2, pick1, pick2);
+      break;
+    default:
+      break;
   }
   return 0.5f * (MaxOf(pick1) + MaxOf(pick2));
 }
@@ -192,7 +199,7 @@ constexpr std::size_t kSpots = 6, kSpotSamples = 8 * kSpots;
 Start SpotStart(const PointSet& p, const AreaRange& rl, const AreaRange& rr, float* scratch) {
   using namespace vec;
   const V8 inf = Splat(std::numeric_limits<float>::infinity());
-  float* zs = scratch;                       // [area][spot][8]
+  float* zs = scratch;  // [area][spot][8]
   float* xs = zs + 2 * kSpotSamples;
   float* triples = xs + 2 * kSpotSamples;  // 32
   double x_mid[2], z_mid[2];
@@ -318,8 +325,8 @@ ReferenceLine FitReferenceLine(const PointSet& p, const ReferenceArea& left, con
   }
   // Robust start: the line through each area's centre (median x, median
   // z of its samples), and the first band from the spread about it.
-  const bool spots = options.max_median_samples >= static_cast<int>(kSpotSamples) &&
-                     rl.size() >= kSpotSamples && rr.size() >= kSpotSamples;
+  const bool spots = options.max_median_samples >= static_cast<int>(kSpotSamples) && rl.size() >= kSpotSamples &&
+                     rr.size() >= kSpotSamples;
   Start start;
   if (spots) start = SpotStart(p, rl, rr, w.scratch.data());
   if (!start.ok) {

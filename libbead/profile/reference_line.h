@@ -44,11 +44,11 @@ struct ReferenceLineOptions {
 struct ReferenceLine {
   static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   bool ok = false;
-  double intercept_mm = kNaN;    // z of the line at x = 0
-  double slope = kNaN;           // dz/dx (tan of the sensor roll)
-  double residual_rms_mm = kNaN; // RMS perpendicular distance of the inliers
-  int points_used = 0;           // inliers of the final fit
-  int points_available = 0;      // valid points in both areas
+  double intercept_mm = kNaN;     // z of the line at x = 0
+  double slope = kNaN;            // dz/dx (tan of the sensor roll)
+  double residual_rms_mm = kNaN;  // RMS perpendicular distance of the inliers
+  int points_used = 0;            // inliers of the final fit
+  int points_available = 0;       // valid points in both areas
 
   // Perpendicular height of (x, z) above the line, mm.
   double HeightAt(double x_mm, double z_mm) const;
@@ -61,8 +61,7 @@ ReferenceLine FitReferenceLine(const PointSet& points, const ReferenceArea& left
                                const ReferenceLineOptions& options, ProfileWorkspace& workspace);
 
 // The same from a view (prepares its points in the workspace).
-ReferenceLine FitReferenceLine(const ProfileView& view, const ReferenceArea& left,
-                               const ReferenceArea& right, const ReferenceLineOptions& options,
-                               ProfileWorkspace& workspace);
+ReferenceLine FitReferenceLine(const ProfileView& view, const ReferenceArea& left, const ReferenceArea& right,
+                               const ReferenceLineOptions& options, ProfileWorkspace& workspace);
 
 }  // namespace bead

@@ -58,7 +58,8 @@ BEAD_VEC bool All(M8 m) { return __builtin_ia32_movmskps256((V8)m) == 0xff; }
 BEAD_VEC int Bits(M8 m) { return __builtin_ia32_movmskps256((V8)m); }
 #else
 BEAD_VEC bool Any(M8 m) {
-  const auto a = __builtin_shufflevector(m, m, 0, 1, 2, 3, 0, 1, 2, 3) | __builtin_shufflevector(m, m, 4, 5, 6, 7, 4, 5, 6, 7);
+  const auto a =
+      __builtin_shufflevector(m, m, 0, 1, 2, 3, 0, 1, 2, 3) | __builtin_shufflevector(m, m, 4, 5, 6, 7, 4, 5, 6, 7);
   const auto b = a | __builtin_shufflevector(a, a, 2, 3, 0, 1, 2, 3, 0, 1);
   return (b[0] | b[1]) != 0;
 }

@@ -40,8 +40,8 @@ EncoderRepair RepairEncoderSample(const double* counts, const int64_t* raw, cons
                                   double glitch_counts, double* repaired);
 
 // `t_s` (same length) places the interpolation in time; empty: even steps.
-EncoderTrack UnwrapEncoder(const std::vector<int64_t>& raw, const EncoderSpec& spec, const std::vector<double>& t_s = {},
-                           const EncoderOptions& options = {});
+EncoderTrack UnwrapEncoder(const std::vector<int64_t>& raw, const EncoderSpec& spec,
+                           const std::vector<double>& t_s = {}, const EncoderOptions& options = {});
 
 // Unwrapped counts to wheel angle (rad) and to surface travel (mm, the
 // rig's wheel diameter).

@@ -63,7 +63,8 @@ FourierSums UnevenFourierSums(const std::vector<double>& x, const std::vector<do
     const double e1 = std::exp(-d * d / (4.0 * tau)), e2 = std::exp(-d * h / (2.0 * tau));
     const std::complex<double> c(ca[i], cb[i]);
     double up = e1, down = e1 / e2;
-    for (int l = 0; l <= kSpread; ++l, up *= e2) grid[static_cast<std::size_t>(((m0 + l) % g + g) % g)] += c * (up * e3[l]);
+    for (int l = 0; l <= kSpread; ++l, up *= e2)
+      grid[static_cast<std::size_t>(((m0 + l) % g + g) % g)] += c * (up * e3[l]);
     for (int l = 1; l <= kSpread; ++l, down /= e2)
       grid[static_cast<std::size_t>(((m0 - l) % g + g) % g)] += c * (down * e3[l]);
   }

@@ -14,8 +14,8 @@
 namespace bead {
 
 struct HampelResult {
-  std::vector<double> y;          // filtered
-  std::vector<uint8_t> outlier;   // 1 where a sample was replaced
+  std::vector<double> y;         // filtered
+  std::vector<uint8_t> outlier;  // 1 where a sample was replaced
   int outliers = 0;
 };
 

@@ -57,12 +57,14 @@ ProcessOn FindProcessOn(const std::vector<double>& t, const std::vector<double>&
       }
       std::size_t j = i;
       while (j < n && at_zero(j)) ++j;
-      if (j - i >= static_cast<std::size_t>(o.min_off_samples)) std::fill(off.begin() + static_cast<long>(i), off.begin() + static_cast<long>(j), 1);
+      if (j - i >= static_cast<std::size_t>(o.min_off_samples))
+        std::fill(off.begin() + static_cast<long>(i), off.begin() + static_cast<long>(j), 1);
       i = j;
     }
   }
   auto exclude = [&](double a, double b, const char* why) {
-    if (!out.excluded.empty() && out.excluded.back().reason == why && a - out.excluded.back().t_end_s <= o.gap_steps * step)
+    if (!out.excluded.empty() && out.excluded.back().reason == why &&
+        a - out.excluded.back().t_end_s <= o.gap_steps * step)
       out.excluded.back().t_end_s = b;
     else
       out.excluded.push_back({a, b, why});
@@ -104,10 +106,12 @@ ProcessOn FindProcessOn(const std::vector<double>& t, const std::vector<double>&
     if (!usable) continue;
     if (last_ok < n && t[i] - t[last_ok] > o.gap_steps * step) {
       close(last_ok + 1);
-      if (std::none_of(off.begin() + static_cast<long>(last_ok), off.begin() + static_cast<long>(i), [](char c) { return c != 0; }))
+      if (std::none_of(off.begin() + static_cast<long>(last_ok), off.begin() + static_cast<long>(i),
+                       [](char c) { return c != 0; }))
         exclude(t[last_ok], t[i], "no samples");
     } else if (last_ok < n && i > last_ok + 1 &&
-               std::any_of(off.begin() + static_cast<long>(last_ok + 1), off.begin() + static_cast<long>(i), [](char c) { return c != 0; })) {
+               std::any_of(off.begin() + static_cast<long>(last_ok + 1), off.begin() + static_cast<long>(i),
+                           [](char c) { return c != 0; })) {
       close(last_ok + 1);
     }
     if (begin == n) {

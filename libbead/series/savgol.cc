@@ -41,7 +41,8 @@ std::vector<double> SavgolWeights(int window, int order, int deriv, double delta
 }
 
 std::vector<double> SavgolFilter(const std::vector<double>& x, const SavgolOptions& o) {
-  if (o.window % 2 == 0 || o.window < 1) throw Error("Savitzky-Golay: the window must be odd, got " + std::to_string(o.window));
+  if (o.window % 2 == 0 || o.window < 1)
+    throw Error("Savitzky-Golay: the window must be odd, got " + std::to_string(o.window));
   if (o.order >= o.window) throw Error("Savitzky-Golay: the order must be less than the window");
   const long n = static_cast<long>(x.size());
   const long half = o.window / 2;
@@ -61,10 +62,13 @@ std::vector<double> SavgolFilter(const std::vector<double>& x, const SavgolOptio
         if (m >= n) m = period - m;
         return x[static_cast<std::size_t>(m)];
       }
-      case SavgolMode::kNearest: return x[i < 0 ? 0 : static_cast<std::size_t>(n - 1)];
-      case SavgolMode::kWrap: return x[static_cast<std::size_t>(((i % n) + n) % n)];
+      case SavgolMode::kNearest:
+        return x[i < 0 ? 0 : static_cast<std::size_t>(n - 1)];
+      case SavgolMode::kWrap:
+        return x[static_cast<std::size_t>(((i % n) + n) % n)];
       case SavgolMode::kConstant:
-      case SavgolMode::kInterp: return o.cval;
+      case SavgolMode::kInterp:
+        return o.cval;
     }
     return 0.0;
   };
@@ -106,7 +110,8 @@ std::vector<double> SavgolFilterGaps(const std::vector<double>& x, const SavgolO
         const std::size_t gap = j - last_finite - 1;
         if (gap > static_cast<std::size_t>(max_fill)) break;
         for (std::size_t g = 1; g <= gap; ++g)  // linear fill of a short gap
-          piece.push_back(x[last_finite] + (x[j] - x[last_finite]) * static_cast<double>(g) / static_cast<double>(gap + 1));
+          piece.push_back(x[last_finite] +
+                          (x[j] - x[last_finite]) * static_cast<double>(g) / static_cast<double>(gap + 1));
         piece.push_back(x[j]);
         last_finite = j;
         end = j + 1;
@@ -114,7 +119,8 @@ std::vector<double> SavgolFilterGaps(const std::vector<double>& x, const SavgolO
     }
     SavgolOptions po = o;
     if (static_cast<int>(piece.size()) < po.window && po.mode == SavgolMode::kInterp) {
-      po.window = static_cast<int>(piece.size()) % 2 ? static_cast<int>(piece.size()) : static_cast<int>(piece.size()) - 1;
+      po.window =
+          static_cast<int>(piece.size()) % 2 ? static_cast<int>(piece.size()) : static_cast<int>(piece.size()) - 1;
       po.order = std::min(po.order, po.window - 1);
     }
     const std::vector<double> f = po.window >= 1 ? SavgolFilter(piece, po) : piece;

@@ -17,19 +17,19 @@
 namespace bead::sim {
 
 struct BarrelConfig {
-  bool record = false;           // log /log/barrel_temp_c (unit "C")
+  bool record = false;  // log /log/barrel_temp_c (unit "C")
   enum class Control { kBangBang, kPid } control = Control::kBangBang;
   double setpoint_c = 200.0;
-  double band_c = 8.0;           // bang-bang: on below setpoint - band/2, off above setpoint + band/2
-  double heater_c = 260.0;       // the wall's temperature with the heater on for ever
-  double ambient_c = 140.0;      // ... and off (the hot machine around it)
-  double wall_tau_s = 60.0;      // about 1 C/s either way near 200 C: a 20 s cycle (16 s over the band, 4 s of sensor lag)
-  double sensor_tau_s = 1.0;     // the thermocouple's lag
-  double melt_tau_s = 2.0;       // the melt's lag behind the wall
-  double noise_c = 0.05;         // the reading's white noise
+  double band_c = 8.0;        // bang-bang: on below setpoint - band/2, off above setpoint + band/2
+  double heater_c = 260.0;    // the wall's temperature with the heater on for ever
+  double ambient_c = 140.0;   // ... and off (the hot machine around it)
+  double wall_tau_s = 60.0;   // about 1 C/s either way near 200 C: a 20 s cycle (16 s over the band, 4 s of sensor lag)
+  double sensor_tau_s = 1.0;  // the thermocouple's lag
+  double melt_tau_s = 2.0;    // the melt's lag behind the wall
+  double noise_c = 0.05;      // the reading's white noise
   double kp = 0.5, ki = 0.02, kd = 0.0;  // PID: duty per degree, per degree second, per degree per second
-  double flow_per_c = 0.0;       // relative flow change per degree of melt above the setpoint
-  bool record_ambient = false;   // also log /log/ambient_temp_c, a slow random walk that acts on nothing
+  double flow_per_c = 0.0;               // relative flow change per degree of melt above the setpoint
+  bool record_ambient = false;           // also log /log/ambient_temp_c, a slow random walk that acts on nothing
 };
 
 class Barrel {

@@ -27,7 +27,8 @@ Outline RoundedRectangle(double w, double h, double rb, double rt, int vertices)
   o.emplace_back(w / 2, rb);
   if (rb > 0) Arc(o, w / 2 - rb, rb, rb, 0.0, -pi / 2, arc);  // bottom right, curling in
   // Drop repeated points (zero radii).
-  o.erase(std::unique(o.begin(), o.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return (a - b).norm() < 1e-12; }),
+  o.erase(std::unique(o.begin(), o.end(),
+                      [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return (a - b).norm() < 1e-12; }),
           o.end());
   return o;
 }
@@ -59,7 +60,8 @@ Outline UnitBeadOutline(const BeadConfig& c) {
       return CutSuperellipse(c.aspect / 2, b, c.center_lift_frac * b, c.exponent,
                              c.bottom_exponent > 0 ? c.bottom_exponent : c.exponent, c.outline_vertices);
     }
-    case BeadConfig::Shape::kParabola: return ParabolaOutline(c.aspect, 1.0, 0.0, c.outline_vertices);
+    case BeadConfig::Shape::kParabola:
+      return ParabolaOutline(c.aspect, 1.0, 0.0, c.outline_vertices);
   }
   return {};
 }

@@ -38,8 +38,12 @@ std::vector<double> CommandSeries(const CommandConfig& c, double dt, std::size_t
       continue;
     }
     switch (c.kind) {
-      case CommandConfig::Kind::kConstant: u[i] = c.base_v; break;
-      case CommandConfig::Kind::kSteps: u[i] = StepsAt(c.levels_v, c.durations_s, t - c.start_s); break;
+      case CommandConfig::Kind::kConstant:
+        u[i] = c.base_v;
+        break;
+      case CommandConfig::Kind::kSteps:
+        u[i] = StepsAt(c.levels_v, c.durations_s, t - c.start_s);
+        break;
       case CommandConfig::Kind::kPrbs:
         if (t >= next_bit_time) {
           const unsigned fb = ((lfsr >> 8) ^ (lfsr >> 4)) & 1u;
@@ -49,7 +53,9 @@ std::vector<double> CommandSeries(const CommandConfig& c, double dt, std::size_t
         }
         u[i] = c.base_v + c.amplitude_v * bit;
         break;
-      case CommandConfig::Kind::kGaussian: u[i] = c.base_v + c.amplitude_v * gain * filtered; break;
+      case CommandConfig::Kind::kGaussian:
+        u[i] = c.base_v + c.amplitude_v * gain * filtered;
+        break;
     }
   }
   return u;

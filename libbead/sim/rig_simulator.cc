@@ -68,9 +68,11 @@ Timeline RunDynamics(const SimConfig& c, std::mt19937_64& rng) {
     // Long enough for the material under the laser at t = 0 to have been
     // laid in steady state: the wheel's travel from nozzle to laser at its
     // starting speed, and a second more.
-    const double omega0 = c.wheel.mode == WheelConfig::Mode::kConstant
-                              ? c.wheel.surface_speed_mm_s / radius
-                              : std::max(0.05, c.wheel.gain_rpm_per_v * StepsAt(c.wheel.cmd_levels_v, c.wheel.cmd_durations_s, 0.0) * kTwoPi / 60.0);
+    const double omega0 =
+        c.wheel.mode == WheelConfig::Mode::kConstant
+            ? c.wheel.surface_speed_mm_s / radius
+            : std::max(0.05, c.wheel.gain_rpm_per_v * StepsAt(c.wheel.cmd_levels_v, c.wheel.cmd_durations_s, 0.0) *
+                                 kTwoPi / 60.0);
     const double travel = kTwoPi * c.rig.offset_counts / c.rig.encoder.counts_per_rev / omega0;
     tl.t0 = -c.dt_s * std::ceil((travel + 1.0 + c.wheel.tau_s * 10) / c.dt_s);
   }
@@ -99,7 +101,8 @@ Timeline RunDynamics(const SimConfig& c, std::mt19937_64& rng) {
   const auto lag = [&](double delay) { return static_cast<std::size_t>(std::llround(delay / c.dt_s)); };
   const std::size_t rpm_lag = lag(c.extruder.voltage_to_rpm.delay_s), flow_lag = lag(c.extruder.rpm_to_flow.delay_s);
   const std::size_t wheel_lag = lag(c.wheel.delay_s);
-  double wheel_rpm = c.wheel.mode == WheelConfig::Mode::kConstant ? c.wheel.surface_speed_mm_s / radius * 60.0 / kTwoPi : 0.0;
+  double wheel_rpm =
+      c.wheel.mode == WheelConfig::Mode::kConstant ? c.wheel.surface_speed_mm_s / radius * 60.0 / kTwoPi : 0.0;
   double rpm_before = 0.0, wheel_cmd_before = 0.0;  // inputs before the first sample (delays)
   if (c.warm_start) {
     // Extruder and wheel in steady state at their first commands.
@@ -140,10 +143,10 @@ Timeline RunDynamics(const SimConfig& c, std::mt19937_64& rng) {
       tl.ambient_c[i] = barrel->ambient_c();
     }
 
-
     // The wheel: its command, then its first-order response (thesis 3.3.3).
     switch (c.wheel.mode) {
-      case WheelConfig::Mode::kConstant: break;
+      case WheelConfig::Mode::kConstant:
+        break;
       case WheelConfig::Mode::kCommanded:
         tl.wheel_cmd_v[i] = StepsAt(c.wheel.cmd_levels_v, c.wheel.cmd_durations_s, t);
         break;

@@ -22,27 +22,27 @@ struct FlowTruth {  // in extrusion time, at the log's rate
   std::vector<double> t_s, flow_mm3_s, area_mm2, surface_speed_mm_s, screw_rpm;
 };
 
-struct ProfileTruth {  // one entry per recorded profile
-  std::vector<double> t_s;            // true measurement time (the record may carry latency)
-  std::vector<double> t_extruded_s;   // when the material under the laser left the nozzle (NaN: bare wheel)
-  std::vector<double> area_true_mm2;  // the cross-section (0: no bead)
+struct ProfileTruth {                    // one entry per recorded profile
+  std::vector<double> t_s;               // true measurement time (the record may carry latency)
+  std::vector<double> t_extruded_s;      // when the material under the laser left the nozzle (NaN: bare wheel)
+  std::vector<double> area_true_mm2;     // the cross-section (0: no bead)
   std::vector<double> area_visible_mm2;  // what a noiseless, infinitely dense sensor integrates
   std::vector<double> max_width_mm, contact_width_mm, height_mm, center_x_mm;
-  std::vector<int64_t> dropped;       // 1: the sensor dropped the whole profile
+  std::vector<int64_t> dropped;  // 1: the sensor dropped the whole profile
 };
 
 struct PinTruth {
   std::vector<double> placement_error_mm;  // along the travel, + toward the laser
-  std::vector<double> peak_counts;         // wheel travel, in counts, from placement to where the pin centre meets the laser
+  std::vector<double> peak_counts;  // wheel travel, in counts, from placement to where the pin centre meets the laser
 };
 
 struct Truth {
   FlowTruth flow;
   ProfileTruth profiles;
   PinTruth pins;
-  double offset_counts = 0.0;       // the rig's true nozzle-to-laser offset
+  double offset_counts = 0.0;  // the rig's true nozzle-to-laser offset
   double rig_file_offset_counts = 0.0;
-  double total_volume_mm3 = 0.0;    // integral of the flow over the run
+  double total_volume_mm3 = 0.0;  // integral of the flow over the run
 };
 
 struct SimulatedRun {

@@ -25,11 +25,11 @@ struct SensorPose {
 };
 
 struct SensorNoise {
-  double z_sigma_mm = 0.0;      // Gaussian height noise
-  double z_quantum_mm = 0.0;    // reported heights are multiples of this (0: none)
-  double dropout_prob = 0.0;    // chance a point is missing (NaN)
-  double spike_prob = 0.0;      // chance a point is a reflection spike
-  double spike_mm = 0.0;        // spike height: uniform in [spike_mm / 2, spike_mm], either sign
+  double z_sigma_mm = 0.0;    // Gaussian height noise
+  double z_quantum_mm = 0.0;  // reported heights are multiples of this (0: none)
+  double dropout_prob = 0.0;  // chance a point is missing (NaN)
+  double spike_prob = 0.0;    // chance a point is a reflection spike
+  double spike_mm = 0.0;      // spike height: uniform in [spike_mm / 2, spike_mm], either sign
 };
 
 // Noiseless envelope: z_out[j] is the height the ray at x_grid[j] meets,

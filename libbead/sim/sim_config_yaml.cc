@@ -76,7 +76,8 @@ class Reader {
   }
 
   template <typename Int>
-  void GetInt(const YAML::Node& sec, const std::string& path, const std::string& key, Int& out, double lo, double hi) const {
+  void GetInt(const YAML::Node& sec, const std::string& path, const std::string& key, Int& out, double lo,
+              double hi) const {
     double v = static_cast<double>(out);
     Get(sec, path, key, v, lo, hi);
     if (v != std::floor(v)) Fail(sec[key], path + key, "must be a whole number");
@@ -123,7 +124,8 @@ class Reader {
     Fail(sec[key], path + key, "is '" + v + "', expected one of: " + all);
   }
 
-  void GetTf(const YAML::Node& sec, const std::string& path, const std::string& key, model::TransferFunction& tf) const {
+  void GetTf(const YAML::Node& sec, const std::string& path, const std::string& key,
+             model::TransferFunction& tf) const {
     const YAML::Node n = Section(sec, key, {"num", "den", "delay_s"});
     if (!n.IsDefined()) return;
     GetList(n, path + key + ".", "num", tf.num);
@@ -141,16 +143,20 @@ class Reader {
 };
 
 void ParseBarrel(const YAML::Node& root, const Reader& r, BarrelConfig& b) {
-  const YAML::Node ba = r.Section(root, "barrel", {"record", "control", "setpoint_c", "band_c", "heater_c", "ambient_c",
-                                                   "wall_tau_s", "sensor_tau_s", "melt_tau_s", "noise_c", "kp", "ki",
-                                                   "kd", "flow_per_c", "record_ambient"});
+  const YAML::Node ba =
+      r.Section(root, "barrel",
+                {"record", "control", "setpoint_c", "band_c", "heater_c", "ambient_c", "wall_tau_s", "sensor_tau_s",
+                 "melt_tau_s", "noise_c", "kp", "ki", "kd", "flow_per_c", "record_ambient"});
   r.GetBool(ba, "barrel.", "record", b.record);
   r.GetBool(ba, "barrel.", "record_ambient", b.record_ambient);
   if (ba && ba["control"]) {
     const std::string k = r.Text(ba["control"], "barrel.control");
-    if (k == "bang_bang") b.control = BarrelConfig::Control::kBangBang;
-    else if (k == "pid") b.control = BarrelConfig::Control::kPid;
-    else r.Fail(ba["control"], "barrel.control", "must be bang_bang or pid, not '" + k + "'");
+    if (k == "bang_bang")
+      b.control = BarrelConfig::Control::kBangBang;
+    else if (k == "pid")
+      b.control = BarrelConfig::Control::kPid;
+    else
+      r.Fail(ba["control"], "barrel.control", "must be bang_bang or pid, not '" + k + "'");
   }
   r.Get(ba, "barrel.", "setpoint_c", b.setpoint_c, -50, 600);
   r.Get(ba, "barrel.", "band_c", b.band_c, 0, 100);
@@ -170,8 +176,8 @@ void ParseBarrel(const YAML::Node& root, const Reader& r, BarrelConfig& b) {
 
 void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
   if (!root.IsMap()) r.Fail(root, "", "a simulation config must be a YAML mapping");
-  const std::set<std::string> top = {"seed", "duration_s", "dt_s", "log_rate_hz", "warm_start", "rig", "extruder", "wheel",
-                                     "encoder", "bead", "sensor", "pins", "effects", "barrel"};
+  const std::set<std::string> top = {"seed",  "duration_s", "dt_s", "log_rate_hz", "warm_start", "rig",     "extruder",
+                                     "wheel", "encoder",    "bead", "sensor",      "pins",       "effects", "barrel"};
   for (const auto& kv : root)
     if (const std::string k = r.Text(kv.first, "<key>"); !top.count(k)) r.Fail(kv.first, k, "unknown key (misspelt?)");
   r.GetInt(root, "", "seed", c.seed, 0, 9.0e15);
@@ -180,8 +186,9 @@ void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
   r.Get(root, "", "log_rate_hz", c.log_rate_hz, 1, 100000);
   r.GetBool(root, "", "warm_start", c.warm_start);
 
-  const YAML::Node rig = r.Section(root, "rig", {"name", "counts_per_rev", "bits", "direction", "diameter_mm",
-                                                  "offset_counts", "reference_areas_mm", "laser_origin_mm"});
+  const YAML::Node rig = r.Section(root, "rig",
+                                   {"name", "counts_per_rev", "bits", "direction", "diameter_mm", "offset_counts",
+                                    "reference_areas_mm", "laser_origin_mm"});
   if (rig.IsDefined()) {
     if (rig["name"].IsDefined()) c.rig.name = r.Text(rig["name"], "rig.name");
     r.Get(rig, "rig.", "counts_per_rev", c.rig.encoder.counts_per_rev, 1, 1e9);
@@ -211,10 +218,11 @@ void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
     r.Fail(rig.IsDefined() && rig[here].IsDefined() ? rig[here] : root, "rig." + here, error + " (" + key + ")");
   }
 
-  const YAML::Node ex = r.Section(root, "extruder", {"command", "voltage_to_rpm", "rpm_to_flow", "rpm_noise", "flow_noise_frac"});
+  const YAML::Node ex =
+      r.Section(root, "extruder", {"command", "voltage_to_rpm", "rpm_to_flow", "rpm_noise", "flow_noise_frac"});
   if (ex.IsDefined()) {
-    const YAML::Node cmd = r.Section(ex, "command", {"kind", "base_v", "levels_v", "durations_s", "amplitude_v",
-                                                     "bit_time_s", "start_s", "stop_s"});
+    const YAML::Node cmd = r.Section(
+        ex, "command", {"kind", "base_v", "levels_v", "durations_s", "amplitude_v", "bit_time_s", "start_s", "stop_s"});
     auto& k = c.extruder.command;
     using K = CommandConfig::Kind;
     r.GetEnum<K>(cmd, "extruder.command.", "kind", k.kind,
@@ -234,8 +242,9 @@ void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
     r.Get(ex, "extruder.", "flow_noise_frac", c.extruder.flow_noise_frac, 0, 1);
   }
 
-  const YAML::Node wh = r.Section(root, "wheel", {"mode", "surface_speed_mm_s", "target_area_mm2", "controller_rate_hz",
-                                                  "gain_rpm_per_v", "tau_s", "delay_s", "cmd_levels_v", "cmd_durations_s"});
+  const YAML::Node wh = r.Section(root, "wheel",
+                                  {"mode", "surface_speed_mm_s", "target_area_mm2", "controller_rate_hz",
+                                   "gain_rpm_per_v", "tau_s", "delay_s", "cmd_levels_v", "cmd_durations_s"});
   using M = WheelConfig::Mode;
   r.GetEnum<M>(wh, "wheel.", "mode", c.wheel.mode,
                {{"constant", M::kConstant}, {"commanded", M::kCommanded}, {"feedforward", M::kFeedForward}});
@@ -252,12 +261,14 @@ void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
   r.GetInt(en, "encoder.", "start_count", c.encoder.start_count, 0, 9.0e15);
   r.Get(en, "encoder.", "missed_read_prob", c.encoder.missed_read_prob, 0, 0.5);
 
-  const YAML::Node bd = r.Section(root, "bead", {"shape", "aspect", "bottom_radius_frac", "top_radius_frac", "exponent", "bottom_exponent",
-                                                 "center_lift_frac", "center_wander_mm", "center_wander_period_s",
-                                                 "outline_vertices"});
+  const YAML::Node bd =
+      r.Section(root, "bead",
+                {"shape", "aspect", "bottom_radius_frac", "top_radius_frac", "exponent", "bottom_exponent",
+                 "center_lift_frac", "center_wander_mm", "center_wander_period_s", "outline_vertices"});
   using S = BeadConfig::Shape;
-  r.GetEnum<S>(bd, "bead.", "shape", c.bead.shape,
-               {{"rounded_rectangle", S::kRoundedRectangle}, {"superellipse", S::kSuperellipse}, {"parabola", S::kParabola}});
+  r.GetEnum<S>(
+      bd, "bead.", "shape", c.bead.shape,
+      {{"rounded_rectangle", S::kRoundedRectangle}, {"superellipse", S::kSuperellipse}, {"parabola", S::kParabola}});
   r.Get(bd, "bead.", "aspect", c.bead.aspect, 0.2, 20);
   r.Get(bd, "bead.", "bottom_radius_frac", c.bead.bottom_radius_frac, 0, 0.5);
   r.Get(bd, "bead.", "top_radius_frac", c.bead.top_radius_frac, 0, 0.5);
@@ -268,9 +279,10 @@ void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
   r.Get(bd, "bead.", "center_wander_period_s", c.bead.center_wander_period_s, 0.01, 1e5);
   r.GetInt(bd, "bead.", "outline_vertices", c.bead.outline_vertices, 8, 10000);
 
-  const YAML::Node se = r.Section(root, "sensor", {"rate_hz", "points", "x_min_mm", "x_max_mm", "fan", "z_sigma_mm",
-                                                   "z_quantum_mm", "dropout_prob", "spike_prob", "spike_mm",
-                                                   "dropped_profile_prob", "roll_deg", "runout_mm"});
+  const YAML::Node se =
+      r.Section(root, "sensor",
+                {"rate_hz", "points", "x_min_mm", "x_max_mm", "fan", "z_sigma_mm", "z_quantum_mm", "dropout_prob",
+                 "spike_prob", "spike_mm", "dropped_profile_prob", "roll_deg", "runout_mm"});
   auto& s = c.sensor;
   r.Get(se, "sensor.", "rate_hz", s.rate_hz, 1, 100000);
   r.GetInt(se, "sensor.", "points", s.points, 16, 100000);
@@ -287,8 +299,9 @@ void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
   r.Get(se, "sensor.", "roll_deg", s.roll_deg, -45, 45);
   r.Get(se, "sensor.", "runout_mm", s.runout_mm, 0, 10);
 
-  const YAML::Node pi = r.Section(root, "pins", {"scans", "placement_sigma_mm", "diameter_mm", "height_mm",
-                                                 "scan_speed_mm_s", "scan_half_length_mm"});
+  const YAML::Node pi =
+      r.Section(root, "pins",
+                {"scans", "placement_sigma_mm", "diameter_mm", "height_mm", "scan_speed_mm_s", "scan_half_length_mm"});
   r.GetInt(pi, "pins.", "scans", c.pins.scans, 0, 1000);
   r.Get(pi, "pins.", "placement_sigma_mm", c.pins.placement_sigma_mm, 0, 100);
   r.Get(pi, "pins.", "diameter_mm", c.pins.diameter_mm, 0.1, 100);
@@ -296,8 +309,9 @@ void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
   r.Get(pi, "pins.", "scan_speed_mm_s", c.pins.scan_speed_mm_s, 0.01, 1e4);
   r.Get(pi, "pins.", "scan_half_length_mm", c.pins.scan_half_length_mm, 0.5, 1e3);
 
-  const YAML::Node ef = r.Section(root, "effects", {"eccentricity_mm", "shrink_frac", "shrink_tau_s",
-                                                    "rig_offset_error_counts", "sensor_latency_s"});
+  const YAML::Node ef =
+      r.Section(root, "effects",
+                {"eccentricity_mm", "shrink_frac", "shrink_tau_s", "rig_offset_error_counts", "sensor_latency_s"});
   r.Get(ef, "effects.", "eccentricity_mm", c.effects.eccentricity_mm, 0, 50);
   r.Get(ef, "effects.", "shrink_frac", c.effects.shrink_frac, 0, 0.9);
   r.Get(ef, "effects.", "shrink_tau_s", c.effects.shrink_tau_s, 1e-3, 1e4);

@@ -19,9 +19,12 @@ using detail::Verdict;
 
 double Saturation(int depth) {
   switch (depth) {
-    case CV_8U: return 255.0;
-    case CV_16U: return 65535.0;
-    default: return std::numeric_limits<double>::infinity();
+    case CV_8U:
+      return 255.0;
+    case CV_16U:
+      return 65535.0;
+    default:
+      return std::numeric_limits<double>::infinity();
   }
 }
 
@@ -43,8 +46,10 @@ void CheckOptions(const StripeOptions& o) {
 const LinePeak& Choose(const std::vector<LinePeak>& peaks, PeakRule rule, double previous) {
   auto centre = [](const LinePeak& p) { return 0.5 * (p.left + p.right); };
   switch (rule) {
-    case PeakRule::kFirst: return peaks.front();
-    case PeakRule::kLast: return peaks.back();
+    case PeakRule::kFirst:
+      return peaks.front();
+    case PeakRule::kLast:
+      return peaks.back();
     case PeakRule::kWidest:
       return *std::max_element(peaks.begin(), peaks.end(),
                                [](const LinePeak& a, const LinePeak& b) { return a.Width() < b.Width(); });
@@ -78,11 +83,21 @@ void Search(const cv::Mat& lines, const StripeOptions& o, StripeCentres& out) {
     if (scan.tallest > 0.0) tallest.push_back(static_cast<float>(scan.tallest));
     if (scan.peaks.empty()) {
       switch (scan.rejected) {
-        case Verdict::kTooWide: ++s.too_wide; break;
-        case Verdict::kTooNarrow: ++s.too_narrow; break;
-        case Verdict::kFlatTop: ++s.flat_top; break;
-        case Verdict::kAtBorder: ++s.at_border; break;
-        default: ++s.no_peak; break;
+        case Verdict::kTooWide:
+          ++s.too_wide;
+          break;
+        case Verdict::kTooNarrow:
+          ++s.too_narrow;
+          break;
+        case Verdict::kFlatTop:
+          ++s.flat_top;
+          break;
+        case Verdict::kAtBorder:
+          ++s.at_border;
+          break;
+        default:
+          ++s.no_peak;
+          break;
       }
       continue;
     }
@@ -128,9 +143,15 @@ void Search(const cv::Mat& lines, const StripeOptions& o, StripeCentres& out) {
 
 void SearchLines(const cv::Mat& lines, const StripeOptions& o, StripeCentres& out) {
   switch (lines.depth()) {
-    case CV_8U: Search<std::uint8_t>(lines, o, out); break;
-    case CV_16U: Search<std::uint16_t>(lines, o, out); break;
-    default: Search<float>(lines, o, out); break;
+    case CV_8U:
+      Search<std::uint8_t>(lines, o, out);
+      break;
+    case CV_16U:
+      Search<std::uint16_t>(lines, o, out);
+      break;
+    default:
+      Search<float>(lines, o, out);
+      break;
   }
 }
 
@@ -165,28 +186,40 @@ void FindStripe(const cv::Mat& frame, const StripeOptions& options, StripeCentre
 
 std::string Name(StripeAxis axis) {
   switch (axis) {
-    case StripeAxis::kRows: return "rows";
-    case StripeAxis::kColumns: return "columns";
-    default: return "auto";
+    case StripeAxis::kRows:
+      return "rows";
+    case StripeAxis::kColumns:
+      return "columns";
+    default:
+      return "auto";
   }
 }
 
 std::string Name(StripeMethod method) {
   switch (method) {
-    case StripeMethod::kCentreOfGravity: return "cog";
-    case StripeMethod::kParabolic: return "parabolic";
-    case StripeMethod::kSteger: return "steger";
-    default: return "gaussian";
+    case StripeMethod::kCentreOfGravity:
+      return "cog";
+    case StripeMethod::kParabolic:
+      return "parabolic";
+    case StripeMethod::kSteger:
+      return "steger";
+    default:
+      return "gaussian";
   }
 }
 
 std::string Name(PeakRule rule) {
   switch (rule) {
-    case PeakRule::kWidest: return "widest";
-    case PeakRule::kFirst: return "first";
-    case PeakRule::kLast: return "last";
-    case PeakRule::kNearest: return "nearest";
-    default: return "strongest";
+    case PeakRule::kWidest:
+      return "widest";
+    case PeakRule::kFirst:
+      return "first";
+    case PeakRule::kLast:
+      return "last";
+    case PeakRule::kNearest:
+      return "nearest";
+    default:
+      return "strongest";
   }
 }
 
@@ -206,10 +239,9 @@ StripeAxis ParseStripeAxis(const std::string& name) {
   return Parse(name, {StripeAxis::kAuto, StripeAxis::kRows, StripeAxis::kColumns}, "axis");
 }
 StripeMethod ParseStripeMethod(const std::string& name) {
-  return Parse(name,
-               {StripeMethod::kCentreOfGravity, StripeMethod::kGaussian, StripeMethod::kParabolic,
-                StripeMethod::kSteger},
-               "method");
+  return Parse(
+      name, {StripeMethod::kCentreOfGravity, StripeMethod::kGaussian, StripeMethod::kParabolic, StripeMethod::kSteger},
+      "method");
 }
 PeakRule ParsePeakRule(const std::string& name) {
   return Parse(name, {PeakRule::kStrongest, PeakRule::kWidest, PeakRule::kFirst, PeakRule::kLast, PeakRule::kNearest},

@@ -66,10 +66,10 @@ struct StripeOptions {
   StripeAxis axis = StripeAxis::kAuto;
   StripeMethod method = StripeMethod::kGaussian;
   PeakRule rule = PeakRule::kStrongest;
-  double min_peak = 20.0;      // least height above the floor on each side, grey levels
-  double threshold = 0.0;      // least peak value, grey levels (0: none); cog's cut when set
-  double min_width_px = 1.5;   // full width at half height, px (a lone hot pixel is 1)
-  double max_width_px = 40.0;  // also the reach of the floor search on each side
+  double min_peak = 20.0;        // least height above the floor on each side, grey levels
+  double threshold = 0.0;        // least peak value, grey levels (0: none); cog's cut when set
+  double min_width_px = 1.5;     // full width at half height, px (a lone hot pixel is 1)
+  double max_width_px = 40.0;    // also the reach of the floor search on each side
   double steger_sigma_px = 0.0;  // 0: from each peak's width
   double min_relative = 0.25;    // of the frame's stripe height (0: no test)
 };

@@ -10,9 +10,9 @@
 namespace bead::vision::detail {
 
 struct LinePeak {
-  int first = 0, last = 0;  // the peak's run of equal samples (saturation: more than one)
-  double value = 0.0;       // the peak sample
-  double floor = 0.0;       // the higher of the darkest samples either side
+  int first = 0, last = 0;         // the peak's run of equal samples (saturation: more than one)
+  double value = 0.0;              // the peak sample
+  double floor = 0.0;              // the higher of the darkest samples either side
   double left = 0.0, right = 0.0;  // where it crosses half height, px (linear between samples)
   double Height() const { return value - floor; }
   double Width() const { return right - left; }
@@ -21,7 +21,7 @@ struct LinePeak {
 enum class Verdict { kAccepted, kNoPeak, kTooWide, kTooNarrow, kFlatTop, kAtBorder };
 
 struct LineScan {
-  std::vector<LinePeak> peaks;         // stripe-shaped, in line order
+  std::vector<LinePeak> peaks;          // stripe-shaped, in line order
   Verdict rejected = Verdict::kNoPeak;  // why the line has no stripe, when `peaks` is empty
   double rejected_rank = -1.0;
   double tallest = 0.0;  // the tallest candidate standing min_peak above both sides, whatever its shape

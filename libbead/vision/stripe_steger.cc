@@ -110,10 +110,14 @@ bool Centre(const cv::Mat& im, int x, int y, double sigma, double& centre) {
 
 bool StegerCentre(const cv::Mat& lines, int x, int y, double sigma_px, double& centre) {
   switch (lines.depth()) {
-    case CV_8U: return Centre<std::uint8_t>(lines, x, y, sigma_px, centre);
-    case CV_16U: return Centre<std::uint16_t>(lines, x, y, sigma_px, centre);
-    case CV_32F: return Centre<float>(lines, x, y, sigma_px, centre);
-    default: return false;
+    case CV_8U:
+      return Centre<std::uint8_t>(lines, x, y, sigma_px, centre);
+    case CV_16U:
+      return Centre<std::uint16_t>(lines, x, y, sigma_px, centre);
+    case CV_32F:
+      return Centre<float>(lines, x, y, sigma_px, centre);
+    default:
+      return false;
   }
 }
 

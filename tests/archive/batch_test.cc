@@ -77,9 +77,11 @@ TEST_F(BatchTest, KilledAndStartedAgainItEndsAsAnUninterruptedBatch) {
 
 TEST_F(BatchTest, ShardsCoverEveryRunOnceAndTheLastSummaryHasThemAll) {
   test::TempDir out;
-  auto [s1, text1] = test::RunCli(out, "batch --shard 1/2 --rig " + *dir_ / "r0/rig.yaml" + " -o " + out / "o" + Runs());
+  auto [s1, text1] =
+      test::RunCli(out, "batch --shard 1/2 --rig " + *dir_ / "r0/rig.yaml" + " -o " + out / "o" + Runs());
   ASSERT_EQ(s1, 0) << text1;
-  auto [s2, text2] = test::RunCli(out, "batch --shard 2/2 --rig " + *dir_ / "r0/rig.yaml" + " -o " + out / "o" + Runs());
+  auto [s2, text2] =
+      test::RunCli(out, "batch --shard 2/2 --rig " + *dir_ / "r0/rig.yaml" + " -o " + out / "o" + Runs());
   ASSERT_EQ(s2, 0) << text2;
   const std::regex done(R"(\] (r\d_run): \d+ profiles)");
   std::map<std::string, int> measured;
@@ -93,8 +95,8 @@ TEST_F(BatchTest, ShardsCoverEveryRunOnceAndTheLastSummaryHasThemAll) {
 TEST_F(BatchTest, AFailedRunIsReportedAndTheOthersGoOn) {
   test::TempDir out;
   test::WriteText(out / "broken.h5", "not an HDF5 file");
-  auto [status, text] = test::RunCli(out, "batch --rig " + *dir_ / "r0/rig.yaml" + " -o " + out / "o " + out / "broken.h5" +
-                                              " " + *dir_ / "r2/run.h5");
+  auto [status, text] = test::RunCli(out, "batch --rig " + *dir_ / "r0/rig.yaml" + " -o " + out / "o " +
+                                              out / "broken.h5" + " " + *dir_ / "r2/run.h5");
   EXPECT_EQ(status, 1) << text;
   const std::string summary = test::ReadText(out / "o/summary.csv");
   EXPECT_NE(summary.find("broken,"), std::string::npos) << summary;
@@ -112,7 +114,9 @@ TEST(BatchShard, TakenFromTheOptionSlurmOrMpirun) {
   EXPECT_EQ(s.index, 2u);  // the option wins
   EXPECT_EQ(s.count, 4u);
   // --array=10-20:5 has tasks 10, 15, 20: task 15 is the second of three.
-  s = resolve("", {{"SLURM_ARRAY_TASK_ID", "15"}, {"SLURM_ARRAY_TASK_MIN", "10"}, {"SLURM_ARRAY_TASK_STEP", "5"},
+  s = resolve("", {{"SLURM_ARRAY_TASK_ID", "15"},
+                   {"SLURM_ARRAY_TASK_MIN", "10"},
+                   {"SLURM_ARRAY_TASK_STEP", "5"},
                    {"SLURM_ARRAY_TASK_COUNT", "3"}});
   EXPECT_EQ(s.index, 1u);
   EXPECT_EQ(s.count, 3u);
@@ -127,7 +131,8 @@ TEST(BatchShard, TakenFromTheOptionSlurmOrMpirun) {
 }
 
 TEST(BatchRuns, RepeatedStemsAreNamedByTheirFoldersAndARunListedTwiceIsRefused) {
-  const std::vector<BatchRun> runs = RunsFromPaths({"/d/day1/a/run.h5", "/d/day1/b/run.h5", "/d/day2/x.h5"}, "rig.yaml");
+  const std::vector<BatchRun> runs =
+      RunsFromPaths({"/d/day1/a/run.h5", "/d/day1/b/run.h5", "/d/day2/x.h5"}, "rig.yaml");
   EXPECT_EQ(runs[0].name, "day1_a_run");
   EXPECT_EQ(runs[1].name, "day1_b_run");
   EXPECT_EQ(runs[2].name, "x");
@@ -167,7 +172,8 @@ TEST_F(InterruptedWriteTest, Flow) {
   ExpectOldOrNewWhole(std::string(BEAD_CLI) + " flow --rig " + *dir_ / "r0/rig.yaml " + *dir_ / "r0/run.h5");
 }
 TEST_F(InterruptedWriteTest, ExplainOut) {
-  ExpectOldOrNewWhole(std::string(BEAD_CLI) + " explain --max-effects 1 --rig " + *dir_ / "r1/rig.yaml " + *dir_ / "r1/run.h5");
+  ExpectOldOrNewWhole(std::string(BEAD_CLI) + " explain --max-effects 1 --rig " + *dir_ / "r1/rig.yaml " +
+                      *dir_ / "r1/run.h5");
 }
 
 }  // namespace

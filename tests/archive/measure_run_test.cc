@@ -83,7 +83,8 @@ TEST_F(MeasureRunTest, StreamedGeometryAndPoolAreTheWholeArchives) {
       ASSERT_EQ(rows[i].profile, static_cast<int64_t>(i));
       ASSERT_EQ(a.status, b.status) << i;
       ASSERT_TRUE(Same(a.area_mm2, b.area_mm2) && Same(a.width_mm, b.width_mm) && Same(a.height_mm, b.height_mm) &&
-                  Same(a.area_sigma_mm2, b.area_sigma_mm2) && Same(a.reference.residual_rms_mm, b.reference.residual_rms_mm))
+                  Same(a.area_sigma_mm2, b.area_sigma_mm2) &&
+                  Same(a.reference.residual_rms_mm, b.reference.residual_rms_mm))
           << "profile " << i << " window " << window;
       const occlusion::CorrectedArea c = occlusion::ApplyPooled(whole.pool, b);
       ASSERT_TRUE(Same(rows[i].area_corrected_mm2, c.area_mm2) && Same(rows[i].area_corrected_sigma_mm2, c.sigma_mm2))

@@ -49,7 +49,8 @@ std::string WriteArchive(const test::TempDir& dir, ProfileBlock block) {
 
 // Profile j of `b` is profile `row` of `whole`: time, encoder, and the
 // bytes of x and z (NaN payloads too).
-::testing::AssertionResult SameProfile(const ProfileBlock& b, std::size_t j, const ProfileBlock& whole, std::size_t row) {
+::testing::AssertionResult SameProfile(const ProfileBlock& b, std::size_t j, const ProfileBlock& whole,
+                                       std::size_t row) {
   const ProfileView v = b.view(j), w = whole.view(row);
   const std::size_t bytes = whole.points * sizeof(float);
   if (v.t_s != w.t_s || v.encoder != w.encoder || v.x_mm.size() != w.x_mm.size() ||

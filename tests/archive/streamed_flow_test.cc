@@ -127,8 +127,9 @@ TEST_F(StreamedFlowTest, IsTheWholeRunsFlowBitForBit) {
     ASSERT_EQ(a.profile, b.profile);
     ASSERT_EQ(a.valid, b.valid) << k;
     ASSERT_EQ(a.encoder, b.encoder) << k;
-    ASSERT_TRUE(Same(a.t_s, b.t_s) && Same(a.surface_speed_mm_s, b.surface_speed_mm_s) && Same(a.area_mm2, b.area_mm2) &&
-                Same(a.area_corrected_mm2, b.area_corrected_mm2) && Same(a.occlusion_bias_mm2, b.occlusion_bias_mm2) &&
+    ASSERT_TRUE(Same(a.t_s, b.t_s) && Same(a.surface_speed_mm_s, b.surface_speed_mm_s) &&
+                Same(a.area_mm2, b.area_mm2) && Same(a.area_corrected_mm2, b.area_corrected_mm2) &&
+                Same(a.occlusion_bias_mm2, b.occlusion_bias_mm2) &&
                 Same(a.area_corrected_sigma_mm2, b.area_corrected_sigma_mm2) && Same(a.flow_mm3_s, b.flow_mm3_s) &&
                 Same(a.flow_sigma_mm3_s, b.flow_sigma_mm3_s) && Same(a.screw_rpm, b.screw_rpm))
         << "sample " << k;
@@ -155,12 +156,13 @@ TEST_F(StreamedFlowTest, AHistoryShorterThanTheTravelIsNotTakenForTheFlow) {
   rig.offset_counts += rig.encoder.counts_per_rev / 2.0;
   WorkerPool pool(2);
   std::size_t valid = 0;
-  const StreamedFlow s = StreamRunFlow(OpenRun(path, pool, false), path, rig, pool, Measure(4096), {},
-                                       [&](const FlowSample& f) { valid += f.valid; }, {}, 1.0);
+  const StreamedFlow s = StreamRunFlow(
+      OpenRun(path, pool, false), path, rig, pool, Measure(4096), {}, [&](const FlowSample& f) { valid += f.valid; },
+      {}, 1.0);
   EXPECT_FALSE(s.complete);
   EXPECT_NE(s.why.find("more than 1 s before they were measured"), std::string::npos) << s.why;
-  const StreamedFlow enough = StreamRunFlow(OpenRun(path, pool, false), path, rig, pool, Measure(4096), {},
-                                            [](const FlowSample&) {}, {}, 3.0);
+  const StreamedFlow enough = StreamRunFlow(
+      OpenRun(path, pool, false), path, rig, pool, Measure(4096), {}, [](const FlowSample&) {}, {}, 3.0);
   EXPECT_TRUE(enough.complete);
   EXPECT_TRUE(enough.why.empty()) << enough.why;
   EXPECT_GT(enough.valid, valid);  // what the short history lost
@@ -202,7 +204,8 @@ TEST_F(StreamedFlowTest, ALogShorterThanTheSpeedWindowTakesTheWholeRunPath) {
   EXPECT_NE(r.warnings[0].find("the flow was computed on the whole run in memory: the log's"), std::string::npos)
       << r.warnings[0];
   const MeasuredRun m = MeasureWholeRun(OpenRun(path, pool), sim_->rig_file, pool, Measure(4096));
-  const FlowResult whole = ComputeFlow(sim_->rig_file, m.run.profiles, m.geometry, *m.run.log, {}, m.corrected, m.sigma);
+  const FlowResult whole =
+      ComputeFlow(sim_->rig_file, m.run.profiles, m.geometry, *m.run.log, {}, m.corrected, m.sigma);
   std::size_t valid = 0;
   for (const FlowSample& f : whole.samples) valid += f.valid;
   EXPECT_GT(valid, 0u);  // profiles inside the short log have a flow

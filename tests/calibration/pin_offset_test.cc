@@ -45,7 +45,8 @@ TEST(PinOffset, IntervalCoversTheTruthAndIsNearTheLimit) {
     mpc = run.rig_file.MmPerCount();
     // Each scan's centre is the pin's, to a small fraction of the placement error.
     for (std::size_t k = 0; k < cal.scans.size(); ++k)
-      EXPECT_NEAR(cal.scans[k].center_counts, run.truth.pins.peak_counts[k], 0.05 / mpc) << "seed " << seed << " scan " << k;
+      EXPECT_NEAR(cal.scans[k].center_counts, run.truth.pins.peak_counts[k], 0.05 / mpc)
+          << "seed " << seed << " scan " << k;
   }
   std::sort(half_widths_mm.begin(), half_widths_mm.end());
   const double limit_mm = 2.57 * 0.35 / std::sqrt(6.0);
@@ -80,7 +81,8 @@ TEST(PinOffset, CommandLine) {
   ASSERT_EQ(std::system(cmd.c_str()), 0);
   const std::string text = test::ReadText(out);
   std::smatch m;
-  ASSERT_TRUE(std::regex_search(text, m, std::regex("\noffset_counts=([0-9.]+) ci95_counts=([0-9.]+) scans_used=6/6\n$")))
+  ASSERT_TRUE(
+      std::regex_search(text, m, std::regex("\noffset_counts=([0-9.]+) ci95_counts=([0-9.]+) scans_used=6/6\n$")))
       << text;
   EXPECT_NE(text.find("warning: the rig file's offset"), std::string::npos) << text;
   const double offset = std::stod(m[1]);

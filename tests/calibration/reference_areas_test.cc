@@ -124,8 +124,9 @@ TEST(ReferenceCommand, ProposesAreasARigFileLacks) {
   test::WriteText(dir / "sim.yaml", "seed: 9\nduration_s: 6\nsensor: {points: 256}\nbead: {center_wander_mm: 2.0}\n");
   auto [sim, sim_out] = test::RunCli(dir, "simulate " + (dir / "sim.yaml") + " -o " + (dir / "twin"));
   ASSERT_EQ(sim, 0) << sim_out;
-  test::WriteText(dir / "bare.yaml", "encoder: {counts_per_rev: 4096, bits: 32, direction: 1}\n"
-                                     "wheel: {diameter_mm: 254.762}\noffset: {counts: 3000}\n");
+  test::WriteText(dir / "bare.yaml",
+                  "encoder: {counts_per_rev: 4096, bits: 32, direction: 1}\n"
+                  "wheel: {diameter_mm: 254.762}\noffset: {counts: 3000}\n");
   const std::string run = dir / "twin/run.h5";
   auto [status, out] =
       test::RunCli(dir, "calibrate reference --rig " + (dir / "bare.yaml") + " " + run + " -o " + (dir / "rig.yaml"));

@@ -146,16 +146,17 @@ TEST(WheelRunout, TheTwinsEccentricWheelIsFoundAndItsFlowCorrected) {
   const TwinFlow centred = RunTwin(0.0, false), off = RunTwin(2.0, false), corrected = RunTwin(2.0, true);
   const sim::SimConfig defaults;
   EXPECT_NEAR(off.runout.eccentricity_mm, 2.0, std::max(off.runout.eccentricity_ci95_mm, 0.02));
-  const double expected_phase = 360.0 * (defaults.rig.encoder.direction * double(defaults.encoder.start_count) +
-                                         defaults.rig.offset_counts) / defaults.rig.encoder.counts_per_rev;
+  const double expected_phase =
+      360.0 * (defaults.rig.encoder.direction * double(defaults.encoder.start_count) + defaults.rig.offset_counts) /
+      defaults.rig.encoder.counts_per_rev;
   EXPECT_LT(AngleGap(off.runout.phase_deg, expected_phase), std::max(off.runout.phase_ci95_deg, 1.0));
   EXPECT_LT(centred.runout.eccentricity_mm, 3 * centred.runout.eccentricity_ci95_mm + 0.005);
   const double e_over_r = 2.0 / (0.5 * defaults.rig.wheel_diameter_mm);
-  std::printf("flow's once-per-revolution error: centred %.4f +- %.4f, eccentric %.4f +- %.4f, corrected %.4f +- "
-              "%.4f (e / R = %.4f)\n",
-              centred.error.eccentricity_mm, centred.error.eccentricity_ci95_mm, off.error.eccentricity_mm,
-              off.error.eccentricity_ci95_mm, corrected.error.eccentricity_mm, corrected.error.eccentricity_ci95_mm,
-              e_over_r);
+  std::printf(
+      "flow's once-per-revolution error: centred %.4f +- %.4f, eccentric %.4f +- %.4f, corrected %.4f +- "
+      "%.4f (e / R = %.4f)\n",
+      centred.error.eccentricity_mm, centred.error.eccentricity_ci95_mm, off.error.eccentricity_mm,
+      off.error.eccentricity_ci95_mm, corrected.error.eccentricity_mm, corrected.error.eccentricity_ci95_mm, e_over_r);
   EXPECT_NEAR(off.error.eccentricity_mm - corrected.error.eccentricity_mm, e_over_r,
               off.error.eccentricity_ci95_mm + corrected.error.eccentricity_ci95_mm);
   EXPECT_LT(corrected.error.eccentricity_mm, 0.5 * off.error.eccentricity_mm);
@@ -175,15 +176,16 @@ TEST(WheelCommand, CalibratesWritesTheRigAndFlowUsesIt) {
   auto [status, out] = test::RunCli(dir, "calibrate wheel --rig " + rig + " " + run + " -o " + (dir / "rig2.yaml"));
   ASSERT_EQ(status, 0) << out;
   std::smatch m;
-  ASSERT_TRUE(std::regex_search(out, m, std::regex(R"(runout_mm=([0-9.]+) eccentricity_mm=([0-9.]+) phase_deg=([0-9.]+))")))
+  ASSERT_TRUE(
+      std::regex_search(out, m, std::regex(R"(runout_mm=([0-9.]+) eccentricity_mm=([0-9.]+) phase_deg=([0-9.]+))")))
       << out;
   EXPECT_NEAR(std::stod(m[2]), 1.0, 0.05) << out;
   EXPECT_NE(out.find("over 2.5"), std::string::npos) << out;  // 10 s at 15 RPM
   const RigFile written = ReadRigFile(dir / "rig2.yaml");
   EXPECT_NEAR(written.rig.wheel_eccentricity_mm, std::stod(m[2]), 1e-4);
   EXPECT_NEAR(written.rig.wheel_eccentricity_phase_deg, std::stod(m[3]), 0.05);
-  auto [flow, flow_out] = test::RunCli(dir, "flow --occlusion none --rig " + (dir / "rig2.yaml") + " " + run + " -o " +
-                                                (dir / "flow.csv"));
+  auto [flow, flow_out] =
+      test::RunCli(dir, "flow --occlusion none --rig " + (dir / "rig2.yaml") + " " + run + " -o " + (dir / "flow.csv"));
   EXPECT_EQ(flow, 0) << flow_out;
 
   test::WriteText(dir / "short.yaml", "seed: 5\nduration_s: 2\nsensor: {points: 160}\n");

@@ -33,7 +33,8 @@ sim::SimulatedRun SmallRun() {
 TEST(CInterface, BadArgumentsAreErrorsWithAMessage) {
   const double left[2] = {-24, -12}, inverted[2] = {12, -12}, right[2] = {12, 24};
   EXPECT_EQ(bead_processor_create(inverted, right), nullptr);
-  EXPECT_NE(std::string(bead_last_error()).find("left_mm must be two finite x"), std::string::npos) << bead_last_error();
+  EXPECT_NE(std::string(bead_last_error()).find("left_mm must be two finite x"), std::string::npos)
+      << bead_last_error();
   EXPECT_EQ(bead_processor_create(right, left), nullptr);  // the areas swapped
   EXPECT_NE(std::string(bead_last_error()).find("must end before"), std::string::npos) << bead_last_error();
   bead_options unset{};  // size not filled in
@@ -182,12 +183,12 @@ TEST(CInterface, ExamplesAgreeWithBeadMeasure) {
   const sim::SimulatedRun m = SmallRun();
   WriteProfilesCsv(dir / "profiles.csv", m.run.profiles);
   const Rig& rig = m.rig_file;
-  test::WriteText(dir / "rig.yaml", "encoder: {counts_per_rev: 4096, bits: 32, direction: 1}\n"
-                                    "wheel: {diameter_mm: 254.762}\noffset: {counts: 3000}\nsensor: {reference_areas_mm: [[" +
-                                        std::to_string(rig.reference_left.x_min_mm) + ", " +
-                                        std::to_string(rig.reference_left.x_max_mm) + "], [" +
-                                        std::to_string(rig.reference_right.x_min_mm) + ", " +
-                                        std::to_string(rig.reference_right.x_max_mm) + "]]}\n");
+  test::WriteText(dir / "rig.yaml",
+                  "encoder: {counts_per_rev: 4096, bits: 32, direction: 1}\n"
+                  "wheel: {diameter_mm: 254.762}\noffset: {counts: 3000}\nsensor: {reference_areas_mm: [[" +
+                      std::to_string(rig.reference_left.x_min_mm) + ", " + std::to_string(rig.reference_left.x_max_mm) +
+                      "], [" + std::to_string(rig.reference_right.x_min_mm) + ", " +
+                      std::to_string(rig.reference_right.x_max_mm) + "]]}\n");
   auto [st, out] = test::RunCli(dir, "measure --occlusion none --rig " + (dir / "rig.yaml") + " " +
                                          (dir / "profiles.csv") + " -o " + (dir / "geometry.csv"));
   ASSERT_EQ(st, 0) << out;

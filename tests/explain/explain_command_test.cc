@@ -137,10 +137,11 @@ TEST(ExplainCommand, BadInputNamesTheFile) {
   EXPECT_NE(out.find("weld.csv"), std::string::npos) << out;
   EXPECT_NE(out.find("no column 'nope'"), std::string::npos) << out;
   test::WriteText(dir / "model.json", "{\"num\": [1.0]}");
-  EXPECT_NE(RunCli("explain " + (dir / "weld.csv") + " --time time_s --input wire_feed_m_min --output width_mm --model " +
-                       (dir / "model.json") + " -o " + (dir / "e.json"),
-                   dir / "out.txt"),
-            0);
+  EXPECT_NE(
+      RunCli("explain " + (dir / "weld.csv") + " --time time_s --input wire_feed_m_min --output width_mm --model " +
+                 (dir / "model.json") + " -o " + (dir / "e.json"),
+             dir / "out.txt"),
+      0);
   out = test::ReadText(dir / "out.txt");
   EXPECT_NE(out.find("model.json"), std::string::npos) << out;
   EXPECT_FALSE(std::filesystem::exists(dir / "e.json"));

@@ -116,13 +116,14 @@ std::string Names(const ExplainReport& r) {
   std::string s = "added:";
   for (const auto& e : r.effects_added) {
     s += " " + e.name + " [";
-    for (const auto& p : e.parameters) s += p.name + "=" + std::to_string(p.value) + "+-" + std::to_string(p.ci95) + " ";
+    for (const auto& p : e.parameters)
+      s += p.name + "=" + std::to_string(p.value) + "+-" + std::to_string(p.ci95) + " ";
     s += "rms " + std::to_string(e.rms_before) + " -> " + std::to_string(e.rms_after) + "]";
   }
   s += "; tried (round, name, BIC drop, held-out F):";
   for (const auto& c : r.candidates)
-    s += " (" + std::to_string(c.round) + " " + c.name + " " + std::to_string(c.bic_drop) + " " + std::to_string(c.heldout_f) +
-         " " + std::to_string(c.surrogate_f) + ")";
+    s += " (" + std::to_string(c.round) + " " + c.name + " " + std::to_string(c.bic_drop) + " " +
+         std::to_string(c.heldout_f) + " " + std::to_string(c.surrogate_f) + ")";
   return s;
 }
 
@@ -270,9 +271,10 @@ TEST(ExplainWarmRun, FindsAStaleOffsetAndItsCorrectedFlowIsCloserToTheTruth) {
     return std::sqrt(s / n);
   };
   const double before = rms(o.run->flow), after = rms(cf.flow);
-  std::printf("warm, stale offset: interval %.1f..%.1f (true %.1f); flow RMS against the truth %.1f -> %.1f mm^3/s; "
-              "against the model %.1f -> %.1f\n",
-              rig.offset_counts + p.lo, rig.offset_counts + p.hi, true_offset, before, after, cf.rms_before, cf.rms_after);
+  std::printf(
+      "warm, stale offset: interval %.1f..%.1f (true %.1f); flow RMS against the truth %.1f -> %.1f mm^3/s; "
+      "against the model %.1f -> %.1f\n",
+      rig.offset_counts + p.lo, rig.offset_counts + p.hi, true_offset, before, after, cf.rms_before, cf.rms_after);
   EXPECT_LT(after, before);
   EXPECT_LT(cf.rms_after, cf.rms_before);
 }
@@ -319,7 +321,6 @@ TEST(ExplainWarmRun, AMisspecifiedBaseModelBuysNoEffect) {
   EXPECT_TRUE(r.base.misspecified);
 }
 
-
 // The rig's log also records the barrel temperature (a heater under
 // bang-bang control, a cycle of about 20 s), and the flow follows the
 // melt's temperature, 1 % per degree (seed 003, section 3.4: throughput
@@ -355,7 +356,8 @@ TEST(ExplainWarmRun, ChannelsThatActOnNothingGetNoEffect) {
   c.barrel.record_ambient = true;
   const Outcome o = ExplainRun(c);
   ASSERT_EQ(o.series.data.channels.size(), 2u);
-  for (const auto& e : o.report.effects_added) EXPECT_EQ(e.name.rfind("channel[", 0), std::string::npos) << Names(o.report);
+  for (const auto& e : o.report.effects_added)
+    EXPECT_EQ(e.name.rfind("channel[", 0), std::string::npos) << Names(o.report);
 }
 
 }  // namespace

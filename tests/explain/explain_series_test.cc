@@ -116,7 +116,8 @@ TEST(ExplainSeries, CleanDataGetsNothing) {
 
 TEST(ExplainSeries, FindsDrift) {
   const double slope = 0.4;  // units from the middle to the end of the record
-  const Case c = Make(4, EachSample([&](const SeriesData& d, std::size_t i) { return d.base[i] + slope * (d.t[i] - 30.0) / 30.0; }));
+  const Case c = Make(
+      4, EachSample([&](const SeriesData& d, std::size_t i) { return d.base[i] + slope * (d.t[i] - 30.0) / 30.0; }));
   const ExplainReport r = Explain(c.data);
   ASSERT_EQ(r.effects_added.size(), 1u) << Tried(r);
   EXPECT_EQ(r.effects_added[0].name, "drift");
@@ -128,8 +129,8 @@ TEST(ExplainSeries, FindsDrift) {
 TEST(ExplainSeries, FindsSaturatingBuildUp) {
   const double amplitude = 0.6, tau = 4.0;
   const Case c = Make(5, EachSample([&](const SeriesData& d, std::size_t i) {
-    return d.base[i] + amplitude * (1.0 - std::exp(-d.segment_time_s[i] / tau));
-  }));
+                        return d.base[i] + amplitude * (1.0 - std::exp(-d.segment_time_s[i] / tau));
+                      }));
   const ExplainReport r = Explain(c.data);
   ASSERT_GE(r.effects_added.size(), 1u) << Tried(r);
   EXPECT_EQ(r.effects_added[0].name, "buildup");
@@ -159,7 +160,8 @@ TEST(ExplainSeries, FindsChangingDelay) {
   const double change = 0.3;  // s, start to end
   const Case c = Make(7, [&](const SeriesData& d) {
     std::vector<double> extra(d.size());
-    for (std::size_t k = 0; k < extra.size(); ++k) extra[k] = change * (d.t[k] - 0.5 * (d.t.front() + d.t.back())) / (d.t.back() - d.t.front());
+    for (std::size_t k = 0; k < extra.size(); ++k)
+      extra[k] = change * (d.t[k] - 0.5 * (d.t.front() + d.t.back())) / (d.t.back() - d.t.front());
     return d.base_delayed(extra);
   });
   const ExplainReport r = Explain(c.data);
@@ -187,7 +189,7 @@ TEST(ExplainSeries, ATimeConstantThatChangesWithLevelIsNeverTakenForAnotherEffec
     double state = 0.0;
     for (std::size_t k = 1; k < d.size(); ++k) {
       const double dt = d.t[k] - d.t[k - 1];
-      if (d.segment_time_s[k] == 0.0) state = 2.0 * d.u[k];  // each stretch starts in steady state
+      if (d.segment_time_s[k] == 0.0) state = 2.0 * d.u[k];            // each stretch starts in steady state
       const double u = InterpolateLinear(d.t, d.u, d.t[k - 1] - 0.2);  // the input, 0.2 s late
       const double tau = std::max(0.2, 0.8 + kLagPerSd * (state - m) / s);
       for (int sub = 0; sub < 20; ++sub) state += dt / 20 * (2.0 * u - state) / tau;
@@ -205,7 +207,9 @@ TEST(ExplainSeries, ATimeConstantThatChangesWithLevelIsNeverTakenForAnotherEffec
 }
 
 TEST(ExplainSeries, PeriodicStructureWithNoPartIsReportedUnexplained) {
-  const Case c = Make(8, EachSample([&](const SeriesData& d, std::size_t i) { return d.base[i] + 0.3 * std::sin(2 * kPi * 1.7 * d.t[i]); }));
+  const Case c = Make(8, EachSample([&](const SeriesData& d, std::size_t i) {
+                        return d.base[i] + 0.3 * std::sin(2 * kPi * 1.7 * d.t[i]);
+                      }));
   const ExplainReport r = Explain(c.data);
   bool found = false;
   for (const auto& u : r.unexplained) found |= u.what == "periodic" && std::abs(u.frequency_hz - 1.7) < 0.05;

@@ -78,8 +78,8 @@ Twin Measure(const sim::SimConfig& c) {
   t.sim = sim::Simulate(c);
   const ProfileBlock& b = t.sim.run.profiles;
   const Rig& rig = t.sim.rig_file;
-  const auto geometry = MeasureProfiles(b.size(), [&](std::size_t i) { return b.view(i); }, rig.reference_left,
-                                        rig.reference_right, {});
+  const auto geometry =
+      MeasureProfiles(b.size(), [&](std::size_t i) { return b.view(i); }, rig.reference_left, rig.reference_right, {});
   const FlowResult flow = ComputeFlow(rig, b, geometry, *t.sim.run.log);
   t.series = MakeRunSeries(rig, b, geometry, *t.sim.run.log, flow, c.extruder.rpm_to_flow, 0.0);
   return t;
@@ -88,7 +88,9 @@ Twin Measure(const sim::SimConfig& c) {
 // Each kind's standardised errors z = error / (half-width / 1.96).
 struct Kind {
   std::vector<double> z;
-  void Add(double error, double half) { z.push_back(std::isfinite(half) && half > 0 ? error / (half / 1.96) : INFINITY); }
+  void Add(double error, double half) {
+    z.push_back(std::isfinite(half) && half > 0 ? error / (half / 1.96) : INFINITY);
+  }
   int Covered() const {
     int k = 0;
     for (double v : z) k += std::abs(v) <= 1.96;
@@ -177,10 +179,11 @@ void Coverage(Covered& n) {
     const ParameterCovariance cov = Covariance(d, set, all);
     const double gain = set.back().params[2], gain_ci = 1.96 * cov.sd.back()[2];
     n.gain.Add(gain - truth_gain, gain_ci);
-    std::printf("seed %2d: delay %+.4f +- %.4f s, offset shift %+.1f [%+.1f, %+.1f] (truth %+.1f), channel gain %.5f +- "
-                "%.5f per C (truth %.5f)\n",
-                seed, delay->parameters[0].value, delay->parameters[0].ci95, p.best, p.lo, p.hi, truth_shift, gain,
-                gain_ci, truth_gain);
+    std::printf(
+        "seed %2d: delay %+.4f +- %.4f s, offset shift %+.1f [%+.1f, %+.1f] (truth %+.1f), channel gain %.5f +- "
+        "%.5f per C (truth %.5f)\n",
+        seed, delay->parameters[0].value, delay->parameters[0].ci95, p.best, p.lo, p.hi, truth_shift, gain, gain_ci,
+        truth_gain);
   }
 }
 void ExpectCoverage(const char* name, const Kind& kind) {

@@ -53,7 +53,6 @@ TEST(ExtrusionTime, ReversalGivesTheLatestPass) {
   EXPECT_NEAR(f.Find(5.5, 400.0), 4.0, 1e-9);
 }
 
-
 // The block index changes no answer: over a log that runs forward, stands
 // (whole blocks flat at a value a target hits exactly), runs backward and
 // holds whole counts, every search gives the plain walk's time bit for bit

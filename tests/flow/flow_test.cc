@@ -27,8 +27,8 @@ Measured SimulateAndMeasure(const sim::SimConfig& c) {
   m.run = sim::Simulate(c);
   const ProfileBlock& b = m.run.run.profiles;
   const Rig& rig = m.run.rig_file;
-  const auto geometry = MeasureProfiles(b.size(), [&](std::size_t i) { return b.view(i); }, rig.reference_left,
-                                        rig.reference_right, {});
+  const auto geometry =
+      MeasureProfiles(b.size(), [&](std::size_t i) { return b.view(i); }, rig.reference_left, rig.reference_right, {});
   m.flow = ComputeFlow(rig, b, geometry, *m.run.run.log);
   return m;
 }
@@ -53,7 +53,8 @@ TEST(Flow, FitsTheTrueFlowOnBeadsWithoutUndercut) {
   std::vector<double> y, yhat;
   for (const FlowSample& s : m.flow.samples) {
     if (!s.valid) continue;
-    y.push_back(InterpolateLinear(m.run.truth.flow.t_s.data(), m.run.truth.flow.flow_mm3_s.data(), m.run.truth.flow.t_s.size(), s.t_s));
+    y.push_back(InterpolateLinear(m.run.truth.flow.t_s.data(), m.run.truth.flow.flow_mm3_s.data(),
+                                  m.run.truth.flow.t_s.size(), s.t_s));
     yhat.push_back(s.flow_mm3_s);
   }
   ASSERT_GT(y.size(), 2000u);
@@ -276,7 +277,8 @@ TEST(FlowCommand, WritesTheSpecCsvAndSaysWhatIsMissing) {
   ASSERT_EQ(std::system(cmd.c_str()), 0);
   const std::string csv = test::ReadText(dir / "flow.csv");
   EXPECT_EQ(csv.rfind("t_s,encoder,surface_speed_mm_s,area_mm2,area_corrected_mm2,flow_mm3_s,screw_rpm,profile,valid,"
-                      "occlusion_bias_mm2,area_corrected_sigma_mm2,flow_sigma_mm3_s\n", 0),
+                      "occlusion_bias_mm2,area_corrected_sigma_mm2,flow_sigma_mm3_s\n",
+                      0),
             0u);
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), static_cast<long>(run.run.profiles.size()) + 1);
   EXPECT_NE(test::ReadText(dir / "out.txt").find("total volume: "), std::string::npos);

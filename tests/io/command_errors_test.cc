@@ -17,8 +17,8 @@ namespace bead {
 namespace {
 
 struct Case {
-  std::string args;                  // after `bead`, with {} for the test's folder
-  std::vector<std::string> expect;   // each part of the output
+  std::string args;                 // after `bead`, with {} for the test's folder
+  std::vector<std::string> expect;  // each part of the output
 };
 
 std::string Fill(std::string s, const std::string& dir) {
@@ -32,7 +32,8 @@ TEST(CommandErrors, EachCommandNamesTheFileAndThePlace) {
   for (int i = 0; i < 30; ++i) rows += std::to_string(0.1 * i) + ",1," + (i == 3 ? "N/A" : "x") + "\n";
   test::WriteText(dir / "text.csv", rows);
   std::string good = "t,u,y\n";
-  for (int i = 0; i < 60; ++i) good += std::to_string(0.1 * i) + "," + std::to_string(i / 10 % 2) + "," + std::to_string(i / 10 % 2) + "\n";
+  for (int i = 0; i < 60; ++i)
+    good += std::to_string(0.1 * i) + "," + std::to_string(i / 10 % 2) + "," + std::to_string(i / 10 % 2) + "\n";
   test::WriteText(dir / "good.csv", good);
   test::WriteText(dir / "broken.json", "{\"num\": [1]");
   test::WriteText(dir / "vendor.csv", "Layer,ScanID\n1,2\n");
@@ -86,7 +87,8 @@ TEST(CommandLine, BeadListsEverySubcommandAndNamesAWrongOne) {
   test::TempDir dir;
   const auto [help_status, help] = test::RunCli(dir, "--help");
   EXPECT_EQ(help_status, 0);
-  for (const char* name : {"measure", "flow", "batch", "calibrate", "simulate", "import", "export", "frames", "identify", "explain", "report"}) {
+  for (const char* name : {"measure", "flow", "batch", "calibrate", "simulate", "import", "export", "frames",
+                           "identify", "explain", "report"}) {
     EXPECT_NE(help.find(std::string("  ") + name + " "), std::string::npos) << name << "\n" << help;
     const auto [status, out] = test::RunCli(dir, std::string(name) + " --help");
     EXPECT_EQ(status, 0) << name << "\n" << out;

@@ -63,8 +63,10 @@ TEST(MatRun, TwinRunComesBackPointForPoint) {
     bool by_row, x_matrix;
   };
   // The last case is the run itself (x per profile): it goes through the command line below.
-  for (const Case c : {Case{MAT_FT_MAT5, true, false}, Case{MAT_FT_MAT5, false, false}, Case{MAT_FT_MAT73, false, true}}) {
-    SCOPED_TRACE(std::to_string(c.version) + (c.by_row ? " rows" : " columns") + (c.x_matrix ? " x matrix" : " x shared"));
+  for (const Case c :
+       {Case{MAT_FT_MAT5, true, false}, Case{MAT_FT_MAT5, false, false}, Case{MAT_FT_MAT73, false, true}}) {
+    SCOPED_TRACE(std::to_string(c.version) + (c.by_row ? " rows" : " columns") +
+                 (c.x_matrix ? " x matrix" : " x shared"));
     const std::string path = dir / "run.mat";
     WriteRunMat(path, c.version, b, c.by_row, c.x_matrix);
     const ImportedRun r = ReadMatRun(path, columns);
@@ -86,11 +88,13 @@ TEST(MatRun, TwinRunComesBackPointForPoint) {
   }
   // Through the command line: the same geometry as the archive's.
   const std::string rig = dir / "twin/rig.yaml";
-  auto [im, im_out] = test::RunCli(dir, "import " + (dir / "run.mat") +
-                                            " -o " + (dir / "back.h5") + " --time-column t --x-column X --z-column Z --encoder-column enc");
+  auto [im, im_out] = test::RunCli(dir, "import " + (dir / "run.mat") + " -o " + (dir / "back.h5") +
+                                            " --time-column t --x-column X --z-column Z --encoder-column enc");
   ASSERT_EQ(im, 0) << im_out;
-  auto [g0, o0] = test::RunCli(dir, "measure --occlusion none --rig " + rig + " " + (dir / "twin/run.h5") + " -o " + (dir / "g0.csv"));
-  auto [g1, o1] = test::RunCli(dir, "measure --occlusion none --rig " + rig + " " + (dir / "back.h5") + " -o " + (dir / "g1.csv"));
+  auto [g0, o0] = test::RunCli(
+      dir, "measure --occlusion none --rig " + rig + " " + (dir / "twin/run.h5") + " -o " + (dir / "g0.csv"));
+  auto [g1, o1] =
+      test::RunCli(dir, "measure --occlusion none --rig " + rig + " " + (dir / "back.h5") + " -o " + (dir / "g1.csv"));
   ASSERT_EQ(g0, 0) << o0;
   ASSERT_EQ(g1, 0) << o1;
   EXPECT_EQ(test::ReadText(dir / "g0.csv"), test::ReadText(dir / "g1.csv"));
@@ -108,17 +112,22 @@ TEST(MatRun, ShapesThatDoNotFitAndFractionalCountsAreNamed) {
   WriteMatrix(mat, "t5", 5, 1, {0.0, 0.1, 0.2, 0.3, 0.4});
   WriteMatrix(mat, "enc", 3, 1, {0.0, 1.5, 2.0});
   Mat_Close(mat);
-  test::ExpectRejected(path, "X: is 1 x 5: x is a vector of 4 values or a matrix shaped as 'Z' (3 x 4)",
-                       [&] { ReadMatRun(path, {"", "t", "X", "Z", "", 1.0, false}); });
-  test::ExpectRejected(path, "Z: is 3 x 4: neither side matches the 5 times of 't5'",
-                       [&] { ReadMatRun(path, {"", "t5", "X", "Z", "", 1.0, false}); });
-  test::ExpectRejected(path, "height: no such variable (its numeric variables: Z, X, X4, t, t5, enc)",
-                       [&] { ReadMatRun(path, {"", "t", "X", "height", "", 1.0, false}); });
-  test::ExpectRejected(path, "enc(2): the encoder is not a whole number",
-                       [&] { ReadMatRun(path, {"", "t", "X4", "Z", "enc", 1.0, false}); });
+  test::ExpectRejected(path, "X: is 1 x 5: x is a vector of 4 values or a matrix shaped as 'Z' (3 x 4)", [&] {
+    ReadMatRun(path, {"", "t", "X", "Z", "", 1.0, false});
+  });
+  test::ExpectRejected(path, "Z: is 3 x 4: neither side matches the 5 times of 't5'", [&] {
+    ReadMatRun(path, {"", "t5", "X", "Z", "", 1.0, false});
+  });
+  test::ExpectRejected(path, "height: no such variable (its numeric variables: Z, X, X4, t, t5, enc)", [&] {
+    ReadMatRun(path, {"", "t", "X", "height", "", 1.0, false});
+  });
+  test::ExpectRejected(path, "enc(2): the encoder is not a whole number", [&] {
+    ReadMatRun(path, {"", "t", "X4", "Z", "enc", 1.0, false});
+  });
   test::WriteText(dir / "text.mat", "not a mat file at all, only text\n");
-  test::ExpectRejected(dir / "text.mat", "not a MATLAB .mat file",
-                       [&] { ReadMatRun(dir / "text.mat", {"", "t", "X", "Z", "", 1.0, false}); });
+  test::ExpectRejected(dir / "text.mat", "not a MATLAB .mat file", [&] {
+    ReadMatRun(dir / "text.mat", {"", "t", "X", "Z", "", 1.0, false});
+  });
 }
 
 }  // namespace

@@ -54,7 +54,8 @@ TEST(PointCloud, TwinRunRoundTripsThroughPlyAndPcd) {
   ASSERT_EQ(sim, 0) << sim_out;
   const std::string rig_path = dir / "twin/rig.yaml", run = dir / "twin/run.h5";
   const Rig rig = ReadRig(rig_path);
-  auto [g0, g0_out] = test::RunCli(dir, "measure --occlusion none --rig " + rig_path + " " + run + " -o " + (dir / "g0.csv"));
+  auto [g0, g0_out] =
+      test::RunCli(dir, "measure --occlusion none --rig " + rig_path + " " + run + " -o " + (dir / "g0.csv"));
   ASSERT_EQ(g0, 0) << g0_out;
   const auto original = GeometryRows(dir / "g0.csv");
 
@@ -97,8 +98,8 @@ TEST(PointCloud, TwinRunRoundTripsThroughPlyAndPcd) {
                                               " --profile-column profile --time-column t_s --x-column x"
                                               " --z-column z_sensor --encoder-column encoder");
     ASSERT_EQ(im, 0) << im_out;
-    auto [g1, g1_out] =
-        test::RunCli(dir, "measure --occlusion none --rig " + rig_path + " " + (dir / "back.h5") + " -o " + (dir / "g1.csv"));
+    auto [g1, g1_out] = test::RunCli(
+        dir, "measure --occlusion none --rig " + rig_path + " " + (dir / "back.h5") + " -o " + (dir / "g1.csv"));
     ASSERT_EQ(g1, 0) << g1_out;
     const auto back = GeometryRows(dir / "g1.csv");
     std::size_t compared = 0, left_out = 0;
@@ -163,8 +164,9 @@ TEST(PointCloud, OrganizedPcdGivesAProfilePerRow) {
 
 TEST(PointCloud, BadCloudsAreNamed) {
   test::TempDir dir;
-  const std::string ply_head = "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float z\n"
-                               "property float line\nproperty float t\nend_header\n";
+  const std::string ply_head =
+      "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float z\n"
+      "property float line\nproperty float t\nend_header\n";
   test::WriteText(dir / "ok.ply", ply_head + "0 1 0 0\n1 1 1 1\n");
   test::ExpectRejected(dir / "ok.ply", "no field 'scan' for the scan line (the cloud has: x, z, line, t)", [&] {
     ReadPointCloud(dir / "ok.ply", {"scan", "t", "x", "z", "", 1.0, false});
@@ -189,9 +191,8 @@ TEST(PointCloud, BadCloudsAreNamed) {
   test::ExpectRejected(dir / "cut.pcd", "not a PCD file PCL can read", [&] {
     ReadPointCloud(dir / "cut.pcd", {"", "t", "x", "z", "", 1.0, false});
   });
-  test::ExpectRejected(dir / "out.xyz", "a point cloud is written as .ply or .pcd", [&] {
-    WritePointCloud(dir / "out.xyz", WheelCloud{});
-  });
+  test::ExpectRejected(dir / "out.xyz", "a point cloud is written as .ply or .pcd",
+                       [&] { WritePointCloud(dir / "out.xyz", WheelCloud{}); });
 }
 
 }  // namespace

@@ -41,9 +41,18 @@ TEST(RigRules, EachRuleNamesItsKey) {
       {"wheel.eccentricity_mm", [](Rig& r) { r.wheel_eccentricity_mm = -0.1; }},
       {"wheel.eccentricity_phase_deg", [](Rig& r) { r.wheel_eccentricity_phase_deg = 400; }},
       {"offset.counts", [](Rig& r) { r.offset_counts = INFINITY; }},
-      {"sensor.reference_areas_mm[0]", [](Rig& r) { r.reference_left = {-12.0, -24.0}; }},
-      {"sensor.reference_areas_mm", [](Rig& r) { r.reference_right = {-13.0, 24.0}; }},
-      {"sensor.laser_origin_mm", [](Rig& r) { r.laser_origin = LaserOrigin{NAN, 95.0}; }},
+      {"sensor.reference_areas_mm[0]",
+       [](Rig& r) {
+         r.reference_left = {-12.0, -24.0};
+       }},
+      {"sensor.reference_areas_mm",
+       [](Rig& r) {
+         r.reference_right = {-13.0, 24.0};
+       }},
+      {"sensor.laser_origin_mm",
+       [](Rig& r) {
+         r.laser_origin = LaserOrigin{NAN, 95.0};
+       }},
   };
   for (const auto& c : cases) {
     Rig r = Good();

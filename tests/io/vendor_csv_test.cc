@@ -19,7 +19,8 @@
 namespace bead {
 namespace {
 
-const std::string kReal = std::string(BEAD_SOURCE_DIR) + "/testdata/realdata/bead-observer/Representative_Layer_raw_points.csv";
+const std::string kReal =
+    std::string(BEAD_SOURCE_DIR) + "/testdata/realdata/bead-observer/Representative_Layer_raw_points.csv";
 
 ImportColumns RealColumns() { return {"ScanID", "Timestamp", "X", "Z", "", 1.0, true}; }
 
@@ -82,8 +83,8 @@ TEST(VendorCsv, RealExportWithoutReferenceSurfaceGivesNoNumber) {
     for (std::size_t k = 0; k < v.z_mm.size(); ++k) points += std::isfinite(v.z_mm[k]);
     EXPECT_FALSE(geometry[i].valid()) << "profile " << i;
     EXPECT_TRUE(std::isnan(geometry[i].area_mm2)) << "profile " << i;
-    EXPECT_EQ(geometry[i].status, points < defaults.bead.min_profile_points ? ProfileStatus::kTooFewPoints
-                                                                            : ProfileStatus::kNoReference)
+    EXPECT_EQ(geometry[i].status,
+              points < defaults.bead.min_profile_points ? ProfileStatus::kTooFewPoints : ProfileStatus::kNoReference)
         << "profile " << i << " with " << points << " points";
   }
 }
@@ -118,7 +119,7 @@ TEST(VendorCsv, EncoderColumnAndTimeScaleAreUsed) {
   EXPECT_EQ(b.encoder, (std::vector<int64_t>{100, 140}));
   EXPECT_DOUBLE_EQ(b.t_s[0], 0.010);
   EXPECT_DOUBLE_EQ(b.t_s[1], 0.015);
-  EXPECT_FLOAT_EQ(b.view(0).z_mm[1], 0.6f);  // height as it is
+  EXPECT_FLOAT_EQ(b.view(0).z_mm[1], 0.6f);    // height as it is
   EXPECT_TRUE(std::isnan(b.view(1).z_mm[1]));  // an empty field: no point
   EXPECT_TRUE(std::isnan(b.view(1).z_mm[2]));  // padding
 }
@@ -165,8 +166,7 @@ TEST(VendorCsv, CommandLineImportsMeasuresAndRefusesFlow) {
   auto [measured, measure_out] = run("measure --rig " + (dir / "rig.yaml") + " " + h5 + " -o " + (dir / "g.csv"));
   ASSERT_EQ(measured, 0) << measure_out;
   EXPECT_NE(measure_out.find("399 profiles, 0 valid"), std::string::npos) << measure_out;
-  EXPECT_NE(measure_out.find("no profile has enough points in the reference areas"), std::string::npos)
-      << measure_out;
+  EXPECT_NE(measure_out.find("no profile has enough points in the reference areas"), std::string::npos) << measure_out;
   auto [flowed, flow_out] = run("flow --rig " + (dir / "rig.yaml") + " " + h5 + " -o " + (dir / "f.csv"));
   EXPECT_EQ(flowed, 1) << flow_out;
   EXPECT_NE(flow_out.find(h5 + ": /profiles/encoder: holds no readings"), std::string::npos) << flow_out;

@@ -19,9 +19,9 @@ namespace bead::model {
 namespace {
 
 struct Outcome {
-  double rms_rel = 0;       // RMS (A - target) / target
-  double tick_change = 0;   // RMS relative change of Q over one tick
-  double mean_flow = 0;     // mm^3/s (the same whatever the wheel does)
+  double rms_rel = 0;      // RMS (A - target) / target
+  double tick_change = 0;  // RMS relative change of Q over one tick
+  double mean_flow = 0;    // mm^3/s (the same whatever the wheel does)
 };
 
 // The wheel fed forward, or (constant_flow > 0) held at the speed that lays
@@ -52,14 +52,17 @@ Outcome Lay(bool feed_forward, unsigned seed, double constant_flow) {
     rpm[i] = std::max(0.0, to_rpm.Step(i >= lag(v2r.delay_s) ? cmd[i - lag(v2r.delay_s)] : 0.0));
     q[i] = std::max(0.0, to_flow.Step(i >= lag(r2q.delay_s) ? rpm[i - lag(r2q.delay_s)] : 0.0));
     if (i % static_cast<std::size_t>(per_tick) == 0) {
-      wheel_v = feed_forward ? ff.Step(cmd[i])
-                             : constant_flow / target / wheel.radius_mm * 60 / (2 * std::numbers::pi) / wheel.gain_rpm_per_v;
-      if (std::isfinite(last_tick_q) && t > 5.0 && last_tick_q > 0) sum_change += std::pow((q[i] - last_tick_q) / last_tick_q, 2), ++ticks;
+      wheel_v = feed_forward
+                    ? ff.Step(cmd[i])
+                    : constant_flow / target / wheel.radius_mm * 60 / (2 * std::numbers::pi) / wheel.gain_rpm_per_v;
+      if (std::isfinite(last_tick_q) && t > 5.0 && last_tick_q > 0)
+        sum_change += std::pow((q[i] - last_tick_q) / last_tick_q, 2), ++ticks;
       last_tick_q = q[i];
     }
     wheel_cmd[i] = wheel_v;
     const double a = std::exp(-dt / wheel.tau_s);
-    wheel_rpm = a * wheel_rpm + (1 - a) * wheel.gain_rpm_per_v * (i >= lag(wheel.delay_s) ? wheel_cmd[i - lag(wheel.delay_s)] : 0.0);
+    wheel_rpm = a * wheel_rpm +
+                (1 - a) * wheel.gain_rpm_per_v * (i >= lag(wheel.delay_s) ? wheel_cmd[i - lag(wheel.delay_s)] : 0.0);
     const double v = wheel_rpm * 2 * std::numbers::pi / 60 * wheel.radius_mm;
     if (t > 5.0 && v > 1.0) {  // after the start-up
       const double area = q[i] / v;
@@ -78,9 +81,11 @@ TEST(FeedForward, HoldsTheAreaFarBetterThanAConstantWheel) {
     const Outcome ff = Lay(true, seed, 0.0), constant = Lay(false, seed, ff.mean_flow);
     std::printf("seed %u: RMS area error %.3f %% fed forward, %.3f %% constant wheel; flow change per tick %.3f %%\n",
                 seed, 100 * ff.rms_rel, 100 * constant.rms_rel, 100 * ff.tick_change);
-    EXPECT_LT(ff.rms_rel, constant.rms_rel / 6.0) << "seed " << seed << ": " << ff.rms_rel << " vs " << constant.rms_rel;
+    EXPECT_LT(ff.rms_rel, constant.rms_rel / 6.0)
+        << "seed " << seed << ": " << ff.rms_rel << " vs " << constant.rms_rel;
     // A tick of hold and a tick of delay rounding: about the flow's change over a tick.
-    EXPECT_LT(ff.rms_rel, 2.0 * ff.tick_change) << "seed " << seed << ": " << ff.rms_rel << ", tick change " << ff.tick_change;
+    EXPECT_LT(ff.rms_rel, 2.0 * ff.tick_change)
+        << "seed " << seed << ": " << ff.rms_rel << ", tick change " << ff.tick_change;
   }
 }
 

@@ -326,7 +326,8 @@ TEST(IdentifyCommand, ReadsAnyCsvAndWritesTheModel) {
   test::TempDir dir;
   std::string csv = "time,rpm,weld_width,other\n";
   for (std::size_t i = 0; i < d.t.size(); ++i)
-    csv += std::to_string(d.t[i]) + "," + std::to_string(d.u[i]) + "," + (i % 97 == 5 ? std::string() : std::to_string(d.y[i])) + ",x\n";
+    csv += std::to_string(d.t[i]) + "," + std::to_string(d.u[i]) + "," +
+           (i % 97 == 5 ? std::string() : std::to_string(d.y[i])) + ",x\n";
   test::WriteText(dir / "data.csv", csv);
   const std::string cmd = std::string(BEAD_CLI) + " identify " + (dir / "data.csv") +
                           " --time time --input rpm --output weld_width --poles 2 --zeros 2 --max-delay-s 0.5 -o " +

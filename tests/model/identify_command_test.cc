@@ -74,7 +74,8 @@ void WriteMat(const std::string& path, mat_ft version, const WeldRun& r) {
   Mat_VarWrite(mat, t, MAT_COMPRESSION_NONE);
   Mat_VarFree(t);
   std::size_t cdims[2] = {1, 1};
-  matvar_t* cells[1] = {Mat_VarCreate(nullptr, MAT_C_DOUBLE, MAT_T_DOUBLE, 2, cdims, const_cast<double*>(grid.data()), 0)};
+  matvar_t* cells[1] = {
+      Mat_VarCreate(nullptr, MAT_C_DOUBLE, MAT_T_DOUBLE, 2, cdims, const_cast<double*>(grid.data()), 0)};
   matvar_t* cell = Mat_VarCreate("state_struct", MAT_C_CELL, MAT_T_CELL, 2, cdims, cells, 0);
   Mat_VarWrite(mat, cell, MAT_COMPRESSION_NONE);
   Mat_VarFree(cell);
@@ -116,14 +117,17 @@ TEST(IdentifyCommand, ReadsMatlabFilesWithTwoClocks) {
   test::TempDir dir;
   const WeldRun r = MakeRun(3);
   WriteRun(dir, "c", 3);
-  auto [cs, cout_] = test::RunCli(dir, "identify " + (dir / "c_w.csv") + " --time t --output w --input wfs --input-file " +
-                                          (dir / "c_wfs.csv") + " --structure P1D -o " + (dir / "csv.json"));
+  auto [cs, cout_] =
+      test::RunCli(dir, "identify " + (dir / "c_w.csv") + " --time t --output w --input wfs --input-file " +
+                            (dir / "c_wfs.csv") + " --structure P1D -o " + (dir / "csv.json"));
   ASSERT_EQ(cs, 0) << cout_;
   const auto from_csv = nlohmann::json::parse(test::ReadText(dir / "csv.json"));
   for (auto [version, name] : {std::pair{MAT_FT_MAT5, "v5.mat"}, std::pair{MAT_FT_MAT73, "v73.mat"}}) {
     WriteMat(dir / name, version, r);
-    auto [status, out] = test::RunCli(dir, "identify " + (dir / name) + " --input wfs --input-time wfs_time --output width "
-                                           "--output-time width_time --structure P1D -o " + (dir / "mat.json"));
+    auto [status, out] = test::RunCli(dir, "identify " + (dir / name) +
+                                               " --input wfs --input-time wfs_time --output width "
+                                               "--output-time width_time --structure P1D -o " +
+                                               (dir / "mat.json"));
     ASSERT_EQ(status, 0) << out;
     EXPECT_NE(out.find("skipped what is no numeric vector"), std::string::npos) << out;
     EXPECT_NE(out.find("calibration: a matrix"), std::string::npos) << out;
@@ -137,14 +141,18 @@ TEST(IdentifyCommand, ReadsMatlabFilesWithTwoClocks) {
     EXPECT_NEAR(k, from_csv["num"][0].get<double>() / from_csv["den"].back().get<double>(), 1e-4) << j.dump();
     EXPECT_NEAR(j["delay_s"].get<double>(), from_csv["delay_s"].get<double>(), 1e-6);
   }
-  auto [ex, ex_out] = test::RunCli(dir, "explain " + (dir / "v73.mat") + " --input wfs --input-time wfs_time --output "
-                                        "width --output-time width_time --structure P1D -o " + (dir / "explain.json"));
+  auto [ex, ex_out] = test::RunCli(dir, "explain " + (dir / "v73.mat") +
+                                            " --input wfs --input-time wfs_time --output "
+                                            "width --output-time width_time --structure P1D -o " +
+                                            (dir / "explain.json"));
   EXPECT_EQ(ex, 0) << ex_out;
   EXPECT_NE(ex_out.find("held at each of the output's times"), std::string::npos) << ex_out;
-  auto [bad, bad_out] = test::RunCli(dir, "identify " + (dir / "v5.mat") + " --input wfs --output width --time width_time");
+  auto [bad, bad_out] =
+      test::RunCli(dir, "identify " + (dir / "v5.mat") + " --input wfs --output width --time width_time");
   EXPECT_NE(bad, 0);
   EXPECT_NE(bad_out.find("different clocks"), std::string::npos) << bad_out;
-  auto [missing, missing_out] = test::RunCli(dir, "identify " + (dir / "v5.mat") + " --input feed --output width --time width_time");
+  auto [missing, missing_out] =
+      test::RunCli(dir, "identify " + (dir / "v5.mat") + " --input feed --output width --time width_time");
   EXPECT_NE(missing, 0);
   EXPECT_NE(missing_out.find("no numeric vector 'feed' (vectors: width_time, width, wfs_time, wfs)"), std::string::npos)
       << missing_out;

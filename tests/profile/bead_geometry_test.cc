@@ -139,8 +139,7 @@ TEST(BeadGeometry, NoiseDropoutsAndSpikes) {
       const double n = shape.width / dx, n_ref = g.reference.points_used;
       const double noise_area = 5.0 * noise.z_sigma_mm * (dx * std::sqrt(n) + shape.width / std::sqrt(n_ref));
       const double shadow = shape.apex_curvature == 0.0 ? shape.height * shape.height * std::tan(1.5 * kDeg) / 2 : 0.0;
-      EXPECT_NEAR(g.area_mm2, shape.area + shadow, shape.height * gap + noise_area)
-          << shape.name << " seed " << seed;
+      EXPECT_NEAR(g.area_mm2, shape.area + shadow, shape.height * gap + noise_area) << shape.name << " seed " << seed;
       EXPECT_NEAR(g.width_mm, shape.width + (shadow > 0 ? shape.height * std::tan(1.5 * kDeg) : 0.0), 2 * gap)
           << shape.name << " seed " << seed;
       EXPECT_NEAR(g.height_mm, shape.height, shape.apex_curvature * 2 * gap * gap + 5 * noise.z_sigma_mm)
@@ -202,7 +201,8 @@ TEST(BeadGeometry, DropoutsInPlaceOrCopiedAgree) {
   noise.spike_mm = 2.0;
   const double width = 9.0, height = 3.0;
   for (unsigned seed = 1; seed <= 20; ++seed) {
-    const auto in_place = test::Render(sim::ParabolaOutline(width, height), {0.02, 0.0, 40.0}, test::UniformGrid(640), noise, seed);
+    const auto in_place =
+        test::Render(sim::ParabolaOutline(width, height), {0.02, 0.0, 40.0}, test::UniformGrid(640), noise, seed);
     const BeadGeometry a = Measure(in_place);
     ASSERT_TRUE(a.valid()) << "seed " << seed;
 
@@ -284,8 +284,8 @@ TEST(BeadGeometry, TheBeadIsLookedForBetweenTheAreas) {
   const double dx = 50.0 / 639.0;
   // Bead 6 x 2 (12 mm^2); block 20 mm tall from x = 24.3 to the profile's
   // end (0.7 x 20 = 14 mm^2 seen): the larger run, were it looked at.
-  const sim::Outline with_block = {{-3.0, 0.0}, {-3.0, 2.0}, {3.0, 2.0}, {3.0, 0.0}, {24.3, 0.0}, {24.3, 20.0},
-                                   {26.0, 20.0}};
+  const sim::Outline with_block = {{-3.0, 0.0}, {-3.0, 2.0},  {3.0, 2.0},  {3.0, 0.0},
+                                   {24.3, 0.0}, {24.3, 20.0}, {26.0, 20.0}};
   const BeadGeometry g = Measure(test::Render(with_block, {}, grid));
   ASSERT_TRUE(g.valid()) << StatusName(g.status);
   EXPECT_NEAR(g.area_mm2, 12.0, 2.0 * dx);  // each edge errs by at most H dx / 2

@@ -59,7 +59,7 @@ TEST(ProfileProcessor, AllocatesNothingPerProfile) {
   }
   const long allocations = g_allocations.load() - before;
   EXPECT_EQ(allocations, 0);
-  EXPECT_GT(valid, 700);   // the test exercised the full path ...
+  EXPECT_GT(valid, 700);    // the test exercised the full path ...
   EXPECT_GE(invalid, 150);  // ... and the invalid ones
   // The counter works: a vector allocates.
   const long probe = g_allocations.load();

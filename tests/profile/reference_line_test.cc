@@ -88,7 +88,8 @@ TEST(ReferenceLine, RobustStartHoldsOverThousandsOfProfiles) {
     const double n = line.points_used;
     const bool ok = line.ok && std::abs(line.intercept_mm - 12.0) < 5 * sigma / std::sqrt(n) &&
                     std::abs(line.residual_rms_mm - sigma) < 0.25 * sigma;
-    if (!ok) ++bad, ADD_FAILURE() << "seed " << seed << ": intercept " << line.intercept_mm << " rms " << line.residual_rms_mm;
+    if (!ok)
+      ++bad, ADD_FAILURE() << "seed " << seed << ": intercept " << line.intercept_mm << " rms " << line.residual_rms_mm;
   }
   EXPECT_EQ(bad, 0);
 }

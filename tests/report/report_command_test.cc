@@ -24,11 +24,12 @@ TEST(ReportCommand, OnePageWithEverySectionAndNothingOutside) {
   auto [sim, sim_out] = test::RunCli(dir, "simulate " + (dir / "sim.yaml") + " -o " + (dir / "twin"));
   ASSERT_EQ(sim, 0) << sim_out;
   const std::string twin = dir / "twin";
-  auto [ex, ex_out] = test::RunCli(dir, "explain --occlusion none --rig " + twin + "/rig.yaml " + twin + "/run.h5 -o " +
-                                            (dir / "explain.json"));
+  auto [ex, ex_out] = test::RunCli(
+      dir, "explain --occlusion none --rig " + twin + "/rig.yaml " + twin + "/run.h5 -o " + (dir / "explain.json"));
   ASSERT_EQ(ex, 0) << ex_out;
-  auto [status, out] = test::RunCli(dir, "report --rig " + twin + "/rig.yaml " + twin + "/run.h5 --pins " + twin +
-                                             "/pins.h5 --explain " + (dir / "explain.json") + " -o " + (dir / "r.html"));
+  auto [status, out] =
+      test::RunCli(dir, "report --rig " + twin + "/rig.yaml " + twin + "/run.h5 --pins " + twin +
+                            "/pins.h5 --explain " + (dir / "explain.json") + " -o " + (dir / "r.html"));
   ASSERT_EQ(status, 0) << out;
   const std::string page = test::ReadText(dir / "r.html");
   ASSERT_EQ(page.rfind("<!DOCTYPE html>", 0), 0u);
@@ -41,7 +42,8 @@ TEST(ReportCommand, OnePageWithEverySectionAndNothingOutside) {
   EXPECT_NE(page.find("profiles</td><td>801</td>"), std::string::npos);  // 4 s at 200 Hz, both ends
   EXPECT_NE(page.find("scans used"), std::string::npos);
 
-  auto [imp, imp_out] = test::RunCli(dir, "report --rig " + twin + "/rig.yaml " + twin + "/run.h5 -o " + (dir / "r2.html"));
+  auto [imp, imp_out] =
+      test::RunCli(dir, "report --rig " + twin + "/rig.yaml " + twin + "/run.h5 -o " + (dir / "r2.html"));
   ASSERT_EQ(imp, 0) << imp_out;
   // A page without pins or explain has neither section.
   const std::string page2 = test::ReadText(dir / "r2.html");
@@ -50,7 +52,8 @@ TEST(ReportCommand, OnePageWithEverySectionAndNothingOutside) {
 
   // The drawing fails (a python that cannot run the script): an error, and no page.
   const std::string env_cmd = "BEAD_PYTHON=/bin/false " + std::string(BEAD_CLI) + " report --rig " + twin +
-                              "/rig.yaml " + twin + "/run.h5 -o " + (dir / "r3.html") + " >" + (dir / "o3.txt") + " 2>&1";
+                              "/rig.yaml " + twin + "/run.h5 -o " + (dir / "r3.html") + " >" + (dir / "o3.txt") +
+                              " 2>&1";
   EXPECT_NE(std::system(env_cmd.c_str()), 0);
   EXPECT_NE(test::ReadText(dir / "o3.txt").find("r3.html: the report script"), std::string::npos)
       << test::ReadText(dir / "o3.txt");

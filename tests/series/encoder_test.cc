@@ -20,7 +20,8 @@ TEST(Encoder, UnwrapsWrapAndDirection) {
   std::vector<double> truth;
   for (int i = 0; i < 2000; ++i) truth.push_back(1000.0 + 13.37 * i);  // 26,700 counts: 6 wraps
   const EncoderTrack t = UnwrapEncoder(Raw(truth, spec), spec);
-  for (std::size_t i = 0; i < truth.size(); ++i) EXPECT_NEAR(t.counts[i] - t.counts[0], std::floor(truth[i]) - std::floor(truth[0]), 1e-9);
+  for (std::size_t i = 0; i < truth.size(); ++i)
+    EXPECT_NEAR(t.counts[i] - t.counts[0], std::floor(truth[i]) - std::floor(truth[0]), 1e-9);
   EXPECT_EQ(t.missed_reads + t.glitches, 0);
   // The streaming unwrapper agrees.
   EncoderUnwrapper stream(spec);
@@ -38,9 +39,9 @@ TEST(Encoder, RepairsMissedReadsAndGlitches) {
     truth.push_back(5e5 + 10.0 * i);
   }
   auto raw = Raw(truth, spec);
-  raw[100] = raw[99];         // missed read
-  raw[300] = raw[300] + 7777; // glitch
-  raw[301] = raw[301];        // (next read fine)
+  raw[100] = raw[99];          // missed read
+  raw[300] = raw[300] + 7777;  // glitch
+  raw[301] = raw[301];         // (next read fine)
   const EncoderTrack track = UnwrapEncoder(raw, spec, t);
   EXPECT_EQ(track.missed_reads, 1);
   EXPECT_EQ(track.glitches, 1);

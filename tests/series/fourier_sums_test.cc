@@ -42,8 +42,8 @@ TEST(UnevenFourierSums, AreTheDirectSums) {
     const std::size_t n = 3000;
     std::vector<double> x(n), a(n), b(n);
     double scale = 0;
-    for (std::size_t i = 0; i < n; ++i) x[i] = where(rng), a[i] = normal(rng), b[i] = normal(rng),
-                                        scale += std::abs(a[i]) + std::abs(b[i]);
+    for (std::size_t i = 0; i < n; ++i)
+      x[i] = where(rng), a[i] = normal(rng), b[i] = normal(rng), scale += std::abs(a[i]) + std::abs(b[i]);
     const FourierSums f = UnevenFourierSums(x, a, b, K);
     ASSERT_EQ(f.a.size(), K + 1);
     for (std::size_t k = 0; k <= K; k += K / 20 + 1) {

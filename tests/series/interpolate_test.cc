@@ -48,7 +48,8 @@ TEST(Interpolate, NearGivesInterpolateLinearsValueBitForBit) {
     double x = 0.002 * i + jitter(rng);  // backward steps now and then
     if (i == 700) x = std::nan("");
     const double a = InterpolateLinear(t, y, x), b = InterpolateLinearNear(t, y, x, hint);
-    ASSERT_TRUE(std::memcmp(&a, &b, sizeof a) == 0 || (std::isnan(a) && std::isnan(b))) << x << ": " << a << " vs " << b;
+    ASSERT_TRUE(std::memcmp(&a, &b, sizeof a) == 0 || (std::isnan(a) && std::isnan(b)))
+        << x << ": " << a << " vs " << b;
   }
 }
 

@@ -19,8 +19,8 @@ void ExpectNear(const std::vector<double>& got, const std::vector<double>& want,
 // Values from the issue (SciPy savgol_filter), to 1e-12.
 TEST(Savgol, InterpMatchesScipy) {
   SavgolOptions o;
-  ExpectNear(SavgolFilter(kX, o), {1.657142857143, 3.171428571429, 3.542857142857, 2.857142857143, 0.657142857143,
-                                   0.171428571429, 1, 4, 9},
+  ExpectNear(SavgolFilter(kX, o),
+             {1.657142857143, 3.171428571429, 3.542857142857, 2.857142857143, 0.657142857143, 0.171428571429, 1, 4, 9},
              1e-12);
   o.deriv = 1;
   o.delta = 0.5;
@@ -107,7 +107,7 @@ TEST(Savgol, RejectsEvenWindowsAndShortSeries) {
 TEST(Savgol, GapsDoNotSpreadNaN) {
   std::vector<double> x;
   for (int i = 0; i < 60; ++i) x.push_back(0.5 * i + 1);
-  x[10] = x[11] = NAN;               // short gap: filled
+  x[10] = x[11] = NAN;                       // short gap: filled
   for (int i = 30; i < 45; ++i) x[i] = NAN;  // long gap: splits
   SavgolOptions o;
   o.window = 7;

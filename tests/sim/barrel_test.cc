@@ -47,7 +47,8 @@ TEST(Barrel, BangBangCyclesWithThePeriodItsHeatBalanceGives) {
                                           std::log((hi - c.ambient_c) / (lo - c.ambient_c)));
   EXPECT_NEAR(period, expected, 0.1 * expected) << "ramp-lag estimate " << expected << " s";
   double min = 1e9, max = -1e9;
-  for (std::size_t i = static_cast<std::size_t>(40 / dt); i < r.size(); ++i) min = std::min(min, r[i]), max = std::max(max, r[i]);
+  for (std::size_t i = static_cast<std::size_t>(40 / dt); i < r.size(); ++i)
+    min = std::min(min, r[i]), max = std::max(max, r[i]);
   // The reading turns just past the band (the wall's lag behind the duty).
   EXPECT_LT(min, c.setpoint_c - 0.5 * c.band_c);
   EXPECT_GT(min, c.setpoint_c - 0.5 * c.band_c - 1.0);

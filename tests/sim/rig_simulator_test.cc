@@ -42,7 +42,8 @@ TEST(RigSimulator, VolumePastTheLaserIsTheIntegralOfFlow) {
   double volume_flow = 0.0;
   for (std::size_t j = 1; j < t.flow.t_s.size(); ++j) {
     const double a = t.flow.t_s[j - 1], b = t.flow.t_s[j];
-    if (a >= first && b <= last + 1.0 / c.sensor.rate_hz) volume_flow += 0.5 * (t.flow.flow_mm3_s[j] + t.flow.flow_mm3_s[j - 1]) * (b - a);
+    if (a >= first && b <= last + 1.0 / c.sensor.rate_hz)
+      volume_flow += 0.5 * (t.flow.flow_mm3_s[j] + t.flow.flow_mm3_s[j - 1]) * (b - a);
   }
   ASSERT_GT(volume_flow, 1000.0);
   EXPECT_NEAR(volume_profiles / volume_flow, 1.0, 1e-3);
@@ -187,13 +188,16 @@ TEST(SimConfig, ErrorsNameTheKeyAndLine) {
     ParseSimConfig("seed: 3\nbead:\n  shape: blob\n", "c.yaml");
     ADD_FAILURE();
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("c.yaml: line 3: bead.shape: is 'blob', expected one of"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("c.yaml: line 3: bead.shape: is 'blob', expected one of"), std::string::npos)
+        << e.what();
   }
   try {
     ParseSimConfig("sensor:\n  rate_hz: -5\n", "c.yaml");
     ADD_FAILURE();
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("line 2: sensor.rate_hz: must be a finite number in [1, 100000]"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("line 2: sensor.rate_hz: must be a finite number in [1, 100000]"),
+              std::string::npos)
+        << e.what();
   }
   EXPECT_THROW(ParseSimConfig("sensr: {}\n", "c.yaml"), Error);
   EXPECT_THROW(ParseSimConfig("extruder: {voltage_to_rpm: {num: [1, 2, 3], den: [1, 1]}}\n", "c.yaml"), Error);

@@ -23,7 +23,8 @@ struct Synthetic {
 
 inline std::vector<float> UniformGrid(int points, double x0 = -25.0, double x1 = 25.0) {
   std::vector<float> x(static_cast<std::size_t>(points));
-  for (int i = 0; i < points; ++i) x[static_cast<std::size_t>(i)] = static_cast<float>(x0 + (x1 - x0) * i / (points - 1));
+  for (int i = 0; i < points; ++i)
+    x[static_cast<std::size_t>(i)] = static_cast<float>(x0 + (x1 - x0) * i / (points - 1));
   return x;
 }
 

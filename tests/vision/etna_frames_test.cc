@@ -78,8 +78,8 @@ TEST(EtnaFrames, TheStripeIsTheStripeNeverASquare) {
       const double v = across.centres[static_cast<std::size_t>(u)];
       if (std::isnan(v)) continue;
       const bool on_line = std::abs(u - (a + b * v)) < 3.0 * std::max(1.0, std::abs(b));
-      const bool in_board = cv::pointPolygonTest(hull, cv::Point2f(static_cast<float>(u), static_cast<float>(v)), true) >
-                            -square_px;
+      const bool in_board =
+          cv::pointPolygonTest(hull, cv::Point2f(static_cast<float>(u), static_cast<float>(v)), true) > -square_px;
       on_squares += in_board && !on_line;
     }
     // Frame 6's stripe jogs by 10 to 60 px where it crosses the board's
@@ -98,7 +98,8 @@ TEST(EtnaFrames, CalibrateLaserAndMapTheFrames) {
       test::RunCli(dir, "calibrate laser --board 8x7 --square-mm 10" + Frames() + " -o " + (dir / "sensor.yaml"));
   ASSERT_EQ(status, 0) << out;
   std::smatch m;
-  ASSERT_TRUE(std::regex_search(out, m, std::regex(R"(reprojection_rms_px=([0-9.]+) plane_rms_mm=([0-9.]+) images_used=(\d+)/8)")))
+  ASSERT_TRUE(std::regex_search(
+      out, m, std::regex(R"(reprojection_rms_px=([0-9.]+) plane_rms_mm=([0-9.]+) images_used=(\d+)/8)")))
       << out;
   EXPECT_LT(std::stod(m[1]), 1.0) << out;
   EXPECT_GE(std::stoi(m[3]), 6) << out;
@@ -144,8 +145,8 @@ TEST(EtnaFrames, BadBoardsAndImagesAreNamed) {
   // A board the frames do not show (9 x 7 squares); two frames (a failed
   // search tries four ways: half and full size, with the stripe and
   // without).
-  auto [wrong, wrong_out] = test::RunCli(dir, "calibrate laser --board 9x7 --square-mm 10 " + kDir + "frame0001.png " +
-                                                  kDir + "frame0002.png");
+  auto [wrong, wrong_out] = test::RunCli(
+      dir, "calibrate laser --board 9x7 --square-mm 10 " + kDir + "frame0001.png " + kDir + "frame0002.png");
   EXPECT_EQ(wrong, 1);
   EXPECT_NE(wrong_out.find("found in 0 image(s)"), std::string::npos) << wrong_out;
 }

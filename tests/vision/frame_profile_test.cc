@@ -60,8 +60,9 @@ TEST(LaserPlaneMap, RejectsTooFewLinedUpOrWrongPoints) {
     }
     return std::string("accepted");
   };
-  EXPECT_NE(message([&] { FitLaserPlaneMap({four_px.begin(), four_px.end() - 1}, {four_mm.begin(), four_mm.end() - 1}); })
-                .find("needs 4 or more"),
+  EXPECT_NE(message([&] {
+              FitLaserPlaneMap({four_px.begin(), four_px.end() - 1}, {four_mm.begin(), four_mm.end() - 1});
+            }).find("needs 4 or more"),
             std::string::npos);
   const std::vector<cv::Point2d> line = {{0, 0}, {10, 10}, {20, 20}, {30, 30}, {40, 40}};
   std::vector<cv::Point2d> line_mm;

@@ -38,17 +38,16 @@ TEST(FramesCommand, PngFramesMeasureAsTheBead) {
     ASSERT_TRUE(cv::imwrite(path, frame));
     frames += " " + path;
   }
-  auto [read, read_out] = RunCli(dir, "frames --plane " + (dir / "plane.yaml") + " --rate-hz 200" + frames + " -o " +
-                                           (dir / "run.h5"));
+  auto [read, read_out] =
+      RunCli(dir, "frames --plane " + (dir / "plane.yaml") + " --rate-hz 200" + frames + " -o " + (dir / "run.h5"));
   ASSERT_EQ(read, 0) << read_out;
   EXPECT_NE(read_out.find("3 frames of 1251 lines: 3753 stripe points"), std::string::npos) << read_out;
   const RunArchive run = ReadRunArchive(dir / "run.h5");
   EXPECT_TRUE(EncoderAbsent(run));
   EXPECT_EQ(run.profiles.t_s, (std::vector<double>{0.0, 0.005, 0.010}));
 
-  auto [measured, measure_out] =
-      RunCli(dir, "measure --occlusion none --rig " + (dir / "rig.yaml") + " " + (dir / "run.h5") + " -o " +
-                       (dir / "g.csv"));
+  auto [measured, measure_out] = RunCli(
+      dir, "measure --occlusion none --rig " + (dir / "rig.yaml") + " " + (dir / "run.h5") + " -o " + (dir / "g.csv"));
   ASSERT_EQ(measured, 0) << measure_out;
   CsvReader csv(dir / "g.csv");
   csv.Header({"profile", "t_s", "encoder", "area_mm2", "width_mm", "height_mm"}, "geometry CSV");
@@ -70,8 +69,8 @@ TEST(FramesCommand, UnreadableFramesAndBadPlaneFilesNameTheFile) {
   // `bead frames` on one frame with the plane file `plane`.
   auto frames = [&](const std::string& plane, const std::string& frame) {
     test::WriteText(dir / "plane.yaml", plane);
-    return RunCli(dir, "frames --plane " + (dir / "plane.yaml") + " --rate-hz 10 " + (dir / frame) + " -o " +
-                           (dir / "run.h5"));
+    return RunCli(
+        dir, "frames --plane " + (dir / "plane.yaml") + " --rate-hz 10 " + (dir / frame) + " -o " + (dir / "run.h5"));
   };
   const std::string three = "points:\n  - [0, 0, 0, 0]\n  - [100, 0, 4, 0]\n  - [0, 100, 0, -1.5]\n";
   auto [few, few_out] = frames(three, "frame.png");

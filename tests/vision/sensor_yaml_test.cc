@@ -18,7 +18,8 @@ SensorModel Example() {
   s.camera.image_size = cv::Size(1280, 1024);
   const cv::Vec3d n = cv::normalize(cv::Vec3d(-0.8716, -0.2244, -0.4358));
   s.plane = cv::Vec4d(n[0], n[1], n[2], 159.41341955);
-  s.map.mm_from_px = cv::Matx33d(-0.0982678, 0.468046, -152.524, 0.876790, 0.221846, -910.309, 0.00262032, 0.000672566, 1);
+  s.map.mm_from_px =
+      cv::Matx33d(-0.0982678, 0.468046, -152.524, 0.876790, 0.221846, -910.309, 0.00262032, 0.000672566, 1);
   s.stripe.axis = StripeAxis::kColumns;
   s.stripe.method = StripeMethod::kSteger;
   s.stripe.rule = PeakRule::kNearest;
@@ -35,7 +36,8 @@ TEST(SensorYaml, WhatIsWrittenIsRead) {
     EXPECT_NEAR(r.camera.matrix.val[i], s.camera.matrix.val[i], 1e-12 * std::abs(s.camera.matrix.val[i])) << i;
     EXPECT_NEAR(r.map.mm_from_px.val[i], s.map.mm_from_px.val[i], 1e-12 * std::abs(s.map.mm_from_px.val[i])) << i;
   }
-  for (int i = 0; i < 5; ++i) EXPECT_NEAR(r.camera.distortion[i], s.camera.distortion[i], 1e-12 * std::abs(s.camera.distortion[i]));
+  for (int i = 0; i < 5; ++i)
+    EXPECT_NEAR(r.camera.distortion[i], s.camera.distortion[i], 1e-12 * std::abs(s.camera.distortion[i]));
   for (int i = 0; i < 4; ++i) EXPECT_NEAR(r.plane[i], s.plane[i], 1e-12 * std::abs(s.plane[i]));
   EXPECT_EQ(r.camera.image_size, s.camera.image_size);
   EXPECT_EQ(r.stripe.axis, StripeAxis::kColumns);
@@ -65,9 +67,11 @@ TEST(SensorYaml, MalformedKeysAreNamed) {
       {with("[0, 0, 0, 0, 0]", "[0, 0, 0]"), "line 3: camera.distortion: expected a list of 5 numbers"},
       {with("[[800, 0, 320]", "[[-800, 0, 320]"), "line 2: camera.matrix: expected [[fx"},
       {with("[640, 480]", "[640.5, 480]"), "line 4: camera.image_size: expected [width, height], whole pixels"},
-      {with("[0.8, 0, 0.6, -180]", "[1, 1, 0, -180]"), "line 6: laser.plane: expected [a, b, c, d] with (a, b, c) a unit vector"},
+      {with("[0.8, 0, 0.6, -180]", "[1, 1, 0, -180]"),
+       "line 6: laser.plane: expected [a, b, c, d] with (a, b, c) a unit vector"},
       {with("[0, 0.1, -24]", "[0.2, 0, -64]"), "laser.homography: singular"},
-      {with("[0, 0.1, -24], [0, 0, 1]]", "[0, 0.1, -24], [0, 0, .nan]]"), "line 7: laser.homography: expected a finite number"},
+      {with("[0, 0.1, -24], [0, 0, 1]]", "[0, 0.1, -24], [0, 0, .nan]]"),
+       "line 7: laser.homography: expected a finite number"},
       {good + "stripe: {axis: diagonal}\n", "stripe.axis: stripe axis 'diagonal': expected one of auto, rows, columns"},
       {good + "stripe: {max_width_px: 0.5}\n", "stripe: stripe options: max_width_px must exceed min_width_px"},
       {good + "stripe: [rows]\n", "stripe: expected a mapping"},

@@ -113,7 +113,8 @@ TEST(StripePeaks, TheRuleChoosesAmongSeveral) {
     EXPECT_EQ(s.stats.found, spec.cols);
     EXPECT_EQ(s.stats.several, spec.cols);
     double sum = 0.0;
-    for (int u = 0; u < spec.cols; ++u) sum += s.centres[static_cast<std::size_t>(u)] - truth[static_cast<std::size_t>(u)];
+    for (int u = 0; u < spec.cols; ++u)
+      sum += s.centres[static_cast<std::size_t>(u)] - truth[static_cast<std::size_t>(u)];
     return sum / spec.cols;
   };
   EXPECT_NEAR(mean_offset(PeakRule::kStrongest), 0.0, 0.05);
@@ -160,15 +161,15 @@ TEST(StripeMethods, EachFindsAGaussiansCentreWithinItsSamplingBias) {
 // pixel.
 TEST(StripeMethods, SaturatedWideStripe) {
   const cv::Mat frame = test::RenderStripe(120, 400, {Wave, 4.0, 1000.0, 12.0}, CV_8U);
-  const std::pair<StripeMethod, double> methods[] = {{StripeMethod::kGaussian, 0.5},
-                                                     {StripeMethod::kCentreOfGravity, 0.1},
-                                                     {StripeMethod::kSteger, 0.1}};
+  const std::pair<StripeMethod, double> methods[] = {
+      {StripeMethod::kGaussian, 0.5}, {StripeMethod::kCentreOfGravity, 0.1}, {StripeMethod::kSteger, 0.1}};
   for (const auto& [method, bound] : methods) {
     StripeCentres s;
     FindStripe(frame, With(StripeAxis::kRows, method), s);
     EXPECT_EQ(s.stats.found, 400) << Name(method) << ": " << Describe(s.stats);
     EXPECT_EQ(s.stats.saturated, 400) << Name(method);
-    for (int u = 0; u < 400; ++u) EXPECT_NEAR(s.centres[static_cast<std::size_t>(u)], Wave(u), bound) << Name(method) << " " << u;
+    for (int u = 0; u < 400; ++u)
+      EXPECT_NEAR(s.centres[static_cast<std::size_t>(u)], Wave(u), bound) << Name(method) << " " << u;
   }
 }
 
@@ -180,7 +181,8 @@ TEST(StripeMethods, SaturatedWideStripe) {
 TEST(StripeMethods, TiltedStripe) {
   const double slope = std::tan(M_PI / 6);
   const double sigma = 2.0 / std::cos(M_PI / 6);
-  const cv::Mat frame = test::RenderStripe(300, 400, {[&](int u) { return 40.0 + slope * u; }, sigma, 180.0, 12.0}, CV_32F);
+  const cv::Mat frame =
+      test::RenderStripe(300, 400, {[&](int u) { return 40.0 + slope * u; }, sigma, 180.0, 12.0}, CV_32F);
   for (StripeMethod method : {StripeMethod::kGaussian, StripeMethod::kSteger}) {
     StripeCentres s;
     FindStripe(frame, With(StripeAxis::kRows, method), s);
@@ -191,12 +193,13 @@ TEST(StripeMethods, TiltedStripe) {
 }
 
 TEST(StripeOptions, NamesRoundTripAndBadOnesAreRefused) {
-  for (StripeMethod m : {StripeMethod::kCentreOfGravity, StripeMethod::kGaussian, StripeMethod::kParabolic,
-                         StripeMethod::kSteger})
+  for (StripeMethod m :
+       {StripeMethod::kCentreOfGravity, StripeMethod::kGaussian, StripeMethod::kParabolic, StripeMethod::kSteger})
     EXPECT_EQ(ParseStripeMethod(Name(m)), m);
   for (PeakRule r : {PeakRule::kStrongest, PeakRule::kWidest, PeakRule::kFirst, PeakRule::kLast, PeakRule::kNearest})
     EXPECT_EQ(ParsePeakRule(Name(r)), r);
-  for (StripeAxis a : {StripeAxis::kAuto, StripeAxis::kRows, StripeAxis::kColumns}) EXPECT_EQ(ParseStripeAxis(Name(a)), a);
+  for (StripeAxis a : {StripeAxis::kAuto, StripeAxis::kRows, StripeAxis::kColumns})
+    EXPECT_EQ(ParseStripeAxis(Name(a)), a);
   try {
     ParseStripeMethod("centroid");
     ADD_FAILURE();
