@@ -6,9 +6,11 @@
 // that reading: bang-bang between setpoint -+ band/2 (a 20 s cycle for the
 // defaults), or a PID on the heater's duty. The melt follows the wall
 // through its own lag, and the flow at a given screw speed changes with the
-// melt's temperature (seed 003, section 3.4 and Table 7: throughput depends
-// on screw speed and barrel temperature; a hotter melt is thinner) by
-// flow_per_c per degree from the setpoint. Units: degrees Celsius, seconds.
+// melt's temperature (seed 003, section 3.4, "Flow Rate Output based on
+// Screw Speed and Temperature", and its Table 8, temperature stepped at a
+// constant screw speed; the same rig held its barrel by bang-bang control)
+// by flow_per_c per degree from the setpoint. Units: degrees Celsius,
+// seconds.
 #pragma once
 
 #include <cstdint>
