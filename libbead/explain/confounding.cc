@@ -83,7 +83,6 @@ void EstimateShift(const SeriesData& d, const EffectSet& current, const Effect& 
   const ParameterCovariance jc = Covariance(d, joint, rows);
   const double sd = jc.sd.back()[0];
   ShiftInterval(p, jc.variance_along.back()[0]);
-  p.profile_lo = p.lo, p.profile_hi = p.hi, p.joint_sd_counts = sd;
   const std::vector<double>& grid = shift.grid[0];
   // Not pinned: the joint fit cannot tell the shift, or the profile is
   // lowest at an end of the searched range (the data prefer an offset

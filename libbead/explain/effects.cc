@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "libbead/series/interpolate.h"
+
 namespace bead::explain {
 namespace {
 
@@ -56,18 +58,8 @@ std::vector<double> LaggedChannel(const Channel& ch, double tau, double delay, c
     lagged[k] = state;
   }
   std::vector<double> out(t.size());
-  std::size_t j = 0;
-  for (std::size_t i = 0; i < t.size(); ++i) {
-    const double at = t[i] - delay;
-    while (j > 0 && ch.t[j] > at) --j;  // the times run nearly, not strictly, in order
-    while (j + 1 < m && ch.t[j + 1] <= at) ++j;
-    if (at <= ch.t.front())
-      out[i] = lagged.front();
-    else if (j + 1 >= m)
-      out[i] = lagged.back();
-    else
-      out[i] = lagged[j] + (lagged[j + 1] - lagged[j]) * (at - ch.t[j]) / (ch.t[j + 1] - ch.t[j]);
-  }
+  std::size_t hint = 0;  // the times run nearly in order
+  for (std::size_t i = 0; i < t.size(); ++i) out[i] = InterpolateLinearNear(ch.t, lagged, t[i] - delay, hint);
   return out;
 }
 

@@ -88,6 +88,7 @@ ShiftProfile ProfileShift(const SeriesData& d, const EffectSet& current, const E
     if (p.sse.back() < best_sse) best_sse = p.sse.back(), ib = k;
   }
   p.best = grid[ib];
+  p.best_index = ib;
   p.refit_at_best = refits[ib];
   p.s_min = best_sse;
   // Between grid points: the parabola through the lowest three.
@@ -97,8 +98,9 @@ ShiftProfile ProfileShift(const SeriesData& d, const EffectSet& current, const E
     const double curvature = sm - 2 * s0 + sp;
     if (curvature > 0) {
       const double step = std::clamp(h * (sm - sp) / (2 * curvature), -h, h);
+      p.curvature = curvature / (2 * h * h);
       p.best = grid[ib] + step;
-      p.s_min = s0 - curvature / (2 * h * h) * step * step;
+      p.s_min = s0 - p.curvature * step * step;
     }
   }
   p.lo = p.hi = p.best;
@@ -108,18 +110,13 @@ ShiftProfile ProfileShift(const SeriesData& d, const EffectSet& current, const E
 void ShiftInterval(ShiftProfile& p, double q) {
   p.q = q;
   const double delta = kChi2_1_95 * (std::isfinite(q) ? q : 0.0);
-  const auto& grid = p.shift_counts;
-  const std::size_t ib = static_cast<std::size_t>(std::min_element(p.sse.begin(), p.sse.end()) - p.sse.begin());
-  if (ib > 0 && ib + 1 < grid.size()) {
-    const double h = grid[ib + 1] - grid[ib];
-    const double curvature = p.sse[ib - 1] - 2 * p.sse[ib] + p.sse[ib + 1];
-    if (curvature > 0) {
-      const double half = std::sqrt(delta / (curvature / (2 * h * h)));  // SSE = s_min + b (s - best)^2
-      if (half <= h) {                                                   // within the parabola's reach
-        p.lo = p.best - half, p.hi = p.best + half;
-        p.lo_at_edge = p.hi_at_edge = false;
-        return;
-      }
+  const std::size_t ib = p.best_index;
+  if (p.curvature > 0) {
+    const double half = std::sqrt(delta / p.curvature);
+    if (half <= p.shift_counts[ib + 1] - p.shift_counts[ib]) {  // within the parabola's reach
+      p.lo = p.best - half, p.hi = p.best + half;
+      p.lo_at_edge = p.hi_at_edge = false;
+      return;
     }
   }
   GridInterval(p, ib, p.s_min + delta);

@@ -26,8 +26,8 @@ struct ShiftProfile {
   double q = 0.0;                               // the threshold's scale (ShiftInterval)
   double s_min = 0.0;                           // the SSE at the refined best
   EffectSet refit_at_best;                      // every other term as refitted at the best grid shift
-  double profile_lo = 0.0, profile_hi = 0.0;    // the profile's own interval, before widening
-  double joint_sd_counts = NAN;                 // the shift's standard deviation in the joint fit (sandwich)
+  std::size_t best_index = 0;                   // the lowest grid shift
+  double curvature = 0.0;  // SSE = s_min + curvature (s - best)^2 through the lowest three; 0: no parabola
 };
 
 // The profile: SSE at every grid shift, the best (refined between grid
