@@ -1,5 +1,5 @@
 #include "fuzz/fuzz_input.h"
 #include "libbead/core/error.h"
-#include "tools/model_json.h"
+#include "libbead/model/model_file.h"
 
-BEAD_FUZZ_READER(".json", bead::tools::ReadModelFile(path))
+BEAD_FUZZ_READER(".json", bead::model::ReadModelFile(path))

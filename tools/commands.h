@@ -7,8 +7,6 @@
 #include <functional>
 #include <string>
 
-#include "libbead/model/identify.h"
-
 namespace bead::tools {
 
 using Run = std::function<int()>;
@@ -24,9 +22,5 @@ Run AddExport(CLI::App& app);
 Run AddFrames(CLI::App& app);
 Run AddBatch(CLI::App& app);
 Run AddReport(CLI::App& app);
-
-// --structure of identify and explain: tf, or a process model (P1D, P1DZ,
-// P2D, P2DZ, P3D, P3DZ: real poles, as MATLAB's procest). Throws bead::Error.
-void ApplyStructure(const std::string& structure, model::IdentifyOptions& options);
 
 }  // namespace bead::tools

@@ -207,6 +207,22 @@ ChannelColumns ReadChannelColumns(const std::string& path, const std::string& ti
   return out;
 }
 
+// Several inputs: every column on the data's own clock, the rows where all
+// of them (and the output) are numbers.
+MultiSeries ReadMultiSeries(const std::string& path, const std::string& time, const std::vector<std::string>& inputs,
+                            const std::string& output) {
+  std::vector<std::string> names = inputs;
+  names.push_back(output);
+  ChannelColumns c = ReadChannelColumns(path, time, names);
+  MultiSeries m;
+  m.s.t = c.t;
+  m.s.y = std::move(c.values.back());
+  c.values.pop_back();
+  m.s.u = c.values[0];
+  m.u = std::move(c.values);
+  return m;
+}
+
 ProcessOn SeriesStretches(const Series& s, const std::string& path, bool keep_off, const std::string& purpose) {
   ProcessOn on;
   if (keep_off) {

@@ -41,6 +41,15 @@ struct ChannelColumns {
 ChannelColumns ReadChannelColumns(const std::string& path, const std::string& time,
                                   const std::vector<std::string>& names);
 
+// Several inputs and the output, columns (or .mat variables) of `path` on
+// its own clock: the rows where all of them are numbers.
+struct MultiSeries {
+  Series s;                            // t, the first input, y (for the stretches)
+  std::vector<std::vector<double>> u;  // every input
+};
+MultiSeries ReadMultiSeries(const std::string& path, const std::string& time, const std::vector<std::string>& inputs,
+                            const std::string& output);
+
 // The stretches of `s` to fit (the whole record with keep_off), what was
 // left out printed on stdout ("PATH: left out of the fit: process off
 // ..."); no stretch at all is an error naming the file (`purpose`: what

@@ -11,34 +11,94 @@
 #include "tools/commands.h"
 #include "tools/subcommands.h"
 #include "tools/csv_columns.h"
-#include "tools/model_json.h"
+#include "libbead/model/identify_multi.h"
+#include "libbead/model/model_file.h"
+#include "tools/model_print.h"
 
 namespace bead::tools {
 
-// --structure: tf (any poles/zeros) or a procest-style process model.
-void ApplyStructure(const std::string& structure, model::IdentifyOptions& o) {
-  if (structure == "tf") return;
-  struct Form {
-    const char* name;
-    int poles, zeros;
-  };
-  static const Form forms[] = {{"P1D", 1, 0},  {"P1DZ", 1, 1}, {"P2D", 2, 0},
-                               {"P2DZ", 2, 1}, {"P3D", 3, 0},  {"P3DZ", 3, 1}};
-  for (const Form& f : forms)
-    if (structure == f.name) {
-      o.poles = f.poles;
-      o.zeros = f.zeros;
-      o.real_poles = true;
-      return;
-    }
-  throw Error("--structure must be tf, P1D, P1DZ, P2D, P2DZ, P3D or P3DZ, got '" + structure + "'");
+namespace {
+
+// A per-input list (--poles 2,1): one value for every input, or one each.
+template <class T>
+T PerInput(const std::vector<T>& list, std::size_t i, std::size_t inputs, const char* option) {
+  if (list.size() == 1) return list[0];
+  if (list.size() == inputs) return list[i];
+  throw Error(std::string(option) + " gives " + std::to_string(list.size()) +
+              " values: give one for every input, or one for each");
 }
+
+std::vector<model::IdentifyOptions> OptionsPerInput(std::size_t inputs, const std::vector<int>& poles,
+                                                    const std::vector<int>& zeros,
+                                                    const std::vector<std::string>& structure,
+                                                    const std::vector<std::string>& delay, double max_delay_s,
+                                                    bool from_rest) {
+  std::vector<model::IdentifyOptions> out;
+  for (std::size_t i = 0; i < inputs; ++i) {
+    model::IdentifyOptions o;
+    o.poles = PerInput(poles, i, inputs, "--poles");
+    o.zeros = PerInput(zeros, i, inputs, "--zeros");
+    model::SetStructure(PerInput(structure, i, inputs, "--structure"), o);
+    if (o.poles < 1 || o.poles > 6) throw Error("--poles must be 1 to 6");
+    if (o.zeros < 0 || o.zeros > o.poles)
+      throw Error("--zeros (" + std::to_string(o.zeros) + ") must be 0 to --poles (" + std::to_string(o.poles) + ")");
+    o.max_delay_s = max_delay_s;
+    o.estimate_offset = o.estimate_initial_state = !from_rest;
+    const std::string d = PerInput(delay, i, inputs, "--delay");
+    if (d != "auto") {
+      try {
+        o.delay_s = std::stod(d);
+      } catch (const std::exception&) {
+        throw Error("--delay must be 'auto' or a number of seconds, got '" + d + "'");
+      }
+      if (!(*o.delay_s >= 0)) throw Error("--delay must be >= 0 s");
+    }
+    out.push_back(o);
+  }
+  return out;
+}
+
+// `bead identify --input a,b`: a transfer function per input, backfitted.
+int IdentifySeveral(const std::string& data, const std::string& time, const std::vector<std::string>& inputs,
+                    const std::string& output, const std::vector<model::IdentifyOptions>& o, bool keep_off,
+                    const std::string& validate, const std::string& out) {
+  const MultiSeries est = ReadMultiSeries(data, time, inputs, output);
+  std::printf("%s: %zu rows where every input and the output are numbers\n", data.c_str(), est.s.t.size());
+  const ProcessOn on = SeriesStretches(est.s, data, keep_off, "fit");
+  const model::MultiInputModel m = model::IdentifyMultiInput(est.s.t, est.u, est.s.y, o, on.segments);
+  if (!m.ok) throw Error(Located(data, "", "no model: " + m.reason));
+  PrintMultiInputModel(m, o, inputs);
+  std::printf("fit on estimation data: %.2f %%\n", m.fit_percent);
+  double fit_val = NAN;
+  if (!validate.empty()) {
+    const MultiSeries val = ReadMultiSeries(validate, time, inputs, output);
+    const ProcessOn von = SeriesStretches(val.s, validate, keep_off, "validate");
+    std::vector<model::TransferFunction> tfs;
+    for (const auto& part : m.inputs) tfs.push_back(part.tf);
+    fit_val =
+        model::FitPercent(val.s.y, model::PredictMultiInput(tfs, m.offset, val.s.t, val.u, val.s.y, von.segments));
+    std::printf("fit on validation data (%s, initial states fitted): %.2f %%\n", validate.c_str(), fit_val);
+  }
+  std::printf("AIC %.6g  AICc %.6g  BIC %.6g  FPE %.6g  (%d parameters)\n", m.criteria.aic, m.criteria.aicc,
+              m.criteria.bic, m.criteria.fpe, m.parameters);
+  if (!out.empty()) {
+    nlohmann::json j = model::MultiInputModelJson(m, o, inputs, output, est.s.t, on.segments, on.excluded);
+    if (!validate.empty()) j["fit_validation_pct"] = fit_val;
+    AtomicFile file(out);
+    file.stream() << j.dump(2) << "\n";
+    file.Commit();
+    std::printf("wrote %s\n", out.c_str());
+  }
+  return 0;
+}
+
+}  // namespace
 
 Run AddIdentify(CLI::App& app) {
   struct Args {
-    std::string data, input, output, time, input_file, input_time, delay = "auto", validate, validate_input_file, out,
-                                                                   structure = "tf";
-    int poles = 2, zeros = 1;
+    std::string data, output, time, input_file, input_time, validate, validate_input_file, out;
+    std::vector<std::string> inputs, structure = {"tf"}, delay = {"auto"};
+    std::vector<int> poles = {2}, zeros = {1};
     double max_delay_s = 1.0;
     bool orders = false, from_rest = false, keep_off = false;
   };
@@ -57,25 +117,36 @@ Run AddIdentify(CLI::App& app) {
       "     where the output then grows from zero the process started there, from rest.\n"
       "     The delay: a profile of the loss at every sample step up to --max-delay-s, its best basins\n"
       "     refined by output error; two basins the data cannot tell apart are reported.\n"
+      "     Several inputs (--input a,b: columns on the data's own clock) get a transfer function each,\n"
+      "     as tfest with several inputs, by backfitting; --poles, --zeros, --structure and --delay then\n"
+      "     take one value for all or one per input (--poles 2,1).\n"
       "Out: the model (and its process form K, Tp, Tz, Td for real poles), its operating point, MATLAB-\n"
       "     style fit % on the data as given (and on --validate), AIC/AICc/BIC/FPE; with --orders the\n"
       "     thesis Table 3 (poles 1-3, zeros 0-2), validated on --validate or on the second half of\n"
       "     DATA; -o a JSON model file (written atomically) with the delay profile.\n"
       "Examples:\n"
       "  bead identify flow.csv --time t_s --input screw_rpm --output flow_mm3_s --poles 2 --zeros 2 -o model.json\n"
+      "  bead identify run.csv --time t_s --input screw_rpm,barrel_temp_c --output flow_mm3_s --poles 2,1 --zeros 1,0\n"
       "  bead identify width.csv --time t --output w --input-file wfs.csv --input-time t --input wfs --structure P1D");
   cmd->add_option("data", args->data, "Data CSV or .mat")->required()->check(CLI::ExistingFile);
-  cmd->add_option("--input", args->input, "Input column")->required();
+  cmd->add_option("--input", args->inputs, "Input column (several: a,b)")->required()->delimiter(',');
   cmd->add_option("--output", args->output, "Output column")->required();
   cmd->add_option("--time,--output-time", args->time, "Time column or .mat variable (s) of the output (and the input)");
   cmd->add_option("--input-file", args->input_file, "The input's own CSV (its own clock)")->check(CLI::ExistingFile);
   cmd->add_option("--input-time", args->input_time,
                   "The input's own time column or variable (in --input-file, else in DATA)");
-  cmd->add_option("--poles", args->poles, "Number of poles")->capture_default_str()->check(CLI::Range(1, 6));
-  cmd->add_option("--zeros", args->zeros, "Number of zeros (<= poles)")->capture_default_str()->check(CLI::Range(0, 6));
-  cmd->add_option("--structure", args->structure, "tf, or a process model: P1D, P1DZ, P2D, P2DZ, P3D, P3DZ")
-      ->capture_default_str();
-  cmd->add_option("--delay", args->delay, "Input delay: auto or seconds")->capture_default_str();
+  cmd->add_option("--poles", args->poles, "Number of poles (1-6; per input: 2,1)")
+      ->capture_default_str()
+      ->delimiter(',');
+  cmd->add_option("--zeros", args->zeros, "Number of zeros (<= poles; per input: 1,0)")
+      ->capture_default_str()
+      ->delimiter(',');
+  cmd->add_option("--structure", args->structure, "tf, or a process model: P1D, P1DZ, P2D, P2DZ, P3D, P3DZ (per input)")
+      ->capture_default_str()
+      ->delimiter(',');
+  cmd->add_option("--delay", args->delay, "Input delay: auto or seconds (per input)")
+      ->capture_default_str()
+      ->delimiter(',');
   cmd->add_option("--max-delay-s", args->max_delay_s, "Largest delay searched by --delay auto")->capture_default_str();
   cmd->add_flag("--from-rest", args->from_rest, "No operating point or initial state: the data start from rest at 0");
   cmd->add_flag("--keep-off", args->keep_off, "Fit the stretches where the process was off too");
@@ -87,28 +158,25 @@ Run AddIdentify(CLI::App& app) {
   cmd->add_option("-o,--out", args->out, "Model JSON to write");
   return [args]() {
     CheckValidationInput(args->input_file, args->validate, args->validate_input_file);
+    const std::vector<model::IdentifyOptions> per_input =
+        OptionsPerInput(args->inputs.size(), args->poles, args->zeros, args->structure, args->delay, args->max_delay_s,
+                        args->from_rest);
+    if (args->inputs.size() > 1) {
+      if (!args->input_file.empty() || !args->input_time.empty())
+        throw Error("several inputs are read from DATA on its own clock: --input-file and --input-time take one input");
+      if (args->orders) throw Error("--orders takes one input");
+      return IdentifySeveral(args->data, args->time, args->inputs, args->output, per_input, args->keep_off,
+                             args->validate, args->out);
+    }
+    const std::string input = args->inputs[0];
     auto read = [&](const std::string& path) {
       // The input's own clock: --input-time, else --time's name in --input-file.
       const std::string in_file = path == args->data ? args->input_file : args->validate_input_file;
       const std::string in_time = !args->input_time.empty() ? args->input_time : in_file.empty() ? "" : args->time;
-      return ReadSeries({path, args->time, args->input, args->output, in_file, in_time});
+      return ReadSeries({path, args->time, input, args->output, in_file, in_time});
     };
     const Series est = read(args->data);
-    model::IdentifyOptions o;
-    o.poles = args->poles;
-    o.zeros = args->zeros;
-    ApplyStructure(args->structure, o);
-    if (o.zeros > o.poles) throw Error("--zeros (" + std::to_string(o.zeros) + ") must not exceed --poles");
-    o.max_delay_s = args->max_delay_s;
-    o.estimate_offset = o.estimate_initial_state = !args->from_rest;
-    if (args->delay != "auto") {
-      try {
-        o.delay_s = std::stod(args->delay);
-      } catch (const std::exception&) {
-        throw Error("--delay must be 'auto' or a number of seconds, got '" + args->delay + "'");
-      }
-      if (!(*o.delay_s >= 0)) throw Error("--delay must be >= 0 s");
-    }
+    const model::IdentifyOptions& o = per_input[0];
     std::printf("%s: %zu rows (%d skipped as gaps%s%s)\n", args->data.c_str(), est.t.size(), est.skipped,
                 est.skipped ? "; the first at " : "", est.first_skip.c_str());
     if (!est.note.empty()) std::printf("%s\n", est.note.c_str());
@@ -167,7 +235,7 @@ Run AddIdentify(CLI::App& app) {
                     r.aicc, r.delay_s);
     }
     if (!args->out.empty()) {
-      nlohmann::json j = ModelJson(m, o, args->input, args->output, est.t, on.segments, on.excluded);
+      nlohmann::json j = model::ModelJson(m, o, input, args->output, est.t, on.segments, on.excluded);
       if (val) j["fit_validation_pct"] = fit_val;
       AtomicFile file(args->out);
       file.stream() << j.dump(2) << "\n";

@@ -80,6 +80,7 @@ std::vector<std::vector<double>> Effect::Columns(const SeriesData& d, const doub
   if (feature == "dynamics") return d.dynamics;
   if (feature == "channel") return {LaggedChannel(d.channels[static_cast<std::size_t>(channel)], nl[0], nl[1], d.t)};
   if (feature == "initial") return d.initial;
+  if (feature == "input_part") return {d.input_parts[static_cast<std::size_t>(channel)].values};
   std::vector<double> c(n, 0.0);
   if (feature == "scale" || feature == "bias") {
     std::fill(c.begin(), c.end(), 1.0);
@@ -229,6 +230,14 @@ std::vector<Effect> BaseRefit(const SeriesData& d, const CatalogueOptions& o) {
     Effect e = Make("initial_state", "the base model's initial state in each stretch, refitted (its free response)",
                     K::kAdditive, "initial");
     for (std::size_t k = 0; k < d.initial.size(); ++k) e.linear.push_back("free_" + std::to_string(k));
+    out.push_back(e);
+  }
+  for (std::size_t k = 0; k < d.input_parts.size(); ++k) {
+    Effect e = Make("gain[" + d.input_parts[k].name + "]",
+                    "the base model's part from " + d.input_parts[k].name + ": its gain, refitted (a factor on it)",
+                    K::kAdditive, "input_part");
+    e.channel = static_cast<int>(k);
+    e.linear = {"rel"};
     out.push_back(e);
   }
   if (d.shifted || d.base_delayed) {

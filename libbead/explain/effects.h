@@ -35,10 +35,10 @@ struct Effect {
 
   // Which catalogued feature it is built from (set by the catalogue).
   int part = -1;     // index into data.parts for periodic terms
-  int channel = -1;  // index into data.channels for a recorded channel's term
+  int channel = -1;  // index into data.channels for a recorded channel's term (data.input_parts for "input_part")
   int harmonic = 1;
   std::string
-      feature;  // "scale", "bias", "drift", "time_to_laser", "height", "buildup", "level", "dynamics", "channel"
+      feature;  // "scale", "bias", "drift", "time_to_laser", "height", "buildup", "level", "dynamics", "channel", "input_part"
 };
 
 struct CatalogueOptions {

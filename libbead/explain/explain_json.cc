@@ -40,7 +40,10 @@ json Confounded(const ExplainReport& r) {
 json Finite(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 json ReportJson(const ExplainReport& r, const model::TransferFunction& tf, double offset,
-                const std::string& model_source) {
+                const std::string& model_source, const std::vector<NamedModel>& more) {
+  json more_inputs = json::array();
+  for (const NamedModel& m : more)
+    more_inputs.push_back({{"input", m.input}, {"num", m.tf.num}, {"den", m.tf.den}, {"delay_s", m.tf.delay_s}});
   json effects = json::array();
   for (const auto& e : r.effects_added)
     effects.push_back({{"name", e.name},
@@ -76,6 +79,7 @@ json ReportJson(const ExplainReport& r, const model::TransferFunction& tf, doubl
             {"den", tf.den},
             {"delay_s", tf.delay_s},
             {"operating_point", {{"offset", offset}}},
+            {"more_inputs", more_inputs},
             {"source", model_source}}},
           {"fit_before_pct", r.before.fit_pct},
           {"fit_after_pct", r.after.fit_pct},

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "libbead/core/rig.h"
 #include "libbead/explain/explain_loop.h"
@@ -14,9 +15,16 @@
 
 namespace bead::explain {
 
-// The loop's report and the model it started from (any mode).
+// A base model's input after the first, for the report.
+struct NamedModel {
+  std::string input;
+  model::TransferFunction tf;
+};
+
+// The loop's report and the model it started from (any mode; `more`: the
+// base model's other inputs, as model.more_inputs).
 nlohmann::json ReportJson(const ExplainReport& r, const model::TransferFunction& tf, double offset,
-                          const std::string& model_source);
+                          const std::string& model_source, const std::vector<NamedModel>& more = {});
 
 // Run mode: ReportJson's fields and the offset, the time stamps, the pins
 // (when compared) and the corrected flow (when computed; `flow_out` the

@@ -17,8 +17,20 @@
 
 namespace bead::explain {
 
+// A base model's input after the first: its name, transfer function and
+// record on the same times.
+struct MoreInput {
+  std::string name;
+  model::TransferFunction tf;
+  std::vector<double> u;
+};
+
+// With `more`, the base is offset + G(s) u + sum_k G_k(s) u_k (each part
+// from steady state at its stretch's first input, its free response among
+// the initial-state columns); the delay refit moves the first input's part
+// only, and each other part's gain is refitted (SeriesData::input_parts).
 SeriesData ModelSeries(const std::vector<double>& t, const std::vector<double>& u, const std::vector<double>& y,
                        const model::TransferFunction& tf, double offset, const std::vector<Segment>& segments,
-                       const std::string& y_unit = "");
+                       const std::string& y_unit = "", const std::vector<MoreInput>& more = {});
 
 }  // namespace bead::explain

@@ -46,6 +46,13 @@ class ShiftMemoSlot {
   ShiftMemo memo;
 };
 
+// Another input of a base model with several (model/identify_multi.h): its
+// part of `base` at each sample, its gain refitted with the base's.
+struct InputPart {
+  std::string name;
+  std::vector<double> values;
+};
+
 struct SeriesData {
   std::vector<double> t, u, y, base;  // same length, finite
   std::string y_unit = "";            // for the report
@@ -54,6 +61,7 @@ struct SeriesData {
   std::vector<double> height_mm;        // the bead height the model implies (never the measured one); empty: not known
   std::vector<double> segment_time_s;   // time since the process (re)started
   std::vector<Channel> channels;        // the other recorded channels
+  std::vector<InputPart> input_parts;   // a base model's inputs after the first (their parts are in base)
   // The model's input through a basis of linear filters (the states of
   // 1 / (s + p)^K and the input itself, p from the model's own poles): any
   // linear correction of the model's dynamics is a combination of these.

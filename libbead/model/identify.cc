@@ -310,6 +310,24 @@ IdentifiedModel IdentifyTransferFunction(const std::vector<double>& t, const std
   return out;
 }
 
+void SetStructure(const std::string& name, IdentifyOptions& o) {
+  if (name == "tf") return;
+  struct Form {
+    const char* name;
+    int poles, zeros;
+  };
+  static const Form forms[] = {{"P1D", 1, 0},  {"P1DZ", 1, 1}, {"P2D", 2, 0},
+                               {"P2DZ", 2, 1}, {"P3D", 3, 0},  {"P3DZ", 3, 1}};
+  for (const Form& f : forms)
+    if (name == f.name) {
+      o.poles = f.poles;
+      o.zeros = f.zeros;
+      o.real_poles = true;
+      return;
+    }
+  throw Error("the structure must be tf, P1D, P1DZ, P2D, P2DZ, P3D or P3DZ, got '" + name + "'");
+}
+
 std::vector<OrderRow> OrderTable(const std::vector<double>& t, const std::vector<double>& u,
                                  const std::vector<double>& y, const std::vector<double>& tv,
                                  const std::vector<double>& uv, const std::vector<double>& yv, IdentifyOptions o,

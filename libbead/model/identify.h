@@ -96,6 +96,11 @@ IdentifiedModel IdentifyTransferFunction(const std::vector<double>& t, const std
                                          const std::vector<double>& y, const IdentifyOptions& options,
                                          const std::vector<Segment>& segments = {});
 
+// A structure by name: "tf" (any poles and zeros: left as they are) or a
+// process model as MATLAB's procest names them, P1D, P1DZ, P2D, P2DZ, P3D,
+// P3DZ (real poles). Throws bead::Error naming the choices.
+void SetStructure(const std::string& name, IdentifyOptions& options);
+
 // Thesis Table 3: poles 1-3, zeros 0-2 (zeros <= poles), estimated on one
 // data set and validated on another.
 struct OrderRow {

@@ -1,0 +1,52 @@
+// bead explain's two modes behind its options page (explain_command.cc):
+// run mode (a run archive and its rig, explain_run_mode.cc) and series
+// mode (any CSV or .mat series, explain_series_mode.cc), with the
+// printing they share (explain_print.cc).
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "libbead/core/rig.h"
+#include "libbead/explain/explain_loop.h"
+#include "libbead/explain/run_explain.h"
+#include "libbead/model/identify.h"
+
+namespace bead::tools {
+
+struct ExplainArgs {
+  std::string rig, data, model, out, output, time, input_file, input_time, validate, validate_input_file, pins,
+      flow_out, structure = "tf", occlusion = "pooled";
+  std::vector<std::string> inputs;
+  int poles = 2, zeros = 2;
+  double max_delay_s = 1.0, alpha = 0.01;
+  int max_effects = 5;
+  bool keep_off = false, no_channels = false;
+  std::vector<std::string> channels;
+
+  explain::ExplainOptions Explain() const;
+  model::IdentifyOptions Identify() const;
+};
+
+// The base model: read from --model, else identified on the data (one
+// input, or one transfer function per input).
+struct BaseModel {
+  std::vector<std::string> inputs;
+  std::vector<model::TransferFunction> tfs;
+  double offset = 0.0;
+  std::string source;
+};
+BaseModel ModelFor(const ExplainArgs& a, const std::vector<double>& t, const std::vector<std::vector<double>>& u,
+                   const std::vector<double>& y, const std::vector<Segment>& segments, const std::string& where);
+
+int ExplainRunMode(const ExplainArgs& a);
+int ExplainSeriesMode(const ExplainArgs& a);
+
+void PrintReport(const explain::ExplainReport& r, const std::string& unit);
+void PrintRun(const explain::RunExplanation& e, const Rig& rig, const std::string& path, const std::string& validate);
+void PrintPins(const explain::OffsetComparison& c, const explain::OffsetFromRun& run, const std::string& path);
+void PrintCorrected(const explain::CorrectedFlow& cf, const std::string& path);
+void WriteJson(const std::string& path, const nlohmann::json& j);
+
+}  // namespace bead::tools

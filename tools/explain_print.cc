@@ -1,0 +1,166 @@
+#include <cstdio>
+
+#include "libbead/io/atomic_file.h"
+#include "libbead/model/identify_multi.h"
+#include "libbead/model/model_file.h"
+#include "libbead/core/error.h"
+#include "tools/explain_modes.h"
+
+namespace bead::tools {
+
+explain::ExplainOptions ExplainArgs::Explain() const {
+  explain::ExplainOptions o;
+  o.alpha = alpha;
+  o.max_effects = max_effects;
+  return o;
+}
+
+model::IdentifyOptions ExplainArgs::Identify() const {
+  model::IdentifyOptions id;
+  id.poles = poles;
+  id.zeros = std::min(zeros, poles);
+  model::SetStructure(structure, id);
+  id.max_delay_s = max_delay_s;
+  return id;
+}
+
+BaseModel ModelFor(const ExplainArgs& a, const std::vector<double>& t, const std::vector<std::vector<double>>& u,
+                   const std::vector<double>& y, const std::vector<Segment>& segments, const std::string& where) {
+  BaseModel m;
+  if (!a.model.empty()) {
+    const model::ModelFile f = model::ReadModelFile(a.model);
+    if (f.tfs.size() != u.size())
+      throw Error(Located(a.model, "",
+                          "a model of " + std::to_string(f.tfs.size()) + " input(s), but " + std::to_string(u.size()) +
+                              " given (--input)"));
+    m.inputs = f.inputs;
+    m.tfs = f.tfs;
+    m.offset = f.offset;
+    m.source = a.model;
+    return m;
+  }
+  const model::IdentifyOptions id = a.Identify();
+  const model::MultiInputModel im =
+      model::IdentifyMultiInput(t, u, y, std::vector<model::IdentifyOptions>(u.size(), id), segments);
+  if (!im.ok) throw Error(Located(where, "", "no model could be identified: " + im.reason));
+  for (const auto& part : im.inputs) m.tfs.push_back(part.tf);
+  m.offset = im.offset;
+  m.source = "identified on " + where + " (" + std::to_string(id.poles) + " poles, " + std::to_string(id.zeros) +
+             " zeros" + (u.size() > 1 ? " per input" : "") + ", operating point and initial state estimated)";
+  std::printf("model identified: fit %.2f %%, delay", im.fit_percent);
+  for (const auto& part : im.inputs) std::printf(" %.3f", part.tf.delay_s);
+  std::printf(" s\n");
+  for (const auto& part : im.inputs)
+    if (part.delay_profile.ambiguous) std::printf("warning: %s\n", part.delay_profile.note.c_str());
+  if (!im.note.empty()) std::printf("warning: %s\n", im.note.c_str());
+  return m;
+}
+
+void WriteJson(const std::string& path, const nlohmann::json& j) {
+  AtomicFile file(path);
+  file.stream() << j.dump(2) << "\n";
+  file.Commit();
+  std::printf("wrote %s\n", path.c_str());
+}
+
+void PrintReport(const explain::ExplainReport& r, const std::string& unit) {
+  std::printf(
+      "\nthe model as given: fit %.2f %%, RMS error %.4g %s; residual %s (chi2 %.1f, 99 %% limit %.1f), %s the input\n",
+      r.before.fit_pct, r.before.rms, unit.c_str(), r.before.whiteness.white ? "white" : "not white",
+      r.before.whiteness.chi2, r.before.whiteness.chi2_limit,
+      r.before.input.independent ? "independent of" : "correlated with");
+  std::string refit;
+  for (const auto& e : r.base_refit)
+    for (const auto& p : e.parameters) {
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "%s%s %s = %.4g +- %.2g", refit.empty() ? " " : ", ", e.name.c_str(),
+                    p.name.c_str(), p.value, p.ci95);
+      refit += buf;
+    }
+  std::printf("base model refitted with every candidate:%s\n", refit.c_str());
+  if (r.base.misspecified)
+    std::printf(
+        "warning: the base model's dynamics are misspecified: a linear correction of them lowers the held-out "
+        "RMS %.4g -> %.4g (F %.1f > %.1f); re-identify it (more poles or zeros, another delay). Effects are "
+        "only added beyond that correction.\n",
+        r.base.rms_before, r.base.rms_after, r.base.heldout_f, r.base.threshold);
+  std::printf("\n%-32s %-44s %9s %9s %11s %11s\n", "effect", "parameters (95 % interval)", "fit_bef_%", "fit_aft_%",
+              "rms_before", "rms_after");
+  if (r.effects_added.empty()) std::printf("%-32s\n", "(none added)");
+  for (const auto& e : r.effects_added) {
+    std::string params;
+    for (const auto& p : e.parameters) {
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "%s%s=%.4g+-%.2g", params.empty() ? "" : ", ", p.name.c_str(), p.value, p.ci95);
+      params += buf;
+    }
+    std::printf("%-32s %-44s %9.2f %9.2f %11.4g %11.4g\n", e.name.c_str(), params.c_str(), e.fit_before_pct,
+                e.fit_after_pct, e.rms_before, e.rms_after);
+  }
+  std::printf("\nafter: fit %.2f %%, RMS error %.4g %s; residual %s (chi2 %.1f)\n", r.after.fit_pct, r.after.rms,
+              unit.c_str(), r.after.whiteness.white ? "white" : "not white", r.after.whiteness.chi2);
+  for (const auto& u : r.unexplained)
+    std::printf("unexplained: %s, tracks %s (power %.1f, false alarm %.2g)\n", u.what.c_str(), u.tracks.c_str(),
+                u.power, u.false_alarm);
+  for (const auto& c : r.confounded)
+    std::printf("confounded: %s and %s trade (correlation %+.3f): %s\n", c.first.c_str(), c.second.c_str(),
+                c.correlation, c.note.c_str());
+}
+
+void PrintRun(const explain::RunExplanation& e, const Rig& rig, const std::string& path, const std::string& validate) {
+  for (const auto& c : e.series.data.channels)
+    std::printf("recorded channel: %s (%s), tried as a cause\n", c.name.c_str(),
+                c.unit.empty() ? "no unit" : c.unit.c_str());
+  if (!validate.empty()) std::printf("held-out data: %s\n", validate.c_str());
+  std::printf("%s: %zu samples of flow in extrusion time\n", path.c_str(), e.series.data.size());
+  PrintReport(e.report, "mm^3/s");
+  const explain::OffsetFromRun& o = e.offset;
+  if (!o.pinned)
+    std::printf(
+        "encoder offset from the run: NOT pinned by this run: its 95 %% interval %.1f to %.1f counts reaches "
+        "the searched range (lowest error at %.1f; the wheel's speed changes too little to tell a position "
+        "error from a time error); rig file: %.1f counts\n",
+        o.lo_counts, o.hi_counts, o.counts, rig.offset_counts);
+  else
+    std::printf(
+        "encoder offset from the run: %.1f counts, 95 %% interval %.1f to %.1f (the residual's colour and the "
+        "delay refitted at every offset accounted for); rig file: %.1f counts%s\n",
+        o.counts, o.lo_counts, o.hi_counts, rig.offset_counts, o.excludes_rig ? " -- OUTSIDE the run's interval" : "");
+  std::printf("profile time stamps against the log: %+.4f +- %.4f s (a sensor latency shows here)\n",
+              e.series.timestamp_offset_s, e.series.timestamp_offset_ci95_s);
+}
+
+void PrintPins(const explain::OffsetComparison& c, const explain::OffsetFromRun& run, const std::string& path) {
+  std::printf("pin scans (%s): %.1f +- %.1f counts; the run's offset differs by %+.1f counts\n", path.c_str(),
+              c.pins_counts, c.pins_ci95_counts, c.difference);
+  if (!c.run_pinned)
+    std::printf("offset: the run does not pin it; the pins' %.1f +- %.1f counts stands alone\n", c.pins_counts,
+                c.pins_ci95_counts);
+  else if (c.agree)
+    std::printf("offset, run and pins combined: %.1f +- %.1f counts (they agree within their intervals)\n",
+                c.combined_counts, c.combined_ci95_counts);
+  else
+    std::printf(
+        "offset: the run (%.1f +- %.1f) and the pins (%.1f +- %.1f) DISAGREE by %.1f counts, more than their "
+        "intervals allow: a pin placed off the nozzle's centre, a slipped encoder, or an effect the run's "
+        "model lacks; they are not combined\n",
+        run.counts, run.ci95_counts, c.pins_counts, c.pins_ci95_counts, c.difference);
+}
+
+void PrintCorrected(const explain::CorrectedFlow& cf, const std::string& path) {
+  std::string undone;
+  for (const auto& u : cf.undone) undone += (undone.empty() ? "" : ", ") + u;
+  if (cf.lowers_error) {
+    std::printf(
+        "corrected flow: %s undone (offset %.1f counts); held-out RMS against the model %.4g -> %.4g mm^3/s; "
+        "total volume %.1f mm^3\nwrote %s\n",
+        undone.c_str(), cf.offset_counts, cf.rms_before, cf.rms_after, cf.flow.total_volume_mm3, path.c_str());
+    return;
+  }
+  std::printf("corrected flow NOT written (%s): %s%s%s\n", path.c_str(), cf.why_not.c_str(),
+              undone.empty() ? "" : "; tried: ", undone.c_str());
+  if (!undone.empty())
+    std::printf("  held-out RMS against the model %.4g -> %.4g mm^3/s\n", cf.rms_before, cf.rms_after);
+}
+
+}  // namespace bead::tools
