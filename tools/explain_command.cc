@@ -85,6 +85,10 @@ Run AddExplain(CLI::App& app) {
   cmd->add_option("--alpha", args->alpha, "Significance level of the held-out test")
       ->capture_default_str()
       ->check(CLI::Range(1e-6, 0.2));
+  cmd->add_option("--profiles-per-sample", args->profiles_per_sample,
+                  "Run mode: profiles averaged into each sample explained (0: enough that a long run keeps at most "
+                  "16384 samples, never under 25 Hz)")
+      ->capture_default_str();
   cmd->add_option("--max-effects", args->max_effects, "At most this many effects")->capture_default_str();
   cmd->add_option("-o,--out", args->out, "explain.json to write (atomically)")->required();
   AddOcclusionOption(cmd, args->occlusion);

@@ -22,6 +22,7 @@ struct ExplainArgs {
   int poles = 2, zeros = 2;
   double max_delay_s = 1.0, alpha = 0.01;
   int max_effects = 5;
+  std::size_t profiles_per_sample = 0;
   bool keep_off = false, no_channels = false;
   std::vector<std::string> channels;
 

@@ -47,7 +47,15 @@ int ExplainRunMode(const ExplainArgs& a) {
     return m;
   };
   const auto main_run = measure(args->data);
-  const BaseModel mdl = ModelFor(a, main_run->t, {main_run->u}, main_run->y, {}, args->data);
+  // The base model identified at the rate the loop explains (a long run's
+  // flow averaged over bins of profiles).
+  const std::size_t bin = a.profiles_per_sample ? a.profiles_per_sample : explain::ExplainBinOf(main_run->flow);
+  if (bin > 1)
+    std::printf("%s: a long run: explained at %zu profiles per sample (%zu samples)\n", args->data.c_str(), bin,
+                main_run->t.size() / bin);
+  const BaseModel mdl =
+      ModelFor(a, explain::AverageInBins(main_run->t, bin), {explain::AverageInBins(main_run->u, bin)},
+               explain::AverageInBins(main_run->y, bin), {}, args->data);
   std::unique_ptr<Measured> other;
   if (!args->validate.empty()) other = measure(args->validate);
   auto view = [](const Measured& m, const std::string& path) {
@@ -59,6 +67,7 @@ int ExplainRunMode(const ExplainArgs& a) {
   run_options.channels = args->channels;
   run_options.no_channels = args->no_channels;
   run_options.correct_flow = !args->flow_out.empty();
+  run_options.profiles_per_sample = bin;
   const explain::MeasuredFlow main_view = view(*main_run, args->data);
   const explain::MeasuredFlow other_view = other ? view(*other, args->validate) : explain::MeasuredFlow{};
   std::printf("%s: explaining the flow in extrusion time...\n", args->data.c_str());

@@ -1,6 +1,8 @@
 #include "libbead/explain/confounding.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 namespace bead::explain {
@@ -73,6 +75,46 @@ void SayAlternative(const SeriesData& d, const Active& kept, const Active& alt, 
 // The offset from the run: the profile, widened to the joint fit's
 // interval at its best (the shift beside every other term), and the
 // shift's correlation with the base model's delay.
+namespace {
+
+// The split-half check: the profile's best on the first and on the second
+// half of the rows. Each half's best scatters sqrt(2) times the whole's
+// standard deviation (sd, from the interval), their difference 2 sd; two
+// halves further apart than 1.96 times that (the whole interval's width)
+// say that something other than the noise sets the offset (a base model's
+// misfit that happens to follow the wheel), and the interval is widened to
+// hold the whole's best +- their difference and each half's own interval. A half lowest at the searched range's
+// end leaves the offset not pinned.
+void CheckHalves(const SeriesData& d, const EffectSet& current, const Effect& shift,
+                 const std::vector<std::size_t>& rows, ShiftProfile& p) {
+  const std::vector<double>& grid = shift.grid[0];
+  const std::size_t h = rows.size() / 2;
+  const std::vector<std::size_t> first(rows.begin(), rows.begin() + static_cast<long>(h)),
+      second(rows.begin() + static_cast<long>(h), rows.end());
+  p.first_half = ProfileShift(d, current, shift, first).best;
+  p.second_half = ProfileShift(d, current, shift, second).best;
+  const auto at_edge = [&](double b) { return b <= grid.front() || b >= grid.back(); };
+  if (at_edge(p.first_half) || at_edge(p.second_half)) {
+    p.halves_disagree = true;
+    p.lo = grid.front(), p.hi = grid.back(), p.lo_at_edge = p.hi_at_edge = true;
+    return;
+  }
+  const double diff = std::abs(p.first_half - p.second_half);
+  if (diff <= p.hi - p.lo) return;
+  p.halves_disagree = true;
+  // Widened to hold the whole's best +- their difference and each half's
+  // own interval (sqrt(2) times the whole's half-width about its best).
+  const double w = std::sqrt(2.0) * 0.5 * (p.hi - p.lo);
+  const double lo = std::min({p.lo, p.best - diff, std::min(p.first_half, p.second_half) - w});
+  const double hi = std::max({p.hi, p.best + diff, std::max(p.first_half, p.second_half) + w});
+  p.lo = std::max(grid.front(), lo);
+  p.hi = std::min(grid.back(), hi);
+  p.lo_at_edge |= p.lo <= grid.front();
+  p.hi_at_edge |= p.hi >= grid.back();
+}
+
+}  // namespace
+
 void EstimateShift(const SeriesData& d, const EffectSet& current, const Effect& shift,
                    const std::vector<std::size_t>& rows, ExplainReport& report) {
   ShiftProfile& p = report.shift_profile;
@@ -96,6 +138,8 @@ void EstimateShift(const SeriesData& d, const EffectSet& current, const Effect& 
     if (p.best + 1.96 * sd > p.hi)
       p.hi = std::min(grid.back(), p.best + 1.96 * sd), p.hi_at_edge |= p.hi >= grid.back();
   }
+  if (!(p.lo_at_edge || p.hi_at_edge)) CheckHalves(d, current, shift, rows, p);
+
   report.position_shift_estimated = true;
   report.position_shift_counts = p.best;
   // Half-width, the larger side; unbounded where the interval reaches the
@@ -104,6 +148,15 @@ void EstimateShift(const SeriesData& d, const EffectSet& current, const Effect& 
   for (std::size_t e = 0; e + 1 < joint.size(); ++e)
     if (joint[e].effect.kind == Effect::Kind::kDelay)
       report.shift_delay_correlation = jc.Correlation(joint.size() - 1, 0, e, 0);
+  if (p.halves_disagree) {
+    char note[400];
+    std::snprintf(note, sizeof note,
+                  "the run's two halves put the offset at %+.1f and %+.1f counts from the rig file's, further apart "
+                  "than the noise allows: what pins it is the model's misfit, not the data's noise; the interval is "
+                  "widened to hold both halves' intervals",
+                  p.first_half, p.second_half);
+    report.confounded.push_back({"encoder_offset (first half)", "encoder_offset (second half)", NAN, note});
+  }
   if (std::abs(report.shift_delay_correlation) > 0.9)
     report.confounded.push_back(
         {"encoder_offset.shift_counts", "delay.shift_s", report.shift_delay_correlation,

@@ -10,7 +10,8 @@ namespace {
 
 RunSeries SeriesOf(const Rig& rig, const MeasuredFlow& m, const model::TransferFunction& tf, double offset,
                    const RunExplainOptions& o) {
-  RunSeries s = MakeRunSeries(rig, *m.profiles, *m.geometry, *m.log, *m.flow, tf, offset);
+  RunSeries s = MakeRunSeries(rig, *m.profiles, *m.geometry, *m.log, *m.flow, tf, offset, {},
+                              o.profiles_per_sample ? o.profiles_per_sample : ExplainBinOf(*m.flow));
   SelectChannels(s.data.channels, o.channels, o.no_channels, m.path);
   return s;
 }
@@ -31,6 +32,14 @@ OffsetFromRun OffsetOf(const Rig& rig, const ExplainReport& r) {
 }
 
 }  // namespace
+
+std::size_t ExplainBinOf(const FlowResult& flow) {
+  std::size_t n = 0;
+  double lo = INFINITY, hi = -INFINITY;
+  for (const FlowSample& s : flow.samples)
+    if (s.valid && std::isfinite(s.t_s)) ++n, lo = std::min(lo, s.t_s), hi = std::max(hi, s.t_s);
+  return n < 2 ? 1 : ExplainBin(n, hi - lo);
+}
 
 void SelectChannels(std::vector<Channel>& channels, const std::vector<std::string>& names, bool none,
                     const std::string& path) {

@@ -33,10 +33,11 @@ struct MeasuredFlow {
 };
 
 struct RunExplainOptions {
-  ExplainOptions explain;             // its `validation` is set by the call
-  std::vector<std::string> channels;  // the recorded channels to try (empty: every one)
-  bool no_channels = false;           // try none
-  bool correct_flow = false;          // compute the corrected flow
+  ExplainOptions explain;               // its `validation` is set by the call
+  std::vector<std::string> channels;    // the recorded channels to try (empty: every one)
+  bool no_channels = false;             // try none
+  bool correct_flow = false;            // compute the corrected flow
+  std::size_t profiles_per_sample = 0;  // profiles averaged per sample of the series (0: ExplainBinOf)
 };
 
 // The encoder offset the run implies, in counts of the rig file's scale.
@@ -69,6 +70,11 @@ struct RunExplanation {
 RunExplanation ExplainMeasuredRun(const Rig& rig, const MeasuredFlow& run, const MeasuredFlow* held_out,
                                   const model::TransferFunction& model, double model_offset,
                                   const RunExplainOptions& options);
+
+// The profiles per sample explain's run mode uses for this run's flow
+// (run_series.h, ExplainBin over its valid samples); the caller that
+// identifies a base model on the run's flow bins it alike (AverageInBins).
+std::size_t ExplainBinOf(const FlowResult& flow);
 
 // Two independent estimates of one offset: combined by inverse variance
 // where they agree within their intervals (|difference| <= 1.96 times the

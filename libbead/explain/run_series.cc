@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <numbers>
 
@@ -22,13 +23,16 @@ struct RunState {
   std::vector<double> counts_measured, area;
   std::vector<ExtrusionTimeFinder::Start> start;  // each profile's search start, the same at every shift
   double offset = 0.0;
+  // The last shift's extrusion times and flow (the hook's memo).
+  double memo_counts = std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> memo_t, memo_y;
 };
 
 }  // namespace
 
 RunSeries MakeRunSeries(const Rig& rig, const ProfileBlock& profiles, const std::vector<BeadGeometry>& geometry,
                         const AcquisitionLog& log, const FlowResult& flow, const model::TransferFunction& tf,
-                        double model_offset, const FlowOptions& flow_options) {
+                        double model_offset, const FlowOptions& flow_options, std::size_t bin) {
   auto st = std::make_shared<RunState>();
   st->log_t = log.t_s;
   st->log_counts = UnwrapEncoder(log.encoder, rig.encoder, log.t_s).counts;
@@ -56,32 +60,53 @@ RunSeries MakeRunSeries(const Rig& rig, const ProfileBlock& profiles, const std:
   RotatingPart wheel{"wheel", {}}, screw_part{"screw", {}};
   std::vector<double> measured_height;
   std::vector<double> latency;
+  // Each valid profile, then its bin's means (bin 1: the profile itself).
+  std::vector<std::size_t> valid;
   for (std::size_t k = 0; k < flow.samples.size(); ++k) {
     const FlowSample& s = flow.samples[k];
-    if (!s.valid || !std::isfinite(s.area_corrected_mm2) || s.area_corrected_mm2 <= 0.0) continue;
-    const double t_k = profiles.t_s[k];
-    const double p_k = UnwrapNear(profiles.encoder[k], rig.encoder, st->finder->PositionAt(t_k));
-    out.profile.push_back(k);
-    st->start.push_back(st->finder->StartAt(t_k));
-    st->counts_measured.push_back(p_k);
-    st->area.push_back(s.area_corrected_mm2);
-    d.t.push_back(s.t_s);
-    d.u.push_back(s.screw_rpm);
-    d.y.push_back(s.flow_mm3_s);
-    d.base.push_back(InterpolateLinear(st->log_t, st->model_flow, s.t_s));
-    for (std::size_t b = 0; b < basis.size(); ++b)
-      d.dynamics[b].push_back(InterpolateLinear(st->log_t, basis[b], s.t_s));
+    if (s.valid && std::isfinite(s.area_corrected_mm2) && s.area_corrected_mm2 > 0.0) valid.push_back(k);
+  }
+  bin = std::max<std::size_t>(bin, 1);
+  for (std::size_t first = 0; first + bin <= valid.size(); first += bin) {
+    double t_prof = 0, counts = 0, area = 0, height = 0;
+    for (std::size_t j = first; j < first + bin; ++j) {
+      const std::size_t k = valid[j];
+      const double t_k = profiles.t_s[k];
+      const double p_k = UnwrapNear(profiles.encoder[k], rig.encoder, st->finder->PositionAt(t_k));
+      t_prof += t_k / static_cast<double>(bin);
+      counts += p_k / static_cast<double>(bin);
+      area += flow.samples[k].area_corrected_mm2 / static_cast<double>(bin);
+      height += geometry[k].height_mm / static_cast<double>(bin);
+      // When did the log's encoder read this profile's count?
+      const double t_at = st->finder->Find(t_k + 1.0, p_k);
+      if (std::isfinite(t_at)) latency.push_back(t_k - t_at);
+    }
+    const std::size_t last = valid[first + bin - 1];
+    const ExtrusionTimeFinder::Start start = st->finder->StartAt(profiles.t_s[last]);
+    // A bin's extrusion time: where its mean count left the nozzle (the
+    // same search the shift hook makes), its flow the speed there times its
+    // mean area.
+    const FlowSample& one = flow.samples[last];
+    const double t_e = bin == 1 ? one.t_s : st->finder->Find(start, counts - rig.offset_counts);
+    if (!std::isfinite(t_e)) continue;
+    out.profile.push_back(valid[first + bin / 2]);
+    st->start.push_back(start);
+    st->counts_measured.push_back(counts);
+    st->area.push_back(area);
+    d.t.push_back(t_e);
+    d.u.push_back(bin == 1 ? one.screw_rpm : InterpolateLinear(st->log_t, log.screw_rpm, t_e));
+    d.y.push_back(bin == 1 ? one.flow_mm3_s : InterpolateLinear(st->log_t, st->speed, t_e) * area);
+    d.base.push_back(InterpolateLinear(st->log_t, st->model_flow, t_e));
+    for (std::size_t b = 0; b < basis.size(); ++b) d.dynamics[b].push_back(InterpolateLinear(st->log_t, basis[b], t_e));
     for (std::size_t b = 0; b < free.free.size(); ++b)
-      d.initial[b].push_back(InterpolateLinear(st->log_t, free.free[b], s.t_s));
-    wheel.angle_rad.push_back(CountsToAngleRad(p_k - rig.offset_counts, rig.encoder));
-    screw_part.angle_rad.push_back(InterpolateLinear(log.t_s, screw, s.t_s));
-    d.time_to_laser_s.push_back(t_k - s.t_s);
-    measured_height.push_back(geometry[k].height_mm);
-    // When did the log's encoder read this profile's count?
-    const double t_at = st->finder->Find(t_k + 1.0, p_k);
-    if (std::isfinite(t_at)) latency.push_back(t_k - t_at);
+      d.initial[b].push_back(InterpolateLinear(st->log_t, free.free[b], t_e));
+    wheel.angle_rad.push_back(CountsToAngleRad(counts - rig.offset_counts, rig.encoder));
+    screw_part.angle_rad.push_back(InterpolateLinear(log.t_s, screw, t_e));
+    d.time_to_laser_s.push_back(t_prof - t_e);
+    measured_height.push_back(height);
   }
   d.parts = {wheel, screw_part};
+
   for (const LogChannel& c : log.channels) d.channels.push_back({c.name, c.unit, log.t_s, c.values});
   // The height the model implies, not the one measured: a measured height
   // carries the measured flow's own deviations, and a term in it would
@@ -110,20 +135,51 @@ RunSeries MakeRunSeries(const Rig& rig, const ProfileBlock& profiles, const std:
   d.shifted = [st](double counts, const std::vector<double>& extra_delay, std::vector<double>& y,
                    std::vector<double>& base) {
     const std::size_t n = st->start.size();
-    y.resize(n);
-    base.resize(n);
-    std::size_t at_speed = 0, at_model = 0;  // the extrusion times run nearly in order: searches start at the last
-    for (std::size_t i = 0; i < n; ++i) {
-      const double t_e = st->finder->Find(st->start[i], st->counts_measured[i] - st->offset - counts);
-      if (!std::isfinite(t_e)) {
-        y[i] = base[i] = std::numeric_limits<double>::quiet_NaN();
-        continue;
+    // The extrusion times and the flow there depend on the shift only: a
+    // fit that moves the delay alone (the offset profile refits it at each
+    // trial offset) re-reads the model, not the log's positions.
+    if (!(st->memo_counts == counts) || st->memo_t.size() != n) {
+      st->memo_t.resize(n);
+      st->memo_y.resize(n);
+      std::size_t at_speed = 0;  // the extrusion times run nearly in order: searches start at the last
+      for (std::size_t i = 0; i < n; ++i) {
+        const double t_e = st->finder->Find(st->start[i], st->counts_measured[i] - st->offset - counts);
+        st->memo_t[i] = t_e;
+        st->memo_y[i] = std::isfinite(t_e) ? InterpolateLinearNear(st->log_t, st->speed, t_e, at_speed) * st->area[i]
+                                           : std::numeric_limits<double>::quiet_NaN();
       }
-      y[i] = InterpolateLinearNear(st->log_t, st->speed, t_e, at_speed) * st->area[i];
-      base[i] = InterpolateLinearNear(st->log_t, st->model_flow, t_e - (extra_delay.empty() ? 0.0 : extra_delay[i]),
-                                      at_model);
+      st->memo_counts = counts;
+    }
+    y = st->memo_y;
+    base.resize(n);
+    std::size_t at_model = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double t_e = st->memo_t[i];
+      base[i] = std::isfinite(t_e) ? InterpolateLinearNear(st->log_t, st->model_flow,
+                                                           t_e - (extra_delay.empty() ? 0.0 : extra_delay[i]), at_model)
+                                   : std::numeric_limits<double>::quiet_NaN();
     }
   };
+  return out;
+}
+
+std::size_t ExplainBin(std::size_t samples, double duration_s) {
+  constexpr std::size_t kMaxSamples = 16384;
+  constexpr double kMinRateHz = 25.0;
+  if (samples <= kMaxSamples || !(duration_s > 0)) return 1;
+  const std::size_t for_count = (samples + kMaxSamples - 1) / kMaxSamples;
+  const auto for_rate = static_cast<std::size_t>(std::floor(static_cast<double>(samples) / duration_s / kMinRateHz));
+  return std::max<std::size_t>(1, std::min(for_count, for_rate));
+}
+
+std::vector<double> AverageInBins(const std::vector<double>& v, std::size_t bin) {
+  bin = std::max<std::size_t>(bin, 1);
+  std::vector<double> out;
+  for (std::size_t first = 0; first + bin <= v.size(); first += bin) {
+    double m = 0;
+    for (std::size_t j = first; j < first + bin; ++j) m += v[j] / static_cast<double>(bin);
+    out.push_back(m);
+  }
   return out;
 }
 

@@ -32,8 +32,26 @@ struct RunSeries {
   double timestamp_offset_s = 0.0, timestamp_offset_ci95_s = 0.0;
 };
 
+// With `bin` > 1 each sample stands for `bin` consecutive profiles: their
+// mean count searched for its extrusion time (as the shift hook searches),
+// their mean area times the surface speed there, their mean height, time
+// to the laser and wheel angle; `profile` then names each bin's middle
+// profile and an incomplete last bin is left out. A long run explained at
+// a rate that still resolves its rotating parts (ExplainBin) costs a bin's
+// fraction of the per-profile series.
 RunSeries MakeRunSeries(const Rig& rig, const ProfileBlock& profiles, const std::vector<BeadGeometry>& geometry,
                         const AcquisitionLog& log, const FlowResult& flow, const model::TransferFunction& rpm_to_flow,
-                        double model_offset = 0.0, const FlowOptions& flow_options = {});
+                        double model_offset = 0.0, const FlowOptions& flow_options = {}, std::size_t bin = 1);
+
+// The profiles per sample for explaining `samples` flow samples over
+// `duration_s`: enough that at most 16384 samples remain, but never a
+// sample rate under 25 Hz (the twice-per-revolution term of a screw at
+// 300 RPM, 10 Hz, stays below its Nyquist rate of 12.5 Hz). 1 for a run
+// that is short or slow already.
+std::size_t ExplainBin(std::size_t samples, double duration_s);
+
+// `v` averaged over consecutive bins of `bin` (an incomplete last one left
+// out), as MakeRunSeries bins a run.
+std::vector<double> AverageInBins(const std::vector<double>& v, std::size_t bin);
 
 }  // namespace bead::explain

@@ -28,6 +28,10 @@ struct ShiftProfile {
   EffectSet refit_at_best;                      // every other term as refitted at the best grid shift
   std::size_t best_index = 0;                   // the lowest grid shift
   double curvature = 0.0;  // SSE = s_min + curvature (s - best)^2 through the lowest three; 0: no parabola
+  // The split-half check (confounding.h): the best shift on each half of
+  // the run, and whether they differ by more than the interval allows.
+  double first_half = NAN, second_half = NAN;
+  bool halves_disagree = false;
 };
 
 // The profile: SSE at every grid shift, the best (refined between grid
