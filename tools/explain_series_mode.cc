@@ -7,7 +7,8 @@
 #include "libbead/core/error.h"
 #include "libbead/explain/explain_json.h"
 #include "libbead/explain/model_series.h"
-#include "tools/csv_columns.h"
+#include "libbead/io/series_columns.h"
+#include "tools/series_stretches.h"
 #include "tools/explain_modes.h"
 
 namespace bead::tools {
@@ -25,6 +26,7 @@ ReadData Read(const ExplainArgs& a, const std::string& path) {
     MultiSeries m = ReadMultiSeries(path, a.time, a.inputs, a.output);
     d.s = std::move(m.s);
     d.u = std::move(m.u);
+    PrintFileNote(d.s.file_note);
     std::printf("%s: %zu rows where every input and the output are numbers\n", path.c_str(), d.s.t.size());
     return d;
   }
@@ -33,6 +35,7 @@ ReadData Read(const ExplainArgs& a, const std::string& path) {
   const std::string in_time = !a.input_time.empty() ? a.input_time : in_file.empty() ? "" : a.time;
   d.s = ReadSeries({path, a.time, a.inputs[0], a.output, in_file, in_time});
   d.u = {d.s.u};
+  PrintFileNote(d.s.file_note);
   std::printf("%s: %zu rows (%d skipped as gaps%s%s)\n", path.c_str(), d.s.t.size(), d.s.skipped,
               d.s.skipped ? "; the first at " : "", d.s.first_skip.c_str());
   if (!d.s.note.empty()) std::printf("%s\n", d.s.note.c_str());
@@ -48,6 +51,7 @@ explain::SeriesData Against(const ExplainArgs& a, const ReadData& r, const Proce
   explain::SeriesData d = explain::ModelSeries(r.s.t, r.u[0], r.s.y, m.tfs[0], m.offset, on.segments, a.output, more);
   if (a.channels.empty() || a.no_channels) return d;
   const ChannelColumns c = ReadChannelColumns(path, a.time, a.channels);
+  PrintFileNote(c.file_note);
   for (std::size_t k = 0; k < a.channels.size(); ++k) d.channels.push_back({a.channels[k], "", c.t, c.values[k]});
   return d;
 }

@@ -10,7 +10,8 @@
 #include "libbead/series/process_on.h"
 #include "tools/commands.h"
 #include "tools/subcommands.h"
-#include "tools/csv_columns.h"
+#include "libbead/io/series_columns.h"
+#include "tools/series_stretches.h"
 #include "libbead/model/identify_multi.h"
 #include "libbead/model/model_file.h"
 #include "tools/model_print.h"
@@ -63,6 +64,7 @@ int IdentifySeveral(const std::string& data, const std::string& time, const std:
                     const std::string& output, const std::vector<model::IdentifyOptions>& o, bool keep_off,
                     const std::string& validate, const std::string& out) {
   const MultiSeries est = ReadMultiSeries(data, time, inputs, output);
+  PrintFileNote(est.s.file_note);
   std::printf("%s: %zu rows where every input and the output are numbers\n", data.c_str(), est.s.t.size());
   const ProcessOn on = SeriesStretches(est.s, data, keep_off, "fit");
   const model::MultiInputModel m = model::IdentifyMultiInput(est.s.t, est.u, est.s.y, o, on.segments);
@@ -72,6 +74,7 @@ int IdentifySeveral(const std::string& data, const std::string& time, const std:
   double fit_val = NAN;
   if (!validate.empty()) {
     const MultiSeries val = ReadMultiSeries(validate, time, inputs, output);
+    PrintFileNote(val.s.file_note);
     const ProcessOn von = SeriesStretches(val.s, validate, keep_off, "validate");
     std::vector<model::TransferFunction> tfs;
     for (const auto& part : m.inputs) tfs.push_back(part.tf);
@@ -173,7 +176,9 @@ Run AddIdentify(CLI::App& app) {
       // The input's own clock: --input-time, else --time's name in --input-file.
       const std::string in_file = path == args->data ? args->input_file : args->validate_input_file;
       const std::string in_time = !args->input_time.empty() ? args->input_time : in_file.empty() ? "" : args->time;
-      return ReadSeries({path, args->time, input, args->output, in_file, in_time});
+      Series s = ReadSeries({path, args->time, input, args->output, in_file, in_time});
+      PrintFileNote(s.file_note);
+      return s;
     };
     const Series est = read(args->data);
     const model::IdentifyOptions& o = per_input[0];

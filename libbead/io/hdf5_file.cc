@@ -8,6 +8,18 @@
 namespace bead::h5 {
 namespace {
 
+bool StandardFloat(hid_t type) {
+  for (hid_t ieee : {H5T_IEEE_F32LE, H5T_IEEE_F32BE, H5T_IEEE_F64LE, H5T_IEEE_F64BE})
+    if (H5Tequal(type, ieee) > 0) return true;
+  return false;
+}
+
+bool StandardInteger(hid_t type) {
+  const std::size_t size = H5Tget_size(type);
+  return (size == 1 || size == 2 || size == 4 || size == 8) && H5Tget_precision(type) == 8 * size &&
+         H5Tget_offset(type) == 0;
+}
+
 // HDF5 prints its error stack to stderr by default; we report ourselves.
 void SilenceHdf5() {
   static const bool silenced = [] {
@@ -119,6 +131,19 @@ Handle File::OpenDataset(const std::string& dataset, std::initializer_list<int> 
     throw Error(Located(name_, dataset, "wrong type: expected a floating-point number"));
   if (kind == Kind::kInteger && cls != H5T_INTEGER)
     throw Error(Located(name_, dataset, "wrong type: expected integer encoder counts"));
+  // Only the types the format names (docs/data-formats.md): libhdf5
+  // converts any other float or integer layout in software, slowly and
+  // with buffers sized from the damaged header.
+  if (cls == H5T_FLOAT && !StandardFloat(type.get()))
+    throw Error(Located(name_, dataset,
+                        "wrong type: a floating-point layout other than IEEE float32 or float64 (" +
+                            std::to_string(H5Tget_precision(type.get())) + " bits in " +
+                            std::to_string(H5Tget_size(type.get())) + " bytes)"));
+  if (cls == H5T_INTEGER && !StandardInteger(type.get()))
+    throw Error(Located(name_, dataset,
+                        "wrong type: an integer layout other than 8, 16, 32 or 64 bits (" +
+                            std::to_string(H5Tget_precision(type.get())) + " bits in " +
+                            std::to_string(H5Tget_size(type.get())) + " bytes)"));
   Handle space(H5Dget_space(ds.get()), H5Sclose);
   const int rank = H5Sget_simple_extent_ndims(space.get());
   if (std::find(ranks.begin(), ranks.end(), rank) == ranks.end())

@@ -9,6 +9,7 @@
 #include <set>
 
 #include "libbead/core/error.h"
+#include "libbead/io/contained.h"
 
 namespace bead {
 namespace {
@@ -148,7 +149,9 @@ std::string MatContents::Names() const {
 // acquisition file with 15 vectors took 40 s). A variable's data is read
 // where its header stands (Mat_VarReadDataAll), after the header's checks.
 
-MatMatrix ReadMatMatrix(const std::string& path, const std::string& name) {
+namespace {
+
+MatMatrix ReadMatMatrixDirect(const std::string& path, const std::string& name) {
   MatPtr mat(Mat_Open(path.c_str(), MAT_ACC_RDONLY));
   if (!mat) throw Error(Located(path, "", "not a MATLAB .mat file libmatio can open (v4, v5 or v7.3)"));
   const std::uintmax_t file_bytes = std::filesystem::file_size(path);
@@ -184,7 +187,7 @@ MatMatrix ReadMatMatrix(const std::string& path, const std::string& name) {
   throw Error(Located(path, name, why + there));
 }
 
-MatContents ReadMatVectors(const std::string& path) {
+MatContents ReadMatVectorsDirect(const std::string& path) {
   MatPtr mat(Mat_Open(path.c_str(), MAT_ACC_RDONLY));
   if (!mat) throw Error(Located(path, "", "not a MATLAB .mat file libmatio can open (v4, v5 or v7.3)"));
   const std::uintmax_t file_bytes = std::filesystem::file_size(path);
@@ -232,6 +235,83 @@ MatContents ReadMatVectors(const std::string& path) {
   }
   if (unnamed > 0) out.skipped.push_back(std::to_string(unnamed) + " unnamed: MATLAB's objects and function workspace");
   return out;
+}
+
+// Bytes for the trip from the contained child (io/contained.h): sizes as
+// 8-byte counts, strings and doubles as they lie in memory (one machine).
+void PutSize(std::string& out, std::size_t n) { out.append(reinterpret_cast<const char*>(&n), sizeof n); }
+void PutString(std::string& out, const std::string& s) {
+  PutSize(out, s.size());
+  out += s;
+}
+void PutDoubles(std::string& out, const std::vector<double>& v) {
+  PutSize(out, v.size());
+  out.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(double));
+}
+struct Reader {
+  const std::string& in;
+  std::size_t at = 0;
+  std::size_t Size() {
+    std::size_t n = 0;
+    in.copy(reinterpret_cast<char*>(&n), sizeof n, at);
+    at += sizeof n;
+    return n;
+  }
+  std::string String() {
+    const std::size_t n = Size();
+    std::string s = in.substr(at, n);
+    at += n;
+    return s;
+  }
+  std::vector<double> Doubles() {
+    std::vector<double> v(Size());
+    in.copy(reinterpret_cast<char*>(v.data()), v.size() * sizeof(double), at);
+    at += v.size() * sizeof(double);
+    return v;
+  }
+};
+
+}  // namespace
+
+// libmatio sizes what it allocates from a file's headers before it reads
+// anything: the file is read in a contained child (io/contained.h) and
+// only its result comes back; libmatio never runs in the caller.
+MatMatrix ReadMatMatrix(const std::string& path, const std::string& name) {
+  const std::string bytes = RunContained(path, "matio", [&] {
+    const MatMatrix m = ReadMatMatrixDirect(path, name);
+    std::string out;
+    PutString(out, m.name);
+    PutSize(out, m.rows);
+    PutSize(out, m.cols);
+    PutDoubles(out, m.values);
+    return out;
+  });
+  Reader r{bytes};
+  MatMatrix m;
+  m.name = r.String();
+  m.rows = r.Size();
+  m.cols = r.Size();
+  m.values = r.Doubles();
+  return m;
+}
+
+MatContents ReadMatVectors(const std::string& path) {
+  const std::string bytes = RunContained(path, "matio", [&] {
+    const MatContents c = ReadMatVectorsDirect(path);
+    std::string out;
+    PutSize(out, c.vectors.size());
+    for (const MatVector& v : c.vectors) PutString(out, v.name), PutDoubles(out, v.values);
+    PutSize(out, c.skipped.size());
+    for (const std::string& s : c.skipped) PutString(out, s);
+    return out;
+  });
+  Reader r{bytes};
+  MatContents c;
+  c.vectors.resize(r.Size());
+  for (MatVector& v : c.vectors) v.name = r.String(), v.values = r.Doubles();
+  c.skipped.resize(r.Size());
+  for (std::string& s : c.skipped) s = r.String();
+  return c;
 }
 
 }  // namespace bead

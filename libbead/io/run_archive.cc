@@ -6,6 +6,7 @@
 
 #include "libbead/core/error.h"
 #include "libbead/io/atomic_file.h"
+#include "libbead/io/contained.h"
 #include "libbead/io/hdf5_file.h"
 
 namespace bead {
@@ -185,7 +186,9 @@ void ValidateLog(const AcquisitionLog& log, const std::string& file, const std::
 
 RunArchive ReadRunArchive(const std::string& path) { return ReadRunArchive(path, true); }
 
-RunArchive ReadRunArchive(const std::string& path, bool with_profiles, bool with_log) {
+namespace {
+
+RunArchive ReadRunArchiveDirect(const std::string& path, bool with_profiles, bool with_log) {
   const h5::File f = h5::File::OpenRead(path);
   RunArchive run;
   if (with_profiles) run.profiles = ReadBlock(f, "/profiles");
@@ -203,6 +206,33 @@ RunArchive ReadRunArchive(const std::string& path, bool with_profiles, bool with
   }
   run.attributes = f.ReadStringAttributes("/");
   return run;
+}
+
+// What a reader of the archive touches in libhdf5 before its data: every
+// profile dataset's header and the log with its channels' attributes.
+void ProbeRunArchive(const std::string& path, bool with_log) {
+  {
+    const h5::File f = h5::File::OpenRead(path);
+    std::vector<hsize_t> dims;
+    for (const char* name : {"/profiles/t_s", "/profiles/x_mm", "/profiles/z_mm"})
+      if (f.Exists(name)) f.OpenDataset(name, {1, 2}, h5::Kind::kFloat, dims);
+    if (f.Exists("/profiles/encoder")) f.OpenDataset("/profiles/encoder", {1}, h5::Kind::kInteger, dims);
+  }
+  ReadRunArchiveDirect(path, false, with_log);
+}
+
+PinScanArchive ReadPinScanArchiveDirect(const std::string& path);
+
+}  // namespace
+
+RunArchive ReadRunArchive(const std::string& path, bool with_profiles, bool with_log) {
+  ProbeContained(path, "HDF5", [&] { ProbeRunArchive(path, with_log); });
+  return ReadRunArchiveDirect(path, with_profiles, with_log);
+}
+
+PinScanArchive ReadPinScanArchive(const std::string& path) {
+  ProbeContained(path, "HDF5", [&] { ReadPinScanArchiveDirect(path); });
+  return ReadPinScanArchiveDirect(path);
 }
 
 void WriteRunArchive(const std::string& path, const RunArchive& run) {
@@ -230,7 +260,9 @@ void WriteRunArchive(const std::string& path, const RunArchive& run) {
   out.Commit();
 }
 
-PinScanArchive ReadPinScanArchive(const std::string& path) {
+namespace {
+
+PinScanArchive ReadPinScanArchiveDirect(const std::string& path) {
   const h5::File f = h5::File::OpenRead(path);
   if (!f.Exists("/scans")) throw Error(Located(path, "/scans", "missing group (is this a run archive?)"));
   PinScanArchive pins;
@@ -255,6 +287,8 @@ PinScanArchive ReadPinScanArchive(const std::string& path) {
   pins.attributes = f.ReadStringAttributes("/");
   return pins;
 }
+
+}  // namespace
 
 void WritePinScanArchive(const std::string& path, const PinScanArchive& pins) {
   AtomicFile out(path);

@@ -18,6 +18,7 @@
 #include "libbead/explain/explain_loop.h"
 #include "libbead/explain/run_series.h"
 #include "libbead/flow/flow.h"
+#include "libbead/flow/measured_flow.h"
 #include "libbead/model/identify.h"
 #include "libbead/profile/measure_block.h"
 #include "libbead/sim/rig_simulator.h"
@@ -53,10 +54,9 @@ struct Pipeline {
 std::unique_ptr<Pipeline> RunPipeline(const sim::SimConfig& c) {
   auto p = std::make_unique<Pipeline>();
   p->sim = sim::Simulate(c);
-  const ProfileBlock& b = p->sim.run.profiles;
-  p->geometry = MeasureProfiles(b.size(), [&](std::size_t i) { return b.view(i); }, p->sim.rig_file.reference_left,
-                                p->sim.rig_file.reference_right, {});
-  p->flow = ComputeFlow(p->sim.rig_file, b, p->geometry, *p->sim.run.log);
+  GeometryAndFlow m = MeasureFlow(p->sim.rig_file, p->sim.run.profiles, *p->sim.run.log);
+  p->geometry = std::move(m.geometry);
+  p->flow = std::move(m.flow);
   return p;
 }
 

@@ -36,6 +36,7 @@
 #include "libbead/explain/parameter_covariance.h"
 #include "libbead/explain/run_series.h"
 #include "libbead/flow/flow.h"
+#include "libbead/flow/measured_flow.h"
 #include "libbead/profile/measure_block.h"
 #include "libbead/series/interpolate.h"
 #include "libbead/sim/rig_simulator.h"
@@ -78,10 +79,8 @@ Twin Measure(const sim::SimConfig& c) {
   t.sim = sim::Simulate(c);
   const ProfileBlock& b = t.sim.run.profiles;
   const Rig& rig = t.sim.rig_file;
-  const auto geometry =
-      MeasureProfiles(b.size(), [&](std::size_t i) { return b.view(i); }, rig.reference_left, rig.reference_right, {});
-  const FlowResult flow = ComputeFlow(rig, b, geometry, *t.sim.run.log);
-  t.series = MakeRunSeries(rig, b, geometry, *t.sim.run.log, flow, c.extruder.rpm_to_flow, 0.0);
+  const GeometryAndFlow m = MeasureFlow(rig, b, *t.sim.run.log);
+  t.series = MakeRunSeries(rig, b, m.geometry, *t.sim.run.log, m.flow, c.extruder.rpm_to_flow, 0.0);
   return t;
 }
 
@@ -119,9 +118,7 @@ double ChainSensitivity(sim::SimConfig c) {
   c.sensor.z_sigma_mm = c.sensor.dropout_prob = c.sensor.spike_prob = c.sensor.dropped_profile_prob = 0.0;
   const sim::SimulatedRun s = sim::Simulate(c);
   const ProfileBlock& b = s.run.profiles;
-  const auto geometry = MeasureProfiles(b.size(), [&](std::size_t i) { return b.view(i); }, s.rig_file.reference_left,
-                                        s.rig_file.reference_right, {});
-  const FlowResult flow = ComputeFlow(s.rig_file, b, geometry, *s.run.log);
+  const FlowResult flow = MeasureFlow(s.rig_file, b, *s.run.log).flow;
   const LogChannel& temp = s.run.log->channels.at(0);
   double st = 0, sr = 0, stt = 0, str = 0, n = 0;
   for (const FlowSample& f : flow.samples) {

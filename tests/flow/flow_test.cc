@@ -1,5 +1,6 @@
 // Flow in extrusion time against the digital twin's truth.
 #include "libbead/flow/flow.h"
+#include "libbead/flow/measured_flow.h"
 #include "libbead/flow/streaming_flow.h"
 #include "libbead/model/fit_metrics.h"
 #include "libbead/series/interpolate.h"
@@ -25,11 +26,7 @@ struct Measured {
 Measured SimulateAndMeasure(const sim::SimConfig& c) {
   Measured m;
   m.run = sim::Simulate(c);
-  const ProfileBlock& b = m.run.run.profiles;
-  const Rig& rig = m.run.rig_file;
-  const auto geometry =
-      MeasureProfiles(b.size(), [&](std::size_t i) { return b.view(i); }, rig.reference_left, rig.reference_right, {});
-  m.flow = ComputeFlow(rig, b, geometry, *m.run.run.log);
+  m.flow = MeasureFlow(m.run.rig_file, m.run.run.profiles, *m.run.run.log).flow;
   return m;
 }
 

@@ -9,6 +9,13 @@ build=$1 src=$2 work=$3
 rm -rf "$work" && mkdir -p "$work"
 prefix=$work/prefix
 cmake --install "$build" --prefix "$prefix" >/dev/null
+# The public headers, not the internals (cmake/install.cmake).
+for h in profile/profile_processor.h model/model_file.h io/contained.h; do
+  [ -f "$prefix/include/libbead/$h" ] || { echo "public header $h not installed" >&2; exit 1; }
+done
+for h in profile/vec8.h profile/kernel.h model/output_error.h vision/stripe_line.h; do
+  [ ! -e "$prefix/include/libbead/$h" ] || { echo "internal header $h installed" >&2; exit 1; }
+done
 cmake -S "$src/tests/install/consumer" -B "$work/consumer" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_RPATH="$prefix/lib" >/dev/null
 cmake --build "$work/consumer" >/dev/null

@@ -1,5 +1,6 @@
-// Named columns of any CSV with a header row (time, input, output), for the
-// commands that take measured data from anywhere (identify, explain). Rows
+// Named columns of any CSV with a header row, or vector variables of a
+// MATLAB .mat file (time, input, output), for the commands that take
+// measured data from anywhere (identify, explain). Rows
 // with an empty or non-numeric field in them are skipped as gaps, and
 // counted; time must increase. The input may come from a file and clock of
 // its own (a power source's log beside a camera's): it is then held at
@@ -9,15 +10,14 @@
 #include <string>
 #include <vector>
 
-#include "libbead/series/process_on.h"
-
-namespace bead::tools {
+namespace bead {
 
 struct Series {
   std::vector<double> t, u, y;
   int skipped = 0;
   std::string first_skip;  // where and why the first skipped row was skipped
   std::string note;        // how the input was joined, when it came from its own file
+  std::string file_note;   // what a .mat file holds that no reader can use ("PATH: skipped ..."; empty: nothing)
 };
 
 struct SeriesSpec {
@@ -37,6 +37,7 @@ Series ReadSeries(const SeriesSpec& spec);
 struct ChannelColumns {
   std::vector<double> t;
   std::vector<std::vector<double>> values;  // one per name
+  std::string file_note;                    // as Series::file_note
 };
 ChannelColumns ReadChannelColumns(const std::string& path, const std::string& time,
                                   const std::vector<std::string>& names);
@@ -50,15 +51,4 @@ struct MultiSeries {
 MultiSeries ReadMultiSeries(const std::string& path, const std::string& time, const std::vector<std::string>& inputs,
                             const std::string& output);
 
-// The stretches of `s` to fit (the whole record with keep_off), what was
-// left out printed on stdout ("PATH: left out of the fit: process off
-// ..."); no stretch at all is an error naming the file (`purpose`: what
-// there is then nothing to do, "fit", "explain").
-ProcessOn SeriesStretches(const Series& s, const std::string& path, bool keep_off, const std::string& purpose);
-
-// A validation run beside an input in its own file needs its own input
-// file too (else it would be paired with the estimation run's input).
-void CheckValidationInput(const std::string& input_file, const std::string& validate,
-                          const std::string& validate_input_file);
-
-}  // namespace bead::tools
+}  // namespace bead

@@ -1,16 +1,15 @@
-#include "tools/csv_columns.h"
+#include "libbead/io/series_columns.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <set>
 
 #include "libbead/core/error.h"
 #include "libbead/io/csv_reader.h"
 #include "libbead/io/mat_file.h"
 
-namespace bead::tools {
+namespace bead {
 namespace {
 
 // Columns by name (an empty name: the row number as time); rows with a
@@ -19,6 +18,7 @@ struct Columns {
   std::vector<std::vector<double>> v;
   int skipped = 0;
   std::string first_skip;  // "line 5, column 'w': 'N/A'"
+  std::string file_note;   // a .mat file's unusable contents
 };
 
 // The row rule of both sources: a row whose values all came is kept, the
@@ -44,12 +44,12 @@ bool IsMat(const std::string& path) {
 // length (one clock); NaN and infinite values skipped as gaps. What the
 // file holds and a reader cannot use is said once on stdout.
 Columns ReadMat(const std::string& path, const std::vector<std::string>& names, bool first_is_time) {
-  static std::set<std::string> told;
   const MatContents mat = ReadMatVectors(path);
-  if (told.insert(path).second && !mat.skipped.empty()) {
+  std::string note;
+  if (!mat.skipped.empty()) {
     std::string list;
     for (const auto& s : mat.skipped) list += (list.empty() ? "" : "; ") + s;
-    std::printf("%s: skipped what is no numeric vector: %s\n", path.c_str(), list.c_str());
+    note = path + ": skipped what is no numeric vector: " + list;
   }
   std::vector<const MatVector*> vars;
   std::size_t n = 0;
@@ -73,6 +73,7 @@ Columns ReadMat(const std::string& path, const std::vector<std::string>& names, 
     vars.push_back(v);
   }
   Columns out;
+  out.file_note = note;
   out.v.resize(names.size());
   std::vector<double> v(names.size());
   for (std::size_t i = 0; i < n; ++i) {
@@ -157,6 +158,7 @@ Series ReadSeries(const SeriesSpec& given) {
     s.y = std::move(c.v[2]);
     s.skipped = c.skipped;
     s.first_skip = c.first_skip;
+    s.file_note = c.file_note;
   } else {
     if (spec.time.empty() || spec.input_time.empty())
       throw Error(
@@ -166,6 +168,7 @@ Series ReadSeries(const SeriesSpec& given) {
     if (in.v[0].empty()) throw Error(Located(spec.input_path, "", "no usable input rows"));
     s.skipped = out.skipped;
     s.first_skip = out.first_skip;
+    s.file_note = out.file_note;
     int before = 0;
     for (std::size_t i = 0; i < out.v[0].size(); ++i) {
       const double t = out.v[0][i];
@@ -202,6 +205,7 @@ ChannelColumns ReadChannelColumns(const std::string& path, const std::string& ti
     throw Error(
         Located(path, "", "fewer than 2 rows where every channel (" + std::to_string(names.size()) + ") is a number"));
   ChannelColumns out;
+  out.file_note = c.file_note;
   out.t = std::move(c.v[0]);
   for (std::size_t k = 1; k < c.v.size(); ++k) out.values.push_back(std::move(c.v[k]));
   return out;
@@ -215,6 +219,7 @@ MultiSeries ReadMultiSeries(const std::string& path, const std::string& time, co
   names.push_back(output);
   ChannelColumns c = ReadChannelColumns(path, time, names);
   MultiSeries m;
+  m.s.file_note = c.file_note;
   m.s.t = c.t;
   m.s.y = std::move(c.values.back());
   c.values.pop_back();
@@ -223,27 +228,4 @@ MultiSeries ReadMultiSeries(const std::string& path, const std::string& time, co
   return m;
 }
 
-ProcessOn SeriesStretches(const Series& s, const std::string& path, bool keep_off, const std::string& purpose) {
-  ProcessOn on;
-  if (keep_off) {
-    on.segments = WholeRecord(s.t.size());
-  } else {
-    on = FindProcessOn(s.t, s.u, s.y);
-    if (!on.excluded.empty())
-      std::printf("%s: left out of the fit: %s\n", path.c_str(), DescribeExclusions(on.excluded).c_str());
-  }
-  if (on.segments.empty()) throw Error(Located(path, "", "no stretch where the process ran: nothing to " + purpose));
-  return on;
-}
-
-void CheckValidationInput(const std::string& input_file, const std::string& validate,
-                          const std::string& validate_input_file) {
-  if (!validate_input_file.empty() && validate.empty())
-    throw Error("--validate-input-file is the input of the --validate run: give --validate too");
-  if (!validate_input_file.empty() && input_file.empty())
-    throw Error("--validate-input-file needs --input-file (the estimation run's input in its own file)");
-  if (!validate.empty() && !input_file.empty() && validate_input_file.empty())
-    throw Error("--validate " + validate + " with --input-file needs --validate-input-file (that run's own input CSV)");
-}
-
-}  // namespace bead::tools
+}  // namespace bead

@@ -1,0 +1,155 @@
+#include "libbead/io/contained.h"
+
+#include <poll.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstring>
+#include <fstream>
+#include <new>
+
+#include "libbead/core/error.h"
+
+// Sanitizers reserve terabytes of address space for their shadow memory:
+// an address-space cap would stop them, not the file. Under them the
+// child runs uncapped (their own allocator limits apply).
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define BEAD_NO_ADDRESS_CAP 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || __has_feature(memory_sanitizer)
+#define BEAD_NO_ADDRESS_CAP 1
+#endif
+#endif
+
+namespace bead {
+namespace {
+
+// The process's mapped address space, bytes (/proc/self/statm's first
+// field, in pages); 0 when unknown.
+std::size_t MappedBytes() {
+  std::ifstream statm("/proc/self/statm");
+  std::size_t pages = 0;
+  if (!(statm >> pages)) return 0;
+  return pages * static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
+}
+
+// The child: the probe, its outcome on the pipe as one status byte and a
+// message; _exit, so that no library's exit handler runs on its state.
+[[noreturn]] void RunChild(int fd, const std::function<std::string()>& work, std::size_t cap) {
+#ifndef BEAD_NO_ADDRESS_CAP
+  if (cap > 0) {
+    rlimit r{cap, cap};
+    setrlimit(RLIMIT_AS, &r);
+  }
+#else
+  (void)cap;
+#endif
+  char status = 'o';
+  std::string message;
+  try {
+    message = work();
+  } catch (const Error& e) {
+    status = 'e', message = e.what();
+  } catch (const std::bad_alloc&) {
+    status = 'm';
+  } catch (const std::exception& e) {
+    status = 'x', message = e.what();
+  } catch (...) {
+    status = 'x';
+  }
+  std::string out = status + message;
+  const char* p = out.data();
+  std::size_t left = out.size();
+  while (left > 0) {
+    const ssize_t w = write(fd, p, left);
+    if (w <= 0) break;
+    p += w, left -= static_cast<std::size_t>(w);
+  }
+  _exit(0);
+}
+
+// Reads the child's report until it closes the pipe or the time is up.
+bool ReadReport(int fd, double seconds, std::string& report) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  char buf[4096];
+  for (;;) {
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) return false;
+    pollfd p{fd, POLLIN, 0};
+    const int ready = poll(&p, 1, static_cast<int>(left.count()));
+    if (ready < 0 && errno == EINTR) continue;
+    if (ready <= 0) return false;
+    const ssize_t n = read(fd, buf, sizeof buf);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return true;
+    report.append(buf, static_cast<std::size_t>(n));
+  }
+}
+
+}  // namespace
+
+void ProbeContained(const std::string& path, const std::string& library, const std::function<void()>& probe,
+                    const ContainLimits& limits) {
+  RunContained(
+      path, library,
+      [&] {
+        probe();
+        return std::string();
+      },
+      limits);
+}
+
+std::string RunContained(const std::string& path, const std::string& library, const std::function<std::string()>& work,
+                         const ContainLimits& limits) {
+  int fds[2];
+  if (pipe(fds) != 0) return work();
+  const std::size_t mapped = MappedBytes();
+  const std::size_t cap = mapped > 0 ? mapped + limits.memory_bytes : 0;
+  const pid_t pid = fork();
+  if (pid < 0) {
+    close(fds[0]), close(fds[1]);
+    return work();
+  }
+  if (pid == 0) {
+    close(fds[0]);
+    RunChild(fds[1], work, cap);
+  }
+  close(fds[1]);
+  std::string report;
+  const bool finished = ReadReport(fds[0], limits.seconds, report);
+  close(fds[0]);
+  if (!finished) kill(pid, SIGKILL);
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  const std::string corrupt = "corrupt (the " + library + " library failed reading it: ";
+  if (!finished) {
+    char what[80];
+    std::snprintf(what, sizeof what, "it did not finish in %.0f s)", limits.seconds);
+    throw Error(Located(path, "", corrupt + what));
+  }
+  if (WIFSIGNALED(status) || report.empty())
+    throw Error(Located(path, "",
+                        corrupt +
+                            (WIFSIGNALED(status) ? std::string(strsignal(WTERMSIG(status)))
+                                                 : std::string("it stopped without a word")) +
+                            ")"));
+  switch (report[0]) {
+    case 'o':
+      return report.substr(1);
+    case 'e':
+      throw Error(report.substr(1));
+    case 'm':
+      throw Error(
+          Located(path, "",
+                  corrupt + "it asked for more than " + std::to_string(limits.memory_bytes >> 20) + " MB of memory)"));
+    default:
+      throw Error(Located(path, "", corrupt + (report.size() > 1 ? report.substr(1) : "an unknown failure") + ")"));
+  }
+}
+
+}  // namespace bead

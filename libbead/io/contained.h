@@ -1,0 +1,39 @@
+// Reading an untrusted file where a fault inside a dependency cannot take
+// the caller down. libhdf5 and libmatio trust a file's metadata: a
+// damaged attribute can overflow a buffer inside H5Aexists_by_name, a
+// damaged .mat header can make libmatio allocate gigabytes before it says
+// anything. Validation of our own (h5::File's type and size checks) stops
+// what it can see; the rest is read first in a child process (fork), its
+// address space capped a fixed budget above what the caller already maps
+// and its time bounded. Only when that probe finishes does the caller read
+// the file itself; a probe that crashes, runs out of its budget or time is
+// the file's fault, said with the file's name, and the caller never
+// touches it.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <string>
+
+namespace bead {
+
+struct ContainLimits {
+  std::size_t memory_bytes = std::size_t{1} << 30;  // beyond what the process maps when the probe starts
+  double seconds = 60.0;
+};
+
+// Runs `work` in a child process under `limits` and returns what it
+// returned (bytes: the child's result, serialised). Throws bead::Error
+// with work's own message when it threw one (a file our validation
+// refused); throws bead::Error "PATH: corrupt (the LIBRARY library failed
+// reading it: ...)" when it crashed or exhausted its memory or time. Where
+// fork is unavailable the work runs in place.
+std::string RunContained(const std::string& path, const std::string& library, const std::function<std::string()>& work,
+                         const ContainLimits& limits = {});
+
+// The same for a probe whose result is only that it finished: the caller
+// then reads the file itself.
+void ProbeContained(const std::string& path, const std::string& library, const std::function<void()>& probe,
+                    const ContainLimits& limits = {});
+
+}  // namespace bead
