@@ -9,7 +9,7 @@ include(CMakePackageConfigHelpers)
 # Core: Eigen and the standard library only (and libbead.so over it).
 set(bead_core_targets bead_core bead_c)
 # The rest: HDF5, yaml-cpp, Ceres, OpenCV.
-set(bead_full_targets bead_io bead_flow bead_model bead_sim bead_occlusion_pool bead_occlusion bead_explain bead_archive bead_vision)
+set(bead_full_targets bead_io bead_flow bead_model bead_sim bead_occlusion_pool bead_occlusion bead_explain bead_archive bead_vision bead_control)
 foreach(t ${bead_full_targets})
   string(REGEX REPLACE "^bead_" "" short ${t})
   set_target_properties(${t} PROPERTIES EXPORT_NAME ${short})
@@ -27,7 +27,7 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/libbead/ DESTINATION ${CMAKE_INSTALL_INC
   PATTERN "output_error.h" EXCLUDE PATTERN "stripe_steger.h" EXCLUDE PATTERN "stripe_line.h" EXCLUDE)
 install(FILES ${PROJECT_SOURCE_DIR}/include/bead/bead.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/bead)
 install(TARGETS bead bead-measure bead-flow bead-batch bead-calibrate bead-simulate bead-import bead-export bead-frames
-  bead-identify bead-explain bead-report RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  bead-identify bead-explain bead-report bead-tune RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(TARGETS bead-occlusion-fit LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/bead)
 install(FILES ${PROJECT_SOURCE_DIR}/tools/report/bead_report.py DESTINATION ${CMAKE_INSTALL_DATADIR}/bead)
 

@@ -22,5 +22,6 @@ Run AddExport(CLI::App& app);
 Run AddFrames(CLI::App& app);
 Run AddBatch(CLI::App& app);
 Run AddReport(CLI::App& app);
+Run AddTune(CLI::App& app);
 
 }  // namespace bead::tools

@@ -24,6 +24,7 @@ inline constexpr Subcommand kSubcommands[] = {
     {"identify", "Identify a transfer function (poles, zeros, delay) from data"},
     {"explain", "Find what the model lacks: residual diagnostics and effects added"},
     {"report", "One self-contained HTML page about a run: profiles, geometry, flow, pins"},
+    {"tune", "A PID from a model: maximum stability degree, SIMC, IMC, ZN, Cohen-Coon"},
 };
 
 inline const char* Summary(const char* name) {

@@ -1,0 +1,66 @@
+// `bead tune` on a model file: every method's row, the controller file,
+// the closing line in the form scripts read, and the errors that say what
+// to fix.
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include <regex>
+
+#include "tests/support/run_cli.h"
+
+namespace bead {
+namespace {
+
+// Seed 004's eq. 14: 1.0033 / ((44.1315 s + 1)(2.0042 s + 1)(1.9689 s + 1)).
+const char* kEq14 = R"({"num": [1.0033], "den": [174.14596084, 179.28493203, 48.1046, 1.0], "delay_s": 0.0})";
+
+TEST(TuneCommand, ComparesEveryMethodAndWritesTheController) {
+  test::TempDir dir;
+  test::WriteText(dir / "m.json", kEq14);
+  auto [status, out] = test::RunCli(dir, "tune " + (dir / "m.json") + " --compare -o " + (dir / "c.yaml"));
+  ASSERT_EQ(status, 0) << out;
+  for (const char* m : {"max-stability", "simc", "imc", "zn", "cohen-coon"})
+    EXPECT_NE(out.find(std::string("\n") + m + " "), std::string::npos) << m << "\n" << out;
+  // The last line: the chosen (default) method's gains and J.
+  const std::regex last(R"(kp=([0-9.e+-]+) ki=([0-9.e+-]+) kd=([0-9.e+-]+) stability_degree=([0-9.e+-]+)\n$)");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(out, m, last)) << out;
+  // Table I row 4 (kp 10.836, ki 0.7611, kd 21.032, J 0.26), to the
+  // paper's digits; J to the fourfold root's split by 6-digit gains.
+  EXPECT_NEAR(std::stod(m[1]), 10.836, 0.01 * 10.836);
+  EXPECT_NEAR(std::stod(m[2]), 0.7611, 0.01 * 0.7611);
+  EXPECT_NEAR(std::stod(m[3]), 21.032, 0.01 * 21.032);
+  EXPECT_NEAR(std::stod(m[4]), 0.2574, 0.047 * 0.2574);
+  const YAML::Node c = YAML::LoadFile(dir / "c.yaml");
+  EXPECT_EQ(c["format"].as<std::string>(), "bead controller 1");
+  EXPECT_EQ(c["method"].as<std::string>(), "max-stability");
+  EXPECT_DOUBLE_EQ(c["pid"]["kp"].as<double>(), std::stod(m[1]));
+  EXPECT_EQ(c["model"]["source"].as<std::string>(), dir / "m.json");
+  EXPECT_GT(c["margins"]["phase_margin_deg"].as<double>(), 0);
+  EXPECT_NEAR(c["stability_degree"].as<double>(), std::stod(m[4]), 1e-5);
+}
+
+TEST(TuneCommand, ErrorsSayWhatToFix) {
+  test::TempDir dir;
+  test::WriteText(dir / "m.json", kEq14);
+  auto [status, out] = test::RunCli(dir, "tune " + (dir / "m.json") + " --method pi");
+  EXPECT_EQ(status, 1) << out;
+  EXPECT_NE(out.find("max-stability, simc, imc, zn, cohen-coon"), std::string::npos) << out;
+  // A second-order model has no maximum: the user is told to choose J.
+  test::WriteText(dir / "two.json", R"({"num": [1.0031], "den": [98.0034816, 46.2302, 1.0]})");
+  std::tie(status, out) = test::RunCli(dir, "tune " + (dir / "two.json") + " -o " + (dir / "c.yaml"));
+  EXPECT_EQ(status, 1) << out;
+  EXPECT_NE(out.find("--degree"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "c.yaml"));
+  std::tie(status, out) = test::RunCli(dir, "tune " + (dir / "two.json") + " --degree 0.3");
+  EXPECT_EQ(status, 0) << out;
+  EXPECT_NE(out.find("kp=25.38"), std::string::npos) << out;
+  test::WriteText(dir / "multi.json",
+                  R"({"inputs": [{"num": [1], "den": [1, 1]}, {"num": [2], "den": [3, 1]}], "output": "q"})");
+  std::tie(status, out) = test::RunCli(dir, "tune " + (dir / "multi.json"));
+  EXPECT_EQ(status, 1) << out;
+  EXPECT_NE(out.find("several inputs"), std::string::npos) << out;
+}
+
+}  // namespace
+}  // namespace bead

@@ -1,0 +1,113 @@
+// bead tune: a PID from a model file, by the method asked (or every one
+// side by side), with the closed loop's figures on the model.
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <optional>
+
+#include "libbead/control/controller_file.h"
+#include "libbead/control/pid_tuning.h"
+#include "libbead/core/error.h"
+#include "libbead/model/model_file.h"
+#include "tools/commands.h"
+#include "tools/subcommands.h"
+
+namespace bead::tools {
+namespace {
+
+void PrintRow(const control::Evaluated& e) {
+  const auto& d = e.design;
+  std::printf("%-14s %11.6g %11.6g %11.6g %10.4g %8.3g %8.1f %6.2f %9.1f %10.4g %10.4g %10.4g\n", d.method.c_str(),
+              d.pid.kp, d.pid.ki, d.pid.kd, d.stability_degree, e.margins.gain_margin, e.margins.phase_margin_deg,
+              e.margins.ms, e.setpoint.overshoot_pct, e.setpoint.settling_s, e.setpoint.iae, e.load.iae);
+}
+
+void PrintHeader() {
+  std::printf("%-14s %11s %11s %11s %10s %8s %8s %6s %9s %10s %10s %10s\n", "method", "kp", "ki", "kd", "J_1/s", "GM",
+              "PM_deg", "Ms", "overshoot%", "settle_s", "IAE_step", "IAE_load");
+}
+
+}  // namespace
+
+Run AddTune(CLI::App& app) {
+  struct Args {
+    std::string model, method = "max-stability", out;
+    double degree = 0, filter_n = 0;
+    bool compare = false;
+  };
+  auto args = std::make_shared<Args>();
+  CLI::App* cmd = app.add_subcommand("tune", Summary("tune"));
+  cmd->footer(
+      "In:  a model file of `bead identify -o` (one input: a transfer function or process model, with or\n"
+      "     without delay).\n"
+      "Methods: max-stability (seed 004: the PID kp + ki/s + kd s whose closed loop's rightmost root lies\n"
+      "     furthest left; J is minus its real part), simc (Skogestad 2003), imc (Rivera, Morari & Skogestad\n"
+      "     1986), zn (Ziegler-Nichols' reaction curve, 1942), cohen-coon (1953); the rules on the model's\n"
+      "     first-order-plus-delay form (its own, Skogestad's half rule, or seed 004's step identification).\n"
+      "Out: the gains, J (the rightmost closed-loop root with the gains as printed: rounding splits a\n"
+      "     multiple root), gain and phase margins, the peak sensitivity Ms, a unit setpoint step\n"
+      "     (overshoot, settling to +-5 % as seed 004 uses, IAE) and a unit load step at the plant's input\n"
+      "     (IAE), simulated on the model with its delay exact. The derivative: ideal (eq. 16) unless\n"
+      "     --filter N sets Tf = kd / (N kp). --compare prints every method's row; -o writes the\n"
+      "     controller (YAML, atomically). The last line: kp=<v> ki=<v> kd=<v> stability_degree=<v>.\n"
+      "Examples:\n"
+      "  bead identify step.csv --time t --input u --output temp --structure P2D -o heater.json\n"
+      "  bead tune heater.json --compare\n"
+      "  bead tune heater.json --method max-stability -o heater_pid.yaml");
+  cmd->add_option("model", args->model, "Model JSON (bead identify -o)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--method", args->method, "max-stability, simc, imc, zn or cohen-coon")->capture_default_str();
+  cmd->add_option("--degree", args->degree,
+                  "max-stability: place a triple root at -J for this J (1/s) instead of maximising J");
+  cmd->add_option("--filter", args->filter_n, "Derivative filter: Tf = kd / (N kp) (0: none)")->capture_default_str();
+  cmd->add_flag("--compare", args->compare, "Every method side by side");
+  cmd->add_option("-o,--out", args->out, "Controller YAML to write");
+  return [args]() {
+    const model::ModelFile f = model::ReadModelFile(args->model);
+    if (f.tfs.size() != 1)
+      throw Error(Located(args->model, "inputs", "a model of several inputs: tune takes a model of one input"));
+    const model::TransferFunction& g = f.tfs[0];
+    const std::optional<double> degree = args->degree > 0 ? std::optional<double>(args->degree) : std::nullopt;
+    auto design = [&](const std::string& method) {
+      control::Design d = control::DesignPid(g, method, method == "max-stability" ? degree : std::nullopt);
+      if (d.ok && args->filter_n > 0 && d.pid.kd > 0 && d.pid.kp > 0) {
+        d.pid.tf_s = d.pid.kd / (args->filter_n * d.pid.kp);
+        d.stability_degree = -control::FindRightmostRoot(control::Characteristic(g, d.pid)).real_part;
+      }
+      return d;
+    };
+    std::printf("%s: %s\n", args->model.c_str(),
+                g.delay_s > 0 ? ("delay " + std::to_string(g.delay_s) + " s").c_str() : "no delay");
+    std::printf("derivative: %s\n", args->filter_n > 0 ? "filtered, Tf = kd / (N kp)" : "ideal (seed 004 eq. 16)");
+    const control::Design chosen = design(args->method);
+    if (args->compare) {
+      PrintHeader();
+      for (const std::string& m : control::Methods()) {
+        const control::Design d = m == args->method ? chosen : design(m);
+        if (!d.ok) {
+          std::printf("%-14s %s\n", m.c_str(), d.reason.c_str());
+          continue;
+        }
+        PrintRow(control::Evaluate(g, d));
+      }
+    }
+    if (!chosen.ok) throw Error(Located(args->model, "", args->method + ": " + chosen.reason));
+    const control::Evaluated e = control::Evaluate(g, chosen);
+    if (!args->compare) {
+      PrintHeader();
+      PrintRow(e);
+    }
+    if (!chosen.note.empty()) std::printf("%s: %s\n", chosen.method.c_str(), chosen.note.c_str());
+    if (!chosen.fopdt.how.empty())
+      std::printf("first order plus delay (%s): k %.5g, tau %.4g s, theta %.4g s\n", chosen.fopdt.how.c_str(),
+                  chosen.fopdt.k, chosen.fopdt.tau_s, chosen.fopdt.theta_s);
+    if (!args->out.empty()) {
+      control::WriteControllerFile(args->out, e, g, args->model);
+      std::printf("wrote %s\n", args->out.c_str());
+    }
+    std::printf("kp=%.6g ki=%.6g kd=%.6g stability_degree=%.6g\n", chosen.pid.kp, chosen.pid.ki, chosen.pid.kd,
+                chosen.stability_degree);
+    return 0;
+  };
+}
+
+}  // namespace bead::tools
