@@ -27,7 +27,7 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/libbead/ DESTINATION ${CMAKE_INSTALL_INC
   PATTERN "output_error.h" EXCLUDE PATTERN "stripe_steger.h" EXCLUDE PATTERN "stripe_line.h" EXCLUDE)
 install(FILES ${PROJECT_SOURCE_DIR}/include/bead/bead.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/bead)
 install(TARGETS bead bead-measure bead-flow bead-batch bead-calibrate bead-simulate bead-import bead-export bead-frames
-  bead-identify bead-explain bead-report bead-tune RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  bead-identify bead-explain bead-report bead-tune bead-feedforward RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(TARGETS bead-occlusion-fit LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/bead)
 install(FILES ${PROJECT_SOURCE_DIR}/tools/report/bead_report.py DESTINATION ${CMAKE_INSTALL_DATADIR}/bead)
 

@@ -23,5 +23,6 @@ Run AddFrames(CLI::App& app);
 Run AddBatch(CLI::App& app);
 Run AddReport(CLI::App& app);
 Run AddTune(CLI::App& app);
+Run AddFeedforward(CLI::App& app);
 
 }  // namespace bead::tools

@@ -25,6 +25,7 @@ inline constexpr Subcommand kSubcommands[] = {
     {"explain", "Find what the model lacks: residual diagnostics and effects added"},
     {"report", "One self-contained HTML page about a run: profiles, geometry, flow, pins"},
     {"tune", "A PID from a model: maximum stability degree, SIMC, IMC, ZN, Cohen-Coon"},
+    {"feedforward", "The wheel command that holds a bead area for a planned extruder command"},
 };
 
 inline const char* Summary(const char* name) {

@@ -34,7 +34,16 @@ FeedForward::FeedForward(const TransferFunction& voltage_to_rpm, const TransferF
   command_delay_.assign(static_cast<std::size_t>(std::lround(first / dt_)), 0.0);
   rpm_delay_.assign(static_cast<std::size_t>(std::lround((left - first) / dt_)), 0.0);
   a_ = std::exp(-dt_ / wheel.tau_s);
+  to_rpm_dc_ = voltage_to_rpm.DcGain();
   gain_ = (1.0 - options.pole) / (1.0 - a_);
+}
+
+void FeedForward::StartAt(double command_v) {
+  to_rpm_.Reset(command_v);
+  const double rpm = command_v * to_rpm_dc_;
+  to_flow_.Reset(rpm);
+  std::fill(command_delay_.begin(), command_delay_.end(), command_v);
+  std::fill(rpm_delay_.begin(), rpm_delay_.end(), rpm);
 }
 
 double FeedForward::Step(double command_v) {

@@ -45,6 +45,10 @@ class FeedForward {
 
   // One controller tick: the extruder command now -> the wheel command now (V).
   double Step(double extruder_command_v);
+  // The models in steady state at this extruder command, as if it had
+  // always been given (a plan that starts mid-process); else they start
+  // from rest.
+  void StartAt(double extruder_command_v);
   // The flow the models predict one wheel delay ahead, mm^3/s (last tick).
   double predicted_flow_mm3_s() const { return predicted_; }
   double dt_s() const { return dt_; }
@@ -55,7 +59,7 @@ class FeedForward {
   FeedForwardOptions options_;
   DiscreteSystem to_rpm_, to_flow_;
   std::deque<double> command_delay_, rpm_delay_;  // ticks of delay in each model
-  double a_, gain_;
+  double a_, gain_, to_rpm_dc_ = 0.0;
   double last_reference_v_ = 0.0, last_output_v_ = 0.0, predicted_ = 0.0;
   bool first_ = true;
 };

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <regex>
 
 #include "tests/support/run_cli.h"
@@ -60,6 +61,39 @@ TEST(TuneCommand, ErrorsSayWhatToFix) {
   std::tie(status, out) = test::RunCli(dir, "tune " + (dir / "multi.json"));
   EXPECT_EQ(status, 1) << out;
   EXPECT_NE(out.find("several inputs"), std::string::npos) << out;
+}
+
+}  // namespace
+}  // namespace bead
+
+namespace bead {
+namespace {
+
+// `bead feedforward`: a plan of extruder steps and the thesis' flow model
+// (eq. 22, delay 0.15 s) give a wheel command CSV and the predicted
+// variation beside a constant wheel's; a plan without the named column is
+// refused by name.
+TEST(FeedforwardCommand, WritesTheWheelCommandToPlay) {
+  test::TempDir dir;
+  test::WriteText(dir / "flow.json", R"({"num": [9.175, 149.2, 905.3], "den": [1, 12.84, 47.52], "delay_s": 0.15})");
+  std::string plan = "t_s,extruder_cmd_v\n";
+  for (int i = 0; i <= 1000; ++i) plan += std::to_string(0.01 * i) + "," + (i < 500 ? "3.0" : "4.0") + "\n";
+  test::WriteText(dir / "plan.csv", plan);
+  auto [status, out] = test::RunCli(dir, "feedforward --plan " + (dir / "plan.csv") + " --flow-model " +
+                                             (dir / "flow.json") + " --target-area 14 -o " + (dir / "wheel.csv"));
+  ASSERT_EQ(status, 0) << out;
+  EXPECT_NE(out.find("times less variation"), std::string::npos) << out;
+  const std::string csv = test::ReadText(dir / "wheel.csv");
+  EXPECT_EQ(
+      csv.rfind("t_s,extruder_cmd_v,wheel_cmd_v,predicted_flow_mm3_s,predicted_speed_mm_s,predicted_area_mm2\n", 0),
+      0u);
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 1001);
+  std::tie(status, out) =
+      test::RunCli(dir, "feedforward --plan " + (dir / "plan.csv") + " --command volts --flow-model " +
+                            (dir / "flow.json") + " -o " + (dir / "w2.csv"));
+  EXPECT_EQ(status, 1) << out;
+  EXPECT_NE(out.find("no column 'volts'"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "w2.csv"));
 }
 
 }  // namespace
