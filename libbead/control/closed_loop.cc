@@ -160,30 +160,41 @@ namespace {
 // buffer of whole steps (dt divides it), the PID with the integral by
 // rectangles and the derivative through its filter (backward Euler).
 StepFigures Simulate(const model::TransferFunction& plant, const Pid& pid, double duration, double dt, double setpoint,
-                     double load) {
+                     double load, double controller_dt) {
   if (dt <= 0) {
     double fastest = 1.0 / std::max(duration, 1e-9);
     for (const C& r : Roots(Trim(plant.den))) fastest = std::max(fastest, std::abs(r));
     if (pid.kd > 0 && pid.kp > 0) fastest = std::max(fastest, pid.kp / pid.kd);
     dt = std::min(duration / 2000.0, 1.0 / (200.0 * fastest) * 20.0);
   }
-  const int delay_steps = plant.delay_s > 0 ? std::max(1, static_cast<int>(std::ceil(plant.delay_s / dt))) : 0;
-  if (delay_steps > 0) dt = plant.delay_s / delay_steps;
+  std::size_t hold = 1;
+  int delay_steps = 0;
+  if (controller_dt > 0) {
+    hold = static_cast<std::size_t>(std::max(1.0, std::ceil(controller_dt / dt)));
+    dt = controller_dt / static_cast<double>(hold);
+    delay_steps = static_cast<int>(std::lround(plant.delay_s / dt));
+  } else {
+    delay_steps = plant.delay_s > 0 ? std::max(1, static_cast<int>(std::ceil(plant.delay_s / dt))) : 0;
+    if (delay_steps > 0) dt = plant.delay_s / delay_steps;
+  }
+  const double pid_dt = dt * static_cast<double>(hold);
   model::TransferFunction undelayed = plant;
   undelayed.delay_s = 0;
   model::DiscreteSystem sys(undelayed, dt);
   sys.Reset(0.0);
   std::deque<double> buffer(static_cast<std::size_t>(delay_steps), 0.0);
   StepFigures f;
-  double integral = 0, deriv = 0, prev_e = setpoint, y = 0;
+  double integral = 0, deriv = 0, prev_e = setpoint, y = 0, u = 0;
   const auto steps = static_cast<std::size_t>(std::ceil(duration / dt));
   for (std::size_t k = 0; k <= steps; ++k) {
-    const double e = setpoint - y;
-    const double de = k == 0 ? (setpoint - 0.0) : e - prev_e;  // the setpoint's step at t = 0 enters the derivative
-    deriv = pid.tf_s > 0 ? (pid.tf_s * deriv + pid.kd * de) / (pid.tf_s + dt) : pid.kd * de / dt;
-    const double u = pid.kp * e + pid.ki * integral + deriv;
-    integral += e * dt;
-    prev_e = e;
+    if (k % hold == 0) {
+      const double e = setpoint - y;
+      const double de = k == 0 ? (setpoint - 0.0) : e - prev_e;  // the setpoint's step at t = 0 enters the derivative
+      deriv = pid.tf_s > 0 ? (pid.tf_s * deriv + pid.kd * de) / (pid.tf_s + pid_dt) : pid.kd * de / pid_dt;
+      u = pid.kp * e + pid.ki * integral + deriv;
+      integral += e * pid_dt;
+      prev_e = e;
+    }
     f.t.push_back(static_cast<double>(k) * dt);
     f.y.push_back(y);
     f.u.push_back(u);
@@ -200,8 +211,9 @@ StepFigures Simulate(const model::TransferFunction& plant, const Pid& pid, doubl
 
 }  // namespace
 
-StepFigures SetpointStep(const model::TransferFunction& plant, const Pid& pid, double duration, double dt) {
-  StepFigures f = Simulate(plant, pid, duration, dt, 1.0, 0.0);
+StepFigures SetpointStep(const model::TransferFunction& plant, const Pid& pid, double duration, double dt,
+                         double controller_dt) {
+  StepFigures f = Simulate(plant, pid, duration, dt, 1.0, 0.0, controller_dt);
   double peak = 0;
   f.settling_s = 0;
   for (std::size_t k = 0; k < f.y.size(); ++k) {
@@ -215,8 +227,9 @@ StepFigures SetpointStep(const model::TransferFunction& plant, const Pid& pid, d
   return f;
 }
 
-StepFigures LoadStep(const model::TransferFunction& plant, const Pid& pid, double duration, double dt) {
-  StepFigures f = Simulate(plant, pid, duration, dt, 0.0, 1.0);
+StepFigures LoadStep(const model::TransferFunction& plant, const Pid& pid, double duration, double dt,
+                     double controller_dt) {
+  StepFigures f = Simulate(plant, pid, duration, dt, 0.0, 1.0, controller_dt);
   // The band: 5 % of the load's open-loop effect (the plant's gain).
   const double band = 0.05 * std::abs(plant.DcGain());
   for (std::size_t k = 0; k < f.y.size(); ++k) {

@@ -70,8 +70,13 @@ struct StepFigures {
 // A unit setpoint step (setpoint weight 1 on every term, the derivative
 // on the error, as eq. 16) and a unit load step at the plant's input,
 // simulated with the delay exact (a buffer of whole steps at dt; dt: 0 =
-// the loop's fastest time scale / 200) for `duration_s`.
-StepFigures SetpointStep(const model::TransferFunction& plant, const Pid& pid, double duration_s, double dt = 0);
-StepFigures LoadStep(const model::TransferFunction& plant, const Pid& pid, double duration_s, double dt = 0);
+// the loop's fastest time scale / 200) for `duration_s`. With
+// `controller_dt` > 0 the PID is digital: it samples the output and
+// updates its output every controller_dt, held in between (dt then divides
+// it, and the delay is rounded to whole steps of dt).
+StepFigures SetpointStep(const model::TransferFunction& plant, const Pid& pid, double duration_s, double dt = 0,
+                         double controller_dt = 0);
+StepFigures LoadStep(const model::TransferFunction& plant, const Pid& pid, double duration_s, double dt = 0,
+                     double controller_dt = 0);
 
 }  // namespace bead::control

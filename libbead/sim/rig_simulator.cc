@@ -15,6 +15,37 @@
 namespace bead::sim {
 namespace {
 
+// The screw-speed PID of ExtruderConfig::pid, ticking every `ticks`
+// simulator steps on the speed measured at the tick; the voltage held in
+// between and clamped, the integral frozen while the output is clamped.
+class ScrewPid {
+ public:
+  ScrewPid(const ScrewPidConfig& c, double dt)
+      : c_(c),
+        ticks_(std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(1.0 / (c.rate_hz * dt))))),
+        dt_(static_cast<double>(ticks_) * dt) {}
+  void Start(double v0) { integral_ = c_.ki != 0 ? v0 / c_.ki : 0.0, first_ = true; }
+  double Step(double setpoint, double measured, double held) {
+    if (count_++ % ticks_ != 0) return held;
+    const double e = setpoint - measured;
+    if (first_) prev_e_ = e, first_ = false;
+    deriv_ = c_.derivative_filter_s > 0
+                 ? (c_.derivative_filter_s * deriv_ + c_.kd * (e - prev_e_)) / (c_.derivative_filter_s + dt_)
+                 : c_.kd * (e - prev_e_) / dt_;
+    prev_e_ = e;
+    const double raw = c_.kp * e + c_.ki * (integral_ + e * dt_) + deriv_;
+    const double out = std::clamp(raw, 0.0, c_.max_v);
+    if (out == raw) integral_ += e * dt_;
+    return out;
+  }
+
+ private:
+  ScrewPidConfig c_;
+  std::size_t ticks_, count_ = 0;
+  double dt_, integral_ = 0, prev_e_ = 0, deriv_ = 0;
+  bool first_ = true;
+};
+
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
@@ -78,6 +109,16 @@ Timeline RunDynamics(const SimConfig& c, std::mt19937_64& rng) {
   }
   const std::size_t n = static_cast<std::size_t>(std::ceil((c.duration_s - tl.t0) / c.dt_s)) + 1;
   tl.command_v = CommandSeries(c.extruder.command, c.dt_s, n, rng, tl.t0, c.warm_start);
+  // With a screw-speed PID the command is its setpoint (RPM); the voltage
+  // is computed in the loop below.
+  ScrewPid pid(c.extruder.pid, c.dt_s);
+  std::vector<double> setpoint_rpm;
+  if (c.extruder.pid.on) {
+    setpoint_rpm = tl.command_v;
+    const double v0 = c.warm_start ? setpoint_rpm.front() / c.extruder.voltage_to_rpm.DcGain() : 0.0;
+    std::fill(tl.command_v.begin(), tl.command_v.end(), v0);
+    pid.Start(v0);
+  }
   tl.wheel_cmd_v.assign(n, 0.0);
   tl.rpm.assign(n, 0.0);
   tl.flow.assign(n, 0.0);
@@ -131,6 +172,9 @@ Timeline RunDynamics(const SimConfig& c, std::mt19937_64& rng) {
 
   for (std::size_t i = 0; i < n; ++i) {
     const double t = tl.Time(static_cast<double>(i));
+    if (c.extruder.pid.on)
+      tl.command_v[i] = pid.Step(setpoint_rpm[i], i > 0 ? tl.rpm[i - 1] : setpoint_rpm[i],
+                                 i > 0 ? tl.command_v[i - 1] : tl.command_v[0]);
     const double u_rpm = i >= rpm_lag ? tl.command_v[i - rpm_lag] : (c.warm_start ? tl.command_v.front() : 0.0);
     tl.rpm[i] = std::max(0.0, to_rpm.Step(u_rpm) + c.extruder.rpm_noise * gauss(rng));
     const double u_flow = i >= flow_lag ? tl.rpm[i - flow_lag] : rpm_before;

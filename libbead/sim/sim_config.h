@@ -25,8 +25,19 @@ struct CommandConfig {
   double stop_s = -1.0;  // command is 0 V after this (< 0: end of run)
 };
 
+// A PID on the screw speed (control/closed_loop.h's form, seed 004 eq. 16):
+// with it, the extruder's `command` is the screw speed setpoint in RPM and
+// the PID, ticking at rate_hz on the measured (noisy) speed, computes the
+// voltage, clamped to [0, max_v] (its integral held while clamped).
+struct ScrewPidConfig {
+  bool on = false;
+  double kp = 0, ki = 0, kd = 0, derivative_filter_s = 0;
+  double rate_hz = 100.0, max_v = 10.0;
+};
+
 struct ExtruderConfig {
   CommandConfig command;
+  ScrewPidConfig pid;
   model::TransferFunction voltage_to_rpm = model::ThesisVoltageToRpm();  // thesis eq. 21
   model::TransferFunction rpm_to_flow = model::ThesisRpmToFlow(0.15);    // thesis eq. 22; delay ours
   double rpm_noise = 0.3;                                                // RPM, white, on the screw speed

@@ -219,7 +219,7 @@ void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
   }
 
   const YAML::Node ex =
-      r.Section(root, "extruder", {"command", "voltage_to_rpm", "rpm_to_flow", "rpm_noise", "flow_noise_frac"});
+      r.Section(root, "extruder", {"command", "voltage_to_rpm", "rpm_to_flow", "rpm_noise", "flow_noise_frac", "pid"});
   if (ex.IsDefined()) {
     const YAML::Node cmd = r.Section(
         ex, "command", {"kind", "base_v", "levels_v", "durations_s", "amplitude_v", "bit_time_s", "start_s", "stop_s"});
@@ -240,6 +240,17 @@ void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
     r.GetTf(ex, "extruder.", "rpm_to_flow", c.extruder.rpm_to_flow);
     r.Get(ex, "extruder.", "rpm_noise", c.extruder.rpm_noise, 0, 1e3);
     r.Get(ex, "extruder.", "flow_noise_frac", c.extruder.flow_noise_frac, 0, 1);
+    if (ex["pid"]) {
+      const YAML::Node pid = r.Section(ex, "pid", {"kp", "ki", "kd", "derivative_filter_s", "rate_hz", "max_v"});
+      auto& p = c.extruder.pid;
+      p.on = true;
+      r.Get(pid, "extruder.pid.", "kp", p.kp, -1e6, 1e6);
+      r.Get(pid, "extruder.pid.", "ki", p.ki, -1e6, 1e6);
+      r.Get(pid, "extruder.pid.", "kd", p.kd, -1e6, 1e6);
+      r.Get(pid, "extruder.pid.", "derivative_filter_s", p.derivative_filter_s, 0, 1e4);
+      r.Get(pid, "extruder.pid.", "rate_hz", p.rate_hz, 1e-3, 1e6);
+      r.Get(pid, "extruder.pid.", "max_v", p.max_v, 0, 1e3);
+    }
   }
 
   const YAML::Node wh = r.Section(root, "wheel",
