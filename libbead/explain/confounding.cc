@@ -72,9 +72,6 @@ void SayAlternative(const SeriesData& d, const Active& kept, const Active& alt, 
        "these two causes apart (the one kept lowers the BIC more); a run that varies them apart can"});
 }
 
-// The offset from the run: the profile, widened to the joint fit's
-// interval at its best (the shift beside every other term), and the
-// shift's correlation with the base model's delay.
 namespace {
 
 // The split-half check: the profile's best on the first and on the second
@@ -83,8 +80,8 @@ namespace {
 // halves further apart than 1.96 times that (the whole interval's width)
 // say that something other than the noise sets the offset (a base model's
 // misfit that happens to follow the wheel), and the interval is widened to
-// hold the whole's best +- their difference and each half's own interval. A half lowest at the searched range's
-// end leaves the offset not pinned.
+// hold the whole's best +- their difference and each half's own interval.
+// A half lowest at the searched range's end leaves the offset not pinned.
 void CheckHalves(const SeriesData& d, const EffectSet& current, const Effect& shift,
                  const std::vector<std::size_t>& rows, ShiftProfile& p) {
   const std::vector<double>& grid = shift.grid[0];
@@ -115,6 +112,10 @@ void CheckHalves(const SeriesData& d, const EffectSet& current, const Effect& sh
 
 }  // namespace
 
+// The offset from the run: the profile, widened to the joint fit's
+// interval at its best (the shift beside every other term) and by the
+// split-half check, and the shift's correlation with the base model's
+// delay.
 void EstimateShift(const SeriesData& d, const EffectSet& current, const Effect& shift,
                    const std::vector<std::size_t>& rows, ExplainReport& report) {
   ShiftProfile& p = report.shift_profile;

@@ -1,12 +1,15 @@
 #include "libbead/io/contained.h"
 
+#include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <new>
@@ -106,7 +109,9 @@ void ProbeContained(const std::string& path, const std::string& library, const s
 std::string RunContained(const std::string& path, const std::string& library, const std::function<std::string()>& work,
                          const ContainLimits& limits) {
   int fds[2];
-  if (pipe(fds) != 0) return work();
+  // Close-on-exec: a child another thread starts meanwhile does not hold
+  // the pipe open past this one's end.
+  if (pipe2(fds, O_CLOEXEC) != 0) return work();
   const std::size_t mapped = MappedBytes();
   const std::size_t cap = mapped > 0 ? mapped + limits.memory_bytes : 0;
   const pid_t pid = fork();
