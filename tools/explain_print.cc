@@ -31,8 +31,9 @@ BaseModel ModelFor(const ExplainArgs& a, const std::vector<double>& t, const std
     const model::ModelFile f = model::ReadModelFile(a.model);
     if (f.tfs.size() != u.size())
       throw Error(Located(a.model, "",
-                          "a model of " + std::to_string(f.tfs.size()) + " input(s), but " + std::to_string(u.size()) +
-                              " given (--input)"));
+                          "a model of " + std::to_string(f.tfs.size()) + " input(s), but the data give " +
+                              std::to_string(u.size()) +
+                              " (run mode: the screw speed alone; CSV and .mat mode: one per --input column)"));
     m.inputs = f.inputs;
     m.tfs = f.tfs;
     m.offset = f.offset;
