@@ -12,6 +12,7 @@
 #include "libbead/io/flow_csv.h"
 #include "libbead/io/rig_yaml.h"
 #include "libbead/io/run_archive.h"
+#include "libbead/model/model_file.h"
 #include "libbead/occlusion/occlusion_fit.h"
 #include "tools/explain_modes.h"
 #include "tools/occlusion_step.h"
@@ -21,6 +22,9 @@ namespace bead::tools {
 int ExplainRunMode(const ExplainArgs& a) {
   const ExplainArgs* args = &a;
   const explain::ExplainOptions options = a.Explain();
+  // A model file that cannot serve is said before the run is measured.
+  if (!a.model.empty() && model::ReadModelFile(a.model).tfs.size() != 1)
+    throw Error(Located(a.model, "inputs", "run mode takes a model of flow from the screw speed alone (one input)"));
   const Rig rig = ReadRig(args->rig);
   // A run measured: its flow in extrusion time (kept alive with the archive).
   struct Measured {
