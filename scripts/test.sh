@@ -8,6 +8,12 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc)
+# Each pass's wall time, said as it ends (CI's budget is 45 minutes).
+start=$SECONDS
+took() {
+  echo "test.sh: $1 took $((SECONDS - start)) s"
+  start=$SECONDS
+}
 
 # The house style (.clang-format): every C and C++ file follows it
 # (clang-format -i on a file puts it right).
@@ -18,6 +24,7 @@ fi
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j "$jobs"
 ctest --test-dir build --output-on-failure -j "$jobs"
+took "style check, optimised build and suite"
 
 if [ "${BEAD_SKIP_SANITIZE:-0}" != "1" ]; then
   # Line tables only (-g1): enough for the sanitizers' stack traces, a fifth
@@ -31,6 +38,7 @@ if [ "${BEAD_SKIP_SANITIZE:-0}" != "1" ]; then
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir build-asan --output-on-failure -j "$jobs" \
       -E '^(ExplainRun\.(CleanRun|FindsAWrong|CoolingShrink|SensorLatency)|ExplainWarmRun\.|IntervalCoverage\.EachKind)'
+  took "ASan+UBSan build and suite"
 fi
 
 if [ "${BEAD_SKIP_TSAN:-0}" != "1" ]; then
@@ -42,8 +50,10 @@ if [ "${BEAD_SKIP_TSAN:-0}" != "1" ]; then
   cmake --build build-tsan -j "$jobs" --target profile_tests archive_tests
   TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 build-tsan/tests/profile_tests --gtest_filter='MeasureProfiles.*'
   TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 build-tsan/tests/archive_tests
+  took "TSan build and threaded tests"
 fi
 
 if [ "${BEAD_SKIP_FUZZ:-0}" != "1" ]; then
   bash scripts/fuzz.sh "${BEAD_FUZZ_SECONDS:-15}"
+  took "fuzz build and smoke runs"
 fi
