@@ -4,9 +4,10 @@
 //         reference_areas_mm, laser_origin_mm},
 //   extruder: {command: {kind, base_v, levels_v, durations_s, amplitude_v, bit_time_s, start_s, stop_s},
 //              voltage_to_rpm: {num, den, delay_s}, rpm_to_flow: {num, den, delay_s},
-//              rpm_noise, flow_noise_frac},
+//              rpm_noise, flow_noise_frac, pid: {kp, ki, kd, derivative_filter_s, rate_hz, max_v}},
 //   wheel: {mode, surface_speed_mm_s, target_area_mm2, controller_rate_hz, gain_rpm_per_v, tau_s, delay_s,
-//           cmd_levels_v, cmd_durations_s},
+//           cmd_levels_v, cmd_durations_s, cmd_csv (a wheel command CSV to play,
+//           t_s and wheel_cmd_v as bead feedforward writes it; relative to this file)},
 //   encoder: {start_count, missed_read_prob},
 //   bead: {shape, aspect, bottom_radius_frac, top_radius_frac, exponent, bottom_exponent, center_lift_frac,
 //          center_wander_mm, center_wander_period_s, outline_vertices},
@@ -18,11 +19,14 @@
 //            sensor_tau_s, melt_tau_s, noise_c, kp, ki, kd, flow_per_c, record_ambient}
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <set>
 #include <sstream>
 
 #include "libbead/core/error.h"
+#include "libbead/io/csv_reader.h"
 #include "libbead/io/yaml_text.h"
 #include "libbead/sim/sim_config.h"
 
@@ -32,6 +36,7 @@ namespace {
 class Reader {
  public:
   explicit Reader(std::string file) : file_(std::move(file)) {}
+  const std::string& file() const { return file_; }
 
   [[noreturn]] void Fail(const YAML::Node& n, const std::string& key, const std::string& what) const {
     const std::string place = n.IsDefined() ? "line " + std::to_string(n.Mark().line + 1) + ": " + key : key;
@@ -174,6 +179,30 @@ void ParseBarrel(const YAML::Node& root, const Reader& r, BarrelConfig& b) {
     r.Fail(ba, "barrel", "needs ambient_c < setpoint_c < heater_c (the heater must be able to reach the setpoint)");
 }
 
+// The wheel command of a CSV with columns t_s and wheel_cmd_v (what bead
+// feedforward writes), as held steps from t = 0: the first level also
+// before its first time.
+void ReadWheelCommand(const std::string& path, WheelConfig& w) {
+  CsvReader csv(path);
+  const std::vector<std::string> header = csv.Header({"t_s"}, "wheel command CSV (t_s, ..., wheel_cmd_v)");
+  const auto col = std::find(header.begin(), header.end(), "wheel_cmd_v");
+  if (col == header.end()) csv.Fail("no column wheel_cmd_v");
+  const auto k = static_cast<std::size_t>(col - header.begin());
+  std::vector<double> t, v;
+  while (csv.Next()) {
+    t.push_back(csv.Double(0, "t_s"));
+    v.push_back(csv.Double(k, "wheel_cmd_v"));
+    if (!std::isfinite(t.back()) || !std::isfinite(v.back())) csv.Fail("time and command must be numbers");
+    if (t.size() > 1 && !(t.back() > t[t.size() - 2])) csv.Fail("time must increase");
+  }
+  if (t.empty()) throw Error(Located(path, "", "no command rows"));
+  w.cmd_levels_v = v;
+  w.cmd_durations_s.clear();
+  for (std::size_t i = 0; i + 1 < t.size(); ++i) w.cmd_durations_s.push_back(t[i + 1] - t[i]);
+  w.cmd_durations_s.push_back(1e9);
+  if (t[0] > 0) w.cmd_durations_s[0] += t[0];
+}
+
 void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
   if (!root.IsMap()) r.Fail(root, "", "a simulation config must be a YAML mapping");
   const std::set<std::string> top = {"seed",  "duration_s", "dt_s", "log_rate_hz", "warm_start", "rig",     "extruder",
@@ -255,7 +284,7 @@ void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
 
   const YAML::Node wh = r.Section(root, "wheel",
                                   {"mode", "surface_speed_mm_s", "target_area_mm2", "controller_rate_hz",
-                                   "gain_rpm_per_v", "tau_s", "delay_s", "cmd_levels_v", "cmd_durations_s"});
+                                   "gain_rpm_per_v", "tau_s", "delay_s", "cmd_levels_v", "cmd_durations_s", "cmd_csv"});
   using M = WheelConfig::Mode;
   r.GetEnum<M>(wh, "wheel.", "mode", c.wheel.mode,
                {{"constant", M::kConstant}, {"commanded", M::kCommanded}, {"feedforward", M::kFeedForward}});
@@ -267,6 +296,14 @@ void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
   r.Get(wh, "wheel.", "delay_s", c.wheel.delay_s, 0, 10);
   r.GetList(wh, "wheel.", "cmd_levels_v", c.wheel.cmd_levels_v);
   r.GetList(wh, "wheel.", "cmd_durations_s", c.wheel.cmd_durations_s);
+  if (wh.IsDefined() && wh["cmd_csv"]) {
+    // A command to play (bead feedforward -o): relative to this file.
+    const std::string rel = r.Text(wh["cmd_csv"], "wheel.cmd_csv");
+    const std::filesystem::path csv = std::filesystem::path(rel).is_absolute()
+                                          ? std::filesystem::path(rel)
+                                          : std::filesystem::path(r.file()).parent_path() / rel;
+    ReadWheelCommand(csv.string(), c.wheel);
+  }
 
   const YAML::Node en = r.Section(root, "encoder", {"start_count", "missed_read_prob"});
   r.GetInt(en, "encoder.", "start_count", c.encoder.start_count, 0, 9.0e15);

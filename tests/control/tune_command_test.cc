@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <regex>
 
+#include "libbead/sim/sim_writer.h"
 #include "tests/support/run_cli.h"
 
 namespace bead {
@@ -94,6 +95,51 @@ TEST(FeedforwardCommand, WritesTheWheelCommandToPlay) {
   EXPECT_EQ(status, 1) << out;
   EXPECT_NE(out.find("no column 'volts'"), std::string::npos) << out;
   EXPECT_FALSE(std::filesystem::exists(dir / "w2.csv"));
+}
+
+}  // namespace
+}  // namespace bead
+
+namespace bead {
+namespace {
+
+// The played plan, as a user runs it: `bead feedforward` writes the wheel
+// command, a simulation config names it (wheel.cmd_csv, beside the
+// config), `bead simulate` plays it on the twin, and the laid bead holds
+// the target area once the extruder's steps are under way.
+TEST(FeedforwardCommand, TheTwinPlaysTheWheelCommand) {
+  test::TempDir dir;
+  // The twin's own extruder models (thesis eq. 21 and eq. 22 with its 0.15 s delay).
+  test::WriteText(dir / "flow.json", R"({"num": [9.175, 149.2, 905.3], "den": [1, 12.84, 47.52], "delay_s": 0.15})");
+  std::string plan = "t_s,extruder_cmd_v\n";
+  for (int i = 0; i <= 800; ++i) plan += std::to_string(0.01 * i) + "," + (i < 400 ? "3.0" : "4.0") + "\n";
+  test::WriteText(dir / "plan.csv", plan);
+  auto [status, out] = test::RunCli(dir, "feedforward --plan " + (dir / "plan.csv") + " --flow-model " +
+                                             (dir / "flow.json") + " --target-area 14 -o " + (dir / "wheel.csv"));
+  ASSERT_EQ(status, 0) << out;
+  test::WriteText(dir / "twin.yaml",
+                  "seed: 3\nduration_s: 8\nwarm_start: true\n"
+                  "extruder: {command: {kind: steps, levels_v: [3.0, 4.0], durations_s: [4, 100], start_s: 0}}\n"
+                  "wheel: {mode: commanded, cmd_csv: wheel.csv}\n");
+  std::tie(status, out) = test::RunCli(dir, "simulate " + (dir / "twin.yaml") + " -o " + (dir / "run"));
+  ASSERT_EQ(status, 0) << out;
+  const sim::Truth truth = sim::ReadTruth(dir / "run/truth.h5");
+  // The twin's flow carries 1 % of noise: the laid area within 5 % of the
+  // target wherever a bead was measured after the first second.
+  const auto& a = truth.profiles.area_true_mm2;
+  std::size_t checked = 0;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (truth.profiles.t_s[i] > 1.0 && a[i] > 0) {
+      EXPECT_NEAR(a[i], 14.0, 0.05 * 14.0) << "t " << truth.profiles.t_s[i];
+      ++checked;
+    }
+  EXPECT_GT(checked, 1000u);
+  // A command CSV without the column is refused by name.
+  test::WriteText(dir / "bad.csv", "t_s,volts\n0,1\n");
+  test::WriteText(dir / "bad.yaml", "wheel: {mode: commanded, cmd_csv: bad.csv}\n");
+  std::tie(status, out) = test::RunCli(dir, "simulate " + (dir / "bad.yaml") + " -o " + (dir / "run2"));
+  EXPECT_EQ(status, 1) << out;
+  EXPECT_NE(out.find("wheel_cmd_v"), std::string::npos) << out;
 }
 
 }  // namespace
