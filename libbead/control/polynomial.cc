@@ -1,6 +1,7 @@
 #include "libbead/control/polynomial.h"
 
-#include <Eigen/Dense>
+#include "libbead/model/transfer_function.h"
+
 #include <algorithm>
 
 namespace bead::control {
@@ -43,17 +44,6 @@ int Degree(const std::vector<double>& a) { return static_cast<int>(Trim(a).size(
 
 double Leading(const std::vector<double>& a) { return Trim(a).front(); }
 
-std::vector<std::complex<double>> Roots(const std::vector<double>& in) {
-  const std::vector<double> a = Trim(in);
-  const int n = static_cast<int>(a.size()) - 1;
-  std::vector<std::complex<double>> out;
-  if (n < 1) return out;
-  Eigen::MatrixXd companion = Eigen::MatrixXd::Zero(n, n);
-  for (int k = 0; k < n; ++k) companion(0, k) = -a[static_cast<std::size_t>(k + 1)] / a[0];
-  for (int k = 1; k < n; ++k) companion(k, k - 1) = 1.0;
-  const Eigen::VectorXcd r = companion.eigenvalues();
-  for (int k = 0; k < n; ++k) out.push_back(r(k));
-  return out;
-}
+std::vector<std::complex<double>> Roots(const std::vector<double>& in) { return model::PolynomialRoots(Trim(in)); }
 
 }  // namespace bead::control

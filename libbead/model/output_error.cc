@@ -10,17 +10,7 @@
 
 namespace bead::model {
 
-std::vector<std::complex<double>> Roots(const std::vector<double>& den) {
-  const int n = static_cast<int>(den.size()) - 1;
-  std::vector<std::complex<double>> out;
-  if (n < 1) return out;
-  Eigen::MatrixXd companion = Eigen::MatrixXd::Zero(n, n);
-  for (int k = 0; k < n; ++k) companion(0, k) = -den[static_cast<std::size_t>(k + 1)] / den[0];
-  for (int k = 1; k < n; ++k) companion(k, k - 1) = 1.0;
-  const Eigen::VectorXcd r = companion.eigenvalues();
-  for (int k = 0; k < n; ++k) out.push_back(r(k));
-  return out;
-}
+std::vector<std::complex<double>> Roots(const std::vector<double>& den) { return PolynomialRoots(den); }
 
 std::vector<double> FromRoots(const std::vector<std::complex<double>>& roots) {
   std::vector<std::complex<double>> poly = {1.0};

@@ -1,5 +1,6 @@
 #include "libbead/model/transfer_function.h"
 
+#include <Eigen/Dense>
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include <algorithm>
@@ -24,6 +25,18 @@ void TransferFunction::Validate() const {
   if (den[0] == 0.0) throw Error("transfer function: leading denominator coefficient is zero");
   if (zeros() > poles()) throw Error("transfer function: more zeros than poles (improper)");
   if (!(delay_s >= 0.0)) throw Error("transfer function: delay must be >= 0 s");
+}
+
+std::vector<std::complex<double>> PolynomialRoots(const std::vector<double>& a) {
+  const int n = static_cast<int>(a.size()) - 1;
+  std::vector<std::complex<double>> out;
+  if (n < 1) return out;
+  Eigen::MatrixXd companion = Eigen::MatrixXd::Zero(n, n);
+  for (int k = 0; k < n; ++k) companion(0, k) = -a[static_cast<std::size_t>(k + 1)] / a[0];
+  for (int k = 1; k < n; ++k) companion(k, k - 1) = 1.0;
+  const Eigen::VectorXcd r = companion.eigenvalues();
+  for (int k = 0; k < n; ++k) out.push_back(r(k));
+  return out;
 }
 
 TransferFunction ThesisVoltageToRpm() { return {{439.0, 35.08}, {1.523, 11.44, 1.0}, 0.054}; }

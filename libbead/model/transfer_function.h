@@ -11,6 +11,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <complex>
 #include <vector>
 
 namespace bead::model {
@@ -26,6 +27,10 @@ struct TransferFunction {
   // Throws bead::Error when improper, empty or with a zero leading coefficient.
   void Validate() const;
 };
+
+// The roots of a polynomial in descending powers of s (the eigenvalues of
+// its companion matrix); none for a constant.
+std::vector<std::complex<double>> PolynomialRoots(const std::vector<double>& coefficients);
 
 // Thesis eq. 21 and eq. 22 (see above).
 TransferFunction ThesisVoltageToRpm();

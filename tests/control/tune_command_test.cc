@@ -70,18 +70,26 @@ TEST(TuneCommand, ErrorsSayWhatToFix) {
 namespace bead {
 namespace {
 
+// A plan of `ticks` 10-ms ticks stepping the extruder from 3 V to 4 V
+// halfway, the thesis' flow model (eq. 22 with the twin's 0.15 s delay),
+// and `bead feedforward` run on them into DIR/wheel.csv; its exit status
+// and output.
+std::pair<int, std::string> RunFeedforward(const test::TempDir& dir, int ticks) {
+  test::WriteText(dir / "flow.json", R"({"num": [9.175, 149.2, 905.3], "den": [1, 12.84, 47.52], "delay_s": 0.15})");
+  std::string plan = "t_s,extruder_cmd_v\n";
+  for (int i = 0; i <= ticks; ++i) plan += std::to_string(0.01 * i) + "," + (i < ticks / 2 ? "3.0" : "4.0") + "\n";
+  test::WriteText(dir / "plan.csv", plan);
+  return test::RunCli(dir, "feedforward --plan " + (dir / "plan.csv") + " --flow-model " + (dir / "flow.json") +
+                               " --target-area 14 -o " + (dir / "wheel.csv"));
+}
+
 // `bead feedforward`: a plan of extruder steps and the thesis' flow model
 // (eq. 22, delay 0.15 s) give a wheel command CSV and the predicted
 // variation beside a constant wheel's; a plan without the named column is
 // refused by name.
 TEST(FeedforwardCommand, WritesTheWheelCommandToPlay) {
   test::TempDir dir;
-  test::WriteText(dir / "flow.json", R"({"num": [9.175, 149.2, 905.3], "den": [1, 12.84, 47.52], "delay_s": 0.15})");
-  std::string plan = "t_s,extruder_cmd_v\n";
-  for (int i = 0; i <= 1000; ++i) plan += std::to_string(0.01 * i) + "," + (i < 500 ? "3.0" : "4.0") + "\n";
-  test::WriteText(dir / "plan.csv", plan);
-  auto [status, out] = test::RunCli(dir, "feedforward --plan " + (dir / "plan.csv") + " --flow-model " +
-                                             (dir / "flow.json") + " --target-area 14 -o " + (dir / "wheel.csv"));
+  auto [status, out] = RunFeedforward(dir, 1000);
   ASSERT_EQ(status, 0) << out;
   EXPECT_NE(out.find("times less variation"), std::string::npos) << out;
   const std::string csv = test::ReadText(dir / "wheel.csv");
@@ -97,25 +105,14 @@ TEST(FeedforwardCommand, WritesTheWheelCommandToPlay) {
   EXPECT_FALSE(std::filesystem::exists(dir / "w2.csv"));
 }
 
-}  // namespace
-}  // namespace bead
-
-namespace bead {
-namespace {
-
 // The played plan, as a user runs it: `bead feedforward` writes the wheel
 // command, a simulation config names it (wheel.cmd_csv, beside the
 // config), `bead simulate` plays it on the twin, and the laid bead holds
 // the target area once the extruder's steps are under way.
 TEST(FeedforwardCommand, TheTwinPlaysTheWheelCommand) {
   test::TempDir dir;
-  // The twin's own extruder models (thesis eq. 21 and eq. 22 with its 0.15 s delay).
-  test::WriteText(dir / "flow.json", R"({"num": [9.175, 149.2, 905.3], "den": [1, 12.84, 47.52], "delay_s": 0.15})");
-  std::string plan = "t_s,extruder_cmd_v\n";
-  for (int i = 0; i <= 800; ++i) plan += std::to_string(0.01 * i) + "," + (i < 400 ? "3.0" : "4.0") + "\n";
-  test::WriteText(dir / "plan.csv", plan);
-  auto [status, out] = test::RunCli(dir, "feedforward --plan " + (dir / "plan.csv") + " --flow-model " +
-                                             (dir / "flow.json") + " --target-area 14 -o " + (dir / "wheel.csv"));
+  // The twin's own extruder models: thesis eq. 21 (its default) and eq. 22.
+  auto [status, out] = RunFeedforward(dir, 800);
   ASSERT_EQ(status, 0) << out;
   test::WriteText(dir / "twin.yaml",
                   "seed: 3\nduration_s: 8\nwarm_start: true\n"
