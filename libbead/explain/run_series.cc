@@ -28,6 +28,70 @@ struct RunState {
   std::vector<double> memo_t, memo_y;
 };
 
+// The height the model implies, not the one measured: a measured height
+// carries the measured flow's own deviations, and a term in it would
+// explain the output by itself. The run's own height-area relation
+// (height = c sqrt(area), c the median ratio) applied to the model's area
+// (its flow over the surface speed).
+std::vector<double> ModelHeight(const RunState& st, const SeriesData& d, const std::vector<double>& measured_height) {
+  std::vector<double> ratio, out;
+  for (std::size_t i = 0; i < measured_height.size(); ++i)
+    if (st.area[i] > 0 && measured_height[i] > 0) ratio.push_back(measured_height[i] / std::sqrt(st.area[i]));
+  const double c = ratio.empty() ? 0.0 : MedianInPlace(ratio.data(), ratio.size());
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    const double v = InterpolateLinear(st.log_t, st.speed, d.t[i]);
+    out.push_back(c * std::sqrt(std::max(d.base[i], 0.0) / std::max(v, 1e-9)));
+  }
+  return out;
+}
+
+// The profiles' time stamps against the log: the median latency, its 95 %
+// interval from the median's standard error, 1.2533 sigma / sqrt(n) for
+// normal scatter (sigma from the median absolute deviation).
+void TimestampOffset(std::vector<double> latency, RunSeries& out) {
+  if (latency.empty()) return;
+  std::vector<double> dev(latency.size());
+  const double med = MedianInPlace(latency.data(), latency.size());
+  for (std::size_t i = 0; i < dev.size(); ++i) dev[i] = std::abs(latency[i] - med);
+  const double sigma = 1.4826 * MedianInPlace(dev.data(), dev.size());
+  out.timestamp_offset_s = med;
+  out.timestamp_offset_ci95_s = 1.96 * 1.2533 * sigma / std::sqrt(static_cast<double>(latency.size()));
+}
+
+// y and base with the extrusion times moved by `counts` of wheel position
+// and the model's input delayed by extra_delay_s[i] more.
+std::function<void(double, const std::vector<double>&, std::vector<double>&, std::vector<double>&)> ShiftHook(
+    std::shared_ptr<RunState> st) {
+  return [st](double counts, const std::vector<double>& extra_delay, std::vector<double>& y,
+              std::vector<double>& base) {
+    const std::size_t n = st->start.size();
+    // The extrusion times and the flow there depend on the shift only: a
+    // fit that moves the delay alone (the offset profile refits it at each
+    // trial offset) re-reads the model, not the log's positions.
+    if (!(st->memo_counts == counts) || st->memo_t.size() != n) {
+      st->memo_t.resize(n);
+      st->memo_y.resize(n);
+      std::size_t at_speed = 0;  // the extrusion times run nearly in order: searches start at the last
+      for (std::size_t i = 0; i < n; ++i) {
+        const double t_e = st->finder->Find(st->start[i], st->counts_measured[i] - st->offset - counts);
+        st->memo_t[i] = t_e;
+        st->memo_y[i] = std::isfinite(t_e) ? InterpolateLinearNear(st->log_t, st->speed, t_e, at_speed) * st->area[i]
+                                           : std::numeric_limits<double>::quiet_NaN();
+      }
+      st->memo_counts = counts;
+    }
+    y = st->memo_y;
+    base.resize(n);
+    std::size_t at_model = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double t_e = st->memo_t[i];
+      base[i] = std::isfinite(t_e) ? InterpolateLinearNear(st->log_t, st->model_flow,
+                                                           t_e - (extra_delay.empty() ? 0.0 : extra_delay[i]), at_model)
+                                   : std::numeric_limits<double>::quiet_NaN();
+    }
+  };
+}
+
 }  // namespace
 
 RunSeries MakeRunSeries(const Rig& rig, const ProfileBlock& profiles, const std::vector<BeadGeometry>& geometry,
@@ -108,58 +172,9 @@ RunSeries MakeRunSeries(const Rig& rig, const ProfileBlock& profiles, const std:
   d.parts = {wheel, screw_part};
 
   for (const LogChannel& c : log.channels) d.channels.push_back({c.name, c.unit, log.t_s, c.values});
-  // The height the model implies, not the one measured: a measured height
-  // carries the measured flow's own deviations, and a term in it would
-  // explain the output by itself. The run's own height-area relation
-  // (height = c sqrt(area), c the median ratio) applied to the model's area
-  // (its flow over the surface speed).
-  {
-    std::vector<double> ratio;
-    for (std::size_t i = 0; i < measured_height.size(); ++i)
-      if (st->area[i] > 0 && measured_height[i] > 0) ratio.push_back(measured_height[i] / std::sqrt(st->area[i]));
-    const double c = ratio.empty() ? 0.0 : MedianInPlace(ratio.data(), ratio.size());
-    for (std::size_t i = 0; i < d.size(); ++i) {
-      const double v = InterpolateLinear(st->log_t, st->speed, d.t[i]);
-      d.height_mm.push_back(c * std::sqrt(std::max(d.base[i], 0.0) / std::max(v, 1e-9)));
-    }
-  }
-  if (!latency.empty()) {
-    std::vector<double> dev(latency.size());
-    const double med = MedianInPlace(latency.data(), latency.size());
-    for (std::size_t i = 0; i < dev.size(); ++i) dev[i] = std::abs(latency[i] - med);
-    const double sigma = 1.4826 * MedianInPlace(dev.data(), dev.size());
-    out.timestamp_offset_s = med;
-    // The median's standard error is 1.2533 sigma / sqrt(n) for normal scatter.
-    out.timestamp_offset_ci95_s = 1.96 * 1.2533 * sigma / std::sqrt(static_cast<double>(latency.size()));
-  }
-  d.shifted = [st](double counts, const std::vector<double>& extra_delay, std::vector<double>& y,
-                   std::vector<double>& base) {
-    const std::size_t n = st->start.size();
-    // The extrusion times and the flow there depend on the shift only: a
-    // fit that moves the delay alone (the offset profile refits it at each
-    // trial offset) re-reads the model, not the log's positions.
-    if (!(st->memo_counts == counts) || st->memo_t.size() != n) {
-      st->memo_t.resize(n);
-      st->memo_y.resize(n);
-      std::size_t at_speed = 0;  // the extrusion times run nearly in order: searches start at the last
-      for (std::size_t i = 0; i < n; ++i) {
-        const double t_e = st->finder->Find(st->start[i], st->counts_measured[i] - st->offset - counts);
-        st->memo_t[i] = t_e;
-        st->memo_y[i] = std::isfinite(t_e) ? InterpolateLinearNear(st->log_t, st->speed, t_e, at_speed) * st->area[i]
-                                           : std::numeric_limits<double>::quiet_NaN();
-      }
-      st->memo_counts = counts;
-    }
-    y = st->memo_y;
-    base.resize(n);
-    std::size_t at_model = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      const double t_e = st->memo_t[i];
-      base[i] = std::isfinite(t_e) ? InterpolateLinearNear(st->log_t, st->model_flow,
-                                                           t_e - (extra_delay.empty() ? 0.0 : extra_delay[i]), at_model)
-                                   : std::numeric_limits<double>::quiet_NaN();
-    }
-  };
+  d.height_mm = ModelHeight(*st, d, measured_height);
+  TimestampOffset(latency, out);
+  d.shifted = ShiftHook(st);
   return out;
 }
 
