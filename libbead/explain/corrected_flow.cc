@@ -44,11 +44,8 @@ std::vector<double> VaryingTerm(const SeriesData& d, const Active& a) {
 // The relative variance of the product of the kept terms' factors at each
 // sample, from their parameters' covariance (numerical gradients).
 std::vector<double> FactorVariance(const SeriesData& d, const std::vector<Active>& kept,
-                                   const std::vector<std::size_t>& first_slot, const ExplainReport& report) {
-  const std::size_t slots =
-      report.final_effects.empty()
-          ? 0
-          : static_cast<std::size_t>(std::llround(std::sqrt(static_cast<double>(report.final_covariance.size()))));
+                                   const std::vector<std::size_t>& first_slot, const std::vector<double>& covariance) {
+  const auto slots = static_cast<std::size_t>(std::llround(std::sqrt(static_cast<double>(covariance.size()))));
   std::vector<std::vector<double>> grad;  // [kept slot][sample]: d log(factor)
   std::vector<std::size_t> slot_of;
   for (std::size_t k = 0; k < kept.size(); ++k) {
@@ -67,7 +64,7 @@ std::vector<double> FactorVariance(const SeriesData& d, const std::vector<Active
   std::vector<double> var(d.size(), 0.0);
   for (std::size_t a = 0; a < grad.size(); ++a)
     for (std::size_t b = 0; b < grad.size(); ++b) {
-      const double c = slots ? report.final_covariance[slot_of[a] * slots + slot_of[b]] : NAN;
+      const double c = slots ? covariance[slot_of[a] * slots + slot_of[b]] : NAN;
       if (!std::isfinite(c)) continue;  // a parameter the data does not pin is not undone (see the caller)
       for (std::size_t i = 0; i < d.size(); ++i) var[i] += grad[a][i] * grad[b][i] * c;
     }
@@ -75,6 +72,20 @@ std::vector<double> FactorVariance(const SeriesData& d, const std::vector<Active
 }
 
 }  // namespace
+
+MeasurementFactors FactorsOf(const SeriesData& d, const std::vector<Active>& kept,
+                             const std::vector<std::size_t>& first_slot, const std::vector<double>& covariance) {
+  MeasurementFactors f;
+  f.speed.assign(d.size(), 1.0);
+  f.area.assign(d.size(), 1.0);
+  for (const Active& a : kept) {
+    const std::vector<double> term = VaryingTerm(d, a);
+    std::vector<double>& factor = a.effect.part >= 0 ? f.speed : f.area;
+    for (std::size_t i = 0; i < d.size(); ++i) factor[i] *= 1.0 + term[i];
+  }
+  f.relative_variance = FactorVariance(d, kept, first_slot, covariance);
+  return f;
+}
 
 bool ActsOnMeasurement(const Effect& e) {
   if (e.kind == Effect::Kind::kPositionShift) return true;
@@ -131,19 +142,17 @@ CorrectedFlow CorrectFlow(const Rig& rig, const ProfileBlock& profiles, const st
   std::vector<double> y_plus, y_minus, unused;
   const double h = std::max(shift_sd, 0.5);
   if (shift_sd > 0 && d.shifted) d.shifted(h, {}, y_plus, unused), d.shifted(-h, {}, y_minus, unused);
-  const std::vector<double> factor_var = FactorVariance(d, kept, kept_slot, report);
-  std::vector<std::vector<double>> terms;
-  for (const Active& a : kept) terms.push_back(VaryingTerm(d, a));
+  const MeasurementFactors factors = FactorsOf(d, kept, kept_slot, report.final_covariance);
   for (std::size_t i = 0; i < d.size(); ++i) {
-    double speed = 1.0, area = 1.0;
-    for (std::size_t k = 0; k < kept.size(); ++k) (kept[k].effect.part >= 0 ? speed : area) *= 1.0 + terms[k][i];
+    const double speed = factors.speed[i], area = factors.area[i];
     FlowSample& s = out.flow.samples[series.profile[i]];
     if (!(speed > 0) || !(area > 0)) continue;
     s.surface_speed_mm_s /= speed;
     s.area_corrected_mm2 /= area;
     s.flow_mm3_s /= speed * area;
     // The sigma: the measurement's own, the factors' and the offset's.
-    double var = std::pow(s.flow_sigma_mm3_s / (speed * area), 2) + s.flow_mm3_s * s.flow_mm3_s * factor_var[i];
+    double var =
+        std::pow(s.flow_sigma_mm3_s / (speed * area), 2) + s.flow_mm3_s * s.flow_mm3_s * factors.relative_variance[i];
     if (!y_plus.empty() && std::isfinite(y_plus[i]) && std::isfinite(y_minus[i]))
       var += std::pow((y_plus[i] - y_minus[i]) / (2 * h) * shift_sd, 2);
     s.flow_sigma_mm3_s = std::sqrt(var);

@@ -30,6 +30,19 @@ namespace bead::explain {
 
 bool ActsOnMeasurement(const Effect& effect);
 
+// The kept terms that act on the measurement, as factors at each sample of
+// `d`: on the wheel's surface speed (its periodic terms) and on the area
+// (shrink, height), each term less its mean over the run; and the relative
+// variance of their product from the parameters' covariance (`covariance`
+// flattened as ParameterCovariance::Matrix(); `first_slot`: each kept
+// term's first parameter's slot in it), what the corrected flow's sigma
+// adds for them.
+struct MeasurementFactors {
+  std::vector<double> speed, area, relative_variance;
+};
+MeasurementFactors FactorsOf(const SeriesData& d, const std::vector<Active>& kept,
+                             const std::vector<std::size_t>& first_slot, const std::vector<double>& covariance);
+
 struct CorrectedFlow {
   FlowResult flow;
   double offset_counts = 0.0;       // the offset the flow was computed with

@@ -296,13 +296,7 @@ ExplainReport Explain(const SeriesData& d, const ExplainOptions& o) {
     else
       report.effects_added[e - base_terms].parameters = Describe(current[e], cov.sd[e]).parameters;
   }
-  const std::size_t slots = cov.index.size();
-  report.final_covariance.assign(slots * slots, NAN);
-  for (std::size_t i = 0; i < slots; ++i)
-    for (std::size_t j = 0; j < slots; ++j)
-      report.final_covariance[i * slots + j] = cov.correlation[i * slots + j] *
-                                               cov.sd[cov.index[i].first][cov.index[i].second] *
-                                               cov.sd[cov.index[j].first][cov.index[j].second];
+  report.final_covariance = cov.Matrix();
   report.confounded = Confounded(current, cov, base_terms);
   for (const auto& [kept, alt] : alternatives) SayAlternative(d, kept, alt, report);
   for (const Active& a : current) {

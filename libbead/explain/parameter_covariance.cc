@@ -37,6 +37,16 @@ Eigen::MatrixXd Jacobian(const SeriesData& d, const EffectSet& set, const std::v
 
 }  // namespace
 
+std::vector<double> ParameterCovariance::Matrix() const {
+  const std::size_t slots = index.size();
+  std::vector<double> m(slots * slots, NAN);
+  for (std::size_t i = 0; i < slots; ++i)
+    for (std::size_t j = 0; j < slots; ++j)
+      m[i * slots + j] =
+          correlation[i * slots + j] * sd[index[i].first][index[i].second] * sd[index[j].first][index[j].second];
+  return m;
+}
+
 double ParameterCovariance::Correlation(std::size_t ea, std::size_t pa, std::size_t eb, std::size_t pb) const {
   std::size_t ia = index.size(), ib = index.size();
   for (std::size_t s = 0; s < index.size(); ++s) {

@@ -31,6 +31,9 @@ struct ParameterCovariance {
   ArNoise noise;  // the residual's noise model (noise_model.h)
 
   double Correlation(std::size_t effect_a, std::size_t param_a, std::size_t effect_b, std::size_t param_b) const;
+  // The covariance itself, flattened [slot * slots + slot] (NaN where a side
+  // is not pinned): what ExplainReport::final_covariance holds.
+  std::vector<double> Matrix() const;
 };
 
 ParameterCovariance Covariance(const SeriesData& d, const EffectSet& set, const std::vector<std::size_t>& rows);
