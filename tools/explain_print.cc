@@ -132,12 +132,15 @@ void PrintRun(const explain::RunExplanation& e, const Rig& rig, const std::strin
 }
 
 void PrintPins(const explain::OffsetComparison& c, const explain::OffsetFromRun& run, const std::string& path) {
-  std::printf("pin scans (%s): %.1f +- %.1f counts; the run's offset differs by %+.1f counts\n", path.c_str(),
-              c.pins_counts, c.pins_ci95_counts, c.difference);
-  if (!c.run_pinned)
+  if (!c.run_pinned) {
+    std::printf("pin scans (%s): %.1f +- %.1f counts\n", path.c_str(), c.pins_counts, c.pins_ci95_counts);
     std::printf("offset: the run does not pin it; the pins' %.1f +- %.1f counts stands alone\n", c.pins_counts,
                 c.pins_ci95_counts);
-  else if (c.agree)
+    return;
+  }
+  std::printf("pin scans (%s): %.1f +- %.1f counts; the run's offset differs by %+.1f counts\n", path.c_str(),
+              c.pins_counts, c.pins_ci95_counts, c.difference);
+  if (c.agree)
     std::printf("offset, run and pins combined: %.1f +- %.1f counts (they agree within their intervals)\n",
                 c.combined_counts, c.combined_ci95_counts);
   else
