@@ -5,7 +5,7 @@
 #include <optional>
 
 #include "calibration/pin_offset.h"
-#include "libbead/archive/measured_run.h"
+#include "libbead/archive/run_flow.h"
 #include "libbead/core/error.h"
 #include "libbead/explain/explain_json.h"
 #include "libbead/flow/flow.h"
@@ -26,26 +26,23 @@ int ExplainRunMode(const ExplainArgs& a) {
   if (!a.model.empty() && model::ReadModelFile(a.model).tfs.size() != 1)
     throw Error(Located(a.model, "inputs", "run mode takes a model of flow from the screw speed alone (one input)"));
   const Rig rig = ReadRig(args->rig);
-  // A run measured: its flow in extrusion time (kept alive with the archive).
+  // A run measured and its flow in extrusion time, kept in memory.
   struct Measured {
-    MeasuredRun measured;
-    FlowResult flow;
+    RunFlow run;
     std::vector<double> t, u, y;  // valid samples
   };
   WorkerPool pool;
-  MeasureRunOptions measure_options;
-  measure_options.occlusion = ParseOcclusionMode(args->occlusion);
-  measure_options.estimate = occlusion::EstimateOcclusion;
+  RunFlowRequest request;
+  request.measure.occlusion = ParseOcclusionMode(args->occlusion);
+  request.measure.estimate = occlusion::EstimateOcclusion;
+  request.keep = true;
+  request.needs = "explain";
   auto measure = [&](const std::string& path) {
     auto m = std::make_unique<Measured>();
-    OpenedRun opened = OpenRun(path, pool);
-    RequireMotion(opened.run, path, "explain");
-    m->measured = MeasureWholeRun(std::move(opened), rig, pool, measure_options);
-    const MeasuredRun& r = m->measured;
-    if (const std::string line = OcclusionLine(r.summary); !line.empty()) std::printf("%s\n", line.c_str());
-    m->flow = ComputeFlow(rig, r.run.profiles, r.geometry, *r.run.log, {}, r.corrected, r.sigma);
-    for (const std::string& w : m->flow.warnings) std::fprintf(stderr, "warning: %s: %s\n", path.c_str(), w.c_str());
-    for (const auto& s : m->flow.samples)
+    m->run = MeasureRunFlow(path, rig, pool, request);
+    if (const std::string line = OcclusionLine(m->run.measure); !line.empty()) std::printf("%s\n", line.c_str());
+    for (const std::string& w : m->run.warnings) std::fprintf(stderr, "warning: %s: %s\n", path.c_str(), w.c_str());
+    for (const auto& s : m->run.flow.samples)
       if (s.valid) m->t.push_back(s.t_s), m->u.push_back(s.screw_rpm), m->y.push_back(s.flow_mm3_s);
     if (m->t.size() < 50) throw Error(Located(path, "", "fewer than 50 profiles with a flow: nothing to explain"));
     return m;
@@ -53,7 +50,7 @@ int ExplainRunMode(const ExplainArgs& a) {
   const auto main_run = measure(args->data);
   // The base model identified at the rate the loop explains (a long run's
   // flow averaged over bins of profiles).
-  const std::size_t bin = a.profiles_per_sample ? a.profiles_per_sample : explain::ExplainBinOf(main_run->flow);
+  const std::size_t bin = a.profiles_per_sample ? a.profiles_per_sample : explain::ExplainBinOf(main_run->run.flow);
   if (bin > 1)
     std::printf("%s: a long run: explained at %zu profiles per sample (%zu samples)\n", args->data.c_str(), bin,
                 main_run->t.size() / bin);
@@ -63,8 +60,8 @@ int ExplainRunMode(const ExplainArgs& a) {
   std::unique_ptr<Measured> other;
   if (!args->validate.empty()) other = measure(args->validate);
   auto view = [](const Measured& m, const std::string& path) {
-    return explain::MeasuredFlow{path,    &m.measured.run.profiles, &m.measured.geometry, &*m.measured.run.log,
-                                 &m.flow, &m.measured.corrected,    &m.measured.sigma};
+    const MeasuredRun& w = m.run.whole;
+    return explain::MeasuredFlow{path, &w.run.profiles, &w.geometry, &*w.run.log, &m.run.flow, &w.corrected, &w.sigma};
   };
   explain::RunExplainOptions run_options;
   run_options.explain = options;

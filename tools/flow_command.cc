@@ -1,12 +1,10 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "libbead/archive/run_flow.h"
 #include "libbead/core/error.h"
 #include "libbead/flow/flow.h"
-#include "libbead/io/flow_csv.h"
 #include "libbead/io/rig_yaml.h"
-#include "libbead/archive/measured_run.h"
-#include "libbead/archive/streamed_flow.h"
 #include "tools/commands.h"
 #include "tools/subcommands.h"
 #include "tools/occlusion_module.h"
@@ -56,51 +54,21 @@ Run AddFlow(CLI::App& app) {
       throw CLI::RequiredError("--rig, RUN and -o are all needed (or none, for the bundled sample)");
     const Rig rig = ReadRig(args->rig);
     WorkerPool pool;
-    MeasureRunOptions measure;
-    measure.profile = args->profile;
-    measure.occlusion = ParseOcclusionMode(args->occlusion);
-    measure.estimate = EstimateOcclusionOnDemand;
-    // What is printed, from either path.
-    MeasureRunSummary summary;
-    std::size_t samples = 0, valid = 0;
-    double volume = 0;
-    int area_outliers = 0, speed_outliers = 0, repairs = 0;
-    std::vector<std::string> warnings;
-    bool done = false;
-    if (StreamableFlow(args->flow)) {
-      // In fixed memory (streamed_flow.h), unless the run needs its whole log.
-      OpenedRun opened = OpenRun(args->run, pool, /*with_log=*/false);
-      FlowCsvWriter out(args->output);
-      const StreamedFlow f = StreamRunFlow(std::move(opened), args->run, rig, pool, measure, args->flow,
-                                           [&](const FlowSample& s) { out.Append(s); });
-      if (f.complete) {
-        out.Commit();
-        summary = f.measure, samples = f.samples, valid = f.valid, volume = f.total_volume_mm3;
-        area_outliers = f.area_outliers, speed_outliers = f.speed_outliers, repairs = f.encoder_repairs;
-        warnings = f.warnings;
-        done = true;
-      } else {
-        std::fprintf(stderr, "note: %s: the flow is computed on the whole run in memory: %s\n", args->run.c_str(),
-                     f.why.c_str());
-      }
-    }
-    if (!done) {
-      OpenedRun opened = OpenRun(args->run, pool);
-      RequireMotion(opened.run, args->run, "the flow");
-      const MeasuredRun m = MeasureWholeRun(std::move(opened), rig, pool, measure);
-      const FlowResult flow =
-          ComputeFlow(rig, m.run.profiles, m.geometry, *m.run.log, args->flow, m.corrected, m.sigma);
-      WriteFlowCsv(args->output, flow);
-      summary = m.summary, samples = flow.samples.size(), volume = flow.total_volume_mm3;
-      for (const auto& s : flow.samples) valid += s.valid;
-      area_outliers = flow.area_outliers, speed_outliers = flow.speed_outliers, repairs = flow.encoder_repairs;
-      warnings = flow.warnings;
-    }
-    if (const std::string line = OcclusionLine(summary); !line.empty()) std::printf("%s\n", line.c_str());
+    RunFlowRequest request;
+    request.measure.profile = args->profile;
+    request.measure.occlusion = ParseOcclusionMode(args->occlusion);
+    request.measure.estimate = EstimateOcclusionOnDemand;
+    request.flow = args->flow;
+    request.flow_csv = args->output;
+    const RunFlow f = MeasureRunFlow(args->run, rig, pool, request);
+    if (!f.whole_run_why.empty())
+      std::fprintf(stderr, "note: %s: the flow is computed on the whole run in memory: %s\n", args->run.c_str(),
+                   f.whole_run_why.c_str());
+    if (const std::string line = OcclusionLine(f.measure); !line.empty()) std::printf("%s\n", line.c_str());
     std::printf("%s: %zu profiles, %zu with flow; %d area outliers, %d speed outliers, %d encoder reads repaired\n",
-                args->run.c_str(), samples, valid, area_outliers, speed_outliers, repairs);
-    for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s: %s\n", args->run.c_str(), w.c_str());
-    std::printf("total volume: %.1f mm^3 (%s area)\n", volume,
+                args->run.c_str(), f.samples, f.valid, f.area_outliers, f.speed_outliers, f.encoder_repairs);
+    for (const std::string& w : f.warnings) std::fprintf(stderr, "warning: %s: %s\n", args->run.c_str(), w.c_str());
+    std::printf("total volume: %.1f mm^3 (%s area)\n", f.total_volume_mm3,
                 args->occlusion == "none" ? "measured" : "occlusion-corrected");
     std::printf("wrote %s\n", args->output.c_str());
     return 0;

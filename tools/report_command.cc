@@ -12,13 +12,10 @@
 #include <fstream>
 
 #include "calibration/pin_offset.h"
-#include "libbead/archive/measured_run.h"
-#include "libbead/archive/open_run.h"
+#include "libbead/archive/run_flow.h"
 #include "libbead/core/error.h"
 #include "libbead/core/worker_pool.h"
 #include "libbead/flow/flow.h"
-#include "libbead/io/flow_csv.h"
-#include "libbead/io/geometry_csv.h"
 #include "libbead/io/rig_yaml.h"
 #include "libbead/io/run_archive.h"
 #include "tools/commands.h"
@@ -126,11 +123,6 @@ Run AddReport(CLI::App& app) {
   return [args]() {
     const Rig rig = ReadRig(args->rig);
     WorkerPool pool;
-    OpenedRun opened = OpenRun(args->run, pool);
-    const bool motion = MissingMotion(opened.run, "the flow").none();
-    MeasureRunOptions measure;
-    measure.occlusion = ParseOcclusionMode(args->occlusion);
-    measure.estimate = occlusion::EstimateOcclusion;
     char tmpl[] = "/tmp/bead-report-XXXXXX";
     if (!mkdtemp(tmpl)) throw Error("cannot make a scratch folder in /tmp for the report");
     const fs::path dir(tmpl);
@@ -141,14 +133,16 @@ Run AddReport(CLI::App& app) {
         fs::remove_all(d, ec);
       }
     } cleanup{dir};
-    GeometryCsvWriter geometry((dir / "geometry.csv").string());
-    const MeasuredRun m =
-        MeasureWholeRun(std::move(opened), rig, pool, measure, [&](const GeometryRow& row) { geometry.Append(row); });
-    geometry.Commit();
-    if (motion) {
-      const FlowResult flow = ComputeFlow(rig, m.run.profiles, m.geometry, *m.run.log, {}, m.corrected, m.sigma);
-      WriteFlowCsv((dir / "flow.csv").string(), flow);
-    }
+    RunFlowRequest request;
+    request.measure.occlusion = ParseOcclusionMode(args->occlusion);
+    request.measure.estimate = occlusion::EstimateOcclusion;
+    request.geometry_csv = (dir / "geometry.csv").string();
+    request.flow_csv = (dir / "flow.csv").string();
+    request.keep = true;  // the sample profiles are drawn from the measured run
+    request.require_motion = false;
+    const RunFlow f = MeasureRunFlow(args->run, rig, pool, request);
+    const MeasuredRun& m = f.whole;
+    const bool motion = f.gap.none();
     WriteSampleProfiles(args->run, m, pool, dir);
     if (!args->pins.empty()) WritePins(rig, args->pins, dir);
     {

@@ -11,14 +11,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "libbead/archive/measured_run.h"
-#include "libbead/archive/streamed_flow.h"
-#include "libbead/archive/open_run.h"
+#include "libbead/archive/run_flow.h"
 #include "libbead/core/error.h"
 #include "libbead/io/atomic_file.h"
 #include "libbead/io/csv_reader.h"
-#include "libbead/io/flow_csv.h"
-#include "libbead/io/geometry_csv.h"
 #include "libbead/io/rig_yaml.h"
 
 namespace bead {
@@ -146,46 +142,23 @@ RunResult ProcessRun(const BatchRun& job, const BatchOptions& options, WorkerPoo
                              std::to_string(r.profiles) + ": " + StatusName(static_cast<ProfileStatus>(most)) + ")");
       }
     };
-    const std::string geometry_csv = (dir / "geometry.csv").string(), flow_csv = (dir / "flow.csv").string();
-    OpenedRun opened = OpenRun(job.run, pool, /*with_log=*/false);
-    const MotionGap gap = MissingMotionUnread(opened, job.run, "the flow");
-    bool done = false;
-    if (gap.none() && StreamableFlow(options.flow)) {
-      // In fixed memory (streamed_flow.h), unless the run needs its whole log.
-      GeometryCsvWriter geometry(geometry_csv);
-      FlowCsvWriter flow(flow_csv);
-      const StreamedFlow f = StreamRunFlow(
-          std::move(opened), job.run, rig, pool, measure, options.flow, [&](const FlowSample& s) { flow.Append(s); },
-          [&](const GeometryRow& row) { geometry.Append(row); });
-      if (f.complete) {
-        geometry.Commit();
-        flow.Commit();
-        measured(f.measure);
-        r.flow_samples = f.valid;
-        r.total_volume_mm3 = f.total_volume_mm3;
-        r.warnings.insert(r.warnings.end(), f.warnings.begin(), f.warnings.end());
-        done = true;
-      } else {
-        r.warnings.push_back("the flow was computed on the whole run in memory: " + f.why);
-      }
-    }
-    if (!done) {
-      GeometryCsvWriter geometry(geometry_csv);
-      const MeasuredRun m = MeasureWholeRun(OpenRun(job.run, pool), rig, pool, measure,
-                                            [&](const GeometryRow& row) { geometry.Append(row); });
-      geometry.Commit();
-      measured(m.summary);
-      if (gap.none()) {
-        const FlowResult flow =
-            ComputeFlow(rig, m.run.profiles, m.geometry, *m.run.log, options.flow, m.corrected, m.sigma);
-        WriteFlowCsv(flow_csv, flow);
-        for (const FlowSample& s : flow.samples) r.flow_samples += s.valid;
-        r.total_volume_mm3 = flow.total_volume_mm3;
-        r.warnings.insert(r.warnings.end(), flow.warnings.begin(), flow.warnings.end());
-      } else {
-        fs::remove(dir / "flow.csv", ec);
-        r.warnings.push_back("no flow: " + gap.dataset + " " + gap.why);
-      }
+    RunFlowRequest request;
+    request.measure = measure;
+    request.flow = options.flow;
+    request.geometry_csv = (dir / "geometry.csv").string();
+    request.flow_csv = (dir / "flow.csv").string();
+    request.require_motion = false;
+    const RunFlow f = MeasureRunFlow(job.run, rig, pool, request);
+    measured(f.measure);
+    if (!f.whole_run_why.empty())
+      r.warnings.push_back("the flow was computed on the whole run in memory: " + f.whole_run_why);
+    if (f.gap.none()) {
+      r.flow_samples = f.valid;
+      r.total_volume_mm3 = f.total_volume_mm3;
+      r.warnings.insert(r.warnings.end(), f.warnings.begin(), f.warnings.end());
+    } else {
+      fs::remove(dir / "flow.csv", ec);
+      r.warnings.push_back("no flow: " + f.gap.dataset + " " + f.gap.why);
     }
   } catch (const std::exception& e) {
     r.status = std::string("failed: ") + e.what();

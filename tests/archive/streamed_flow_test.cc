@@ -8,12 +8,14 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <random>
 
 #include "libbead/archive/batch.h"
 #include "libbead/archive/measured_run.h"
+#include "libbead/archive/run_flow.h"
 #include "libbead/archive/streamed_flow.h"
 #include "libbead/core/error.h"
 #include "libbead/core/median.h"
@@ -234,6 +236,56 @@ TEST_F(StreamedFlowTest, ARunWithoutItsLogIsNamed) {
     EXPECT_NE(std::string(e.what()).find("/log: missing: the flow needs the acquisition log"), std::string::npos)
         << e.what();
   }
+}
+
+// The one call the commands use: streamed, it writes the flow CSV the
+// whole-run path writes when asked to keep the run, byte for byte, and
+// the same figures; a run without its log gives its geometry and says why
+// there is no flow, or refuses when the flow is required.
+TEST_F(StreamedFlowTest, MeasureRunFlowStreamedOrKeptWritesTheSameFiles) {
+  const std::string path = *dir_ / "run.h5";
+  WorkerPool pool(2);
+  RunFlowRequest request;
+  request.measure = Measure(250);
+  request.flow_csv = *dir_ / "call_streamed_flow.csv";
+  request.geometry_csv = *dir_ / "call_streamed_geometry.csv";
+  const RunFlow streamed = MeasureRunFlow(path, sim_->rig_file, pool, request);
+  request.keep = true;
+  request.flow_csv = *dir_ / "call_kept_flow.csv";
+  request.geometry_csv = *dir_ / "call_kept_geometry.csv";
+  const RunFlow kept = MeasureRunFlow(path, sim_->rig_file, pool, request);
+  EXPECT_TRUE(streamed.streamed);
+  EXPECT_FALSE(kept.streamed);
+  ASSERT_EQ(kept.flow.samples.size(), kept.whole.geometry.size());
+  auto text = [](const std::string& p) {
+    std::ifstream in(p);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  };
+  EXPECT_FALSE(text(*dir_ / "call_kept_flow.csv").empty());
+  EXPECT_EQ(text(*dir_ / "call_streamed_flow.csv"), text(*dir_ / "call_kept_flow.csv"));
+  EXPECT_EQ(text(*dir_ / "call_streamed_geometry.csv"), text(*dir_ / "call_kept_geometry.csv"));
+  EXPECT_EQ(streamed.valid, kept.valid);
+  EXPECT_TRUE(Same(streamed.total_volume_mm3, kept.total_volume_mm3));
+  EXPECT_EQ(streamed.encoder_repairs, kept.encoder_repairs);
+
+  RunArchive bare = sim_->run;
+  bare.log.reset();
+  const std::string bare_path = *dir_ / "bare_call.h5";
+  WriteRunArchive(bare_path, bare);
+  request.keep = false;
+  request.require_motion = false;
+  request.flow_csv = *dir_ / "bare_flow.csv";
+  request.geometry_csv = *dir_ / "bare_geometry.csv";
+  const RunFlow geometry_only = MeasureRunFlow(bare_path, sim_->rig_file, pool, request);
+  EXPECT_FALSE(geometry_only.gap.none());
+  EXPECT_NE(geometry_only.gap.why.find("acquisition log"), std::string::npos) << geometry_only.gap.why;
+  EXPECT_EQ(geometry_only.measure.profiles, sim_->run.profiles.size());
+  EXPECT_EQ(text(*dir_ / "bare_geometry.csv"), text(*dir_ / "call_kept_geometry.csv"));
+  EXPECT_FALSE(std::filesystem::exists(*dir_ / "bare_flow.csv"));
+  request.require_motion = true;
+  EXPECT_THROW(MeasureRunFlow(bare_path, sim_->rig_file, pool, request), Error);
 }
 
 // The scratch file goes where TMPDIR says; a folder that is not there is
