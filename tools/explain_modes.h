@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "libbead/core/rig.h"
+#include "libbead/explain/base_model.h"
 #include "libbead/explain/explain_loop.h"
 #include "libbead/explain/run_explain.h"
 #include "libbead/model/identify.h"
@@ -30,16 +31,11 @@ struct ExplainArgs {
   model::IdentifyOptions Identify() const;
 };
 
-// The base model: read from --model, else identified on the data (one
-// input, or one transfer function per input).
-struct BaseModel {
-  std::vector<std::string> inputs;
-  std::vector<model::TransferFunction> tfs;
-  double offset = 0.0;
-  std::string source;
-};
-BaseModel ModelFor(const ExplainArgs& a, const std::vector<double>& t, const std::vector<std::vector<double>>& u,
-                   const std::vector<double>& y, const std::vector<Segment>& segments, const std::string& where);
+// The base model: read from --model, else identified on the data (and
+// what the identification found printed).
+explain::BaseModel ModelFor(const ExplainArgs& a, const std::vector<double>& t,
+                            const std::vector<std::vector<double>>& u, const std::vector<double>& y,
+                            const std::vector<Segment>& segments, const std::string& where);
 
 int ExplainRunMode(const ExplainArgs& a);
 int ExplainSeriesMode(const ExplainArgs& a);

@@ -1,8 +1,6 @@
 #include <cstdio>
 
 #include "libbead/io/atomic_file.h"
-#include "libbead/model/identify_multi.h"
-#include "libbead/model/model_file.h"
 #include "libbead/core/error.h"
 #include "tools/explain_modes.h"
 
@@ -24,36 +22,15 @@ model::IdentifyOptions ExplainArgs::Identify() const {
   return id;
 }
 
-BaseModel ModelFor(const ExplainArgs& a, const std::vector<double>& t, const std::vector<std::vector<double>>& u,
-                   const std::vector<double>& y, const std::vector<Segment>& segments, const std::string& where) {
-  BaseModel m;
-  if (!a.model.empty()) {
-    const model::ModelFile f = model::ReadModelFile(a.model);
-    if (f.tfs.size() != u.size())
-      throw Error(Located(a.model, "",
-                          "a model of " + std::to_string(f.tfs.size()) + " input(s), but the data give " +
-                              std::to_string(u.size()) +
-                              " (run mode: the screw speed alone; CSV and .mat mode: one per --input column)"));
-    m.inputs = f.inputs;
-    m.tfs = f.tfs;
-    m.offset = f.offset;
-    m.source = a.model;
-    return m;
-  }
-  const model::IdentifyOptions id = a.Identify();
-  const model::MultiInputModel im =
-      model::IdentifyMultiInput(t, u, y, std::vector<model::IdentifyOptions>(u.size(), id), segments);
-  if (!im.ok) throw Error(Located(where, "", "no model could be identified: " + im.reason));
-  for (const auto& part : im.inputs) m.tfs.push_back(part.tf);
-  m.offset = im.offset;
-  m.source = "identified on " + where + " (" + std::to_string(id.poles) + " poles, " + std::to_string(id.zeros) +
-             " zeros" + (u.size() > 1 ? " per input" : "") + ", operating point and initial state estimated)";
-  std::printf("model identified: fit %.2f %%, delay", im.fit_percent);
-  for (const auto& part : im.inputs) std::printf(" %.3f", part.tf.delay_s);
+explain::BaseModel ModelFor(const ExplainArgs& a, const std::vector<double>& t,
+                            const std::vector<std::vector<double>>& u, const std::vector<double>& y,
+                            const std::vector<Segment>& segments, const std::string& where) {
+  if (!a.model.empty()) return explain::BaseModelFromFile(a.model, u.size());
+  const explain::BaseModel m = explain::IdentifyBaseModel(t, u, y, segments, a.Identify(), where);
+  std::printf("model identified: fit %.2f %%, delay", m.fit_percent);
+  for (const auto& tf : m.tfs) std::printf(" %.3f", tf.delay_s);
   std::printf(" s\n");
-  for (const auto& part : im.inputs)
-    if (part.delay_profile.ambiguous) std::printf("warning: %s\n", part.delay_profile.note.c_str());
-  if (!im.note.empty()) std::printf("warning: %s\n", im.note.c_str());
+  for (const std::string& w : m.warnings) std::printf("warning: %s\n", w.c_str());
   return m;
 }
 

@@ -54,7 +54,7 @@ int ExplainRunMode(const ExplainArgs& a) {
   if (bin > 1)
     std::printf("%s: a long run: explained at %zu profiles per sample (%zu samples)\n", args->data.c_str(), bin,
                 main_run->t.size() / bin);
-  const BaseModel mdl =
+  const explain::BaseModel mdl =
       ModelFor(a, explain::AverageInBins(main_run->t, bin), {explain::AverageInBins(main_run->u, bin)},
                explain::AverageInBins(main_run->y, bin), {}, args->data);
   std::unique_ptr<Measured> other;

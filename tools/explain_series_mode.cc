@@ -44,7 +44,7 @@ ReadData Read(const ExplainArgs& a, const std::string& path) {
 
 // The data against the base model, with the named columns of its file as
 // recorded channels on its clock.
-explain::SeriesData Against(const ExplainArgs& a, const ReadData& r, const ProcessOn& on, const BaseModel& m,
+explain::SeriesData Against(const ExplainArgs& a, const ReadData& r, const ProcessOn& on, const explain::BaseModel& m,
                             const std::string& path) {
   std::vector<explain::MoreInput> more;
   for (std::size_t k = 1; k < m.tfs.size(); ++k) more.push_back({a.inputs[k], m.tfs[k], r.u[k]});
@@ -69,7 +69,7 @@ int ExplainSeriesMode(const ExplainArgs& a) {
   explain::ExplainOptions options = a.Explain();
   const ReadData r = Read(a, a.data);
   const ProcessOn on = SeriesStretches(r.s, a.data, a.keep_off, "explain");
-  const BaseModel mdl = ModelFor(a, r.s.t, r.u, r.s.y, on.segments, a.data);
+  const explain::BaseModel mdl = ModelFor(a, r.s.t, r.u, r.s.y, on.segments, a.data);
   const explain::SeriesData data = Against(a, r, on, mdl, a.data);
   std::optional<explain::SeriesData> other;
   if (!a.validate.empty()) {
