@@ -6,6 +6,7 @@
 #include <deque>
 #include <limits>
 
+#include "libbead/control/digital_pid.h"
 #include "libbead/control/polynomial.h"
 
 namespace bead::control {
@@ -157,8 +158,7 @@ Margins ComputeMargins(const model::TransferFunction& plant, const Pid& pid) {
 namespace {
 
 // The loop stepped at dt: the plant exact (zero-order hold), its delay a
-// buffer of whole steps (dt divides it), the PID with the integral by
-// rectangles and the derivative through its filter (backward Euler).
+// buffer of whole steps (dt divides it), the PID as digital_pid.h runs it.
 StepFigures Simulate(const model::TransferFunction& plant, const Pid& pid, double duration, double dt, double setpoint,
                      double load, double controller_dt) {
   if (dt <= 0) {
@@ -184,17 +184,12 @@ StepFigures Simulate(const model::TransferFunction& plant, const Pid& pid, doubl
   sys.Reset(0.0);
   std::deque<double> buffer(static_cast<std::size_t>(delay_steps), 0.0);
   StepFigures f;
-  double integral = 0, deriv = 0, prev_e = setpoint, y = 0, u = 0;
+  DigitalPid controller(pid, pid_dt);
+  controller.Start(0.0, 0.0);  // from rest: the setpoint's step at t = 0 enters the derivative
+  double y = 0, u = 0;
   const auto steps = static_cast<std::size_t>(std::ceil(duration / dt));
   for (std::size_t k = 0; k <= steps; ++k) {
-    if (k % hold == 0) {
-      const double e = setpoint - y;
-      const double de = k == 0 ? (setpoint - 0.0) : e - prev_e;  // the setpoint's step at t = 0 enters the derivative
-      deriv = pid.tf_s > 0 ? (pid.tf_s * deriv + pid.kd * de) / (pid.tf_s + pid_dt) : pid.kd * de / pid_dt;
-      u = pid.kp * e + pid.ki * integral + deriv;
-      integral += e * pid_dt;
-      prev_e = e;
-    }
+    if (k % hold == 0) u = controller.Update(setpoint - y);
     f.t.push_back(static_cast<double>(k) * dt);
     f.y.push_back(y);
     f.u.push_back(u);

@@ -14,14 +14,10 @@
 #include <string>
 #include <vector>
 
+#include "libbead/control/pid_gains.h"
 #include "libbead/model/transfer_function.h"
 
 namespace bead::control {
-
-struct Pid {
-  double kp = 0, ki = 0, kd = 0;
-  double tf_s = 0;  // derivative filter time constant (0: none)
-};
 
 // D(s) = P(s) + Q(s) e^(-tau s), coefficients in descending powers of s.
 struct QuasiPolynomial {

@@ -42,7 +42,7 @@ TEST(TwinPid, TheScrewFollowsTheStepAsTheDesignSays) {
   const StepFigures model_step = SetpointStep(plant, d.pid, 10.0, 0.002, 0.01);
   // The model's simulation knows no voltage limit: the twin's is lifted for
   // the comparison (at 10 V the derivative's kick saturates and the
-  // overshoot drops, 48 -> 41 %).
+  // overshoot drops).
   const sim::SimulatedRun r = sim::Simulate(StepRun(d.pid, 0.0, 1e4));
   const auto& t = r.truth.flow.t_s;
   const auto& rpm = r.truth.flow.screw_rpm;
