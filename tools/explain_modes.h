@@ -13,6 +13,7 @@
 #include "libbead/explain/explain_loop.h"
 #include "libbead/explain/run_explain.h"
 #include "libbead/model/identify.h"
+#include "tools/series_stretches.h"
 
 namespace bead::tools {
 
@@ -28,6 +29,7 @@ struct ExplainArgs {
   std::vector<std::string> channels;
 
   explain::ExplainOptions Explain() const;
+  SeriesNames Names() const { return {data, time, output, input_file, input_time, validate_input_file, inputs}; }
   model::IdentifyOptions Identify() const;
 };
 

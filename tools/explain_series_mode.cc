@@ -30,15 +30,8 @@ ReadData Read(const ExplainArgs& a, const std::string& path) {
     std::printf("%s: %zu rows where every input and the output are numbers\n", path.c_str(), d.s.t.size());
     return d;
   }
-  // The input's own clock: --input-time, else --time's name in --input-file.
-  const std::string in_file = path == a.data ? a.input_file : a.validate_input_file;
-  const std::string in_time = !a.input_time.empty() ? a.input_time : in_file.empty() ? "" : a.time;
-  d.s = ReadSeries({path, a.time, a.inputs[0], a.output, in_file, in_time});
+  d.s = ReadOneInputSeries(a.Names(), path);
   d.u = {d.s.u};
-  PrintFileNote(d.s.file_note);
-  std::printf("%s: %zu rows (%d skipped as gaps%s%s)\n", path.c_str(), d.s.t.size(), d.s.skipped,
-              d.s.skipped ? "; the first at " : "", d.s.first_skip.c_str());
-  if (!d.s.note.empty()) std::printf("%s\n", d.s.note.c_str());
   return d;
 }
 
@@ -63,9 +56,7 @@ int ExplainSeriesMode(const ExplainArgs& a) {
     throw CLI::RequiredError("CSV mode needs --input and --output (run mode needs --rig)");
   if (!a.flow_out.empty() || !a.pins.empty())
     throw CLI::ValidationError("--flow-out and --pins", "are for run mode (--rig)");
-  if (a.inputs.size() > 1 && (!a.input_file.empty() || !a.input_time.empty()))
-    throw Error("several inputs are read from DATA on its own clock: --input-file and --input-time take one input");
-  CheckValidationInput(a.input_file, a.validate, a.validate_input_file);
+  CheckInputClocks(a.Names(), a.validate);
   explain::ExplainOptions options = a.Explain();
   const ReadData r = Read(a, a.data);
   const ProcessOn on = SeriesStretches(r.s, a.data, a.keep_off, "explain");

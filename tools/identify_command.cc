@@ -160,31 +160,21 @@ Run AddIdentify(CLI::App& app) {
   cmd->add_flag("--orders", args->orders, "Print the order-selection table");
   cmd->add_option("-o,--out", args->out, "Model JSON to write");
   return [args]() {
-    CheckValidationInput(args->input_file, args->validate, args->validate_input_file);
+    const SeriesNames names{args->data,       args->time,       args->output,
+                            args->input_file, args->input_time, args->validate_input_file,
+                            args->inputs};
+    CheckInputClocks(names, args->validate);
     const std::vector<model::IdentifyOptions> per_input =
         OptionsPerInput(args->inputs.size(), args->poles, args->zeros, args->structure, args->delay, args->max_delay_s,
                         args->from_rest);
     if (args->inputs.size() > 1) {
-      if (!args->input_file.empty() || !args->input_time.empty())
-        throw Error("several inputs are read from DATA on its own clock: --input-file and --input-time take one input");
       if (args->orders) throw Error("--orders takes one input");
       return IdentifySeveral(args->data, args->time, args->inputs, args->output, per_input, args->keep_off,
                              args->validate, args->out);
     }
     const std::string input = args->inputs[0];
-    auto read = [&](const std::string& path) {
-      // The input's own clock: --input-time, else --time's name in --input-file.
-      const std::string in_file = path == args->data ? args->input_file : args->validate_input_file;
-      const std::string in_time = !args->input_time.empty() ? args->input_time : in_file.empty() ? "" : args->time;
-      Series s = ReadSeries({path, args->time, input, args->output, in_file, in_time});
-      PrintFileNote(s.file_note);
-      return s;
-    };
-    const Series est = read(args->data);
+    const Series est = ReadOneInputSeries(names, args->data);
     const model::IdentifyOptions& o = per_input[0];
-    std::printf("%s: %zu rows (%d skipped as gaps%s%s)\n", args->data.c_str(), est.t.size(), est.skipped,
-                est.skipped ? "; the first at " : "", est.first_skip.c_str());
-    if (!est.note.empty()) std::printf("%s\n", est.note.c_str());
     auto stretches = [&](const Series& s, const std::string& path) {
       return SeriesStretches(s, path, args->keep_off, "fit");
     };
@@ -194,7 +184,7 @@ Run AddIdentify(CLI::App& app) {
     std::optional<Series> val;
     std::optional<ProcessOn> val_on;
     if (!args->validate.empty()) {
-      val = read(args->validate);
+      val = ReadOneInputSeries(names, args->validate);
       val_on = stretches(*val, args->validate);
     }
     PrintModel(m, o);

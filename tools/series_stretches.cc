@@ -35,4 +35,21 @@ void PrintFileNote(const std::string& note) {
   if (!note.empty() && told.insert(note).second) std::printf("%s\n", note.c_str());
 }
 
+void CheckInputClocks(const SeriesNames& n, const std::string& validate) {
+  if (n.inputs.size() > 1 && (!n.input_file.empty() || !n.input_time.empty()))
+    throw Error("several inputs are read from DATA on its own clock: --input-file and --input-time take one input");
+  CheckValidationInput(n.input_file, validate, n.validate_input_file);
+}
+
+Series ReadOneInputSeries(const SeriesNames& n, const std::string& path) {
+  const std::string in_file = path == n.data ? n.input_file : n.validate_input_file;
+  const std::string in_time = !n.input_time.empty() ? n.input_time : in_file.empty() ? "" : n.time;
+  Series s = ReadSeries({path, n.time, n.inputs.at(0), n.output, in_file, in_time});
+  PrintFileNote(s.file_note);
+  std::printf("%s: %zu rows (%d skipped as gaps%s%s)\n", path.c_str(), s.t.size(), s.skipped,
+              s.skipped ? "; the first at " : "", s.first_skip.c_str());
+  if (!s.note.empty()) std::printf("%s\n", s.note.c_str());
+  return s;
+}
+
 }  // namespace bead::tools

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "libbead/io/series_columns.h"
 #include "libbead/series/process_on.h"
@@ -22,5 +23,23 @@ void CheckValidationInput(const std::string& input_file, const std::string& vali
 
 // Prints a file's note (Series::file_note) once per distinct note.
 void PrintFileNote(const std::string& note);
+
+// The options that name a series' columns and files, as identify and
+// explain take them.
+struct SeriesNames {
+  std::string data, time, output, input_file, input_time, validate_input_file;
+  std::vector<std::string> inputs;
+};
+
+// Refuses an input on its own clock (--input-file, --input-time) beside
+// several inputs, which are read from DATA on its clock; and a validation
+// run whose input is not where the estimation run's is (CheckValidationInput).
+void CheckInputClocks(const SeriesNames& names, const std::string& validate);
+
+// The series of the one input from `path` (DATA, or the validation run),
+// the input on its own clock when one is named (--input-time, else --time's
+// name in --input-file; the validation run's in --validate-input-file);
+// its file note and the rows read printed.
+Series ReadOneInputSeries(const SeriesNames& names, const std::string& path);
 
 }  // namespace bead::tools

@@ -10,16 +10,6 @@
 #include "libbead/series/interpolate.h"
 
 namespace bead::explain {
-namespace {
-
-std::vector<double> Monic(std::vector<double> den) {
-  const double lead = den[0];
-  for (double& c : den) c /= lead;
-  return den;
-}
-
-}  // namespace
-
 SeriesData ModelSeries(const std::vector<double>& t, const std::vector<double>& u, const std::vector<double>& y,
                        const model::TransferFunction& tf, double offset, const std::vector<Segment>& segments_in,
                        const std::string& y_unit, const std::vector<MoreInput>& more) {
@@ -30,13 +20,13 @@ SeriesData ModelSeries(const std::vector<double>& t, const std::vector<double>& 
   const std::vector<double> main = model::Predict(tf, offset, t, u, {}, segments);
   std::vector<std::vector<double>> parts;
   for (const MoreInput& m : more) parts.push_back(model::Predict(m.tf, 0.0, t, m.u, {}, segments));
-  const auto basis = model::FilterBasis(Monic(tf.den), tf.delay_s, t, u, segments);
+  const auto basis = model::FilterBasis(tf.Monic().den, tf.delay_s, t, u, segments);
   // Every input's free responses: initial-state columns for the stretches
   // whose start is unknown (not where the process started: that one starts
   // from rest).
-  std::vector<model::StateResponses> free = {model::ComputeStateResponses(Monic(tf.den), tf.delay_s, t, u, segments)};
+  std::vector<model::StateResponses> free = {model::ComputeStateResponses(tf.Monic().den, tf.delay_s, t, u, segments)};
   for (const MoreInput& m : more)
-    free.push_back(model::ComputeStateResponses(Monic(m.tf.den), m.tf.delay_s, t, m.u, segments));
+    free.push_back(model::ComputeStateResponses(m.tf.Monic().den, m.tf.delay_s, t, m.u, segments));
   SeriesData d;
   d.y_unit = y_unit;
   d.dynamics.resize(basis.size());

@@ -102,8 +102,7 @@ RunSeries MakeRunSeries(const Rig& rig, const ProfileBlock& profiles, const std:
   st->log_counts = UnwrapEncoder(log.encoder, rig.encoder, log.t_s).counts;
   st->speed = SurfaceSpeed(rig, st->log_t, st->log_counts, flow_options);
   st->model_flow = model::Predict(tf, model_offset, log.t_s, log.screw_rpm, {});
-  std::vector<double> den = tf.den;
-  for (double& c : den) c /= tf.den[0];
+  const std::vector<double> den = tf.Monic().den;
   const auto basis = model::FilterBasis(den, tf.delay_s, log.t_s, log.screw_rpm, WholeRecord(log.size()));
   const model::StateResponses free =
       model::ComputeStateResponses(den, tf.delay_s, log.t_s, log.screw_rpm, WholeRecord(log.size()));

@@ -15,9 +15,8 @@ std::vector<double> Predict(const TransferFunction& tf, double offset, const std
                             const std::vector<Segment>& segments_in) {
   tf.Validate();
   const std::vector<Segment> segments = segments_in.empty() ? WholeRecord(t.size()) : segments_in;
-  std::vector<double> den = tf.den, num = tf.num;
-  for (double& c : num) c /= tf.den[0];
-  for (double& c : den) c /= tf.den[0];
+  const TransferFunction monic = tf.Monic();
+  const std::vector<double>&den = monic.den, &num = monic.num;
   const int n = static_cast<int>(den.size()) - 1;
   std::vector<double> out(t.size(), std::numeric_limits<double>::quiet_NaN());
   if (n == 0) {

@@ -39,6 +39,14 @@ std::vector<std::complex<double>> PolynomialRoots(const std::vector<double>& a) 
   return out;
 }
 
+TransferFunction TransferFunction::Monic() const {
+  TransferFunction m = *this;
+  const double lead = den.at(0);
+  for (double& c : m.num) c /= lead;
+  for (double& c : m.den) c /= lead;
+  return m;
+}
+
 TransferFunction ThesisVoltageToRpm() { return {{439.0, 35.08}, {1.523, 11.44, 1.0}, 0.054}; }
 
 TransferFunction ThesisRpmToFlow(double delay_s) { return {{9.175, 149.2, 905.3}, {1.0, 12.84, 47.52}, delay_s}; }
@@ -46,12 +54,12 @@ TransferFunction ThesisRpmToFlow(double delay_s) { return {{9.175, 149.2, 905.3}
 StateSpace ToStateSpace(const TransferFunction& tf) {
   tf.Validate();
   const int n = tf.poles();
-  const double a0 = tf.den[0];
-  std::vector<double> a(tf.den.size()), b(static_cast<std::size_t>(n + 1), 0.0);
-  for (std::size_t i = 0; i < a.size(); ++i) a[i] = tf.den[i] / a0;
+  const TransferFunction m = tf.Monic();
+  const std::vector<double>& a = m.den;
+  std::vector<double> b(static_cast<std::size_t>(n + 1), 0.0);
   // Numerator padded to degree n.
-  const std::size_t pad = static_cast<std::size_t>(n + 1) - tf.num.size();
-  for (std::size_t i = 0; i < tf.num.size(); ++i) b[pad + i] = tf.num[i] / a0;
+  const std::size_t pad = static_cast<std::size_t>(n + 1) - m.num.size();
+  for (std::size_t i = 0; i < m.num.size(); ++i) b[pad + i] = m.num[i];
   StateSpace ss;
   ss.D = b[0];
   ss.A = Eigen::MatrixXd::Zero(n, n);

@@ -26,6 +26,9 @@ struct TransferFunction {
   double DcGain() const;
   // Throws bead::Error when improper, empty or with a zero leading coefficient.
   void Validate() const;
+  // The same system with den[0] == 1 (num and den divided by it), the form
+  // the responses and filter bases take.
+  TransferFunction Monic() const;
 };
 
 // The roots of a polynomial in descending powers of s (the eigenvalues of
