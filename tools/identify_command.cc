@@ -95,6 +95,44 @@ int IdentifySeveral(const std::string& data, const std::string& time, const std:
   return 0;
 }
 
+// The order-selection table: each order fitted on the estimation data and
+// scored on the validation run, or (without one) fitted on the first half
+// and scored on the second.
+void PrintOrderTable(const Series& est, const std::vector<Segment>& on, const Series* val,
+                     const std::vector<Segment>& val_on, const model::IdentifyOptions& o) {
+  Series a = est, b = est;
+  std::vector<Segment> sa = on, sb = on;
+  if (val) {
+    b = *val;
+    sb = val_on;
+  } else {
+    const std::size_t h = est.t.size() / 2;
+    a = {{est.t.begin(), est.t.begin() + h},
+         {est.u.begin(), est.u.begin() + h},
+         {est.y.begin(), est.y.begin() + h},
+         0,
+         {},
+         {}};
+    b = {{est.t.begin() + h, est.t.end()},
+         {est.u.begin() + h, est.u.end()},
+         {est.y.begin() + h, est.y.end()},
+         0,
+         {},
+         {}};
+    sa.clear();
+    sb.clear();
+    for (const Segment& s : on) {
+      if (s.begin < h) sa.push_back({s.begin, std::min(s.end, h), s.process_starts});
+      // A stretch cut at the half goes on mid-process in the second half.
+      if (s.end > h) sb.push_back({std::max(s.begin, h) - h, s.end - h, s.begin >= h && s.process_starts});
+    }
+  }
+  std::printf("\n%6s %6s %12s %12s %12s %10s\n", "poles", "zeros", "fit_est_%", "fit_val_%", "AICc", "delay_s");
+  for (const auto& r : model::OrderTable(a.t, a.u, a.y, b.t, b.u, b.y, o, sa, sb))
+    std::printf("%6d %6d %12.2f %12.2f %12.6g %10.4f\n", r.poles, r.zeros, r.fit_estimation, r.fit_validation, r.aicc,
+                r.delay_s);
+}
+
 }  // namespace
 
 Run AddIdentify(CLI::App& app) {
@@ -196,39 +234,8 @@ Run AddIdentify(CLI::App& app) {
     }
     std::printf("AIC %.6g  AICc %.6g  BIC %.6g  FPE %.6g  (%d parameters)\n", m.criteria.aic, m.criteria.aicc,
                 m.criteria.bic, m.criteria.fpe, m.parameters);
-    if (args->orders) {
-      Series a = est, b = est;
-      std::vector<Segment> sa = on.segments, sb = on.segments;
-      if (val) {
-        b = *val;
-        sb = val_on->segments;
-      } else {  // estimate on the first half, validate on the second
-        const std::size_t h = est.t.size() / 2;
-        a = {{est.t.begin(), est.t.begin() + h},
-             {est.u.begin(), est.u.begin() + h},
-             {est.y.begin(), est.y.begin() + h},
-             0,
-             {},
-             {}};
-        b = {{est.t.begin() + h, est.t.end()},
-             {est.u.begin() + h, est.u.end()},
-             {est.y.begin() + h, est.y.end()},
-             0,
-             {},
-             {}};
-        sa.clear();
-        sb.clear();
-        for (const Segment& s : on.segments) {
-          if (s.begin < h) sa.push_back({s.begin, std::min(s.end, h), s.process_starts});
-          // A stretch cut at the half goes on mid-process in the second half.
-          if (s.end > h) sb.push_back({std::max(s.begin, h) - h, s.end - h, s.begin >= h && s.process_starts});
-        }
-      }
-      std::printf("\n%6s %6s %12s %12s %12s %10s\n", "poles", "zeros", "fit_est_%", "fit_val_%", "AICc", "delay_s");
-      for (const auto& r : model::OrderTable(a.t, a.u, a.y, b.t, b.u, b.y, o, sa, sb))
-        std::printf("%6d %6d %12.2f %12.2f %12.6g %10.4f\n", r.poles, r.zeros, r.fit_estimation, r.fit_validation,
-                    r.aicc, r.delay_s);
-    }
+    if (args->orders)
+      PrintOrderTable(est, on.segments, val ? &*val : nullptr, val ? val_on->segments : std::vector<Segment>{}, o);
     if (!args->out.empty()) {
       nlohmann::json j = model::ModelJson(m, o, input, args->output, est.t, on.segments, on.excluded);
       if (val) j["fit_validation_pct"] = fit_val;

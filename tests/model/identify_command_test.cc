@@ -8,7 +8,9 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <random>
+#include <sstream>
 
 #include "libbead/model/identify.h"
 #include "tests/support/random_steps.h"
@@ -107,6 +109,35 @@ TEST(IdentifyCommand, ValidationRunWithItsOwnInputFile) {
   ASSERT_EQ(j["initial_state"].size(), 1u);
   EXPECT_EQ(j["initial_state"][0]["from"], "rest: the process started");
   EXPECT_NEAR(j["initial_state"][0]["t_s"].get<double>(), 3.0, 1e-6);
+}
+
+// The order table, scored on the validation run: the true order (one
+// pole, no zero) fits the held-out run within the noise's ~2 % of the
+// best row, and no order scores above the noise's ceiling (~98 %).
+TEST(IdentifyCommand, OrderTableScoresOnTheValidationRun) {
+  test::TempDir dir;
+  WriteRun(dir, "a", 3);
+  WriteRun(dir, "b", 4);
+  const auto [status, out] = test::RunCli(
+      dir, "identify " + (dir / "a_w.csv") + " --time t --output w --input wfs --input-file " + (dir / "a_wfs.csv") +
+               " --validate " + (dir / "b_w.csv") + " --validate-input-file " + (dir / "b_wfs.csv") + " --orders");
+  ASSERT_EQ(status, 0) << out;
+  std::istringstream lines(out.substr(out.find("fit_val_%")));
+  std::string line;
+  std::getline(lines, line);
+  double best = -1e9, first_order = NAN;
+  int rows = 0;
+  for (int poles, zeros; std::getline(lines, line);) {
+    double est, val, aicc, delay;
+    if (std::sscanf(line.c_str(), "%d %d %lf %lf %lf %lf", &poles, &zeros, &est, &val, &aicc, &delay) != 6) break;
+    ++rows;
+    best = std::max(best, val);
+    if (poles == 1 && zeros == 0) first_order = val;
+  }
+  ASSERT_GT(rows, 3) << out;
+  ASSERT_TRUE(std::isfinite(first_order)) << out;
+  EXPECT_GT(first_order, best - 2.0) << out;
+  EXPECT_LT(best, 99.5) << out;
 }
 
 // A .mat straight into identify, as v5 and as v7.3 (HDF5): the same model
