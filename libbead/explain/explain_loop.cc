@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 #include "libbead/core/error.h"
 #include "libbead/explain/effect_fit.h"
@@ -167,127 +168,129 @@ Test TryEffect(const SeriesData& d, const SeriesData& v, const Set& null, const 
   return t;
 }
 
-}  // namespace
-
-ExplainReport Explain(const SeriesData& d, const ExplainOptions& o) {
-  if (d.size() < 20 || (o.validation && o.validation->size() < 20))
-    throw Error("explain: fewer than 20 samples (" + std::to_string(d.size()) + ") to explain");
-  ExplainReport report;
-  const std::size_t n = d.size();
-  std::vector<std::size_t> all(n);
-  for (std::size_t i = 0; i < n; ++i) all[i] = i;
+// The rows the loop estimates on and those it tests on: every other of the
+// time blocks, or (with another run held out) all of this one and all of
+// that one.
+struct Rows {
+  std::vector<std::size_t> all, estimation, held_out;
+  const SeriesData* validation = nullptr;
+};
+Rows SplitRows(const SeriesData& d, const ExplainOptions& o) {
+  Rows r;
+  r.all.resize(d.size());
+  for (std::size_t i = 0; i < d.size(); ++i) r.all[i] = i;
   const auto blocks = Blocks(d.t, std::max(o.blocks, 4));
-  std::vector<std::size_t> estimation, held_out;
   for (std::size_t b = 0; b < blocks.size(); ++b) {
-    auto& to = b % 2 == 0 ? estimation : held_out;
+    auto& to = b % 2 == 0 ? r.estimation : r.held_out;
     to.insert(to.end(), blocks[b].begin(), blocks[b].end());
   }
-  const SeriesData& validation = o.validation ? *o.validation : d;
-  if (o.validation) {  // another run is held out: estimate on the whole of this one
-    estimation = all;
-    held_out.resize(validation.size());
-    for (std::size_t i = 0; i < held_out.size(); ++i) held_out[i] = i;
+  r.validation = o.validation ? o.validation : &d;
+  if (o.validation) {
+    r.estimation = r.all;
+    r.held_out.resize(o.validation->size());
+    for (std::size_t i = 0; i < r.held_out.size(); ++i) r.held_out[i] = i;
   }
+  return r;
+}
 
-  const std::vector<Effect> catalogue = Catalogue(d, o.catalogue);
-  // The base model at its best: gain, operating point and delay refitted.
-  Set current;
-  for (const Effect& e : BaseRefit(d, o.catalogue)) current.push_back(Activate(e));
-  const std::size_t base_terms = current.size();
-  report.before = Diagnose(d, Set{}, o);
-  {
-    Set est = current;
-    for (std::size_t k = 0; k < est.size(); ++k) {
-      Set partial(est.begin(), est.begin() + static_cast<long>(k + 1));
-      Fit(d, partial, all);
-      for (std::size_t j = 0; j <= k; ++j) est[j].params = partial[j].params;
-    }
-    current = est;
+// The base model at its best: gain, operating point and delay refitted,
+// each started from the fit of the ones before it.
+Set FittedBase(const SeriesData& d, const CatalogueOptions& catalogue, const std::vector<std::size_t>& all) {
+  Set est;
+  for (const Effect& e : BaseRefit(d, catalogue)) est.push_back(Activate(e));
+  for (std::size_t k = 0; k < est.size(); ++k) {
+    Set partial(est.begin(), est.begin() + static_cast<long>(k + 1));
+    Fit(d, partial, all);
+    for (std::size_t j = 0; j <= k; ++j) est[j].params = partial[j].params;
   }
-  const Effect dynamics = DynamicsCorrection(d);
+  return est;
+}
 
-  std::vector<bool> used(catalogue.size(), false);
-  std::vector<std::pair<Active, Active>> alternatives;  // (kept, another that passed in its round)
-  for (int round = 0; round < o.max_effects; ++round) {
-    Set current_est = current;
-    Refine(d, current_est, estimation);
-    const auto candidates_left = static_cast<std::size_t>(std::count(used.begin(), used.end(), false));
-    // Every candidate of the round is a test: Bonferroni keeps the chance
-    // of adding a false one in a round at alpha.
-    const double level = 1.0 - o.alpha / static_cast<double>(std::max<std::size_t>(candidates_left, 1));
-    // The guard: the base with a linear correction of its dynamics.
-    Set guard_null = current_est;
-    bool guard = !dynamics.name.empty();
-    if (guard) {
-      const Test g = TryEffect(d, validation, current_est, dynamics, estimation, held_out, true);
-      guard_null = g.fitted;
-      if (round == 0) {
-        const std::size_t p = dynamics.linear.size();
-        report.base.tested = true;
-        report.base.heldout_f = g.f;
-        report.base.threshold = ChiSquareQuantile(1.0 - o.alpha, static_cast<int>(p)) / static_cast<double>(p);
-        report.base.misspecified = g.f > report.base.threshold && g.bic_drop > 0;
-        const double n = static_cast<double>(held_out.size());
-        report.base.rms_before = std::sqrt(Sse(Residual(validation, current_est), held_out) / n);
-        report.base.rms_after = std::sqrt(Sse(Residual(validation, g.fitted), held_out) / n);
-      }
-    }
-    int best = -1;
-    double best_drop = 0.0, best_t = 0.0;
-    Set best_set;
-    std::vector<Active> passed;  // every candidate that passed this round, as fitted
-    for (std::size_t c = 0; c < catalogue.size(); ++c) {
-      if (used[c]) continue;
-      // Screened with the base model's delay held; what passes is fitted
-      // jointly with it and tested again.
-      Test t = TryEffect(d, validation, current_est, catalogue[c], estimation, held_out, false);
-      const std::size_t p_new = t.fitted.back().params.size();
-      const double critical = ChiSquareQuantile(level, static_cast<int>(p_new)) / static_cast<double>(p_new);
-      bool ok = t.bic_drop > 0 && t.f > critical;
-      if (ok) {
-        t = TryEffect(d, validation, current_est, catalogue[c], estimation, held_out, true);
-        ok = t.bic_drop > 0 && t.f > critical;
-      }
-      double surrogate = NAN, guarded = NAN;
-      if (ok && guard) {
-        const Test tg = TryEffect(d, validation, guard_null, catalogue[c], estimation, held_out, true);
-        guarded = tg.f;
-        ok = tg.f > critical;
-      }
-      if (ok && catalogue[c].part >= 0) {
-        surrogate =
-            LargestSurrogateF(d, validation, o.validation != nullptr, current_est, catalogue[c], estimation, held_out);
-        ok = t.f > surrogate;
-      }
-      report.candidates.push_back({round, catalogue[c].name, t.bic_drop, t.f, surrogate, guarded, false});
-      if (ok) passed.push_back(t.fitted.back());
-      if (ok && t.bic_drop > best_drop)
-        best = static_cast<int>(c), best_drop = t.bic_drop, best_t = t.f, best_set = t.fitted;
-    }
-    if (best < 0) break;
-    for (const Active& alt : passed)
-      if (alt.effect.name != best_set.back().effect.name) alternatives.push_back({best_set.back(), alt});
-    for (auto& cand : report.candidates)
-      if (cand.round == round && cand.name == catalogue[static_cast<std::size_t>(best)].name) cand.accepted = true;
-    used[static_cast<std::size_t>(best)] = true;
-
-    // Refit on the whole record, from the estimation-half values.
-    Set after = best_set;
-    Refine(d, after, all);
-    AddedEffect added;
-    added.name = after.back().effect.name;
-    added.description = after.back().effect.description;
-    added.tracks = after.back().effect.tracks;
-    added.fit_before_pct = FitOf(d, current);
-    added.fit_after_pct = FitOf(d, after);
-    added.rms_before = Rms(Residual(d, current));
-    added.rms_after = Rms(Residual(d, after));
-    added.bic_drop = best_drop;
-    added.heldout_f = best_t;
-    report.effects_added.push_back(added);
-    current = after;
+// The guard: the base with a linear correction of its dynamics, fitted; on
+// the first round what it says of the base model goes in the report.
+Set Guard(const SeriesData& d, const Rows& rows, const Set& base, const Effect& dynamics, bool first,
+          const ExplainOptions& o, ExplainReport& report) {
+  const Test g = TryEffect(d, *rows.validation, base, dynamics, rows.estimation, rows.held_out, true);
+  if (first) {
+    const std::size_t p = dynamics.linear.size();
+    report.base.tested = true;
+    report.base.heldout_f = g.f;
+    report.base.threshold = ChiSquareQuantile(1.0 - o.alpha, static_cast<int>(p)) / static_cast<double>(p);
+    report.base.misspecified = g.f > report.base.threshold && g.bic_drop > 0;
+    const double n = static_cast<double>(rows.held_out.size());
+    report.base.rms_before = std::sqrt(Sse(Residual(*rows.validation, base), rows.held_out) / n);
+    report.base.rms_after = std::sqrt(Sse(Residual(*rows.validation, g.fitted), rows.held_out) / n);
   }
-  // Every parameter from the final joint fit, with its interval.
+  return g.fitted;
+}
+
+// One round: every candidate not yet added tried against the base and its
+// effects so far; the one that passes every test with the largest BIC drop.
+struct Round {
+  int best = -1;
+  double bic_drop = 0.0, f = 0.0;
+  Set fitted;                  // the best's, on the estimation rows
+  std::vector<Active> passed;  // every candidate that passed, as fitted
+};
+Round TryCandidates(const SeriesData& d, const Rows& rows, const Set& current, const std::vector<Effect>& catalogue,
+                    const std::vector<bool>& used, const Set* guard_null, int round, const ExplainOptions& o,
+                    ExplainReport& report) {
+  Round r;
+  const SeriesData& v = *rows.validation;
+  // Every candidate of the round is a test: Bonferroni keeps the chance
+  // of adding a false one in a round at alpha.
+  const auto left = static_cast<std::size_t>(std::count(used.begin(), used.end(), false));
+  const double level = 1.0 - o.alpha / static_cast<double>(std::max<std::size_t>(left, 1));
+  for (std::size_t c = 0; c < catalogue.size(); ++c) {
+    if (used[c]) continue;
+    // Screened with the base model's delay held; what passes is fitted
+    // jointly with it and tested again.
+    Test t = TryEffect(d, v, current, catalogue[c], rows.estimation, rows.held_out, false);
+    const std::size_t p_new = t.fitted.back().params.size();
+    const double critical = ChiSquareQuantile(level, static_cast<int>(p_new)) / static_cast<double>(p_new);
+    bool ok = t.bic_drop > 0 && t.f > critical;
+    if (ok) {
+      t = TryEffect(d, v, current, catalogue[c], rows.estimation, rows.held_out, true);
+      ok = t.bic_drop > 0 && t.f > critical;
+    }
+    double surrogate = NAN, guarded = NAN;
+    if (ok && guard_null) {
+      guarded = TryEffect(d, v, *guard_null, catalogue[c], rows.estimation, rows.held_out, true).f;
+      ok = guarded > critical;
+    }
+    if (ok && catalogue[c].part >= 0) {
+      surrogate =
+          LargestSurrogateF(d, v, o.validation != nullptr, current, catalogue[c], rows.estimation, rows.held_out);
+      ok = t.f > surrogate;
+    }
+    report.candidates.push_back({round, catalogue[c].name, t.bic_drop, t.f, surrogate, guarded, false});
+    if (ok) r.passed.push_back(t.fitted.back());
+    if (ok && t.bic_drop > r.bic_drop)
+      r.best = static_cast<int>(c), r.bic_drop = t.bic_drop, r.f = t.f, r.fitted = t.fitted;
+  }
+  return r;
+}
+
+// What adding the round's best did, on the whole record.
+AddedEffect Added(const SeriesData& d, const Set& before, const Set& after, const Round& r) {
+  AddedEffect added;
+  added.name = after.back().effect.name;
+  added.description = after.back().effect.description;
+  added.tracks = after.back().effect.tracks;
+  added.fit_before_pct = FitOf(d, before);
+  added.fit_after_pct = FitOf(d, after);
+  added.rms_before = Rms(Residual(d, before));
+  added.rms_after = Rms(Residual(d, after));
+  added.bic_drop = r.bic_drop;
+  added.heldout_f = r.f;
+  return added;
+}
+
+// Every parameter from the final joint fit, with its interval; what trades
+// with what; the alternatives that also passed.
+void FinalFit(const SeriesData& d, Set& current, std::size_t base_terms,
+              const std::vector<std::pair<Active, Active>>& alternatives, const std::vector<std::size_t>& all,
+              ExplainReport& report) {
   Refine(d, current, all);
   const ParameterCovariance cov = Covariance(d, current, all);
   for (std::size_t e = 0; e < current.size(); ++e) {
@@ -304,14 +307,10 @@ ExplainReport Explain(const SeriesData& d, const ExplainOptions& o) {
     report.final_params.push_back(a.params);
   }
   report.base_terms = base_terms;
+}
 
-  // The wheel-position shift that best aligns the data, profiled.
-  for (const Effect& e : catalogue)
-    if (e.kind == Effect::Kind::kPositionShift && d.shifted) EstimateShift(d, current, e, all, report);
-
-  report.after = Diagnose(d, current, o);
-
-  // What is left: every significant peak, matched to a rotating part.
+// What is left: every significant peak, matched to a rotating part.
+void SayUnexplained(const SeriesData& d, ExplainReport& report) {
   const double span = d.t.back() - d.t.front();
   for (const SpectrumPeak& peak : report.after.spectrum.peaks) {
     Unexplained u{"periodic", "", peak.frequency_hz, peak.power, peak.false_alarm};
@@ -331,6 +330,48 @@ ExplainReport Explain(const SeriesData& d, const ExplainOptions& o) {
   if (!report.after.whiteness.white && report.unexplained.empty())
     report.unexplained.push_back(
         {"correlated residual", "no single frequency (not white: chi-square above its 99 % limit)", 0, 0, 1});
+}
+
+}  // namespace
+
+ExplainReport Explain(const SeriesData& d, const ExplainOptions& o) {
+  if (d.size() < 20 || (o.validation && o.validation->size() < 20))
+    throw Error("explain: fewer than 20 samples (" + std::to_string(d.size()) + ") to explain");
+  ExplainReport report;
+  const Rows rows = SplitRows(d, o);
+  const std::vector<Effect> catalogue = Catalogue(d, o.catalogue);
+  report.before = Diagnose(d, Set{}, o);
+  Set current = FittedBase(d, o.catalogue, rows.all);
+  const std::size_t base_terms = current.size();
+  const Effect dynamics = DynamicsCorrection(d);
+  std::vector<bool> used(catalogue.size(), false);
+  std::vector<std::pair<Active, Active>> alternatives;  // (kept, another that passed in its round)
+  for (int round = 0; round < o.max_effects; ++round) {
+    Set current_est = current;
+    Refine(d, current_est, rows.estimation);
+    std::optional<Set> guard_null;
+    if (!dynamics.name.empty()) guard_null = Guard(d, rows, current_est, dynamics, round == 0, o, report);
+    const Round r =
+        TryCandidates(d, rows, current_est, catalogue, used, guard_null ? &*guard_null : nullptr, round, o, report);
+    if (r.best < 0) break;
+    const auto best = static_cast<std::size_t>(r.best);
+    for (const Active& alt : r.passed)
+      if (alt.effect.name != r.fitted.back().effect.name) alternatives.push_back({r.fitted.back(), alt});
+    for (auto& cand : report.candidates)
+      if (cand.round == round && cand.name == catalogue[best].name) cand.accepted = true;
+    used[best] = true;
+    // Refit on the whole record, from the estimation-half values.
+    Set after = r.fitted;
+    Refine(d, after, rows.all);
+    report.effects_added.push_back(Added(d, current, after, r));
+    current = after;
+  }
+  FinalFit(d, current, base_terms, alternatives, rows.all, report);
+  // The wheel-position shift that best aligns the data, profiled.
+  for (const Effect& e : catalogue)
+    if (e.kind == Effect::Kind::kPositionShift && d.shifted) EstimateShift(d, current, e, rows.all, report);
+  report.after = Diagnose(d, current, o);
+  SayUnexplained(d, report);
   return report;
 }
 
