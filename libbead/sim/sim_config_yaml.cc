@@ -29,123 +29,10 @@
 #include "libbead/io/csv_reader.h"
 #include "libbead/io/yaml_text.h"
 #include "libbead/sim/sim_config.h"
+#include "libbead/sim/sim_yaml_reader.h"
 
 namespace bead::sim {
 namespace {
-
-class Reader {
- public:
-  explicit Reader(std::string file) : file_(std::move(file)) {}
-  const std::string& file() const { return file_; }
-
-  [[noreturn]] void Fail(const YAML::Node& n, const std::string& key, const std::string& what) const {
-    const std::string place = n.IsDefined() ? "line " + std::to_string(n.Mark().line + 1) + ": " + key : key;
-    throw Error(Located(file_, place, what));
-  }
-
-  // A key or a name: plain text (a YAML sequence or mapping there is an error).
-  std::string Text(const YAML::Node& n, const std::string& key) const {
-    if (!n.IsScalar()) Fail(n, key, "must be plain text");
-    return n.Scalar();
-  }
-
-  // Section `key` of `parent`, checking its keys are among `known`.
-  YAML::Node Section(const YAML::Node& parent, const std::string& key, std::set<std::string> known) const {
-    YAML::Node s = parent[key];
-    if (!s.IsDefined() || s.IsNull()) return YAML::Node(YAML::NodeType::Undefined);
-    if (!s.IsMap()) Fail(s, key, "must be a mapping");
-    for (const auto& kv : s) {
-      const std::string k = Text(kv.first, key + ".<key>");
-      if (!known.count(k)) Fail(kv.first, key + "." + k, "unknown key (misspelt?)");
-    }
-    return s;
-  }
-
-  void Get(const YAML::Node& sec, const std::string& path, const std::string& key, double& out, double lo = -INFINITY,
-           double hi = INFINITY) const {
-    if (!sec.IsDefined()) return;
-    const YAML::Node n = sec[key];
-    if (!n.IsDefined() || n.IsNull()) return;
-    double v = 0;
-    try {
-      v = n.as<double>();
-    } catch (const YAML::Exception&) {
-      Fail(n, path + key, "must be a number");
-    }
-    if (!std::isfinite(v) || v < lo || v > hi) {
-      std::ostringstream msg;
-      msg << "must be a finite number in [" << lo << ", " << hi << "], got " << n.Scalar();
-      Fail(n, path + key, msg.str());
-    }
-    out = v;
-  }
-
-  template <typename Int>
-  void GetInt(const YAML::Node& sec, const std::string& path, const std::string& key, Int& out, double lo,
-              double hi) const {
-    double v = static_cast<double>(out);
-    Get(sec, path, key, v, lo, hi);
-    if (v != std::floor(v)) Fail(sec[key], path + key, "must be a whole number");
-    out = static_cast<Int>(v);
-  }
-
-  void GetBool(const YAML::Node& sec, const std::string& path, const std::string& key, bool& out) const {
-    if (!sec.IsDefined() || !sec[key].IsDefined()) return;
-    try {
-      out = sec[key].as<bool>();
-    } catch (const YAML::Exception&) {
-      Fail(sec[key], path + key, "must be true or false");
-    }
-  }
-
-  void GetList(const YAML::Node& sec, const std::string& path, const std::string& key, std::vector<double>& out) const {
-    if (!sec.IsDefined() || !sec[key].IsDefined()) return;
-    const YAML::Node n = sec[key];
-    if (!n.IsSequence() || n.size() == 0) Fail(n, path + key, "must be a non-empty list of numbers");
-    out.clear();
-    for (const auto& e : n) {
-      try {
-        out.push_back(e.as<double>());
-      } catch (const YAML::Exception&) {
-        Fail(e, path + key, "must be a list of numbers");
-      }
-      if (!std::isfinite(out.back())) Fail(e, path + key, "must hold finite numbers");
-    }
-  }
-
-  template <typename E>
-  void GetEnum(const YAML::Node& sec, const std::string& path, const std::string& key, E& out,
-               const std::vector<std::pair<std::string, E>>& names) const {
-    if (!sec.IsDefined() || !sec[key].IsDefined()) return;
-    const std::string v = Text(sec[key], path + key);
-    std::string all;
-    for (const auto& [name, value] : names) {
-      if (name == v) {
-        out = value;
-        return;
-      }
-      all += (all.empty() ? "" : ", ") + name;
-    }
-    Fail(sec[key], path + key, "is '" + v + "', expected one of: " + all);
-  }
-
-  void GetTf(const YAML::Node& sec, const std::string& path, const std::string& key,
-             model::TransferFunction& tf) const {
-    const YAML::Node n = Section(sec, key, {"num", "den", "delay_s"});
-    if (!n.IsDefined()) return;
-    GetList(n, path + key + ".", "num", tf.num);
-    GetList(n, path + key + ".", "den", tf.den);
-    Get(n, path + key + ".", "delay_s", tf.delay_s, 0.0, 60.0);
-    try {
-      tf.Validate();
-    } catch (const Error& e) {
-      Fail(n, path + key, e.what());
-    }
-  }
-
- private:
-  std::string file_;
-};
 
 void ParseBarrel(const YAML::Node& root, const Reader& r, BarrelConfig& b) {
   const YAML::Node ba =
@@ -203,18 +90,8 @@ void ReadWheelCommand(const std::string& path, WheelConfig& w) {
   if (t[0] > 0) w.cmd_durations_s[0] += t[0];
 }
 
-void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
-  if (!root.IsMap()) r.Fail(root, "", "a simulation config must be a YAML mapping");
-  const std::set<std::string> top = {"seed",  "duration_s", "dt_s", "log_rate_hz", "warm_start", "rig",     "extruder",
-                                     "wheel", "encoder",    "bead", "sensor",      "pins",       "effects", "barrel"};
-  for (const auto& kv : root)
-    if (const std::string k = r.Text(kv.first, "<key>"); !top.count(k)) r.Fail(kv.first, k, "unknown key (misspelt?)");
-  r.GetInt(root, "", "seed", c.seed, 0, 9.0e15);
-  r.Get(root, "", "duration_s", c.duration_s, 0.1, 36000);
-  r.Get(root, "", "dt_s", c.dt_s, 1e-5, 0.01);
-  r.Get(root, "", "log_rate_hz", c.log_rate_hz, 1, 100000);
-  r.GetBool(root, "", "warm_start", c.warm_start);
-
+// rig: the rig file's keys, checked by the rig file's rules (core/rig.h).
+void ParseRig(const YAML::Node& root, const Reader& r, SimConfig& c) {
   const YAML::Node rig = r.Section(root, "rig",
                                    {"name", "counts_per_rev", "bits", "direction", "diameter_mm", "offset_counts",
                                     "reference_areas_mm", "laser_origin_mm"});
@@ -246,7 +123,10 @@ void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
     const std::string here = leaf.rfind("reference_areas_mm", 0) == 0 ? "reference_areas_mm" : leaf;
     r.Fail(rig.IsDefined() && rig[here].IsDefined() ? rig[here] : root, "rig." + here, error + " (" + key + ")");
   }
+}
 
+// extruder: its command, transfer functions, noise and the screw's PID.
+void ParseExtruder(const YAML::Node& root, const Reader& r, SimConfig& c) {
   const YAML::Node ex =
       r.Section(root, "extruder", {"command", "voltage_to_rpm", "rpm_to_flow", "rpm_noise", "flow_noise_frac", "pid"});
   if (ex.IsDefined()) {
@@ -281,7 +161,10 @@ void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
       r.Get(pid, "extruder.pid.", "max_v", p.max_v, 0, 1e3);
     }
   }
+}
 
+// wheel: its mode, speed, dynamics and command (levels or a CSV).
+void ParseWheel(const YAML::Node& root, const Reader& r, SimConfig& c) {
   const YAML::Node wh = r.Section(root, "wheel",
                                   {"mode", "surface_speed_mm_s", "target_area_mm2", "controller_rate_hz",
                                    "gain_rpm_per_v", "tau_s", "delay_s", "cmd_levels_v", "cmd_durations_s", "cmd_csv"});
@@ -304,7 +187,10 @@ void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
                                           : std::filesystem::path(r.file()).parent_path() / rel;
     ReadWheelCommand(csv.string(), c.wheel);
   }
+}
 
+// encoder, bead and sensor.
+void ParseEncoderBeadSensor(const YAML::Node& root, const Reader& r, SimConfig& c) {
   const YAML::Node en = r.Section(root, "encoder", {"start_count", "missed_read_prob"});
   r.GetInt(en, "encoder.", "start_count", c.encoder.start_count, 0, 9.0e15);
   r.Get(en, "encoder.", "missed_read_prob", c.encoder.missed_read_prob, 0, 0.5);
@@ -346,7 +232,10 @@ void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
   r.Get(se, "sensor.", "dropped_profile_prob", s.dropped_profile_prob, 0, 1);
   r.Get(se, "sensor.", "roll_deg", s.roll_deg, -45, 45);
   r.Get(se, "sensor.", "runout_mm", s.runout_mm, 0, 10);
+}
 
+// pins and effects.
+void ParsePinsAndEffects(const YAML::Node& root, const Reader& r, SimConfig& c) {
   const YAML::Node pi =
       r.Section(root, "pins",
                 {"scans", "placement_sigma_mm", "diameter_mm", "height_mm", "scan_speed_mm_s", "scan_half_length_mm"});
@@ -365,6 +254,25 @@ void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
   r.Get(ef, "effects.", "shrink_tau_s", c.effects.shrink_tau_s, 1e-3, 1e4);
   r.Get(ef, "effects.", "rig_offset_error_counts", c.effects.rig_offset_error_counts, -1e9, 1e9);
   r.Get(ef, "effects.", "sensor_latency_s", c.effects.sensor_latency_s, -10, 10);
+}
+
+void Parse(const YAML::Node& root, const Reader& r, SimConfig& c) {
+  if (!root.IsMap()) r.Fail(root, "", "a simulation config must be a YAML mapping");
+  const std::set<std::string> top = {"seed",  "duration_s", "dt_s", "log_rate_hz", "warm_start", "rig",     "extruder",
+                                     "wheel", "encoder",    "bead", "sensor",      "pins",       "effects", "barrel"};
+  for (const auto& kv : root)
+    if (const std::string k = r.Text(kv.first, "<key>"); !top.count(k)) r.Fail(kv.first, k, "unknown key (misspelt?)");
+  r.GetInt(root, "", "seed", c.seed, 0, 9.0e15);
+  r.Get(root, "", "duration_s", c.duration_s, 0.1, 36000);
+  r.Get(root, "", "dt_s", c.dt_s, 1e-5, 0.01);
+  r.Get(root, "", "log_rate_hz", c.log_rate_hz, 1, 100000);
+  r.GetBool(root, "", "warm_start", c.warm_start);
+
+  ParseRig(root, r, c);
+  ParseExtruder(root, r, c);
+  ParseWheel(root, r, c);
+  ParseEncoderBeadSensor(root, r, c);
+  ParsePinsAndEffects(root, r, c);
   ParseBarrel(root, r, c.barrel);
 }
 
