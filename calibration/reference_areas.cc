@@ -26,6 +26,110 @@ std::string Mm(double v) {
   return buf;
 }
 
+using Points = std::vector<std::pair<float, float>>;  // x, z (then height) of one profile, x increasing
+
+// The line through the bare surface: the consensus of the profile's
+// tenths (the line through two tenths' medians that most others lie on:
+// a bead, a rim or a clamp is a minority of them), then least squares
+// over the points near it, twice. False when there is no flat surface.
+struct SurfaceLine {
+  double c = 0.0, slope = 0.0, rms = 0.0;
+};
+bool ConsensusLine(const Points& points, double lo, double hi, double threshold, std::vector<double>& seg_x,
+                   std::vector<double>& seg_z, SurfaceLine& line) {
+  struct Seg {
+    double x, z;
+  };
+  std::vector<Seg> segs;
+  for (int k = 0; k < 10; ++k) {
+    const double a = lo + (hi - lo) * k / 10.0, b = lo + (hi - lo) * (k + 1) / 10.0;
+    seg_x.clear(), seg_z.clear();
+    for (const auto& [x, z] : points)
+      if (x >= a && (x < b || k == 9)) seg_x.push_back(x), seg_z.push_back(z);
+    if (seg_x.size() >= 3) segs.push_back({Quantile(seg_x, 0.5), Quantile(seg_z, 0.5)});
+  }
+  if (segs.size() < 3) return false;
+  int most = -1;
+  double best_spread = 1e300;
+  for (std::size_t i = 0; i < segs.size(); ++i)
+    for (std::size_t j = i + 1; j < segs.size(); ++j) {
+      const double m = (segs[j].z - segs[i].z) / (segs[j].x - segs[i].x), c0 = segs[i].z - m * segs[i].x;
+      int in = 0;
+      double spread = 0.0;
+      for (const Seg& g : segs) {
+        const double r = std::abs(g.z - c0 - m * g.x);
+        if (r <= threshold) ++in, spread += r;
+      }
+      if (in > most || (in == most && spread < best_spread))
+        most = in, best_spread = spread, line.c = c0, line.slope = m;
+    }
+  return most >= 3;  // no three tenths on one line: no flat surface to stand on
+}
+
+bool RefineLine(const Points& points, double threshold, SurfaceLine& line) {
+  double band = threshold;
+  for (int iteration = 0; iteration < 2; ++iteration) {
+    double sx = 0, sz = 0, sxx = 0, sxz = 0;
+    std::size_t n_in = 0;
+    for (const auto& [x, z] : points)
+      if (std::abs(z - line.c - line.slope * x) <= band)
+        ++n_in, sx += x, sz += z, sxx += double(x) * x, sxz += double(x) * z;
+    const double det = double(n_in) * sxx - sx * sx;
+    if (n_in < 10 || !(det > 0.0)) return false;
+    line.slope = (n_in * sxz - sx * sz) / det;
+    line.c = (sz - line.slope * sx) / double(n_in);
+    double ss = 0.0;
+    for (const auto& [x, z] : points) {
+      const double r = z - line.c - line.slope * x;
+      if (std::abs(r) <= band) ss += r * r;
+    }
+    line.rms = std::sqrt(ss / double(n_in));
+    band = std::max(4.0 * line.rms, 0.25 * threshold);
+  }
+  return true;
+}
+
+// A point stands up when the median of it and its four nearest
+// neighbours does: a reflection's spike (one or two points) does not.
+void MarkRaised(const Points& points, double threshold, std::vector<uint8_t>& up) {
+  const std::size_t m = points.size();
+  up.assign(m, 0);
+  for (std::size_t i = 0; i < m; ++i) {
+    float v[5];
+    int k = 0;
+    const std::size_t from = std::min(i >= 2 ? i - 2 : 0, m - 5);  // five points at the ends too
+    for (std::size_t j = from; j < from + 5; ++j) v[k++] = points[j].second;
+    std::nth_element(v, v + k / 2, v + k);
+    up[i] = v[k / 2] > threshold;
+  }
+}
+
+// The bead: the connected raised run with the largest integral that does
+// not reach the field's end; its edges halfway to the bare points beyond
+// (the feet run below the threshold: the margin covers them). NaN when none.
+std::pair<double, double> BeadEdges(const Points& points, const std::vector<uint8_t>& up, double max_gap_mm) {
+  double best = 0.0, best_lo = kNaN, best_hi = kNaN;
+  std::size_t i = 0;
+  while (i < points.size()) {
+    if (!up[i]) {
+      ++i;
+      continue;
+    }
+    std::size_t j = i;
+    double integral = points[i].second;
+    while (j + 1 < points.size() && up[j + 1] && points[j + 1].first - points[j].first <= max_gap_mm)
+      integral += points[++j].second;
+    // A run reaching the field's end is a rim or a clamp, not the bead.
+    if (j - i + 1 >= 3 && integral > best && i > 0 && j + 1 < points.size()) {
+      best = integral;
+      best_lo = 0.5 * (points[i - 1].first + points[i].first);
+      best_hi = 0.5 * (points[j].first + points[j + 1].first);
+    }
+    i = j + 1;
+  }
+  return {best_lo, best_hi};
+}
+
 }  // namespace
 
 std::size_t ReferenceSurveyor::Bin(double x) const {
@@ -64,72 +168,18 @@ void ReferenceSurveyor::Add(const ProfileView& profile) {
     std::vector<double>& gaps = spacings_;  // a few per profile for the run's median spacing
     if (gaps.size() < 4096) gaps.push_back((hi - lo) / double(points_.size() - 1));
   }
-  // The line through the bare surface: the consensus of the profile's
-  // tenths (the line through two tenths' medians that most others lie on:
-  // a bead, a rim or a clamp is a minority of them), then least squares
-  // over the points near it, twice.
-  struct Seg {
-    double x, z;
-  };
-  std::vector<Seg> segs;
-  for (int k = 0; k < 10; ++k) {
-    const double a = lo + (hi - lo) * k / 10.0, b = lo + (hi - lo) * (k + 1) / 10.0;
-    seg_x_.clear(), seg_z_.clear();
-    for (const auto& [x, z] : points_)
-      if (x >= a && (x < b || k == 9)) seg_x_.push_back(x), seg_z_.push_back(z);
-    if (seg_x_.size() >= 3) segs.push_back({Quantile(seg_x_, 0.5), Quantile(seg_z_, 0.5)});
-  }
-  if (segs.size() < 3) return;
-  double c = 0.0, slope = 0.0;
-  int most = -1;
-  double best_spread = 1e300;
-  for (std::size_t i = 0; i < segs.size(); ++i)
-    for (std::size_t j = i + 1; j < segs.size(); ++j) {
-      const double m = (segs[j].z - segs[i].z) / (segs[j].x - segs[i].x), c0 = segs[i].z - m * segs[i].x;
-      int in = 0;
-      double spread = 0.0;
-      for (const Seg& g : segs) {
-        const double r = std::abs(g.z - c0 - m * g.x);
-        if (r <= options_.threshold_mm) ++in, spread += r;
-      }
-      if (in > most || (in == most && spread < best_spread)) most = in, best_spread = spread, c = c0, slope = m;
-    }
-  if (most < 3) return;  // no three tenths on one line: no flat surface to stand on
-  double band = options_.threshold_mm, rms = 0.0;
-  for (int iteration = 0; iteration < 2; ++iteration) {
-    double sx = 0, sz = 0, sxx = 0, sxz = 0;
-    std::size_t n_in = 0;
-    for (const auto& [x, z] : points_)
-      if (std::abs(z - c - slope * x) <= band) ++n_in, sx += x, sz += z, sxx += double(x) * x, sxz += double(x) * z;
-    const double det = double(n_in) * sxx - sx * sx;
-    if (n_in < 10 || !(det > 0.0)) return;
-    slope = (n_in * sxz - sx * sz) / det;
-    c = (sz - slope * sx) / double(n_in);
-    double ss = 0.0;
-    for (const auto& [x, z] : points_) {
-      const double r = z - c - slope * x;
-      if (std::abs(r) <= band) ss += r * r;
-    }
-    rms = std::sqrt(ss / double(n_in));
-    band = std::max(4.0 * rms, 0.25 * options_.threshold_mm);
-  }
+  SurfaceLine line;
+  if (!ConsensusLine(points_, lo, hi, options_.threshold_mm, seg_x_, seg_z_, line) ||
+      !RefineLine(points_, options_.threshold_mm, line))
+    return;
+  const double c = line.c, slope = line.slope, rms = line.rms;
   ++with_line_;
   const double norm = 1.0 / std::sqrt(1.0 + slope * slope);
   const double threshold = std::max(options_.threshold_mm, options_.threshold_sigmas * rms * norm);
   for (auto& p : points_) p.second = static_cast<float>((p.second - (c + slope * p.first)) * norm);
 
-  // A point stands up when the median of it and its four nearest
-  // neighbours does: a reflection's spike (one or two points) does not.
+  MarkRaised(points_, threshold, up_);
   const std::size_t m = points_.size();
-  up_.assign(m, 0);
-  for (std::size_t i = 0; i < m; ++i) {
-    float v[5];
-    int k = 0;
-    const std::size_t from = std::min(i >= 2 ? i - 2 : 0, m - 5);  // five points at the ends too
-    for (std::size_t j = from; j < from + 5; ++j) v[k++] = points_[j].second;
-    std::nth_element(v, v + k / 2, v + k);
-    up_[i] = v[k / 2] > threshold;
-  }
   // Data and raised points per bin (each bin once a profile).
   Raised raised;
   std::size_t last_data = bins_, last_raised = bins_;
@@ -144,29 +194,7 @@ void ReferenceSurveyor::Add(const ProfileView& profile) {
       raised.bins.push_back(static_cast<uint16_t>(b));
     }
   }
-  // The bead: the connected raised run with the largest integral that
-  // does not reach the field's end.
-  double best = 0.0, best_lo = kNaN, best_hi = kNaN;
-  std::size_t i = 0;
-  while (i < points_.size()) {
-    if (!up_[i]) {
-      ++i;
-      continue;
-    }
-    std::size_t j = i;
-    double integral = points_[i].second;
-    while (j + 1 < points_.size() && up_[j + 1] && points_[j + 1].first - points_[j].first <= options_.max_gap_mm)
-      integral += points_[++j].second;
-    // A run reaching the field's end is a rim or a clamp, not the bead.
-    if (j - i + 1 >= 3 && integral > best && i > 0 && j + 1 < points_.size()) {
-      best = integral;
-      // The edges halfway to the bare points beyond (the feet run below
-      // the threshold: the margin covers them).
-      best_lo = i > 0 ? 0.5 * (points_[i - 1].first + points_[i].first) : points_[i].first;
-      best_hi = j + 1 < points_.size() ? 0.5 * (points_[j].first + points_[j + 1].first) : points_[j].first;
-    }
-    i = j + 1;
-  }
+  const auto [best_lo, best_hi] = BeadEdges(points_, up_, options_.max_gap_mm);
   if (!std::isfinite(best_lo)) return;
   left_edges_.push_back(best_lo);
   right_edges_.push_back(best_hi);
