@@ -1,11 +1,11 @@
 #include <unistd.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 
 #include "libbead/archive/batch.h"
+#include "libbead/archive/batch_shard.h"
 #include "libbead/core/error.h"
 #include "tools/commands.h"
 #include "tools/subcommands.h"
@@ -24,6 +24,19 @@ std::string Clock(double seconds) {
   else
     std::snprintf(text, sizeof text, "%ld:%02ld", s / 60, s % 60);
   return text;
+}
+
+void PrintRunResult(std::size_t k, std::size_t of, const BatchRun& run, const RunResult& r, double seconds) {
+  if (!r.ok()) {
+    std::printf("[%zu/%zu] %s: %s\n", k + 1, of, run.name.c_str(), r.status.c_str());
+  } else {
+    char volume[64] = "no flow";
+    if (!std::isnan(r.total_volume_mm3)) std::snprintf(volume, sizeof volume, "volume %.1f mm^3", r.total_volume_mm3);
+    std::printf("[%zu/%zu] %s: %zu profiles, %zu valid, %zu with flow, %s, %.2f s\n", k + 1, of, run.name.c_str(),
+                r.profiles, r.valid, r.flow_samples, volume, seconds);
+    for (const std::string& w : r.warnings) std::printf("  warning: %s\n", w.c_str());
+  }
+  std::fflush(stdout);
 }
 
 }  // namespace
@@ -98,66 +111,31 @@ Run AddBatch(CLI::App& app) {
       return 0;
     }
     const Shard shard = ResolveShard(args->shard);
-    std::vector<std::size_t> mine;
-    double total_bytes = 0;
-    for (std::size_t i = 0; i < runs.size(); ++i)
-      if (shard.Takes(i)) {
-        mine.push_back(i);
-        const auto size = std::filesystem::file_size(runs[i].run, ec);
-        total_bytes += ec ? 0.0 : static_cast<double>(size);
-      }
-    std::printf("batch: %zu of %zu runs (shard %zu/%zu: %s) into %s\n", mine.size(), runs.size(), shard.index + 1,
-                shard.count, shard.source.c_str(), options.out.c_str());
+    std::printf("batch: %zu of %zu runs (shard %zu/%zu: %s) into %s\n", ShardRuns(runs, shard).size(), runs.size(),
+                shard.index + 1, shard.count, shard.source.c_str(), options.out.c_str());
     std::fflush(stdout);
     const bool tty = isatty(STDERR_FILENO);
-    const auto start = std::chrono::steady_clock::now();
-    WorkerPool pool(args->threads);
-    double done_bytes = 0;
-    std::size_t failed = 0, skipped = 0, profiles_done = 0;
-    for (std::size_t k = 0; k < mine.size(); ++k) {
-      const BatchRun& run = runs[mine[k]];
-      const auto size = std::filesystem::file_size(run.run, ec);
-      const double bytes = ec ? 0.0 : static_cast<double>(size);
-      if (!args->redo && RunComplete(run, options)) {
-        ++skipped;
-        total_bytes -= bytes;
-        std::printf("[%zu/%zu] %s: complete, skipped\n", k + 1, mine.size(), run.name.c_str());
-        continue;
-      }
-      auto progress = [&](std::size_t done, std::size_t total) {
-        if (!tty) return;
-        const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        const double now =
-            done_bytes + bytes * static_cast<double>(done) / static_cast<double>(std::max<std::size_t>(total, 1));
-        const double rate = elapsed > 0 ? static_cast<double>(profiles_done + done) / elapsed : 0;
-        std::fprintf(stderr, "\r[%zu/%zu] %s: %zu/%zu profiles, %.0f profiles/s, %s left   ", k + 1, mine.size(),
-                     run.name.c_str(), done, total, rate,
-                     Clock(now > 0 ? elapsed * (total_bytes - now) / now : -1).c_str());
+    BatchEvents events;
+    events.skipped = [](std::size_t k, std::size_t of, const BatchRun& run) {
+      std::printf("[%zu/%zu] %s: complete, skipped\n", k + 1, of, run.name.c_str());
+    };
+    if (tty)
+      events.progress = [](std::size_t k, std::size_t of, const BatchRun& run, std::size_t done, std::size_t total,
+                           double rate, double left_s) {
+        std::fprintf(stderr, "\r[%zu/%zu] %s: %zu/%zu profiles, %.0f profiles/s, %s left   ", k + 1, of,
+                     run.name.c_str(), done, total, rate, Clock(left_s).c_str());
       };
-      const auto t0 = std::chrono::steady_clock::now();
-      const RunResult r = ProcessRun(run, options, pool, progress);
+    events.finished = [tty](std::size_t k, std::size_t of, const BatchRun& run, const RunResult& r, double seconds) {
       if (tty) std::fprintf(stderr, "\r\033[K");
-      done_bytes += bytes;
-      profiles_done += r.profiles;
-      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      if (!r.ok()) {
-        ++failed;
-        std::printf("[%zu/%zu] %s: %s\n", k + 1, mine.size(), run.name.c_str(), r.status.c_str());
-      } else {
-        char volume[64] = "no flow";
-        if (!std::isnan(r.total_volume_mm3))
-          std::snprintf(volume, sizeof volume, "volume %.1f mm^3", r.total_volume_mm3);
-        std::printf("[%zu/%zu] %s: %zu profiles, %zu valid, %zu with flow, %s, %.2f s\n", k + 1, mine.size(),
-                    run.name.c_str(), r.profiles, r.valid, r.flow_samples, volume, seconds);
-        for (const std::string& w : r.warnings) std::printf("  warning: %s\n", w.c_str());
-      }
-      std::fflush(stdout);
-    }
-    const SummaryState s = WriteSummary(runs, options);
+      PrintRunResult(k, of, run, r, seconds);
+    };
+    WorkerPool pool(args->threads);
+    const ShardTally t = RunShard(runs, options, shard, pool, args->redo, events);
+    const SummaryState& s = t.summary;
     std::printf("done: %zu runs processed, %zu skipped as complete, %zu failed; %s/summary.csv has %zu of %zu runs%s\n",
-                mine.size() - skipped, skipped, failed, options.out.c_str(), s.complete, runs.size(),
+                t.processed, t.skipped, t.failed, options.out.c_str(), s.complete, runs.size(),
                 s.missing.empty() ? "" : " (the rest: other shards, or not yet run)");
-    return failed ? 1 : 0;
+    return t.failed ? 1 : 0;
   };
 }
 
