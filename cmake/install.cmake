@@ -24,7 +24,7 @@ install(TARGETS ${bead_full_targets} EXPORT beadTargets ARCHIVE DESTINATION ${CM
 # YAML reader.
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/libbead/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/libbead
   FILES_MATCHING PATTERN "*.h"
-  PATTERN "vec8.h" EXCLUDE PATTERN "vec_sort.h" EXCLUDE PATTERN "kernel.h" EXCLUDE PATTERN "bead_heights.h" EXCLUDE PATTERN "sim_yaml_reader.h" EXCLUDE
+  PATTERN "vec8.h" EXCLUDE PATTERN "vec_sort.h" EXCLUDE PATTERN "kernel.h" EXCLUDE PATTERN "bead_heights.h" EXCLUDE PATTERN "sim_yaml_reader.h" EXCLUDE PATTERN "sim_timeline.h" EXCLUDE
   PATTERN "output_error.h" EXCLUDE PATTERN "stripe_steger.h" EXCLUDE PATTERN "stripe_line.h" EXCLUDE)
 install(FILES ${PROJECT_SOURCE_DIR}/include/bead/bead.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/bead)
 install(TARGETS bead bead-measure bead-flow bead-batch bead-calibrate bead-simulate bead-import bead-export bead-frames

@@ -7,11 +7,10 @@
 #include <optional>
 #include <random>
 
-#include "libbead/model/feed_forward.h"
-#include "libbead/sim/screw_pid.h"
 #include "libbead/sim/bead_shapes.h"
 #include "libbead/sim/command_signal.h"
 #include "libbead/sim/sensor_model.h"
+#include "libbead/sim/sim_timeline.h"
 
 namespace bead::sim {
 namespace {
@@ -38,148 +37,6 @@ double At(const std::vector<double>& y, double index) {
   if (i + 1 >= y.size()) return y.back();
   const double f = clamped - static_cast<double>(i);
   return y[i] + f * (y[i + 1] - y[i]);
-}
-
-// The wheel, extruder and their histories on the fine time grid.
-struct Timeline {
-  double dt = 0;
-  double t0 = 0;  // time of the first sample (before 0 for a warm start)
-  std::vector<double> command_v, wheel_cmd_v, rpm, flow, angle, speed, area;
-  std::vector<double> barrel_c, ambient_c;  // the recorded channels (empty when not simulated)
-
-  double Index(double t) const { return (t - t0) / dt; }
-  double Time(double index) const { return t0 + index * dt; }
-  // First fractional index where the (non-decreasing) angle reaches `a`; -1 when before the start.
-  double IndexOfAngle(double a) const {
-    if (a < angle.front()) return -1.0;
-    const auto it = std::lower_bound(angle.begin(), angle.end(), a);
-    if (it == angle.end()) return static_cast<double>(angle.size() - 1);
-    const auto i = static_cast<std::size_t>(it - angle.begin());
-    if (i == 0) return 0.0;
-    const double a0 = angle[i - 1], a1 = angle[i];
-    return static_cast<double>(i - 1) + (a1 > a0 ? (a - a0) / (a1 - a0) : 1.0);
-  }
-};
-
-Timeline RunDynamics(const SimConfig& c, std::mt19937_64& rng) {
-  Timeline tl;
-  tl.dt = c.dt_s;
-  const double radius = c.rig.wheel_diameter_mm / 2;
-  if (c.warm_start) {
-    // Long enough for the material under the laser at t = 0 to have been
-    // laid in steady state: the wheel's travel from nozzle to laser at its
-    // starting speed, and a second more.
-    const double omega0 =
-        c.wheel.mode == WheelConfig::Mode::kConstant
-            ? c.wheel.surface_speed_mm_s / radius
-            : std::max(0.05, c.wheel.gain_rpm_per_v * StepsAt(c.wheel.cmd_levels_v, c.wheel.cmd_durations_s, 0.0) *
-                                 kTwoPi / 60.0);
-    const double travel = kTwoPi * c.rig.offset_counts / c.rig.encoder.counts_per_rev / omega0;
-    tl.t0 = -c.dt_s * std::ceil((travel + 1.0 + c.wheel.tau_s * 10) / c.dt_s);
-  }
-  const std::size_t n = static_cast<std::size_t>(std::ceil((c.duration_s - tl.t0) / c.dt_s)) + 1;
-  tl.command_v = CommandSeries(c.extruder.command, c.dt_s, n, rng, tl.t0, c.warm_start);
-  // With a screw-speed PID the command is its setpoint (RPM); the voltage
-  // is computed in the loop below.
-  ScrewPid pid(c.extruder.pid, c.dt_s);
-  std::vector<double> setpoint_rpm;
-  if (c.extruder.pid.on) {
-    setpoint_rpm = tl.command_v;
-    const double v0 = c.warm_start ? setpoint_rpm.front() / c.extruder.voltage_to_rpm.DcGain() : 0.0;
-    std::fill(tl.command_v.begin(), tl.command_v.end(), v0);
-    pid.Start(v0);
-  }
-  tl.wheel_cmd_v.assign(n, 0.0);
-  tl.rpm.assign(n, 0.0);
-  tl.flow.assign(n, 0.0);
-  tl.angle.assign(n, 0.0);
-  tl.speed.assign(n, 0.0);
-  tl.area.assign(n, 0.0);
-
-  model::DiscreteSystem to_rpm(c.extruder.voltage_to_rpm, c.dt_s), to_flow(c.extruder.rpm_to_flow, c.dt_s);
-  // The feed-forward wheel controller (thesis 4.2), ticking at its own rate
-  // on noise-free models; its command is held between ticks.
-  std::optional<model::FeedForward> feed_forward;
-  std::size_t controller_ticks = 1;
-  if (c.wheel.mode == WheelConfig::Mode::kFeedForward) {
-    model::WheelModel wheel{c.wheel.gain_rpm_per_v, c.wheel.tau_s, c.wheel.delay_s, c.rig.wheel_diameter_mm / 2};
-    model::FeedForwardOptions fo;
-    fo.target_area_mm2 = c.wheel.target_area_mm2;
-    fo.rate_hz = c.wheel.controller_rate_hz;
-    feed_forward.emplace(c.extruder.voltage_to_rpm, c.extruder.rpm_to_flow, wheel, fo);
-    controller_ticks = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(1.0 / (fo.rate_hz * c.dt_s))));
-  }
-  const auto lag = [&](double delay) { return static_cast<std::size_t>(std::llround(delay / c.dt_s)); };
-  const std::size_t rpm_lag = lag(c.extruder.voltage_to_rpm.delay_s), flow_lag = lag(c.extruder.rpm_to_flow.delay_s);
-  const std::size_t wheel_lag = lag(c.wheel.delay_s);
-  double wheel_rpm =
-      c.wheel.mode == WheelConfig::Mode::kConstant ? c.wheel.surface_speed_mm_s / radius * 60.0 / kTwoPi : 0.0;
-  double rpm_before = 0.0, wheel_cmd_before = 0.0;  // inputs before the first sample (delays)
-  if (c.warm_start) {
-    // Extruder and wheel in steady state at their first commands.
-    const double v0 = tl.command_v.front();
-    rpm_before = c.extruder.voltage_to_rpm.DcGain() * v0;
-    to_rpm.Reset(v0);
-    to_flow.Reset(rpm_before);
-    if (c.wheel.mode == WheelConfig::Mode::kCommanded) {
-      wheel_cmd_before = StepsAt(c.wheel.cmd_levels_v, c.wheel.cmd_durations_s, 0.0);
-      wheel_rpm = c.wheel.gain_rpm_per_v * wheel_cmd_before;
-    }
-  }
-  std::normal_distribution<double> gauss(0.0, 1.0);
-  const double noise_alpha = std::exp(-c.dt_s / 0.2);
-  const double noise_gain = std::sqrt((1 + noise_alpha) / (1 - noise_alpha));
-  double flow_noise = 0.0;
-  // The barrel on a stream of its own: a run without it keeps its noise.
-  const bool barrel_on = c.barrel.record || c.barrel.record_ambient || c.barrel.flow_per_c != 0.0;
-  std::optional<Barrel> barrel;
-  std::mt19937_64 barrel_rng(c.seed ^ 0xba77e1ULL);
-  if (barrel_on) {
-    barrel.emplace(c.barrel, c.dt_s);
-    tl.barrel_c.assign(n, 0.0);
-    tl.ambient_c.assign(n, 0.0);
-  }
-
-  for (std::size_t i = 0; i < n; ++i) {
-    const double t = tl.Time(static_cast<double>(i));
-    if (c.extruder.pid.on)
-      tl.command_v[i] = pid.Step(setpoint_rpm[i], i > 0 ? tl.rpm[i - 1] : setpoint_rpm[i],
-                                 i > 0 ? tl.command_v[i - 1] : tl.command_v[0]);
-    const double u_rpm = i >= rpm_lag ? tl.command_v[i - rpm_lag] : (c.warm_start ? tl.command_v.front() : 0.0);
-    tl.rpm[i] = std::max(0.0, to_rpm.Step(u_rpm) + c.extruder.rpm_noise * gauss(rng));
-    const double u_flow = i >= flow_lag ? tl.rpm[i - flow_lag] : rpm_before;
-    flow_noise = noise_alpha * flow_noise + (1 - noise_alpha) * gauss(rng);
-    tl.flow[i] = std::max(0.0, to_flow.Step(u_flow) * (1.0 + c.extruder.flow_noise_frac * noise_gain * flow_noise));
-    if (barrel) {
-      barrel->Step(barrel_rng);
-      tl.flow[i] *= barrel->flow_factor();
-      tl.barrel_c[i] = barrel->reading_c();
-      tl.ambient_c[i] = barrel->ambient_c();
-    }
-
-    // The wheel: its command, then its first-order response (thesis 3.3.3).
-    switch (c.wheel.mode) {
-      case WheelConfig::Mode::kConstant:
-        break;
-      case WheelConfig::Mode::kCommanded:
-        tl.wheel_cmd_v[i] = StepsAt(c.wheel.cmd_levels_v, c.wheel.cmd_durations_s, t);
-        break;
-      case WheelConfig::Mode::kFeedForward:
-        tl.wheel_cmd_v[i] = i % controller_ticks == 0 ? feed_forward->Step(tl.command_v[i]) : tl.wheel_cmd_v[i - 1];
-        break;
-    }
-    if (c.wheel.mode != WheelConfig::Mode::kConstant) {
-      const double v_in = i >= wheel_lag ? tl.wheel_cmd_v[i - wheel_lag] : wheel_cmd_before;
-      const double a = std::exp(-c.dt_s / c.wheel.tau_s);
-      wheel_rpm = a * wheel_rpm + (1 - a) * c.wheel.gain_rpm_per_v * v_in;
-    }
-    const double omega = std::max(0.0, wheel_rpm) * kTwoPi / 60.0;
-    if (i > 0) tl.angle[i] = tl.angle[i - 1] + omega * c.dt_s;
-    // Eccentricity: the radius under the nozzle varies with the angle.
-    tl.speed[i] = omega * (radius + c.effects.eccentricity_mm * std::cos(tl.angle[i]));
-    tl.area[i] = tl.speed[i] > 1e-9 ? tl.flow[i] / tl.speed[i] : 0.0;
-  }
-  return tl;
 }
 
 std::vector<float> TargetGrid(const SensorConfig& s) {
