@@ -43,26 +43,19 @@ OcclusionMode ParseOcclusionMode(const std::string& text) {
   throw Error("occlusion mode '" + text + "' is none of none, pooled, each");
 }
 
-MeasureRunSummary MeasureRun(ProfileStream& stream, const Rig& rig, WorkerPool& pool, const MeasureRunOptions& options,
-                             const std::function<void(const GeometryRow&)>& sink) {
-  if (options.occlusion != OcclusionMode::kNone && options.estimate == nullptr)
-    throw Error(
-        "MeasureRun: an occlusion mode other than none needs MeasureRunOptions::estimate "
-        "(occlusion::EstimateOcclusion from bead::occlusion)");
-  const auto start = std::chrono::steady_clock::now();
-  MeasureRunSummary summary;
-  summary.occlusion = options.occlusion;
+namespace {
+
+// One pass over the run window by window, every profile measured on every
+// core (and, in mode each, its occlusion fitted); the rows to `spill`, the
+// counts to `summary`, each profile's validity to `valid`.
+void MeasurePass(ProfileStream& stream, const Rig& rig, WorkerPool& pool, const MeasureRunOptions& options,
+                 const occlusion::OcclusionOptions& occ, RowSpill& spill, std::vector<bool>& valid,
+                 MeasureRunSummary& summary) {
   const std::size_t n = stream.size();
-  summary.profiles = n;
-  occlusion::OcclusionOptions occ;
-  occ.laser_origin = rig.laser_origin;
   std::vector<ProfileProcessor> processors;
   for (unsigned w = 0; w < pool.size(); ++w)
     processors.emplace_back(rig.reference_left, rig.reference_right, options.profile, stream.points());
   std::vector<int> fitted(pool.size(), 0), constrained(pool.size(), 0);
-
-  RowSpill spill(stream.name());
-  std::vector<bool> valid(n);
   ProfileBlock block;
   std::vector<GeometryRow> rows;
   const std::size_t window = stream.WindowRows(options.window_rows);
@@ -104,35 +97,60 @@ MeasureRunSummary MeasureRun(ProfileStream& stream, const Rig& rig, WorkerPool& 
     summary.each_fitted += fitted[w];
     summary.each_constrained += constrained[w];
   }
+}
 
-  if (options.occlusion == OcclusionMode::kPooled) {
-    // The chosen valid profiles, read again by index.
-    std::vector<std::size_t> chosen = occlusion::PoolRanks(summary.valid);
-    std::size_t rank = 0, next = 0;
-    for (std::size_t i = 0; i < n && next < chosen.size(); ++i)
-      if (valid[i]) {
-        while (next < chosen.size() && chosen[next] == rank) chosen[next++] = i;
-        ++rank;
-      }
-    // Read together (each chunk decompressed once), fitted on every core.
-    ProfileBlock profiles;
-    stream.ReadRows(chosen, profiles);
-    std::vector<BeadGeometry> geometry(chosen.size());
-    std::vector<GeometryRow> one;
-    for (std::size_t j = 0; j < chosen.size(); ++j) {
-      spill.Read(chosen[j], 1, one);
-      geometry[j] = one[0].geometry;
+// The pooled occlusion shape: the chosen valid profiles read again by index
+// (together: each chunk decompressed once) and fitted on every core.
+occlusion::PooledOcclusion PooledShape(ProfileStream& stream, WorkerPool& pool, const MeasureRunOptions& options,
+                                       const occlusion::OcclusionOptions& occ, RowSpill& spill,
+                                       const std::vector<bool>& valid, std::size_t valid_count) {
+  std::vector<std::size_t> chosen = occlusion::PoolRanks(valid_count);
+  std::size_t rank = 0, next = 0;
+  for (std::size_t i = 0; i < valid.size() && next < chosen.size(); ++i)
+    if (valid[i]) {
+      while (next < chosen.size() && chosen[next] == rank) chosen[next++] = i;
+      ++rank;
     }
-    std::vector<occlusion::OcclusionEstimate> fits(chosen.size());
-    pool.Run(chosen.size(),
-             [&](std::size_t j, unsigned) { fits[j] = options.estimate(profiles.view(j), geometry[j], occ); });
-    summary.pooled = occlusion::PoolFromFits(fits, geometry);
+  ProfileBlock profiles;
+  stream.ReadRows(chosen, profiles);
+  std::vector<BeadGeometry> geometry(chosen.size());
+  std::vector<GeometryRow> one;
+  for (std::size_t j = 0; j < chosen.size(); ++j) {
+    spill.Read(chosen[j], 1, one);
+    geometry[j] = one[0].geometry;
   }
-  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::vector<occlusion::OcclusionEstimate> fits(chosen.size());
+  pool.Run(chosen.size(),
+           [&](std::size_t j, unsigned) { fits[j] = options.estimate(profiles.view(j), geometry[j], occ); });
+  return occlusion::PoolFromFits(fits, geometry);
+}
 
+}  // namespace
+
+MeasureRunSummary MeasureRun(ProfileStream& stream, const Rig& rig, WorkerPool& pool, const MeasureRunOptions& options,
+                             const std::function<void(const GeometryRow&)>& sink) {
+  if (options.occlusion != OcclusionMode::kNone && options.estimate == nullptr)
+    throw Error(
+        "MeasureRun: an occlusion mode other than none needs MeasureRunOptions::estimate "
+        "(occlusion::EstimateOcclusion from bead::occlusion)");
+  const auto start = std::chrono::steady_clock::now();
+  MeasureRunSummary summary;
+  summary.occlusion = options.occlusion;
+  const std::size_t n = stream.size();
+  summary.profiles = n;
+  occlusion::OcclusionOptions occ;
+  occ.laser_origin = rig.laser_origin;
+  RowSpill spill(stream.name());
+  std::vector<bool> valid(n);
+  MeasurePass(stream, rig, pool, options, occ, spill, valid, summary);
+  if (options.occlusion == OcclusionMode::kPooled)
+    summary.pooled = PooledShape(stream, pool, options, occ, spill, valid, summary.valid);
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // The rows handed on in order, the pooled correction applied.
+  const std::size_t window = stream.WindowRows(options.window_rows);
+  std::vector<GeometryRow> rows;
   for (std::size_t begin = 0; begin < n; begin += window) {
-    const std::size_t count = std::min(window, n - begin);
-    spill.Read(begin, count, rows);
+    spill.Read(begin, std::min(window, n - begin), rows);
     for (GeometryRow& r : rows) {
       if (options.occlusion == OcclusionMode::kPooled) {
         const occlusion::CorrectedArea c = occlusion::ApplyPooled(summary.pooled, r.geometry);
