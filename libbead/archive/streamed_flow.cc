@@ -107,6 +107,65 @@ LogPass WalkLog(LogStream& log, const Rig& rig) {
   return pass;
 }
 
+// AreaSigmaFloor's: the median of the valid profiles' sigmas, 0 without any.
+double AreaSigmaFloorOf(Spill& spill) {
+  const double floor = MedianByWalks([&](const std::function<void(double)>& visit) {
+    spill.Walk([&](const FlowRow& r) {
+      if (r.status == ProfileStatus::kValid && std::isfinite(r.area_sigma_mm2)) visit(r.area_sigma_mm2);
+    });
+  });
+  return std::isnan(floor) ? 0.0 : floor;
+}
+
+// The spilled rows and the log, interleaved in time, through the flow;
+// each sample handed on as it is done, counted and integrated into `out`.
+// What the flow's warnings need of the run comes back.
+FlowRunFacts Interleave(LogStream& log, Spill& spill, const LogPass& lp, StreamingFlow& flow,
+                        const std::function<void(const FlowSample&)>& sample, StreamedFlow& out) {
+  FlowRunFacts facts;
+  facts.log_first_s = lp.first_s, facts.log_last_s = lp.last_s;
+  bool have_last = false;
+  FlowSample last;
+  auto drain = [&]() {
+    for (FlowSample s; flow.Pop(s);) {
+      ++out.samples;
+      if (s.valid) {
+        ++out.valid;
+        if (have_last && s.t_s > last.t_s)
+          out.total_volume_mm3 += 0.5 * (s.flow_mm3_s + last.flow_mm3_s) * (s.t_s - last.t_s);
+        last = s, have_last = true;
+      }
+      sample(s);
+    }
+  };
+  log.Rewind();
+  LogWindow w;
+  std::size_t li = 0;
+  bool more = log.Next(w);
+  auto push_log_until = [&](double t) {
+    while (more && w.t_s[li] <= t) {
+      flow.PushLog(w.t_s[li], w.encoder[li], w.screw_rpm[li]);
+      if (++li == w.size()) li = 0, more = log.Next(w);
+    }
+  };
+  spill.Walk([&](const FlowRow& r) {
+    push_log_until(r.t_s);
+    BeadGeometry g;
+    g.status = r.status, g.area_mm2 = r.area_mm2, g.area_sigma_mm2 = r.area_sigma_mm2;
+    flow.PushProfile(r.t_s, r.encoder, g, r.corrected_mm2, r.corrected_sigma_mm2);
+    if (facts.profiles == 0) facts.profile_first_s = r.t_s;
+    facts.profile_last_s = r.t_s;
+    ++facts.profiles;
+    facts.outside += !(r.t_s >= lp.first_s && r.t_s <= lp.last_s);
+    facts.beads += r.status == ProfileStatus::kValid;
+    drain();
+  });
+  push_log_until(std::numeric_limits<double>::infinity());
+  flow.Finish();
+  drain();
+  return facts;
+}
+
 }  // namespace
 
 MotionGap MissingMotionUnread(const OpenedRun& opened, const std::string& path, const std::string& needs) {
@@ -144,59 +203,9 @@ StreamedFlow StreamRunFlow(OpenedRun opened, const std::string& path, const Rig&
   });
 
   FlowOptions o = options;
-  if (o.area_sigma_floor_mm2 < 0) {
-    // AreaSigmaFloor's: the median of the valid profiles' sigmas, 0 without any.
-    const double floor = MedianByWalks([&](const std::function<void(double)>& visit) {
-      spill.Walk([&](const FlowRow& r) {
-        if (r.status == ProfileStatus::kValid && std::isfinite(r.area_sigma_mm2)) visit(r.area_sigma_mm2);
-      });
-    });
-    o.area_sigma_floor_mm2 = std::isnan(floor) ? 0.0 : floor;
-  }
-
+  if (o.area_sigma_floor_mm2 < 0) o.area_sigma_floor_mm2 = AreaSigmaFloorOf(spill);
   StreamingFlow flow(rig, o, lp.facts, history_s);
-  FlowRunFacts facts;
-  facts.log_first_s = lp.first_s, facts.log_last_s = lp.last_s;
-  bool have_last = false;
-  FlowSample last;
-  auto drain = [&]() {
-    for (FlowSample s; flow.Pop(s);) {
-      ++out.samples;
-      if (s.valid) {
-        ++out.valid;
-        if (have_last && s.t_s > last.t_s)
-          out.total_volume_mm3 += 0.5 * (s.flow_mm3_s + last.flow_mm3_s) * (s.t_s - last.t_s);
-        last = s, have_last = true;
-      }
-      sample(s);
-    }
-  };
-  log->Rewind();
-  LogWindow w;
-  std::size_t li = 0;
-  bool more = log->Next(w);
-  auto push_log_until = [&](double t) {
-    while (more && w.t_s[li] <= t) {
-      flow.PushLog(w.t_s[li], w.encoder[li], w.screw_rpm[li]);
-      if (++li == w.size()) li = 0, more = log->Next(w);
-    }
-  };
-  spill.Walk([&](const FlowRow& r) {
-    push_log_until(r.t_s);
-    BeadGeometry g;
-    g.status = r.status, g.area_mm2 = r.area_mm2, g.area_sigma_mm2 = r.area_sigma_mm2;
-    flow.PushProfile(r.t_s, r.encoder, g, r.corrected_mm2, r.corrected_sigma_mm2);
-    if (facts.profiles == 0) facts.profile_first_s = r.t_s;
-    facts.profile_last_s = r.t_s;
-    ++facts.profiles;
-    facts.outside += !(r.t_s >= lp.first_s && r.t_s <= lp.last_s);
-    facts.beads += r.status == ProfileStatus::kValid;
-    drain();
-  });
-  push_log_until(std::numeric_limits<double>::infinity());
-  flow.Finish();
-  drain();
-
+  FlowRunFacts facts = Interleave(*log, spill, lp, flow, sample, out);
   out.complete = flow.history_misses() == 0;
   if (!out.complete) {
     char line[200];
