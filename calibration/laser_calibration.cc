@@ -50,13 +50,10 @@ double AngleDeg(const cv::Vec3d& a, const cv::Vec3d& b) {
   return std::acos(std::clamp(std::abs(a.dot(b)) / (cv::norm(a) * cv::norm(b)), 0.0, 1.0)) * 180.0 / M_PI;
 }
 
-}  // namespace
-
-LaserCalibration CalibrateLaser(const std::vector<cv::Mat>& frames, const std::vector<std::string>& names,
-                                const Board& board, const LaserCalibrationOptions& options) {
-  LaserCalibration out;
-  out.views.resize(frames.size());
-  std::vector<std::vector<cv::Point2f>> corners;
+// Every image's board corners; the views with a board found.
+std::vector<std::size_t> FindBoards(const std::vector<cv::Mat>& frames, const std::vector<std::string>& names,
+                                    const Board& board, LaserCalibration& out,
+                                    std::vector<std::vector<cv::Point2f>>& corners) {
   std::vector<std::size_t> with_board;
   for (std::size_t i = 0; i < frames.size(); ++i) {
     out.views[i].name = names[i];
@@ -70,10 +67,18 @@ LaserCalibration CalibrateLaser(const std::vector<cv::Mat>& frames, const std::v
     corners.push_back(std::move(c));
     with_board.push_back(i);
   }
-  out.camera = FitCamera(board, corners, frames.at(0).size(), options.lens);
-  out.sensor.camera = out.camera.camera;
+  return with_board;
+}
 
-  // The stripe, on one axis for all views: the one found on more lines.
+// The stripe in every view with a board, on one axis for all (auto: the
+// one found on more lines), lifted onto the board's plane: the points and
+// the view each came from.
+struct Lifted {
+  std::vector<cv::Point3d> points;
+  std::vector<std::size_t> view_of;
+};
+Lifted LiftStripes(const std::vector<cv::Mat>& frames, const std::vector<std::size_t>& with_board, const Board& board,
+                   const LaserCalibrationOptions& options, LaserCalibration& out) {
   vision::StripeOptions stripe = options.stripe;
   std::vector<vision::StripeCentres> stripes(with_board.size());
   if (stripe.axis == vision::StripeAxis::kAuto) {
@@ -85,43 +90,40 @@ LaserCalibration CalibrateLaser(const std::vector<cv::Mat>& frames, const std::v
     stripe.axis = columns > rows ? vision::StripeAxis::kColumns : vision::StripeAxis::kRows;
   }
   out.sensor.stripe = stripe;
-  std::vector<cv::Point3d> points;
-  std::vector<std::size_t> view_of;
+  Lifted l;
+  const cv::Size inner = board.InnerCorners();
+  const cv::Size2d extent((inner.width - 1) * board.square_mm, (inner.height - 1) * board.square_mm);
   for (std::size_t j = 0; j < with_board.size(); ++j) {
     if (stripes[j].axis != stripe.axis || options.stripe.axis != vision::StripeAxis::kAuto)
       vision::FindStripe(frames[with_board[j]], stripe, stripes[j]);
     LaserView& v = out.views[with_board[j]];
     v.reprojection_rms_px = out.camera.view_rms_px[j];
     v.stripe = stripes[j].stats;
-    const cv::Size inner = board.InnerCorners();
-    const cv::Size2d extent((inner.width - 1) * board.square_mm, (inner.height - 1) * board.square_mm);
     for (const cv::Point3d& p : Lift(stripes[j], out.sensor.camera, out.camera.rvecs[j], out.camera.tvecs[j], extent,
                                      options.board_margin_mm, v.beyond_margin))
-      points.push_back(p), view_of.push_back(with_board[j]);
+      l.points.push_back(p), l.view_of.push_back(with_board[j]);
   }
-  out.plane = FitPlaneRobust(points);
-  if (out.plane.inliers < 10)
-    throw Error("only " + std::to_string(out.plane.inliers) + " of " + std::to_string(points.size()) +
-                " stripe points agree on one plane: the stripe is not on the boards (see --stripe-axis, "
-                "--board-margin-mm)");
-  const cv::Vec4d& plane = out.plane.plane;
-  out.sensor.plane = plane;
+  return l;
+}
 
-  // Each view's part in the common plane, and the plane without it.
-  std::vector<double> ss(frames.size(), 0.0), sum(frames.size(), 0.0);
+// Each view's part in the common plane (its points' RMS and mean off it,
+// and with more than two views the plane fitted without it); returns the
+// inliers' centroid.
+cv::Point3d ViewsInThePlane(const Lifted& l, const std::vector<std::size_t>& with_board, LaserCalibration& out) {
+  const cv::Vec4d& plane = out.plane.plane;
+  std::vector<double> ss(out.views.size(), 0.0), sum(out.views.size(), 0.0);
   cv::Point3d centroid(0, 0, 0);
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    LaserView& v = out.views[view_of[i]];
+  for (std::size_t i = 0; i < l.points.size(); ++i) {
+    LaserView& v = out.views[l.view_of[i]];
     if (!out.plane.inlier[i]) {
       ++v.outliers;
       continue;
     }
-    const double r = Distance(plane, points[i]);
-    ++v.plane_points, ss[view_of[i]] += r * r, sum[view_of[i]] += r;
-    centroid += points[i];
+    const double r = Distance(plane, l.points[i]);
+    ++v.plane_points, ss[l.view_of[i]] += r * r, sum[l.view_of[i]] += r;
+    centroid += l.points[i];
   }
   centroid *= 1.0 / out.plane.inliers;
-  const cv::Vec3d n(plane[0], plane[1], plane[2]);
   for (std::size_t i : with_board) {
     LaserView& v = out.views[i];
     if (v.plane_points == 0) continue;
@@ -132,23 +134,28 @@ LaserCalibration CalibrateLaser(const std::vector<cv::Mat>& frames, const std::v
   if (out.images_used < 2)
     throw Error("the stripe lies on the board's plane in " + std::to_string(out.images_used) +
                 " view(s): the laser plane needs the stripe on boards at two or more poses");
-  if (out.images_used > 2) {
+  const cv::Vec3d n(plane[0], plane[1], plane[2]);
+  if (out.images_used > 2)
     for (std::size_t i : with_board) {
       LaserView& v = out.views[i];
       if (v.plane_points == 0) continue;
       std::vector<cv::Point3d> rest;
-      for (std::size_t k = 0; k < points.size(); ++k)
-        if (view_of[k] != i) rest.push_back(points[k]);
+      for (std::size_t k = 0; k < l.points.size(); ++k)
+        if (l.view_of[k] != i) rest.push_back(l.points[k]);
       const cv::Vec4d p = FitPlaneRobust(rest).plane;
       v.loo_angle_deg = AngleDeg(n, cv::Vec3d(p[0], p[1], p[2]));
       v.loo_offset_mm = std::abs(Distance(p, centroid));
     }
-  }
+  return centroid;
+}
 
-  // Coordinates on the plane: z toward the camera along the boards'
-  // normal, x across it along the stripe's lines.
+// Coordinates on the plane: z toward the camera along the boards' normal,
+// x across it along the stripe's lines; the homography from pixels to them.
+cv::Matx33d PlaneMap(const LaserCalibration& out, std::size_t views, const cv::Point3d& centroid) {
+  const cv::Vec4d& plane = out.plane.plane;
+  const cv::Vec3d n(plane[0], plane[1], plane[2]);
   cv::Vec3d up(0, 0, 0);
-  for (std::size_t j = 0; j < with_board.size(); ++j) {
+  for (std::size_t j = 0; j < views; ++j) {
     cv::Matx33d r;
     cv::Rodrigues(out.camera.rvecs[j], r);
     cv::Vec3d z(r(0, 2), r(1, 2), r(2, 2));
@@ -162,10 +169,32 @@ LaserCalibration CalibrateLaser(const std::vector<cv::Mat>& frames, const std::v
   }
   e_z = cv::normalize(e_z);
   cv::Vec3d e_x = cv::normalize(n.cross(e_z));
-  const cv::Vec3d along = stripe.axis == vision::StripeAxis::kColumns ? cv::Vec3d(0, 1, 0) : cv::Vec3d(1, 0, 0);
+  const cv::Vec3d along =
+      out.sensor.stripe.axis == vision::StripeAxis::kColumns ? cv::Vec3d(0, 1, 0) : cv::Vec3d(1, 0, 0);
   if (e_x.dot(along) < 0.0) e_x = -e_x;
   const cv::Vec3d origin = cv::Vec3d(centroid) - Distance(plane, centroid) * n;
-  out.sensor.map.mm_from_px = PlaneHomography(out.sensor.camera.matrix, plane, origin, e_x, e_z);
+  return PlaneHomography(out.sensor.camera.matrix, plane, origin, e_x, e_z);
+}
+
+}  // namespace
+
+LaserCalibration CalibrateLaser(const std::vector<cv::Mat>& frames, const std::vector<std::string>& names,
+                                const Board& board, const LaserCalibrationOptions& options) {
+  LaserCalibration out;
+  out.views.resize(frames.size());
+  std::vector<std::vector<cv::Point2f>> corners;
+  const std::vector<std::size_t> with_board = FindBoards(frames, names, board, out, corners);
+  out.camera = FitCamera(board, corners, frames.at(0).size(), options.lens);
+  out.sensor.camera = out.camera.camera;
+  const Lifted lifted = LiftStripes(frames, with_board, board, options, out);
+  out.plane = FitPlaneRobust(lifted.points);
+  if (out.plane.inliers < 10)
+    throw Error("only " + std::to_string(out.plane.inliers) + " of " + std::to_string(lifted.points.size()) +
+                " stripe points agree on one plane: the stripe is not on the boards (see --stripe-axis, "
+                "--board-margin-mm)");
+  out.sensor.plane = out.plane.plane;
+  const cv::Point3d centroid = ViewsInThePlane(lifted, with_board, out);
+  out.sensor.map.mm_from_px = PlaneMap(out, with_board.size(), centroid);
   return out;
 }
 
