@@ -29,6 +29,36 @@ bool RisesFromZero(const std::vector<double>& y, std::size_t begin, std::size_t 
   return std::abs(y[begin]) < fraction * a[a.size() / 2];
 }
 
+// Each sample: 1 where the process is off (the output at zero while the
+// input is not, for at least min_off_samples in a row), when the output
+// has its floor at zero at all.
+std::vector<char> MarkOff(const std::vector<double>& u, const std::vector<double>& y, const ProcessOnOptions& o) {
+  const std::size_t n = y.size();
+  std::vector<char> off(n, 0);
+  const double y_scale = Percentile95Abs(y), u_scale = Percentile95Abs(u);
+  double y_min = INFINITY;
+  for (double v : y)
+    if (std::isfinite(v)) y_min = std::min(y_min, v);
+  if (!(y_scale > 0 && y_min >= -o.zero_fraction * y_scale)) return off;
+  auto at_zero = [&](std::size_t k) {
+    return std::isfinite(y[k]) && std::abs(y[k]) <= o.zero_fraction * y_scale &&
+           std::abs(u[k]) > o.zero_fraction * u_scale;
+  };
+  std::size_t i = 0;
+  while (i < n) {
+    if (!at_zero(i)) {
+      ++i;
+      continue;
+    }
+    std::size_t j = i;
+    while (j < n && at_zero(j)) ++j;
+    if (j - i >= static_cast<std::size_t>(o.min_off_samples))
+      std::fill(off.begin() + static_cast<long>(i), off.begin() + static_cast<long>(j), 1);
+    i = j;
+  }
+  return off;
+}
+
 }  // namespace
 
 ProcessOn FindProcessOn(const std::vector<double>& t, const std::vector<double>& u, const std::vector<double>& y,
@@ -37,31 +67,7 @@ ProcessOn FindProcessOn(const std::vector<double>& t, const std::vector<double>&
   const std::size_t n = t.size();
   if (n == 0) return out;
   const double step = n > 1 ? MedianStep(t) : 1.0;
-  const double y_scale = Percentile95Abs(y), u_scale = Percentile95Abs(u);
-  double y_min = INFINITY;
-  for (double v : y)
-    if (std::isfinite(v)) y_min = std::min(y_min, v);
-  const bool floor_at_zero = y_scale > 0 && y_min >= -o.zero_fraction * y_scale;
-  // Each sample: usable (finite y, process on) or not, and why not.
-  std::vector<char> off(n, 0);
-  if (floor_at_zero) {
-    std::size_t i = 0;
-    while (i < n) {
-      auto at_zero = [&](std::size_t k) {
-        return std::isfinite(y[k]) && std::abs(y[k]) <= o.zero_fraction * y_scale &&
-               std::abs(u[k]) > o.zero_fraction * u_scale;
-      };
-      if (!at_zero(i)) {
-        ++i;
-        continue;
-      }
-      std::size_t j = i;
-      while (j < n && at_zero(j)) ++j;
-      if (j - i >= static_cast<std::size_t>(o.min_off_samples))
-        std::fill(off.begin() + static_cast<long>(i), off.begin() + static_cast<long>(j), 1);
-      i = j;
-    }
-  }
+  const std::vector<char> off = MarkOff(u, y, o);
   auto exclude = [&](double a, double b, const char* why) {
     if (!out.excluded.empty() && out.excluded.back().reason == why &&
         a - out.excluded.back().t_end_s <= o.gap_steps * step)
