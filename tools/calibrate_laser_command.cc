@@ -14,6 +14,64 @@
 
 namespace bead::tools {
 
+namespace {
+
+// The table of the images, and a warning when they disagree on the plane.
+void PrintViews(const calibration::LaserCalibration& c, const calibration::Board& board) {
+  std::printf("%-28s %5s %8s %9s %6s %7s %5s %8s %8s %7s %8s\n", "image", "board", "reproj", "stripe", "beyond",
+              "plane", "off", "rms", "mean", "loo", "loo");
+  std::printf("%-28s %5s %8s %9s %6s %7s %5s %8s %8s %7s %8s\n", "", "", "px", "lines", "margin", "points", "", "mm",
+              "mm", "deg", "mm");
+  for (const calibration::LaserView& v : c.views) {
+    std::string name = v.name.size() > 28 ? "..." + v.name.substr(v.name.size() - 25) : v.name;
+    if (!v.board) {
+      std::printf("%-28s %5s  (the board's %dx%d inner corners were not found)\n", name.c_str(), "no",
+                  board.InnerCorners().width, board.InnerCorners().height);
+      continue;
+    }
+    std::printf("%-28s %5s %8.3f %4d/%-4d %6d %7d %5d %8.4f %8.4f %7.3f %8.3f\n", name.c_str(), "yes",
+                v.reprojection_rms_px, v.stripe.found, v.stripe.lines, v.beyond_margin, v.plane_points, v.outliers,
+                v.plane_rms_mm, v.plane_mean_mm, v.loo_angle_deg, v.loo_offset_mm);
+  }
+  double lo = 1e300, hi = -1e300;
+  for (const calibration::LaserView& v : c.views)
+    if (v.plane_points > 0) lo = std::min(lo, v.plane_mean_mm), hi = std::max(hi, v.plane_mean_mm);
+  if (hi - lo > 2.0 * c.plane.sigma_mm && hi - lo > 0.05)
+    std::printf(
+        "warning: the images disagree: their mean distances from the plane span %.3f to %.3f mm against a "
+        "spread of %.3f mm within them; the board's plane may not hold where the stripe falls (the edge "
+        "of its plate, a lifted sheet) or the lens is poorly determined; compare --board-margin-mm 10 and "
+        "--lens k1\n",
+        lo, hi, c.plane.sigma_mm);
+}
+
+// The camera and lens terms with their standard deviations, the plane, the stripe.
+void PrintCameraAndPlane(const calibration::LaserCalibration& c, const std::string& lens) {
+  const auto& k = c.sensor.camera.matrix;
+  const auto& d = c.sensor.camera.distortion;
+  const auto& sd = c.camera.sd;
+  std::printf("camera: fx %.1f +- %.1f px, fy %.1f +- %.1f px, cx %.1f +- %.1f px, cy %.1f +- %.1f px (1 sigma)\n",
+              k(0, 0), sd[0], k(1, 1), sd[1], k(0, 2), sd[2], k(1, 2), sd[3]);
+  std::printf("lens (%s):", lens.c_str());
+  const char* names[] = {"k1", "k2", "p1", "p2", "k3"};
+  for (int i = 0; i < 5; ++i) {
+    if (sd[static_cast<std::size_t>(4 + i)] > 0.0)
+      std::printf(" %s %.5f +- %.5f", names[i], d[static_cast<std::size_t>(i)], sd[static_cast<std::size_t>(4 + i)]);
+    else
+      std::printf(" %s 0 (held)", names[i]);
+  }
+  std::printf("\n");
+  const cv::Vec4d& p = c.sensor.plane;
+  std::printf(
+      "laser plane: %.5f x + %.5f y + %.5f z + %.3f = 0 (camera coordinates, mm); "
+      "robust spread %.4f mm, %d of %zu points on it\n",
+      p[0], p[1], p[2], p[3], c.plane.sigma_mm, c.plane.inliers, c.plane.inlier.size());
+  std::printf("stripe: axis %s, method %s\n", vision::Name(c.sensor.stripe.axis).c_str(),
+              vision::Name(c.sensor.stripe.method).c_str());
+}
+
+}  // namespace
+
 Run AddCalibrateLaser(CLI::App* cal) {
   struct Args {
     std::string board, output;
@@ -69,52 +127,8 @@ Run AddCalibrateLaser(CLI::App* cal) {
       frames.push_back(f);
     }
     const calibration::LaserCalibration c = calibration::CalibrateLaser(frames, args->images, board, options);
-    std::printf("%-28s %5s %8s %9s %6s %7s %5s %8s %8s %7s %8s\n", "image", "board", "reproj", "stripe", "beyond",
-                "plane", "off", "rms", "mean", "loo", "loo");
-    std::printf("%-28s %5s %8s %9s %6s %7s %5s %8s %8s %7s %8s\n", "", "", "px", "lines", "margin", "points", "", "mm",
-                "mm", "deg", "mm");
-    for (const calibration::LaserView& v : c.views) {
-      std::string name = v.name.size() > 28 ? "..." + v.name.substr(v.name.size() - 25) : v.name;
-      if (!v.board) {
-        std::printf("%-28s %5s  (the board's %dx%d inner corners were not found)\n", name.c_str(), "no",
-                    board.InnerCorners().width, board.InnerCorners().height);
-        continue;
-      }
-      std::printf("%-28s %5s %8.3f %4d/%-4d %6d %7d %5d %8.4f %8.4f %7.3f %8.3f\n", name.c_str(), "yes",
-                  v.reprojection_rms_px, v.stripe.found, v.stripe.lines, v.beyond_margin, v.plane_points, v.outliers,
-                  v.plane_rms_mm, v.plane_mean_mm, v.loo_angle_deg, v.loo_offset_mm);
-    }
-    double lo = 1e300, hi = -1e300;
-    for (const calibration::LaserView& v : c.views)
-      if (v.plane_points > 0) lo = std::min(lo, v.plane_mean_mm), hi = std::max(hi, v.plane_mean_mm);
-    if (hi - lo > 2.0 * c.plane.sigma_mm && hi - lo > 0.05)
-      std::printf(
-          "warning: the images disagree: their mean distances from the plane span %.3f to %.3f mm against a "
-          "spread of %.3f mm within them; the board's plane may not hold where the stripe falls (the edge "
-          "of its plate, a lifted sheet) or the lens is poorly determined; compare --board-margin-mm 10 and "
-          "--lens k1\n",
-          lo, hi, c.plane.sigma_mm);
-    const auto& k = c.sensor.camera.matrix;
-    const auto& d = c.sensor.camera.distortion;
-    const auto& sd = c.camera.sd;
-    std::printf("camera: fx %.1f +- %.1f px, fy %.1f +- %.1f px, cx %.1f +- %.1f px, cy %.1f +- %.1f px (1 sigma)\n",
-                k(0, 0), sd[0], k(1, 1), sd[1], k(0, 2), sd[2], k(1, 2), sd[3]);
-    std::printf("lens (%s):", args->lens.c_str());
-    const char* names[] = {"k1", "k2", "p1", "p2", "k3"};
-    for (int i = 0; i < 5; ++i) {
-      if (sd[static_cast<std::size_t>(4 + i)] > 0.0)
-        std::printf(" %s %.5f +- %.5f", names[i], d[static_cast<std::size_t>(i)], sd[static_cast<std::size_t>(4 + i)]);
-      else
-        std::printf(" %s 0 (held)", names[i]);
-    }
-    std::printf("\n");
-    const cv::Vec4d& p = c.sensor.plane;
-    std::printf(
-        "laser plane: %.5f x + %.5f y + %.5f z + %.3f = 0 (camera coordinates, mm); "
-        "robust spread %.4f mm, %d of %zu points on it\n",
-        p[0], p[1], p[2], p[3], c.plane.sigma_mm, c.plane.inliers, c.plane.inlier.size());
-    std::printf("stripe: axis %s, method %s\n", vision::Name(c.sensor.stripe.axis).c_str(),
-                vision::Name(c.sensor.stripe.method).c_str());
+    PrintViews(c, board);
+    PrintCameraAndPlane(c, args->lens);
     if (!args->output.empty()) {
       std::ostringstream notes;
       notes.precision(6);
