@@ -133,6 +133,44 @@ void PrintOrderTable(const Series& est, const std::vector<Segment>& on, const Se
                 r.delay_s);
 }
 
+// One input: the model, its fit (and on the validation run), the order
+// table when asked, the model file.
+int IdentifyOne(const SeriesNames& names, const model::IdentifyOptions& o, const std::string& validate, bool keep_off,
+                bool orders, const std::string& out) {
+  const std::string input = names.inputs[0];
+  const Series est = ReadOneInputSeries(names, names.data);
+  auto stretches = [&](const Series& s, const std::string& path) { return SeriesStretches(s, path, keep_off, "fit"); };
+  const ProcessOn on = stretches(est, names.data);
+  const model::IdentifiedModel m = model::IdentifyTransferFunction(est.t, est.u, est.y, o, on.segments);
+  if (!m.ok) throw Error(Located(names.data, "", "no model: " + m.reason));
+  std::optional<Series> val;
+  std::optional<ProcessOn> val_on;
+  if (!validate.empty()) {
+    val = ReadOneInputSeries(names, validate);
+    val_on = stretches(*val, validate);
+  }
+  PrintModel(m, o);
+  std::printf("fit on estimation data: %.2f %%\n", m.fit_percent);
+  double fit_val = NAN;
+  if (val) {
+    fit_val = model::ValidateFitPercent(m.tf, m.offset, val->t, val->u, val->y, val_on->segments);
+    std::printf("fit on validation data (%s, initial state fitted): %.2f %%\n", validate.c_str(), fit_val);
+  }
+  std::printf("AIC %.6g  AICc %.6g  BIC %.6g  FPE %.6g  (%d parameters)\n", m.criteria.aic, m.criteria.aicc,
+              m.criteria.bic, m.criteria.fpe, m.parameters);
+  if (orders)
+    PrintOrderTable(est, on.segments, val ? &*val : nullptr, val ? val_on->segments : std::vector<Segment>{}, o);
+  if (!out.empty()) {
+    nlohmann::json j = model::ModelJson(m, o, input, names.output, est.t, on.segments, on.excluded);
+    if (val) j["fit_validation_pct"] = fit_val;
+    AtomicFile file(out);
+    file.stream() << j.dump(2) << "\n";
+    file.Commit();
+    std::printf("wrote %s\n", out.c_str());
+  }
+  return 0;
+}
+
 }  // namespace
 
 Run AddIdentify(CLI::App& app) {
@@ -210,41 +248,7 @@ Run AddIdentify(CLI::App& app) {
       return IdentifySeveral(args->data, args->time, args->inputs, args->output, per_input, args->keep_off,
                              args->validate, args->out);
     }
-    const std::string input = args->inputs[0];
-    const Series est = ReadOneInputSeries(names, args->data);
-    const model::IdentifyOptions& o = per_input[0];
-    auto stretches = [&](const Series& s, const std::string& path) {
-      return SeriesStretches(s, path, args->keep_off, "fit");
-    };
-    const ProcessOn on = stretches(est, args->data);
-    const model::IdentifiedModel m = model::IdentifyTransferFunction(est.t, est.u, est.y, o, on.segments);
-    if (!m.ok) throw Error(Located(args->data, "", "no model: " + m.reason));
-    std::optional<Series> val;
-    std::optional<ProcessOn> val_on;
-    if (!args->validate.empty()) {
-      val = ReadOneInputSeries(names, args->validate);
-      val_on = stretches(*val, args->validate);
-    }
-    PrintModel(m, o);
-    std::printf("fit on estimation data: %.2f %%\n", m.fit_percent);
-    double fit_val = NAN;
-    if (val) {
-      fit_val = model::ValidateFitPercent(m.tf, m.offset, val->t, val->u, val->y, val_on->segments);
-      std::printf("fit on validation data (%s, initial state fitted): %.2f %%\n", args->validate.c_str(), fit_val);
-    }
-    std::printf("AIC %.6g  AICc %.6g  BIC %.6g  FPE %.6g  (%d parameters)\n", m.criteria.aic, m.criteria.aicc,
-                m.criteria.bic, m.criteria.fpe, m.parameters);
-    if (args->orders)
-      PrintOrderTable(est, on.segments, val ? &*val : nullptr, val ? val_on->segments : std::vector<Segment>{}, o);
-    if (!args->out.empty()) {
-      nlohmann::json j = model::ModelJson(m, o, input, args->output, est.t, on.segments, on.excluded);
-      if (val) j["fit_validation_pct"] = fit_val;
-      AtomicFile file(args->out);
-      file.stream() << j.dump(2) << "\n";
-      file.Commit();
-      std::printf("wrote %s\n", args->out.c_str());
-    }
-    return 0;
+    return IdentifyOne(names, per_input[0], args->validate, args->keep_off, args->orders, args->out);
   };
 }
 
