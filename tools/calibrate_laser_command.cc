@@ -9,7 +9,7 @@
 #include "libbead/core/error.h"
 #include "libbead/vision/sensor_yaml.h"
 #include "tools/commands.h"
-#include "tools/grey_frame.h"
+#include "libbead/vision/grey_frame.h"
 #include "tools/stripe_options.h"
 
 namespace bead::tools {
@@ -121,7 +121,7 @@ Run AddCalibrateLaser(CLI::App* cal) {
     options.board_margin_mm = args->margin_mm;
     std::vector<cv::Mat> frames;
     for (std::size_t k = 0; k < args->images.size(); ++k) {
-      cv::Mat f = ReadGreyFrame(args->images[k]);
+      cv::Mat f = vision::ReadGreyFrame(args->images[k]);
       if (f.depth() != CV_8U && f.depth() != CV_16U)
         throw Error(Located(args->images[k], "", "expected 8- or 16-bit grey levels for the board search"));
       frames.push_back(f);

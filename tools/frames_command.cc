@@ -9,7 +9,7 @@
 #include "libbead/vision/laser_plane_yaml.h"
 #include "libbead/vision/sensor_yaml.h"
 #include "tools/commands.h"
-#include "tools/grey_frame.h"
+#include "libbead/vision/frames_run.h"
 #include "tools/stripe_options.h"
 #include "tools/subcommands.h"
 
@@ -61,52 +61,22 @@ Run AddFrames(CLI::App& app) {
       sensor.map = vision::ReadLaserPlaneYaml(args->plane);
     }
     sensor.stripe = ApplyStripeFlags(args->stripe, sensor.stripe);
-    RunArchive run;
-    ProfileBlock& b = run.profiles;
-    b.shared_x = false;
     const bool tty = isatty(STDERR_FILENO);
-    std::vector<float> x, z;
-    vision::StripeCentres stripe;
-    vision::StripeStats total;
-    std::size_t columns = 0;
-    for (std::size_t k = 0; k < args->frames.size(); ++k) {
-      const std::string& path = args->frames[k];
-      const cv::Mat frame = ReadGreyFrame(path);
-      try {
-        vision::FrameProfile(frame, sensor, stripe, x, z);
-      } catch (const Error& e) {
-        throw Error(Located(path, "", e.what()));
-      }
-      if (k == 0) {
-        columns = x.size(), b.points = columns;
-        sensor.stripe.axis = stripe.axis;  // one axis for the run
-      }
-      if (x.size() != columns)
-        throw Error(Located(path, "",
-                            std::to_string(x.size()) + " lines, the first frame has " + std::to_string(columns) +
-                                ": frames of one run share a size"));
-      total += stripe.stats;
-      b.t_s.push_back(static_cast<double>(k) / args->rate_hz);
-      b.encoder.push_back(0);
-      b.x_mm.insert(b.x_mm.end(), x.begin(), x.end());
-      b.z_mm.insert(b.z_mm.end(), z.begin(), z.end());
-      if (tty) std::fprintf(stderr, "\rread %zu / %zu frames", k + 1, args->frames.size());
-    }
+    vision::FramesRun f =
+        vision::RunFromFrames(args->frames, sensor, args->rate_hz, [tty](std::size_t k, std::size_t n) {
+          if (tty) std::fprintf(stderr, "\rread %zu / %zu frames", k, n);
+        });
     if (tty) std::fprintf(stderr, "\n");
-    std::size_t points = 0;
-    for (float v : b.z_mm) points += v == v;
-    run.attributes[kEncoderAttribute] = kEncoderAbsent;
-    run.attributes[args->sensor.empty() ? "laser_plane" : "sensor"] =
+    f.run.attributes[args->sensor.empty() ? "laser_plane" : "sensor"] =
         std::filesystem::path(args->sensor.empty() ? args->plane : args->sensor).filename().string();
-    run.attributes["stripe"] =
-        "axis=" + vision::Name(sensor.stripe.axis) + " method=" + vision::Name(sensor.stripe.method);
-    WriteRunArchive(args->output, run);  // validates the block
-    std::printf("stripe: axis %s (one point per %s), method %s; %s\n", vision::Name(sensor.stripe.axis).c_str(),
-                sensor.stripe.axis == vision::StripeAxis::kRows ? "column" : "row",
-                vision::Name(sensor.stripe.method).c_str(), vision::Describe(total).c_str());
-    std::printf("%zu frames of %zu lines: %zu stripe points (%.1f %%); wrote %s\n", b.size(), columns, points,
-                100.0 * static_cast<double>(points) / static_cast<double>(b.size() * columns), args->output.c_str());
-    if (points == 0)
+    WriteRunArchive(args->output, f.run);  // validates the block
+    std::printf("stripe: axis %s (one point per %s), method %s; %s\n", vision::Name(f.stripe.axis).c_str(),
+                f.stripe.axis == vision::StripeAxis::kRows ? "column" : "row", vision::Name(f.stripe.method).c_str(),
+                vision::Describe(f.total).c_str());
+    const std::size_t frames = f.run.profiles.size();
+    std::printf("%zu frames of %zu lines: %zu stripe points (%.1f %%); wrote %s\n", frames, f.lines, f.points,
+                100.0 * static_cast<double>(f.points) / static_cast<double>(frames * f.lines), args->output.c_str());
+    if (f.points == 0)
       std::printf(
           "warning: no stripe point in any frame: see the counts above (--min-peak, --threshold, "
           "--max-width-px, --stripe-axis)\n");

@@ -1,11 +1,11 @@
-#include "tools/grey_frame.h"
+#include "libbead/vision/grey_frame.h"
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "libbead/core/error.h"
 
-namespace bead::tools {
+namespace bead::vision {
 
 cv::Mat ReadGreyFrame(const std::string& path) {
   cv::Mat frame = cv::imread(path, cv::IMREAD_UNCHANGED);
@@ -18,4 +18,4 @@ cv::Mat ReadGreyFrame(const std::string& path) {
   return frame;
 }
 
-}  // namespace bead::tools
+}  // namespace bead::vision

@@ -6,8 +6,8 @@
 #include <opencv2/core.hpp>
 #include <string>
 
-namespace bead::tools {
+namespace bead::vision {
 
 cv::Mat ReadGreyFrame(const std::string& path);
 
-}  // namespace bead::tools
+}  // namespace bead::vision
