@@ -272,4 +272,17 @@ ReferenceSurvey ReferenceSurveyor::Propose() const {
   return s;
 }
 
+std::size_t SurveyStream(ProfileStream& stream, std::size_t max_profiles, ReferenceSurveyor& surveyor) {
+  const std::size_t n = stream.size();
+  const std::size_t stride = std::max<std::size_t>(1, (n + max_profiles - 1) / std::max<std::size_t>(max_profiles, 1));
+  ProfileBlock block;
+  const std::size_t window = stream.WindowRows();
+  for (std::size_t begin = 0; begin < n; begin += window) {
+    const std::size_t count = std::min(window, n - begin);
+    stream.Read(begin, count, block);
+    for (std::size_t k = (stride - begin % stride) % stride; k < count; k += stride) surveyor.Add(block.view(k));
+  }
+  return stride;
+}
+
 }  // namespace bead::calibration

@@ -22,6 +22,7 @@
 
 #include "libbead/core/profile_view.h"
 #include "libbead/core/rig.h"
+#include "libbead/io/profile_stream.h"
 
 namespace bead::calibration {
 
@@ -80,5 +81,9 @@ class ReferenceSurveyor {
   std::size_t profiles_ = 0, with_line_ = 0;
   double field_min_ = 1e300, field_max_ = -1e300;
 };
+
+// The profiles of `stream`, at most `max_profiles` spread evenly over it,
+// added to `surveyor` window by window; returns the stride taken.
+std::size_t SurveyStream(ProfileStream& stream, std::size_t max_profiles, ReferenceSurveyor& surveyor);
 
 }  // namespace bead::calibration

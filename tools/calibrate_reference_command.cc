@@ -11,6 +11,34 @@
 
 namespace bead::tools {
 
+namespace {
+
+// The areas proposed, and how clear the rig file's own are.
+void PrintAreas(const calibration::ReferenceSurvey& s, const calibration::ReferenceSurveyor& surveyor,
+                const RigFile& file, const std::string& rig_path) {
+  std::printf("%-8s %10s %10s %10s %10s %10s\n", "area", "x_min", "x_max", "width", "points", "clear");
+  std::printf("%-8s %10s %10s %10s %10s %10s\n", "", "mm", "mm", "mm", "/profile", "%");
+  for (const auto& [name, a] : {std::pair{"left", s.left}, std::pair{"right", s.right}})
+    std::printf("%-8s %10.2f %10.2f %10.2f %10.1f %10.2f\n", name, a.area.x_min_mm, a.area.x_max_mm,
+                a.area.x_max_mm - a.area.x_min_mm, a.points_per_profile, 100.0 * a.clear_fraction);
+  if (file.has_reference_areas) {
+    const Rig& r = file.rig;
+    const double cl = surveyor.ClearFraction(r.reference_left), cr = surveyor.ClearFraction(r.reference_right);
+    std::printf("the rig file's areas: left [%.2f, %.2f] clear %.2f %%, right [%.2f, %.2f] clear %.2f %%\n",
+                r.reference_left.x_min_mm, r.reference_left.x_max_mm, 100.0 * cl, r.reference_right.x_min_mm,
+                r.reference_right.x_max_mm, 100.0 * cr);
+    if (std::min(cl, cr) < 0.99)
+      std::printf(
+          "warning: %s: something stands up in the rig file's areas in over 1 %% of the profiles: their "
+          "reference line is pulled up there; consider -o\n",
+          rig_path.c_str());
+  } else {
+    std::printf("the rig file has no reference areas\n");
+  }
+}
+
+}  // namespace
+
 Run AddCalibrateReference(CLI::App* cal) {
   struct Args {
     std::string rig, run, output;
@@ -51,15 +79,8 @@ Run AddCalibrateReference(CLI::App* cal) {
     OpenedRun opened = OpenRun(args->run, pool, /*with_log=*/false);
     ProfileStream& stream = *opened.profiles;
     const std::size_t n = stream.size();
-    const std::size_t stride = std::max<std::size_t>(1, (n + args->max_profiles - 1) / args->max_profiles);
     calibration::ReferenceSurveyor surveyor(args->options);
-    ProfileBlock block;
-    const std::size_t window = stream.WindowRows();
-    for (std::size_t begin = 0; begin < n; begin += window) {
-      const std::size_t count = std::min(window, n - begin);
-      stream.Read(begin, count, block);
-      for (std::size_t k = (stride - begin % stride) % stride; k < count; k += stride) surveyor.Add(block.view(k));
-    }
+    const std::size_t stride = calibration::SurveyStream(stream, args->max_profiles, surveyor);
     calibration::ReferenceSurvey s;
     try {
       s = surveyor.Propose();
@@ -73,25 +94,7 @@ Run AddCalibrateReference(CLI::App* cal) {
         "bead edges over the run: left %.2f mm (median %.2f), right %.2f mm (median %.2f); outermost = the "
         "0.1 %% quantile\n",
         s.bead_left_mm[0], s.bead_left_mm[1], s.bead_right_mm[0], s.bead_right_mm[1]);
-    std::printf("%-8s %10s %10s %10s %10s %10s\n", "area", "x_min", "x_max", "width", "points", "clear");
-    std::printf("%-8s %10s %10s %10s %10s %10s\n", "", "mm", "mm", "mm", "/profile", "%");
-    for (const auto& [name, a] : {std::pair{"left", s.left}, std::pair{"right", s.right}})
-      std::printf("%-8s %10.2f %10.2f %10.2f %10.1f %10.2f\n", name, a.area.x_min_mm, a.area.x_max_mm,
-                  a.area.x_max_mm - a.area.x_min_mm, a.points_per_profile, 100.0 * a.clear_fraction);
-    if (file.has_reference_areas) {
-      const Rig& r = file.rig;
-      const double cl = surveyor.ClearFraction(r.reference_left), cr = surveyor.ClearFraction(r.reference_right);
-      std::printf("the rig file's areas: left [%.2f, %.2f] clear %.2f %%, right [%.2f, %.2f] clear %.2f %%\n",
-                  r.reference_left.x_min_mm, r.reference_left.x_max_mm, 100.0 * cl, r.reference_right.x_min_mm,
-                  r.reference_right.x_max_mm, 100.0 * cr);
-      if (std::min(cl, cr) < 0.99)
-        std::printf(
-            "warning: %s: something stands up in the rig file's areas in over 1 %% of the profiles: their "
-            "reference line is pulled up there; consider -o\n",
-            args->rig.c_str());
-    } else {
-      std::printf("the rig file has no reference areas\n");
-    }
+    PrintAreas(s, surveyor, file, args->rig);
     if (!args->output.empty()) {
       // To 0.01 mm, rounded away from the bead.
       s.left.area = {std::ceil(s.left.area.x_min_mm * 100.0) / 100.0, std::floor(s.left.area.x_max_mm * 100.0) / 100.0};
