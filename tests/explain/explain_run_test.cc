@@ -279,6 +279,71 @@ TEST(ExplainWarmRun, FindsAStaleOffsetAndItsCorrectedFlowIsCloserToTheTruth) {
   EXPECT_LT(cf.rms_after, cf.rms_before);
 }
 
+// The dwell-time shrink: 10 % with a time constant of 1.2 s, the
+// wheel stepped +-25 % on its own, a minute at 128 points, on three seeds.
+// Its constant part is a gain the run cannot tell from the base model's,
+// so the corrected flow undoes only its change with the time to the laser:
+// where it is written, it must lie closer to the truth than the
+// uncorrected flow once each takes its best constant gain, and what it
+// undoes must not reach the constant (the mean moves by less than the
+// shrink's spread over the run). The shrink is found on two of the three
+// (on the third it fails the held-out test and nothing is added); at
+// least one must find it.
+struct AgainstTruth {
+  double gain, rms_at_gain, mean;
+};
+AgainstTruth Against(const FlowResult& f, const sim::FlowTruth& truth) {
+  double qq = 0, qt = 0, sum = 0;
+  std::vector<std::pair<double, double>> pairs;
+  for (const auto& x : f.samples)
+    if (x.valid && std::isfinite(x.t_s) && std::isfinite(x.flow_mm3_s)) {
+      const double t = InterpolateLinear(truth.t_s, truth.flow_mm3_s, x.t_s);
+      pairs.push_back({x.flow_mm3_s, t});
+      qq += x.flow_mm3_s * x.flow_mm3_s, qt += x.flow_mm3_s * t, sum += x.flow_mm3_s;
+    }
+  const double k = qt / qq;
+  double ss = 0;
+  for (const auto& [q, t] : pairs) ss += (k * q - t) * (k * q - t);
+  const auto n = static_cast<double>(pairs.size());
+  return {k, std::sqrt(ss / n), sum / n};
+}
+
+TEST(ExplainWarmRun, ADwellShrinkIsUndoneOnlyInWhatTheRunIdentifies) {
+  int found = 0;
+  for (uint64_t seed : {31, 32, 33}) {
+    sim::SimConfig c = Warm(seed);
+    c.duration_s = 60.0;
+    c.sensor.points = 128;
+    c.wheel.cmd_levels_v = {6.0, 4.5, 7.5, 6.0, 4.5, 7.5};
+    c.wheel.cmd_durations_s = {10.0, 10.0, 10.0, 10.0, 10.0, 10.0};
+    c.effects.shrink_frac = 0.10;
+    c.effects.shrink_tau_s = 1.2;
+    const Outcome o = ExplainRun(c);
+    if (!Find(o.report, "cooling_shrink")) continue;
+    ++found;
+    const Rig& rig = o.run->sim.rig_file;
+    const CorrectedFlow cf = CorrectFlow(rig, o.run->sim.run.profiles, o.run->geometry, *o.run->sim.run.log, {}, {},
+                                         o.report, CalibrationModel().tf, CalibrationModel().offset);
+    if (!cf.lowers_error) continue;  // not written: nothing to hold against the truth
+    const AgainstTruth before = Against(o.run->flow, o.run->sim.truth.flow);
+    const AgainstTruth after = Against(cf.flow, o.run->sim.truth.flow);
+    // The shrink's spread over the run: 10 % times the spread of 1 - exp(-dt / 1.2).
+    double lo = 1, hi = 0;
+    for (double dt : o.series.data.time_to_laser_s) {
+      const double f = 1 - std::exp(-dt / 1.2);
+      lo = std::min(lo, f), hi = std::max(hi, f);
+    }
+    std::printf(
+        "seed %d, dwell shrink: at the best gain (%.4f, %.4f) RMS against the truth %.2f -> %.2f mm^3/s; mean "
+        "%.1f -> %.1f mm^3/s; the shrink spans %.2f %% of the flow\n",
+        static_cast<int>(seed), before.gain, after.gain, before.rms_at_gain, after.rms_at_gain, before.mean, after.mean,
+        100 * 0.10 * (hi - lo));
+    EXPECT_LT(after.rms_at_gain, before.rms_at_gain) << "seed " << seed;
+    EXPECT_LT(std::abs(after.mean - before.mean), 0.10 * (hi - lo) * before.mean) << "seed " << seed;
+  }
+  EXPECT_GE(found, 1);
+}
+
 TEST(ExplainWarmRun, WheelEccentricityIsNeverTakenForAnotherEffect) {
   sim::SimConfig c = Warm(23);
   c.effects.eccentricity_mm = 1.5;
