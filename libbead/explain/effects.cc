@@ -134,6 +134,53 @@ void Effect::AddDelay(const SeriesData& d, const double* nl, std::vector<double>
   }
 }
 
+namespace {
+
+// Once and twice per revolution of each rotating part that turns a few
+// times in the record.
+void AddPeriodicTerms(const SeriesData& d, std::vector<Effect>& out) {
+  using K = Effect::Kind;
+  for (std::size_t p = 0; p < d.parts.size(); ++p) {
+    const auto& a = d.parts[p].angle_rad;
+    const double turns = std::abs(a.back() - a.front()) / (2 * std::numbers::pi);
+    if (turns < 2.0) continue;  // a periodic term needs the part to turn a few times
+    for (int h = 1; h <= 2; ++h) {
+      Effect e = Make((h == 1 ? "once_per_rev[" : "twice_per_rev[") + d.parts[p].name + "]",
+                      (h == 1 ? "once" : "twice") + std::string(" per revolution of the ") + d.parts[p].name +
+                          " (runout, eccentricity)",
+                      K::kMultiplicative, "periodic");
+      e.part = static_cast<int>(p);
+      e.harmonic = h;
+      e.tracks = d.parts[p].name;
+      e.linear = {"cos_rel", "sin_rel"};
+      out.push_back(e);
+    }
+  }
+}
+
+// Each recorded channel that varies: the output following it through its
+// own lag and delay.
+void AddChannelTerms(const SeriesData& d, std::vector<Effect>& out) {
+  using K = Effect::Kind;
+  const double span = d.t.back() - d.t.front();
+  for (std::size_t k = 0; k < d.channels.size(); ++k) {
+    const Channel& ch = d.channels[k];
+    if (ch.t.size() < 2 || !(Sd(ch.values) > 0)) continue;  // a constant channel explains nothing
+    const std::string unit = ch.unit.empty() ? "unit" : ch.unit;
+    Effect e = Make("channel[" + ch.name + "]",
+                    "the output follows the recorded channel " + ch.name + " through its own lag and delay",
+                    K::kMultiplicative, "channel");
+    e.channel = static_cast<int>(k);
+    e.tracks = ch.name;
+    e.nonlinear = {"lag_s", "delay_s"};
+    e.grid = {Logspace(0.05, std::max(1.0, span / 4), 21), Linspace(0.0, std::min(2.0, span / 10), 11)};
+    e.linear = {"rel_per_" + unit};
+    out.push_back(e);
+  }
+}
+
+}  // namespace
+
 std::vector<Effect> Catalogue(const SeriesData& d, const CatalogueOptions& o) {
   using K = Effect::Kind;
   std::vector<Effect> out;
@@ -156,22 +203,7 @@ std::vector<Effect> Catalogue(const SeriesData& d, const CatalogueOptions& o) {
     g.grid = {Linspace(-0.5 * o.delay_range_s, 0.5 * o.delay_range_s, 41)};
     out.push_back(g);
   }
-  for (std::size_t p = 0; p < d.parts.size(); ++p) {
-    const auto& a = d.parts[p].angle_rad;
-    const double turns = std::abs(a.back() - a.front()) / (2 * std::numbers::pi);
-    if (turns < 2.0) continue;  // a periodic term needs the part to turn a few times
-    for (int h = 1; h <= 2; ++h) {
-      Effect e = Make((h == 1 ? "once_per_rev[" : "twice_per_rev[") + d.parts[p].name + "]",
-                      (h == 1 ? "once" : "twice") + std::string(" per revolution of the ") + d.parts[p].name +
-                          " (runout, eccentricity)",
-                      K::kMultiplicative, "periodic");
-      e.part = static_cast<int>(p);
-      e.harmonic = h;
-      e.tracks = d.parts[p].name;
-      e.linear = {"cos_rel", "sin_rel"};
-      out.push_back(e);
-    }
-  }
+  AddPeriodicTerms(d, out);
   if (!d.time_to_laser_s.empty() && Sd(d.time_to_laser_s) > 0.05 * Mean(d.time_to_laser_s)) {
     Effect e = Make("cooling_shrink", "the bead shrinks between laying and measuring (varies with time to laser)",
                     K::kMultiplicative, "time_to_laser");
@@ -197,20 +229,7 @@ std::vector<Effect> Catalogue(const SeriesData& d, const CatalogueOptions& o) {
     e.linear = {"amplitude_" + d.y_unit};
     out.push_back(e);
   }
-  for (std::size_t k = 0; k < d.channels.size(); ++k) {
-    const Channel& ch = d.channels[k];
-    if (ch.t.size() < 2 || !(Sd(ch.values) > 0)) continue;  // a constant channel explains nothing
-    const std::string unit = ch.unit.empty() ? "unit" : ch.unit;
-    Effect e = Make("channel[" + ch.name + "]",
-                    "the output follows the recorded channel " + ch.name + " through its own lag and delay",
-                    K::kMultiplicative, "channel");
-    e.channel = static_cast<int>(k);
-    e.tracks = ch.name;
-    e.nonlinear = {"lag_s", "delay_s"};
-    e.grid = {Logspace(0.05, std::max(1.0, span / 4), 21), Linspace(0.0, std::min(2.0, span / 10), 11)};
-    e.linear = {"rel_per_" + unit};
-    out.push_back(e);
-  }
+  AddChannelTerms(d, out);
   Effect level = Make("level_gain", "the gain changes with the operating level", K::kMultiplicative, "level");
   level.linear = {"rel_per_sd_level"};
   out.push_back(level);
