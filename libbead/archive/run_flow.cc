@@ -82,7 +82,9 @@ void Whole(const std::string& path, const Rig& rig, WorkerPool& pool, const RunF
 
 RunFlow MeasureRunFlow(const std::string& path, const Rig& rig, WorkerPool& pool, const RunFlowRequest& request) {
   RunFlow out;
-  if (!request.keep) {
+  // Streamed when it can be: not kept, and no whole-run option (the area
+  // smoothing); the whole-run path opens the run itself.
+  if (!request.keep && StreamableFlow(request.flow)) {
     OpenedRun opened = OpenRun(path, pool, /*with_log=*/false);
     out.gap = MissingMotionUnread(opened, path, request.needs);
     if (!out.gap.none()) {
@@ -93,7 +95,7 @@ RunFlow MeasureRunFlow(const std::string& path, const Rig& rig, WorkerPool& pool
       geometry.Commit();
       return out;
     }
-    if (StreamableFlow(request.flow) && Streamed(std::move(opened), path, rig, pool, request, out)) return out;
+    if (Streamed(std::move(opened), path, rig, pool, request, out)) return out;
   }
   Whole(path, rig, pool, request, out);
   return out;
