@@ -75,6 +75,7 @@ int ExplainSeriesMode(const ExplainArgs& a) {
   for (std::size_t k = 1; k < mdl.tfs.size(); ++k) more.push_back({a.inputs[k], mdl.tfs[k]});
   nlohmann::json j = explain::ReportJson(rep, mdl.tfs[0], mdl.offset, mdl.source, more);
   j["mode"] = "csv";
+  j["compare"] = explain::CompareJson(data, rep);
   j["offset_from_run_counts"] = nullptr;  // no wheel in a plain series
   j["offset_from_run_ci95_counts"] = nullptr;
   j["rig_offset_counts"] = nullptr;

@@ -6,6 +6,7 @@
 
 #include "libbead/core/error.h"
 #include "libbead/io/atomic_file.h"
+#include "libbead/model/degenerate_fit.h"
 #include "libbead/model/identify.h"
 #include "libbead/series/process_on.h"
 #include "tools/commands.h"
@@ -135,6 +136,38 @@ void PrintOrderTable(const Series& est, const std::vector<Segment>& on, const Se
 
 // One input: the model, its fit (and on the validation run), the order
 // table when asked, the model file.
+// The smaller structure's options, as the user would type them.
+std::string StructureFlags(const model::IdentifyOptions& o) {
+  if (o.real_poles) return "--structure P" + std::to_string(o.poles) + "D" + (o.zeros > 0 ? "Z" : "");
+  return "--poles " + std::to_string(o.poles) + " --zeros " + std::to_string(o.zeros);
+}
+
+// A degenerate fit said, with the smaller structure refitted beside it;
+// the findings (and the smaller structure's fit) for the model file.
+nlohmann::json SayDegeneracy(const model::IdentifiedModel& m, const model::IdentifyOptions& o, const Series& est,
+                             const std::vector<Segment>& on) {
+  const model::Degeneracy d = model::FindDegeneracy(m, est.t, est.u, est.y, on);
+  nlohmann::json out = nlohmann::json::array();
+  if (!d.any()) return out;
+  for (const std::string& f : d.findings) {
+    std::printf("WARNING: degenerate fit: %s\n", f.c_str());
+    out.push_back(f);
+  }
+  model::IdentifyOptions smaller;
+  if (!model::SmallerStructure(o, d, smaller)) return out;
+  std::printf("  fitting the smaller structure (%s) ...\n", StructureFlags(smaller).c_str());
+  std::fflush(stdout);
+  const model::IdentifiedModel s = model::IdentifyTransferFunction(est.t, est.u, est.y, smaller, on);
+  if (!s.ok) return out;
+  char line[300];
+  std::snprintf(line, sizeof line, "the smaller structure (%s) fits %.2f %% against this model's %.2f %%%s",
+                StructureFlags(smaller).c_str(), s.fit_percent, m.fit_percent,
+                s.fit_percent >= m.fit_percent - 0.5 ? ": as well; use it" : "");
+  std::printf("  %s\n", line);
+  out.push_back(line);
+  return out;
+}
+
 int IdentifyOne(const SeriesNames& names, const model::IdentifyOptions& o, const std::string& validate, bool keep_off,
                 bool orders, const std::string& out) {
   const std::string input = names.inputs[0];
@@ -151,6 +184,7 @@ int IdentifyOne(const SeriesNames& names, const model::IdentifyOptions& o, const
   }
   PrintModel(m, o);
   std::printf("fit on estimation data: %.2f %%\n", m.fit_percent);
+  const nlohmann::json warnings = SayDegeneracy(m, o, est, on.segments);
   double fit_val = NAN;
   if (val) {
     fit_val = model::ValidateFitPercent(m.tf, m.offset, val->t, val->u, val->y, val_on->segments);
@@ -163,6 +197,7 @@ int IdentifyOne(const SeriesNames& names, const model::IdentifyOptions& o, const
   if (!out.empty()) {
     nlohmann::json j = model::ModelJson(m, o, input, names.output, est.t, on.segments, on.excluded);
     if (val) j["fit_validation_pct"] = fit_val;
+    if (!warnings.empty()) j["degenerate"] = warnings;
     AtomicFile file(out);
     file.stream() << j.dump(2) << "\n";
     file.Commit();
@@ -236,6 +271,7 @@ Run AddIdentify(CLI::App& app) {
   cmd->add_flag("--orders", args->orders, "Print the order-selection table");
   cmd->add_option("-o,--out", args->out, "Model JSON to write");
   return [args]() {
+    if (!args->out.empty()) CheckWritable(args->out);
     const SeriesNames names{args->data,       args->time,       args->output,
                             args->input_file, args->input_time, args->validate_input_file,
                             args->inputs};

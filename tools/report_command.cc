@@ -16,7 +16,9 @@
 #include "libbead/core/error.h"
 #include "libbead/core/worker_pool.h"
 #include "libbead/flow/flow.h"
+#include "libbead/io/atomic_file.h"
 #include "libbead/io/rig_yaml.h"
+#include "libbead/model/model_file.h"
 #include "libbead/io/run_archive.h"
 #include "tools/commands.h"
 #include "tools/own_folder.h"
@@ -91,6 +93,16 @@ void WritePins(const Rig& rig, const std::string& path, const fs::path& dir) {
       << rig.MmPerCount() << ',' << cal.used << ',' << cal.total << ",\"" << cal.reason << "\"\n";
 }
 
+// The --explain file is an explain report, before any work.
+void CheckExplainReport(const std::string& path) {
+  std::ifstream in(path);
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  if (j.is_discarded()) throw Error(Located(path, "", "not JSON: --explain takes an explain report (bead explain -o)"));
+  if (model::JsonKind(j) != "explain")
+    throw Error(Located(path, "",
+                        "is " + model::DescribeJsonKind(j) + ": --explain takes an explain report (bead explain -o)"));
+}
+
 }  // namespace
 
 Run AddReport(CLI::App& app) {
@@ -121,6 +133,8 @@ Run AddReport(CLI::App& app) {
   cmd->add_option("-o,--output", args->output, "HTML page to write")->required();
   AddOcclusionOption(cmd, args->occlusion);
   return [args]() {
+    CheckWritable(args->output);
+    if (!args->explain.empty()) CheckExplainReport(args->explain);
     const Rig rig = ReadRig(args->rig);
     WorkerPool pool;
     char tmpl[] = "/tmp/bead-report-XXXXXX";
@@ -158,10 +172,14 @@ Run AddReport(CLI::App& app) {
     std::string cmdline = "'" + python + "' '" + script + "' '" + dir.string() + "' '" + args->output + "'";
     if (!args->explain.empty()) cmdline += " --explain '" + args->explain + "'";
     const int status = std::system(cmdline.c_str());
+    // The script's exit 3: matplotlib (or NumPy) missing; otherwise its
+    // own one line is above.
     if (status != 0)
-      throw Error(
-          Located(args->output, "",
-                  "the report script " + script + " failed (is python3-matplotlib installed? its message is above)"));
+      throw Error(Located(args->output, "",
+                          WIFEXITED(status) && WEXITSTATUS(status) == 3
+                              ? "the report needs Debian's python3-matplotlib and python3-numpy (apt-get install "
+                                "python3-matplotlib), or BEAD_PYTHON naming a python that has them"
+                              : "the report script " + script + " failed (its message is above)"));
     std::printf("wrote %s\n", args->output.c_str());
     return 0;
   };

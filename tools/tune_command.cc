@@ -6,8 +6,10 @@
 #include <optional>
 
 #include "libbead/control/controller_file.h"
+#include "libbead/control/loop_check.h"
 #include "libbead/control/pid_tuning.h"
 #include "libbead/core/error.h"
+#include "libbead/io/atomic_file.h"
 #include "libbead/model/model_file.h"
 #include "tools/commands.h"
 #include "tools/subcommands.h"
@@ -17,9 +19,18 @@ namespace {
 
 void PrintRow(const control::Evaluated& e) {
   const auto& d = e.design;
-  std::printf("%-14s %11.6g %11.6g %11.6g %10.4g %8.3g %8.1f %6.2f %9.1f %10.4g %10.4g %10.4g\n", d.method.c_str(),
+  std::printf("%-14s %11.6g %11.6g %11.6g %10.4g %8.3g %8.1f %6.2f %9.4g %10.4g %10.4g %10.4g\n", d.method.c_str(),
               d.pid.kp, d.pid.ki, d.pid.kd, d.stability_degree, e.margins.gain_margin, e.margins.phase_margin_deg,
               e.margins.ms, e.setpoint.overshoot_pct, e.setpoint.settling_s, e.setpoint.iae, e.load.iae);
+}
+
+// What the check says of a row: nothing when the loop passes; otherwise
+// the reasons, under the row.
+void PrintVerdict(const control::LoopVerdict& v) {
+  if (!v.ok) std::printf("  ^ REFUSED: %s\n", v.Summary().c_str());
+  if (v.conditionally_stable)
+    std::printf("  ^ conditionally stable: the loop is unstable if its gain falls by a factor %.3g\n",
+                v.lower_gain_margin);
 }
 
 void PrintHeader() {
@@ -34,6 +45,7 @@ Run AddTune(CLI::App& app) {
     std::string model, method = "max-stability", out;
     double degree = 0, filter_n = 0;
     bool compare = false;
+    control::LoopRequirements need;
   };
   auto args = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand("tune", Summary("tune"));
@@ -50,6 +62,10 @@ Run AddTune(CLI::App& app) {
       "     (IAE), simulated on the model with its delay exact. The derivative: ideal (eq. 16) unless\n"
       "     --filter N sets Tf = kd / (N kp). --compare prints every method's row; -o writes the\n"
       "     controller (YAML, atomically). The last line: kp=<v> ki=<v> kd=<v> stability_degree=<v>.\n"
+      "Checked: a controller is written only when its closed loop is stable (J > --min-degree), well posed\n"
+      "     (an ideal derivative on a model with a direct feedthrough is not: give --filter), with Ms <=\n"
+      "     --max-ms and a gain margin >= --min-gain-margin (a conditionally stable loop is said as such);\n"
+      "     otherwise exit 1 with the reasons. --compare marks every row that fails (REFUSED).\n"
       "Examples:\n"
       "  bead identify step.csv --time t --input u --output temp --structure P2D -o heater.json\n"
       "  bead tune heater.json --compare\n"
@@ -57,11 +73,23 @@ Run AddTune(CLI::App& app) {
   cmd->add_option("model", args->model, "Model JSON (bead identify -o)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--method", args->method, "max-stability, simc, imc, zn or cohen-coon")->capture_default_str();
   cmd->add_option("--degree", args->degree,
-                  "max-stability: place a triple root at -J for this J (1/s) instead of maximising J");
-  cmd->add_option("--filter", args->filter_n, "Derivative filter: Tf = kd / (N kp) (0: none)")->capture_default_str();
+                  "max-stability: place a triple root at -J for this J (1/s, > 0) instead of maximising J")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--filter", args->filter_n, "Derivative filter: Tf = kd / (N kp), N > 0 (absent: ideal derivative)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--min-degree", args->need.min_degree, "Required J: the rightmost closed-loop root left of -J, 1/s")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--max-ms", args->need.max_ms, "Largest peak sensitivity Ms allowed")
+      ->check(CLI::Range(1.0, 1e6))
+      ->capture_default_str();
+  cmd->add_option("--min-gain-margin", args->need.min_gain_margin, "Smallest gain margin allowed (factor)")
+      ->check(CLI::Range(1.0, 1e6))
+      ->capture_default_str();
   cmd->add_flag("--compare", args->compare, "Every method side by side");
   cmd->add_option("-o,--out", args->out, "Controller YAML to write");
   return [args]() {
+    if (!args->out.empty()) CheckWritable(args->out);
     const model::ModelFile f = model::ReadModelFile(args->model);
     if (f.tfs.size() != 1)
       throw Error(Located(args->model, "inputs", "a model of several inputs: tune takes a model of one input"));
@@ -69,10 +97,7 @@ Run AddTune(CLI::App& app) {
     const std::optional<double> degree = args->degree > 0 ? std::optional<double>(args->degree) : std::nullopt;
     auto design = [&](const std::string& method) {
       control::Design d = control::DesignPid(g, method, method == "max-stability" ? degree : std::nullopt);
-      if (d.ok && args->filter_n > 0 && d.pid.kd > 0 && d.pid.kp > 0) {
-        d.pid.tf_s = d.pid.kd / (args->filter_n * d.pid.kp);
-        d.stability_degree = -control::FindRightmostRoot(control::Characteristic(g, d.pid)).real_part;
-      }
+      control::FilterDerivative(g, d, args->filter_n);
       return d;
     };
     std::printf("%s: %s\n", args->model.c_str(),
@@ -87,19 +112,25 @@ Run AddTune(CLI::App& app) {
           std::printf("%-14s %s\n", m.c_str(), d.reason.c_str());
           continue;
         }
-        PrintRow(control::Evaluate(g, d));
+        const control::Evaluated e = control::Evaluate(g, d);
+        PrintRow(e);
+        PrintVerdict(control::CheckLoop(g, e, args->need));
       }
     }
-    if (!chosen.ok) throw Error(Located(args->model, "", args->method + ": " + chosen.reason));
+    if (!chosen.ok) throw Error(Located(args->model, "", args->method + ": no controller written: " + chosen.reason));
     const control::Evaluated e = control::Evaluate(g, chosen);
+    const control::LoopVerdict verdict = control::CheckLoop(g, e, args->need);
     if (!args->compare) {
       PrintHeader();
       PrintRow(e);
+      PrintVerdict(verdict);
     }
     if (!chosen.note.empty()) std::printf("%s: %s\n", chosen.method.c_str(), chosen.note.c_str());
     if (!chosen.fopdt.how.empty())
       std::printf("first order plus delay (%s): k %.5g, tau %.4g s, theta %.4g s\n", chosen.fopdt.how.c_str(),
                   chosen.fopdt.k, chosen.fopdt.tau_s, chosen.fopdt.theta_s);
+    if (!verdict.ok)
+      throw Error(Located(args->model, "", args->method + ": no controller written: " + verdict.Summary()));
     if (!args->out.empty()) {
       control::WriteControllerFile(args->out, e, g, args->model);
       std::printf("wrote %s\n", args->out.c_str());

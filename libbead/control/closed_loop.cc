@@ -84,6 +84,11 @@ RightmostRoot FindRightmostRoot(const QuasiPolynomial& d, double max_freq) {
     for (const C& r : Roots(Trim(d.p))) consider(r);
     return out;
   }
+  if (Degree(d.q) > Degree(d.p)) {  // advanced type
+    out.real_part = kInf;
+    out.from_chain = true;
+    return out;
+  }
   // Starts: the Pade roots, then a grid.
   std::vector<C> starts;
   const std::vector<double> pade_num = PadeNumerator(d.tau_s, 6, true), pade_den = PadeNumerator(d.tau_s, 6, false);
@@ -147,7 +152,10 @@ Margins ComputeMargins(const model::TransferFunction& plant, const Pid& pid) {
         const double target = 2 * M_PI * std::max(std::floor(a), std::floor(b)) - M_PI;
         const double f = (target - prev_phase) / (phase - prev_phase);
         const double mg = prev_mag + f * (mag - prev_mag);
-        if (mg > 0) m.gain_margin = std::min(m.gain_margin, 1.0 / mg);
+        if (mg > 0) {
+          m.gain_margin = std::min(m.gain_margin, 1.0 / mg);
+          m.crossing_margins.push_back(1.0 / mg);
+        }
       }
     }
     prev_w = w, prev_mag = mag, prev_phase = phase;

@@ -33,6 +33,9 @@ struct QuasiPolynomial {
 
 QuasiPolynomial Characteristic(const model::TransferFunction& plant, const Pid& pid);
 
+// With a delay and Q of higher degree than P (an ideal derivative on a
+// plant with a direct feedthrough) the quasi-polynomial is of advanced
+// type: its roots run off to the right without bound, real_part = +inf.
 struct RightmostRoot {
   std::complex<double> root;
   double real_part = 0;     // max Re over the roots (for a neutral loop, at least the chain's line)
@@ -53,6 +56,10 @@ struct Margins {
   double phase_margin_deg = 0;  // 180 + phase of L where |L| = 1 (the first crossing)
   double crossover_rad_s = 0;   // where |L| = 1
   double ms = 0;                // max |1 / (1 + L)|
+  // 1 / |L| at every -180 degree crossing: below 1 where the loop's gain
+  // is above the critical one there (a conditionally stable loop has such
+  // a crossing and is stable all the same).
+  std::vector<double> crossing_margins;
 };
 Margins ComputeMargins(const model::TransferFunction& plant, const Pid& pid);
 

@@ -80,6 +80,7 @@ Design MaxStability(const model::TransferFunction& plant, std::optional<double> 
     if (!(*fixed > 0)) throw Error("the stability degree J must be > 0");
     d.pid = TripleRootPid(plant, *fixed);
     d.ok = true;
+    d.requested_degree = *fixed;
     d.note = "J chosen: a triple root of the closed loop at -J";
     return d;
   }
@@ -131,6 +132,10 @@ Design MaxStability(const model::TransferFunction& plant, std::optional<double> 
     if (const double s = sigma(J); s >= best - 1e-9 * std::abs(best)) best = s, best_j = J;
   if (!(best > 0)) {
     d.reason = "no PID puts every closed-loop root in the left half plane for this model";
+    if (plant.delay_s > 0 && Degree(plant.num) == Degree(plant.den))
+      d.reason +=
+          " (it has a direct feedthrough and a delay: with the ideal derivative this design places, the "
+          "loop is of advanced type and unstable whatever the gains; a rule with --filter may do)";
     return d;
   }
   d.pid = TripleRootPid(plant, best_j);
@@ -163,6 +168,12 @@ Pid TripleRootPid(const model::TransferFunction& plant, double J) {
   }
   const Eigen::Vector3d x = a.fullPivLu().solve(b);
   return {x(0), x(1), x(2), 0.0};
+}
+
+void FilterDerivative(const model::TransferFunction& plant, Design& d, double n) {
+  if (!d.ok || !(n > 0) || !(d.pid.kd > 0) || !(d.pid.kp > 0)) return;
+  d.pid.tf_s = d.pid.kd / (n * d.pid.kp);
+  d.stability_degree = StabilityDegree(plant, d.pid);
 }
 
 Fopdt ReduceToFopdt(const model::TransferFunction& plant) {

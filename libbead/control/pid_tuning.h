@@ -54,6 +54,7 @@ struct Design {
   double stability_degree = 0;  // J: minus the rightmost root's real part, for the gains as printed
   bool unbounded = false;       // max-stability: J grows without bound (the model lacks what limits it)
   Fopdt fopdt;                  // the rules' reduced model
+  double requested_degree = 0;  // max-stability at a chosen J: that J (0: maximised)
 };
 
 // Methods: "max-stability", "simc", "imc", "zn", "cohen-coon".
@@ -63,6 +64,10 @@ std::vector<std::string> Methods();
 // is unbounded needs it). Throws bead::Error for an unknown method.
 Design DesignPid(const model::TransferFunction& plant, const std::string& method,
                  std::optional<double> degree = std::nullopt);
+
+// A derivative filter Tf = kd / (n kp) on the design (n > 0; kp and kd
+// positive, else the design is left ideal), J recomputed for it.
+void FilterDerivative(const model::TransferFunction& plant, Design& d, double n);
 
 // The gains that put a triple root of the characteristic function at -J.
 Pid TripleRootPid(const model::TransferFunction& plant, double J);

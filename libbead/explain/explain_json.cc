@@ -1,5 +1,6 @@
 #include "libbead/explain/explain_json.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace bead::explain {
@@ -105,6 +106,22 @@ json ReportJson(const ExplainReport& r, const model::TransferFunction& tf, doubl
           {"spectrum", {{"before", ToJson(r.before.spectrum)}, {"after", ToJson(r.after.spectrum)}}}};
 }
 
+json CompareJson(const SeriesData& d, const ExplainReport& r, std::size_t max_points) {
+  const std::size_t n = d.size(),
+                    step = std::max<std::size_t>(1, (n + max_points - 1) / std::max<std::size_t>(max_points, 1));
+  json t = json::array(), y = json::array(), before = json::array(), after = json::array();
+  auto model = [&](const Diagnosis& g, std::size_t i) {
+    return i < g.residual.size() ? Finite(d.y[i] - g.residual[i]) : json(nullptr);
+  };
+  for (std::size_t i = 0; i < n; i += step) {
+    t.push_back(d.t[i]);
+    y.push_back(Finite(d.y[i]));
+    before.push_back(model(r.before, i));
+    after.push_back(model(r.after, i));
+  }
+  return {{"t_s", t}, {"measured", y}, {"model_before", before}, {"model_after", after}, {"unit", d.y_unit}};
+}
+
 json RunJson(const RunExplanation& e, const Rig& rig, const model::TransferFunction& tf, double offset,
              const std::string& model_source, const std::optional<OffsetComparison>& pins,
              const std::string& flow_out) {
@@ -112,6 +129,7 @@ json RunJson(const RunExplanation& e, const Rig& rig, const model::TransferFunct
   const ShiftProfile& sp = r.shift_profile;
   json j = ReportJson(r, tf, offset, model_source);
   j["mode"] = "run";
+  j["compare"] = CompareJson(e.series.data, r);
   j["offset_from_run_counts"] = e.offset.counts;
   j["offset_from_run_ci95_counts"] = Finite(e.offset.ci95_counts);  // null: the run does not pin it
   j["offset_from_run_pinned"] = e.offset.pinned;

@@ -33,6 +33,12 @@ nlohmann::json RunJson(const RunExplanation& e, const Rig& rig, const model::Tra
                        const std::string& model_source, const std::optional<OffsetComparison>& pins,
                        const std::string& flow_out);
 
+// The measured output and the model's, alone and with the effects kept,
+// at every sample of `d` (every k-th where there are more than
+// `max_points`), as compare: {t_s, measured, model_before, model_after,
+// unit}: the report's compare plot.
+nlohmann::json CompareJson(const SeriesData& d, const ExplainReport& r, std::size_t max_points = 4000);
+
 // A number, or null where it is not finite (an unpinned interval).
 nlohmann::json Finite(double v);
 

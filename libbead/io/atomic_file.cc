@@ -93,4 +93,6 @@ void AtomicFile::Commit() {
   committed_ = true;
 }
 
+void CheckWritable(const std::string& destination) { AtomicFile probe(destination); }
+
 }  // namespace bead

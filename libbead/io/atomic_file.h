@@ -34,4 +34,10 @@ class AtomicFile {
   bool committed_ = false;
 };
 
+// Checks, before any work, that `destination` can be written as an
+// AtomicFile would write it (its folder exists, a temporary can be made
+// there); throws bead::Error naming the file and what to fix. Nothing is
+// left behind.
+void CheckWritable(const std::string& destination);
+
 }  // namespace bead

@@ -3,14 +3,18 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <new>
 
@@ -41,7 +45,14 @@ std::size_t MappedBytes() {
 
 // The child: the probe, its outcome on the pipe as one status byte and a
 // message; _exit, so that no library's exit handler runs on its state.
-[[noreturn]] void RunChild(int fd, const std::function<std::string()>& work, std::size_t cap) {
+[[noreturn]] void RunChild(int fd, const std::function<std::string()>& work, std::size_t cap, pid_t parent,
+                           double cpu_seconds) {
+  // Dies with the caller; a caller already gone leaves nothing to report to.
+  prctl(PR_SET_PDEATHSIG, SIGKILL);
+  if (getppid() != parent) _exit(1);
+  const auto cpu = static_cast<rlim_t>(std::ceil(std::max(cpu_seconds, 1.0)));
+  rlimit c{cpu, cpu + 1};  // SIGXCPU at the soft limit, SIGKILL at the hard
+  setrlimit(RLIMIT_CPU, &c);
 #ifndef BEAD_NO_ADDRESS_CAP
   if (cap > 0) {
     rlimit r{cap, cap};
@@ -95,6 +106,16 @@ bool ReadReport(int fd, double seconds, std::string& report) {
 
 }  // namespace
 
+ContainLimits LimitsForWholeFile(const std::string& path) {
+  ContainLimits limits;
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(path, ec);
+  const double extra = ec ? 0.0 : static_cast<double>(bytes) / 32e6;
+  limits.seconds += extra;
+  limits.cpu_seconds += extra;
+  return limits;
+}
+
 void ProbeContained(const std::string& path, const std::string& library, const std::function<void()>& probe,
                     const ContainLimits& limits) {
   RunContained(
@@ -114,6 +135,7 @@ std::string RunContained(const std::string& path, const std::string& library, co
   if (pipe2(fds, O_CLOEXEC) != 0) return work();
   const std::size_t mapped = MappedBytes();
   const std::size_t cap = mapped > 0 ? mapped + limits.memory_bytes : 0;
+  const pid_t parent = getpid();
   const pid_t pid = fork();
   if (pid < 0) {
     close(fds[0]), close(fds[1]);
@@ -121,7 +143,7 @@ std::string RunContained(const std::string& path, const std::string& library, co
   }
   if (pid == 0) {
     close(fds[0]);
-    RunChild(fds[1], work, cap);
+    RunChild(fds[1], work, cap, parent, limits.cpu_seconds);
   }
   close(fds[1]);
   std::string report;
@@ -135,6 +157,11 @@ std::string RunContained(const std::string& path, const std::string& library, co
   if (!finished) {
     char what[80];
     std::snprintf(what, sizeof what, "it did not finish in %.0f s)", limits.seconds);
+    throw Error(Located(path, "", corrupt + what));
+  }
+  if (WIFSIGNALED(status) && WTERMSIG(status) == SIGXCPU) {
+    char what[80];
+    std::snprintf(what, sizeof what, "it used more than %.0f s of CPU time)", limits.cpu_seconds);
     throw Error(Located(path, "", corrupt + what));
   }
   if (WIFSIGNALED(status) || report.empty())

@@ -4,8 +4,11 @@
 // damaged .mat header can make libmatio allocate gigabytes before it says
 // anything. Validation of our own (h5::File's type and size checks) stops
 // what it can see; the rest is read first in a child process (fork), its
-// address space capped a fixed budget above what the caller already maps
-// and its time bounded. Only when that probe finishes does the caller read
+// address space capped a fixed budget above what the caller already maps,
+// its wall and CPU time bounded (seconds: reading headers and a small
+// file's data needs well under one; a probe that takes longer is kept busy
+// by a damaged file), and killed with its caller (a caller that dies or is
+// killed never leaves a probe spinning). Only when that probe finishes does the caller read
 // the file itself; a probe that crashes, runs out of its budget or time is
 // the file's fault, said with the file's name, and the caller never
 // touches it.
@@ -19,8 +22,13 @@ namespace bead {
 
 struct ContainLimits {
   std::size_t memory_bytes = std::size_t{1} << 30;  // beyond what the process maps when the probe starts
-  double seconds = 60.0;
+  double seconds = 10.0;                            // wall time
+  double cpu_seconds = 8.0;                         // the child's CPU time (RLIMIT_CPU)
 };
+
+// Limits for work that reads the whole file at `path`: the defaults plus
+// one second (wall and CPU) for every 32 MB of it.
+ContainLimits LimitsForWholeFile(const std::string& path);
 
 // Runs `work` in a child process under `limits` and returns what it
 // returned (bytes: the child's result, serialised). Throws bead::Error

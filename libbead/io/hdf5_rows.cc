@@ -21,6 +21,7 @@ RowReader::RowReader(const File& file, const std::string& dataset, std::initiali
   if (!dcpl.valid() || H5Pget_layout(dcpl.get()) != H5D_CHUNKED) return;
   std::vector<hsize_t> chunk(dims_.size());
   if (H5Pget_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()) != static_cast<int>(chunk.size())) return;
+  CheckChunkSize(chunk, H5Tget_size(type.get()));
   chunk_rows_ = chunk.empty() ? 0 : chunk[0];
   // Direct reads: float32 LE in and out, chunks of whole rows.
   if (!(H5Tequal(type.get(), H5T_IEEE_F32LE) > 0 && H5Tequal(mem_type, H5T_NATIVE_FLOAT) > 0)) return;
@@ -38,6 +39,21 @@ RowReader::RowReader(const File& file, const std::string& dataset, std::initiali
     filters_.push_back(static_cast<int>(id));
   }
   direct_ = true;
+}
+
+// A chunk is read and inflated whole (here and inside libhdf5): one far
+// beyond the dataset it holds (more than twice its values, and over 64 MB)
+// is a damaged header, refused before anything is allocated for it.
+void RowReader::CheckChunkSize(const std::vector<hsize_t>& chunk, std::size_t type_size) const {
+  double values = 1, declared = 1;
+  for (hsize_t c : chunk) values *= static_cast<double>(c);
+  for (hsize_t d : dims_) declared *= static_cast<double>(d);
+  const double bytes = values * static_cast<double>(type_size);
+  if (bytes > 64.0 * 1048576.0 && values > 2 * declared)
+    throw Error(Located(file_->name(), name_,
+                        "damaged: its chunks declare " + std::to_string(static_cast<long long>(bytes)) +
+                            " bytes each for a dataset of " + std::to_string(static_cast<long long>(declared)) +
+                            " values"));
 }
 
 void RowReader::ReadThroughHdf5(std::size_t begin, std::size_t count, void* out) const {

@@ -49,6 +49,7 @@ class RowReader {
   void ReadRows(const std::vector<std::size_t>& rows, void* out, WorkerPool* pool);
 
  private:
+  void CheckChunkSize(const std::vector<hsize_t>& chunk, std::size_t type_size) const;
   void ReadThroughHdf5(std::size_t begin, std::size_t count, void* out) const;
   // Reads the stored chunks (by index along the rows) raw into raw_;
   // false when one was never written (or looks odd): then HDF5 reads.

@@ -277,15 +277,18 @@ struct Reader {
 // anything: the file is read in a contained child (io/contained.h) and
 // only its result comes back; libmatio never runs in the caller.
 MatMatrix ReadMatMatrix(const std::string& path, const std::string& name) {
-  const std::string bytes = RunContained(path, "matio", [&] {
-    const MatMatrix m = ReadMatMatrixDirect(path, name);
-    std::string out;
-    PutString(out, m.name);
-    PutSize(out, m.rows);
-    PutSize(out, m.cols);
-    PutDoubles(out, m.values);
-    return out;
-  });
+  const std::string bytes = RunContained(
+      path, "matio",
+      [&] {
+        const MatMatrix m = ReadMatMatrixDirect(path, name);
+        std::string out;
+        PutString(out, m.name);
+        PutSize(out, m.rows);
+        PutSize(out, m.cols);
+        PutDoubles(out, m.values);
+        return out;
+      },
+      LimitsForWholeFile(path));
   Reader r{bytes};
   MatMatrix m;
   m.name = r.String();
@@ -296,15 +299,18 @@ MatMatrix ReadMatMatrix(const std::string& path, const std::string& name) {
 }
 
 MatContents ReadMatVectors(const std::string& path) {
-  const std::string bytes = RunContained(path, "matio", [&] {
-    const MatContents c = ReadMatVectorsDirect(path);
-    std::string out;
-    PutSize(out, c.vectors.size());
-    for (const MatVector& v : c.vectors) PutString(out, v.name), PutDoubles(out, v.values);
-    PutSize(out, c.skipped.size());
-    for (const std::string& s : c.skipped) PutString(out, s);
-    return out;
-  });
+  const std::string bytes = RunContained(
+      path, "matio",
+      [&] {
+        const MatContents c = ReadMatVectorsDirect(path);
+        std::string out;
+        PutSize(out, c.vectors.size());
+        for (const MatVector& v : c.vectors) PutString(out, v.name), PutDoubles(out, v.values);
+        PutSize(out, c.skipped.size());
+        for (const std::string& s : c.skipped) PutString(out, s);
+        return out;
+      },
+      LimitsForWholeFile(path));
   Reader r{bytes};
   MatContents c;
   c.vectors.resize(r.Size());

@@ -1,12 +1,14 @@
 #include "libbead/io/run_archive.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <cmath>
 #include <cstdlib>
 
 #include "libbead/core/error.h"
 #include "libbead/io/atomic_file.h"
 #include "libbead/io/contained.h"
+#include "libbead/io/hdf5_rows.h"
 #include "libbead/io/hdf5_file.h"
 
 namespace bead {
@@ -208,15 +210,41 @@ RunArchive ReadRunArchiveDirect(const std::string& path, bool with_profiles, boo
   return run;
 }
 
-// What a reader of the archive touches in libhdf5 before its data: every
-// profile dataset's header and the log with its channels' attributes.
+// The profile datasets' rows as the streamed reader reads them (the same
+// RowReader, the same windows): all of them for a file up to 64 MB, whose
+// whole reading then happens here first under the probe's bounds; the
+// first and last window of a larger one.
+void ProbeProfileRows(const h5::File& f, const std::string& path) {
+  std::error_code ec;
+  const auto file_bytes = std::filesystem::file_size(path, ec);
+  const bool whole = !ec && file_bytes <= (std::uintmax_t{64} << 20);
+  struct Dataset {
+    const char* name;
+    h5::Kind kind;
+    hid_t mem;
+    std::size_t size;
+  };
+  for (const Dataset& d : {Dataset{"/profiles/t_s", h5::Kind::kFloat, H5T_NATIVE_DOUBLE, 8},
+                           Dataset{"/profiles/encoder", h5::Kind::kInteger, H5T_NATIVE_INT64, 8},
+                           Dataset{"/profiles/x_mm", h5::Kind::kFloat, H5T_NATIVE_FLOAT, 4},
+                           Dataset{"/profiles/z_mm", h5::Kind::kFloat, H5T_NATIVE_FLOAT, 4}}) {
+    if (!f.Exists(d.name)) continue;
+    h5::RowReader rows(f, d.name, {1, 2}, d.kind, d.mem);
+    const std::size_t n = rows.rows(), window = std::max<std::size_t>(rows.chunk_rows(), 256);
+    std::vector<uint8_t> buffer(std::min(window, n) * rows.row_length() * d.size);
+    for (std::size_t begin = 0; begin < n; begin += window) {
+      if (!whole && begin > 0 && begin + window < n) begin = n - std::min(window, n);
+      rows.Read(begin, std::min(window, n - begin), buffer.data(), nullptr);
+    }
+  }
+}
+
+// What a reader of the archive touches in libhdf5: every profile dataset's
+// header and rows (ProbeProfileRows), and the log with its channels.
 void ProbeRunArchive(const std::string& path, bool with_log) {
   {
     const h5::File f = h5::File::OpenRead(path);
-    std::vector<hsize_t> dims;
-    for (const char* name : {"/profiles/t_s", "/profiles/x_mm", "/profiles/z_mm"})
-      if (f.Exists(name)) f.OpenDataset(name, {1, 2}, h5::Kind::kFloat, dims);
-    if (f.Exists("/profiles/encoder")) f.OpenDataset("/profiles/encoder", {1}, h5::Kind::kInteger, dims);
+    ProbeProfileRows(f, path);
   }
   ReadRunArchiveDirect(path, false, with_log);
 }

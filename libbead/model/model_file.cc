@@ -15,13 +15,20 @@ json Finite(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 TransferFunction ReadTransferFunction(const json& j, const std::string& path, const std::string& where) {
   TransferFunction tf;
-  try {
-    tf.num = j.at("num").get<std::vector<double>>();
-    tf.den = j.at("den").get<std::vector<double>>();
-    tf.delay_s = j.value("delay_s", 0.0);
-  } catch (const json::exception& e) {
-    throw Error(Located(path, where, std::string("needs num, den (arrays of numbers) and delay_s: ") + e.what()));
-  }
+  auto numbers = [&](const char* key) {
+    const std::string at = where.empty() ? key : where + "." + key;
+    if (!j.contains(key)) throw Error(Located(path, at, "missing: a model needs num and den (arrays of numbers)"));
+    try {
+      return j.at(key).get<std::vector<double>>();
+    } catch (const json::exception&) {
+      throw Error(Located(path, at, "must be an array of numbers (descending powers of s)"));
+    }
+  };
+  tf.num = numbers("num");
+  tf.den = numbers("den");
+  if (j.contains("delay_s") && !j["delay_s"].is_number())
+    throw Error(Located(path, where.empty() ? "delay_s" : where + ".delay_s", "must be a number of seconds"));
+  tf.delay_s = j.value("delay_s", 0.0);
   try {
     tf.Validate();
   } catch (const Error& e) {
@@ -99,6 +106,20 @@ std::string PolynomialText(const std::vector<double>& c) {
   return out;
 }
 
+std::string JsonKind(const json& j) {
+  if (!j.is_object()) return "";
+  if (j.contains("effects_added") && j.contains("fit_before_pct")) return "explain";
+  if (j.contains("inputs") || j.contains("num") || j.contains("den")) return "model";
+  return "";
+}
+
+std::string DescribeJsonKind(const json& j) {
+  const std::string kind = JsonKind(j);
+  if (kind == "explain") return "an explain report (bead explain -o)";
+  if (kind == "model") return "a model file (bead identify -o)";
+  return "a JSON file of no kind libbead writes (neither a model file nor an explain report)";
+}
+
 ModelFile ReadModelFile(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw Error(Located(path, "", "cannot open the model file"));
@@ -109,6 +130,8 @@ ModelFile ReadModelFile(const std::string& path) {
     throw Error(Located(path, "", std::string("not JSON: ") + e.what()));
   }
   if (!j.is_object()) throw Error(Located(path, "", "not a model file (a JSON object with num and den)"));
+  if (JsonKind(j) != "model")
+    throw Error(Located(path, "", "is " + DescribeJsonKind(j) + ", not a model file (bead identify -o)"));
   ModelFile f;
   f.output = j.contains("output") && j["output"].is_string() ? j["output"].get<std::string>() : "";
   if (j.contains("inputs")) {  // version 3: several inputs

@@ -31,6 +31,12 @@ struct ModelFile {
 // Throws bead::Error naming the file and the key when it is not a model.
 ModelFile ReadModelFile(const std::string& path);
 
+// What a JSON file is, by its content: "model" (num and den, or inputs),
+// "explain" (an explain report), "" (neither); and the same in words for a
+// message ("an explain report (bead explain -o)").
+std::string JsonKind(const nlohmann::json& j);
+std::string DescribeJsonKind(const nlohmann::json& j);
+
 // The identified model as JSON (input and output name the columns).
 nlohmann::json ModelJson(const IdentifiedModel& m, const IdentifyOptions& o, const std::string& input,
                          const std::string& output, const std::vector<double>& t, const std::vector<Segment>& segments,

@@ -5,8 +5,11 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cmath>
 #include <regex>
+#include <sstream>
 
+#include "libbead/control/closed_loop.h"
 #include "libbead/sim/sim_writer.h"
 #include "tests/support/run_cli.h"
 
@@ -62,6 +65,94 @@ TEST(TuneCommand, ErrorsSayWhatToFix) {
   std::tie(status, out) = test::RunCli(dir, "tune " + (dir / "multi.json"));
   EXPECT_EQ(status, 1) << out;
   EXPECT_NE(out.find("several inputs"), std::string::npos) << out;
+}
+
+// Thesis eq. 22 (screw RPM -> flow) has a direct feedthrough: as many zeros
+// as poles. An ideal derivative on it makes the loop improper (with the
+// delay, its quasi-polynomial is of advanced type: roots without bound in
+// the right half plane); every design that uses one is refused, by name,
+// and no file is written.
+const char* const kMethods[] = {"max-stability", "simc", "imc", "zn", "cohen-coon"};
+const char* kEq22 = R"({"num": [9.175, 149.2, 905.3], "den": [1, 12.84, 47.52], "delay_s": 0.15})";
+
+TEST(TuneCommand, AModelWithFeedthroughGetsNoUnstableController) {
+  test::TempDir dir;
+  test::WriteText(dir / "m.json", kEq22);
+  auto [status, out] = test::RunCli(dir, "tune " + (dir / "m.json") + " --compare -o " + (dir / "c.yaml"));
+  EXPECT_EQ(status, 1) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "c.yaml"));
+  EXPECT_NE(out.find("no controller written"), std::string::npos) << out;
+  EXPECT_NE(out.find("direct feedthrough"), std::string::npos) << out;
+  // Every row that prints gains is followed by its verdict: no row with an
+  // unstable loop goes unmarked.
+  std::istringstream lines(out);
+  std::string line, previous;
+  int rows = 0;
+  while (std::getline(lines, line)) {
+    std::istringstream fields(previous);
+    std::string method;
+    double kp = 0;
+    if (previous.rfind("method", 0) != 0 && (fields >> method >> kp) &&
+        std::find(std::begin(kMethods), std::end(kMethods), method) != std::end(kMethods)) {
+      ++rows;
+      EXPECT_EQ(line.rfind("  ^ REFUSED", 0), 0u) << previous << "\n" << line;
+    }
+    previous = line;
+  }
+  EXPECT_GE(rows, 2) << out;
+}
+
+// A plant with a feedthrough (high-frequency gain 0.05) and a delay: with a
+// derivative filter (or none: SIMC gives it a PI) the loop is well posed, and a design is written only
+// when its margins hold. At the defaults (Ms <= 2, gain margin >= 1.5)
+// SIMC's is refused for them; with the margins relaxed it is written, and
+// its loop, simulated here from the file's gains, settles on the step.
+TEST(TuneCommand, AFeedthroughWithAFilterIsWrittenOnlyWithinItsMargins) {
+  test::TempDir dir;
+  const char* model = R"({"num": [0.05, 1, 1], "den": [1, 2, 1], "delay_s": 0.1})";
+  test::WriteText(dir / "m.json", model);
+  const std::string base = "tune " + (dir / "m.json") + " --method simc --filter 2 -o " + (dir / "c.yaml");
+  auto [status, out] = test::RunCli(dir, base);
+  EXPECT_EQ(status, 1) << out;
+  EXPECT_NE(out.find("peak sensitivity Ms"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "c.yaml"));
+  std::tie(status, out) = test::RunCli(dir, base + " --max-ms 5 --min-gain-margin 1.2");
+  ASSERT_EQ(status, 0) << out;
+  const YAML::Node y = YAML::LoadFile(dir / "c.yaml");
+  EXPECT_GT(y["stability_degree"].as<double>(), 0);
+  EXPECT_LE(y["margins"]["ms"].as<double>(), 5.0);
+  if (y["pid"]["kd"].as<double>() != 0) EXPECT_GT(y["pid"]["derivative_filter_s"].as<double>(), 0);
+  const control::Pid pid{y["pid"]["kp"].as<double>(), y["pid"]["ki"].as<double>(), y["pid"]["kd"].as<double>(),
+                         y["pid"]["derivative_filter_s"].as<double>()};
+  // The loop from the file alone: L(inf) = g_inf kp (1 + N) below 1, and
+  // the step settles to within 5 % (a stable loop's integral action).
+  EXPECT_LT(0.05 * (pid.kp + (pid.tf_s > 0 ? pid.kd / pid.tf_s : 0.0)), 1.0);
+  const model::TransferFunction g{{0.05, 1, 1}, {1, 2, 1}, 0.1};
+  const control::StepFigures step = control::SetpointStep(g, pid, 60.0);
+  EXPECT_NEAR(step.y.back(), 1.0, 0.05);
+  EXPECT_TRUE(std::isfinite(step.settling_s));
+}
+
+// Option values are usage errors (exit 2); a J that cannot be met is said
+// and refused (exit 1).
+TEST(TuneCommand, OptionValuesAreCheckedAndAnUnmetDegreeIsSaid) {
+  test::TempDir dir;
+  test::WriteText(dir / "m.json", kEq14);
+  for (const char* bad : {"--degree -1", "--degree 0", "--filter -5", "--filter 0", "--max-ms 0.5"}) {
+    auto [status, out] = test::RunCli(dir, "tune " + (dir / "m.json") + " " + bad);
+    EXPECT_EQ(status, 2) << bad << "\n" << out;
+  }
+  for (const char* far : {"--degree 100", "--degree 1e9"}) {
+    auto [status, out] = test::RunCli(dir, "tune " + (dir / "m.json") + " " + far + " -o " + (dir / "c.yaml"));
+    EXPECT_EQ(status, 1) << far << "\n" << out;
+    EXPECT_NE(out.find("is not met"), std::string::npos) << far << "\n" << out;
+    EXPECT_FALSE(std::filesystem::exists(dir / "c.yaml"));
+  }
+  // An output folder that does not exist is said before any design.
+  auto [status, out] = test::RunCli(dir, "tune " + (dir / "m.json") + " -o " + (dir / "nodir/c.yaml"));
+  EXPECT_EQ(status, 1) << out;
+  EXPECT_NE(out.find("does not exist"), std::string::npos) << out;
+  EXPECT_EQ(out.find("kp="), std::string::npos) << out;
 }
 
 }  // namespace

@@ -9,8 +9,12 @@
 #include <hdf5.h>
 #include <matio.h>
 #include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
 #include <fstream>
 #include <thread>
 
@@ -84,6 +88,72 @@ TEST(Contained, MemoryAndTimeAreBounded) {
   EXPECT_NE(time.find("slow.h5: corrupt (the HDF5 library failed reading it: it did not finish in 1 s)"),
             std::string::npos)
       << time;
+}
+
+// A probe kept busy (a damaged file can loop libhdf5) is stopped by its
+// CPU-time limit well before the wall-time one.
+TEST(Contained, CpuTimeIsBounded) {
+  ContainLimits limits;
+  limits.seconds = 60, limits.cpu_seconds = 1;
+  const auto start = std::chrono::steady_clock::now();
+  const std::string e = ErrorOf([&] {
+    ProbeContained(
+        "busy.h5", "HDF5",
+        [] {
+          volatile unsigned long spin = 0;
+          for (;;) spin = spin + 1;
+        },
+        limits);
+  });
+  EXPECT_NE(e.find("busy.h5: corrupt (the HDF5 library failed reading it: it used more than 1 s of CPU time)"),
+            std::string::npos)
+      << e;
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 30.0);
+}
+
+// Whether process `pid` is gone (or a zombie: it runs no more).
+bool Gone(pid_t pid) {
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string pid_field, name, state;
+  if (!(stat >> pid_field >> name >> state)) return true;
+  return state == "Z" || state == "X";
+}
+
+// A caller killed while its probe spins takes the probe with it: no probe
+// is left running under init.
+TEST(Contained, TheProbeDiesWithItsCaller) {
+  test::TempDir dir;
+  const std::string pid_file = dir / "probe.pid";
+  const pid_t caller = fork();
+  ASSERT_GE(caller, 0);
+  if (caller == 0) {
+    try {
+      ProbeContained("spin.h5", "HDF5", [&] {
+        std::ofstream(pid_file + ".tmp") << getpid() << "\n";
+        std::rename((pid_file + ".tmp").c_str(), pid_file.c_str());
+        volatile unsigned long spin = 0;
+        for (;;) spin = spin + 1;
+      });
+    } catch (...) {
+    }
+    _exit(0);
+  }
+  pid_t probe = 0;
+  for (int i = 0; i < 500 && probe == 0; ++i) {
+    std::ifstream in(pid_file);
+    if (!(in >> probe)) probe = 0, std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_GT(probe, 0);
+  EXPECT_FALSE(Gone(probe));
+  kill(caller, SIGKILL);
+  waitpid(caller, nullptr, 0);
+  bool gone = false;
+  for (int i = 0; i < 300 && !gone; ++i) {
+    gone = Gone(probe);
+    if (!gone) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  EXPECT_TRUE(gone) << "the probe " << probe << " outlived its caller";
+  if (!gone) kill(probe, SIGKILL);
 }
 
 TEST(Contained, TheProbesOwnErrorAndResultComeBack) {
@@ -184,6 +254,47 @@ TEST(Contained, NumberTypesOtherThanTheFormatsAreRefused) {
       test::RunCli(dir, "measure --rig " + (dir / "rig.yaml") + " " + (dir / "float.h5") + " -o " + (dir / "g.csv"));
   EXPECT_EQ(status, 1) << out;
   EXPECT_NE(out.find("floating-point layout"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "g.csv"));
+}
+
+// A run archive whose profile chunks declare 200 MB each for a dataset of
+// six values (a damaged chunk header: the streamed reader inflates a chunk
+// whole, so it would allocate that much per worker) is refused by name
+// before anything is allocated, by the library and by the command.
+TEST(Contained, AChunkFarBeyondItsDatasetIsRefused) {
+  test::TempDir dir;
+  const std::string path = dir / "chunk.h5";
+  WriteWithType(path, "/profiles/t_s", H5T_IEEE_F64LE);
+  {
+    const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    H5Ldelete(f, "/profiles/z_mm", H5P_DEFAULT);
+    hsize_t dims[2] = {2, 3}, max[2] = {H5S_UNLIMITED, 3}, chunk[2] = {hsize_t{1} << 24, 3};
+    const hid_t space = H5Screate_simple(2, dims, max);
+    const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+    H5Pset_chunk(dcpl, 2, chunk);
+    H5Pset_deflate(dcpl, 1);
+    const hid_t ds = H5Dcreate2(f, "/profiles/z_mm", H5T_IEEE_F32LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+    const float z[6] = {0, 1, 0, 0, 1, 0};
+    H5Dwrite(ds, H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, z);
+    H5Dclose(ds), H5Pclose(dcpl), H5Sclose(space), H5Fclose(f);
+  }
+  const std::size_t before = PeakBytes();
+  const std::string e = ErrorOf([&] { ReadRunArchive(path); });
+  EXPECT_NE(e.find("/profiles/z_mm: damaged: its chunks declare 201326592 bytes each for a dataset of 6 values"),
+            std::string::npos)
+      << e;
+  if (kAddressCapped) EXPECT_LT(PeakBytes(), before + (std::size_t{100} << 20));
+  // The command answers in one line, exit 1, under an address-space cap of
+  // 2 GB (where no sanitizer reserves its shadow).
+  test::WriteText(dir / "rig.yaml", test::kCliRigYaml);
+  const std::string cap = kAddressCapped ? "ulimit -v 2000000; " : "";
+  const int status = std::system(("/bin/sh -c '" + cap + BEAD_CLI + " measure --rig " + (dir / "rig.yaml") + " " +
+                                  path + " -o " + (dir / "g.csv") + " >" + (dir / "out.txt") + " 2>&1'")
+                                     .c_str());
+  const std::string out = test::ReadText(dir / "out.txt");
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1) << out;
+  EXPECT_NE(out.find("damaged: its chunks declare"), std::string::npos) << out;
+  EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << out;
   EXPECT_FALSE(std::filesystem::exists(dir / "g.csv"));
 }
 

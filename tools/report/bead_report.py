@@ -19,11 +19,15 @@ import os
 import sys
 import tempfile
 
-import matplotlib
+try:
+    import matplotlib
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt  # noqa: E402
+    import numpy as np  # noqa: E402
+except ImportError as missing:  # the command words the fix (exit 3)
+    sys.stderr.write("bead report: %s\n" % missing)
+    sys.exit(3)
 
 STATUS_COLOURS = {"too_few_points": "#999999", "no_reference": "#d62728", "no_bead": "#bcbd22",
                   "bead_edge_not_seen": "#ff7f0e", "bead_in_reference_area": "#9467bd"}
@@ -130,22 +134,94 @@ def flow_figure(f, explain):
     return png(fig)
 
 
-def spectrum_figure(spectrum):
-    fig, ax = plt.subplots(figsize=(10, 3.0))
+def spectrum_figure(spectrum, unexplained, effects):
+    """The residual's spectrum on a log frequency axis (0 Hz left out), each
+    marked peak labelled with its frequency and what it tracks."""
+    fig, ax = plt.subplots(figsize=(10, 3.2))
+    lo = math.inf
     for key, colour in (("before", "#7f7f7f"), ("after", "#1f77b4")):
         s = spectrum.get(key)
         if s and s.get("frequency_hz"):
-            ax.semilogy(s["frequency_hz"], np.maximum(np.array(s["power"], dtype=float), 1e-12), lw=0.7, color=colour,
-                        label="residual " + key)
-    for peak in (spectrum.get("before") or {}).get("peaks", []):
-        if isinstance(peak, dict) and "frequency_hz" in peak:
-            ax.axvline(peak["frequency_hz"], color="#d62728", lw=0.6, ls="--")
-            ax.text(peak["frequency_hz"], 0.03, " " + str(peak.get("tracks", "")), rotation=90, fontsize=6,
-                    va="bottom", color="#d62728", transform=ax.get_xaxis_transform())
-    ax.set_xlabel("frequency, Hz")
+            f = np.array(s["frequency_hz"], dtype=float)
+            p = np.maximum(np.array(s["power"], dtype=float), 1e-12)
+            keep = f > 0
+            if keep.any():
+                lo = min(lo, f[keep].min())
+                ax.loglog(f[keep], p[keep], lw=0.7, color=colour, label="residual " + key)
+    marks = [(u.get("frequency_hz"), "%s (unexplained)" % u.get("tracks", "")) for u in unexplained]
+    for e in effects:
+        f = (e.get("frequency_hz") if isinstance(e, dict) else None)
+        if f:
+            marks.append((f, "%s (added)" % e.get("name", "")))
+    for k, (f, label) in enumerate(m for m in marks if isinstance(m[0], (int, float)) and m[0] > 0):
+        ax.axvline(f, color="#d62728", lw=0.6, ls="--")
+        ax.text(f, 0.97 - 0.12 * (k % 4), " %.3g Hz: %s" % (f, label), fontsize=6.5, va="top", color="#d62728",
+                transform=ax.get_xaxis_transform())
+    if math.isfinite(lo):
+        ax.set_xlim(left=lo)
+    ax.set_xlabel("frequency, Hz (log)")
     ax.set_ylabel("power")
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="lower left")
     return png(fig)
+
+
+def compare_figure(compare, explain):
+    """MATLAB's compare: the measured output and the model's, before and
+    after the effects, with each one's fit."""
+    t = np.array(compare["t_s"], dtype=float)
+    fig, ax = plt.subplots(figsize=(10, 3.4))
+    ax.plot(t, np.array(compare["measured"], dtype=float), "-", lw=0.6, color="#444444", label="measured")
+    ax.plot(t, np.array(compare["model_before"], dtype=float), "-", lw=0.9, color="#ff7f0e",
+            label="model alone: fit %.2f %%" % explain.get("fit_before_pct", math.nan))
+    ax.plot(t, np.array(compare["model_after"], dtype=float), "-", lw=0.9, color="#1f77b4",
+            label="model with the effects: fit %.2f %%" % explain.get("fit_after_pct", math.nan))
+    ax.set_xlabel("time, s")
+    ax.set_ylabel(compare.get("unit", "output"))
+    ax.legend(fontsize=7, loc="lower right")
+    return png(fig)
+
+
+def resid_figure(diagnostics):
+    """MATLAB's resid: the residual's autocorrelation and its cross-
+    correlation with the input, before and after, with their 99 % bounds."""
+    fig, axes = plt.subplots(1, 2, figsize=(10, 3.0))
+    for ax, key, title in ((axes[0], "whiteness", "autocorrelation of the residual"),
+                           (axes[1], "input_correlation", "cross-correlation with the input")):
+        for when, colour in (("before", "#7f7f7f"), ("after", "#1f77b4")):
+            d = diagnostics.get("%s_%s" % (key, when)) or {}
+            lags, values = d.get("lags") or [], d.get("acf" if key == "whiteness" else "ccf") or []
+            if lags and len(lags) == len(values):
+                ax.plot(lags, values, ".-", ms=3, lw=0.6, color=colour, label=when)
+                b = d.get("bound")
+                if isinstance(b, (int, float)) and math.isfinite(b):
+                    ax.axhline(b, color=colour, lw=0.6, ls=":")
+                    ax.axhline(-b, color=colour, lw=0.6, ls=":")
+        ax.set_title(title, fontsize=9)
+        ax.set_xlabel("lag, samples")
+        ax.legend(fontsize=7)
+    return png(fig)
+
+
+def offset_rows(explain):
+    """The encoder offset from the run beside the rig file's and the pins'."""
+    rows = []
+    o, lo, hi = explain.get("offset_from_run_counts"), None, None
+    prof = explain.get("offset_profile") or {}
+    lo, hi = prof.get("ci95_low_counts"), prof.get("ci95_high_counts")
+    if isinstance(o, (int, float)):
+        pinned = explain.get("offset_from_run_pinned")
+        interval = ("%s to %s" % (number(lo, "%.1f"), number(hi, "%.1f"))) if pinned else \
+            "not pinned by this run (offset and delay trade: %s)" % number(explain.get("offset_delay_correlation"), "%.3f")
+        rows.append(("from the run", number(o, "%.1f") if pinned else "-", interval))
+    if isinstance(explain.get("rig_offset_counts"), (int, float)):
+        rows.append(("rig file", number(explain["rig_offset_counts"], "%.1f"), ""))
+    if isinstance(explain.get("pin_offset_counts"), (int, float)):
+        ci = explain.get("pin_offset_ci95_counts")
+        rows.append(("pin scans", number(explain["pin_offset_counts"], "%.1f"), "± %s" % number(ci, "%.1f")))
+    if isinstance(explain.get("combined_offset_counts"), (int, float)):
+        rows.append(("run and pins combined", number(explain["combined_offset_counts"], "%.1f"),
+                     "± %s" % number(explain.get("combined_offset_ci95_counts"), "%.1f")))
+    return rows
 
 
 def pins_figure(points, fits, offset):
@@ -250,9 +326,21 @@ def main(argv):
                         number(u.get("power"), "%.3g")) for u in explain.get("unexplained", [])]
         if unexplained:
             body += "<h3>Unexplained</h3>" + table(["what", "frequency, Hz", "tracks", "power"], unexplained)
+        if explain.get("compare"):
+            body += "<h3>Model against the data</h3><p>The measured output and the model's, alone and with the " \
+                    "effects added (as MATLAB's compare).</p>" + compare_figure(explain["compare"], explain)
+        if explain.get("diagnostics"):
+            body += "<h3>Residual</h3><p>Its autocorrelation and its cross-correlation with the input, with " \
+                    "their 99 % bounds (as MATLAB's resid): a white residual independent of the input stays " \
+                    "inside.</p>" + resid_figure(explain["diagnostics"])
         if explain.get("spectrum"):
-            body += "<h3>Residual spectrum</h3><p>Peaks marked with what they track (the wheel's and the screw's " \
-                    "rates where the run has them).</p>" + spectrum_figure(explain["spectrum"])
+            body += "<h3>Residual spectrum</h3><p>On a log frequency axis; the unexplained peaks and the periodic " \
+                    "effects added are marked with what they track (the wheel's and the screw's rates where the " \
+                    "run has them).</p>" + spectrum_figure(explain["spectrum"], explain.get("unexplained", []),
+                                                          explain.get("effects_added", []))
+        offsets = offset_rows(explain)
+        if offsets:
+            body += "<h3>Encoder offset</h3>" + table(["source", "offset, counts", "95 % interval"], offsets)
         sections.append('<section id="explain"><h2>Model and explain</h2>%s</section>' % body)
     if pin_points is not None:
         o = pin_offset
@@ -283,4 +371,8 @@ img{max-width:100%%}p{font-size:.92em}</style></head>
 
 
 if __name__ == "__main__":
-    main(sys.argv)
+    try:
+        main(sys.argv)
+    except (OSError, ValueError, KeyError, TypeError) as e:  # one line, never a traceback
+        sys.stderr.write("bead report: %s: %s\n" % (type(e).__name__, e))
+        sys.exit(1)
