@@ -71,6 +71,23 @@ std::vector<double> FactorVariance(const SeriesData& d, const std::vector<Active
   return var;
 }
 
+// The series' shift hook recomputes the flow at a trial shift from the
+// log's surface speed and the bins' areas (run_series.h): the area there is
+// the corrected one, the speed is not. The held-out comparison refits the
+// base's delay and offset through that hook, so without this it would
+// compare the uncorrected speed again and never see a speed correction
+// (an eccentric wheel's once-per-revolution term). Each sample's flow at a
+// shift is divided by its speed factor, as the flow itself is.
+void UndoSpeedInShifts(SeriesData& d, const std::vector<double>& speed) {
+  if (!d.shifted) return;
+  d.shifted = [inner = d.shifted, speed](double counts, const std::vector<double>& extra_delay_s,
+                                         std::vector<double>& y, std::vector<double>& base) {
+    inner(counts, extra_delay_s, y, base);
+    for (std::size_t i = 0; i < y.size() && i < speed.size(); ++i)
+      if (speed[i] > 0) y[i] /= speed[i];
+  };
+}
+
 }  // namespace
 
 MeasurementFactors FactorsOf(const SeriesData& d, const std::vector<Active>& kept,
@@ -157,7 +174,8 @@ CorrectedFlow CorrectFlow(const Rig& rig, const ProfileBlock& profiles, const st
       var += std::pow((y_plus[i] - y_minus[i]) / (2 * h) * shift_sd, 2);
     s.flow_sigma_mm3_s = std::sqrt(var);
   }
-  const RunSeries series_after = MakeRunSeries(aligned, profiles, geometry, log, out.flow, model, model_offset);
+  RunSeries series_after = MakeRunSeries(aligned, profiles, geometry, log, out.flow, model, model_offset);
+  UndoSpeedInShifts(series_after.data, factors.speed);
   out.rms_after = HeldOutRms(series_after.data, base);
   out.lowers_error = !out.undone.empty() && out.rms_after < out.rms_before;
   if (out.undone.empty())

@@ -23,109 +23,12 @@
 #include "libbead/profile/measure_block.h"
 #include "libbead/sim/rig_simulator.h"
 #include "libbead/series/interpolate.h"
+#include "tests/explain/twin_runs.h"
 
 namespace bead::explain {
 namespace {
 
-// 24 s of PRBS on the extruder; the wheel commanded in steps so that its
-// speed (and so the time from nozzle to laser) changes, which is what lets
-// a position shift be told from a time shift.
-sim::SimConfig Base(uint64_t seed) {
-  sim::SimConfig c;
-  c.seed = seed;
-  c.duration_s = 24.0;
-  c.sensor.points = 160;
-  c.extruder.command.kind = sim::CommandConfig::Kind::kPrbs;
-  c.extruder.command.base_v = 3.2;
-  c.extruder.command.amplitude_v = 0.8;
-  c.extruder.command.bit_time_s = 0.5;
-  c.wheel.mode = sim::WheelConfig::Mode::kCommanded;
-  c.wheel.cmd_levels_v = {6.0, 4.5, 7.5};
-  c.wheel.cmd_durations_s = {8.0, 8.0, 8.0};
-  return c;
-}
-
-struct Pipeline {
-  sim::SimulatedRun sim;
-  std::vector<BeadGeometry> geometry;
-  FlowResult flow;
-};
-
-std::unique_ptr<Pipeline> RunPipeline(const sim::SimConfig& c) {
-  auto p = std::make_unique<Pipeline>();
-  p->sim = sim::Simulate(c);
-  GeometryAndFlow m = MeasureFlow(p->sim.rig_file, p->sim.run.profiles, *p->sim.run.log);
-  p->geometry = std::move(m.geometry);
-  p->flow = std::move(m.flow);
-  return p;
-}
-
-// The calibration run's model (with its operating point), identified once.
-const model::IdentifiedModel& CalibrationModel() {
-  static const model::IdentifiedModel model = [] {
-    const auto p = RunPipeline(Base(900));
-    std::vector<double> t, u, y;
-    for (const auto& s : p->flow.samples)
-      if (s.valid) t.push_back(s.t_s), u.push_back(s.screw_rpm), y.push_back(s.flow_mm3_s);
-    model::IdentifyOptions o;
-    o.poles = 2;
-    o.zeros = 2;
-    const auto m = model::IdentifyTransferFunction(t, u, y, o);
-    EXPECT_TRUE(m.ok) << m.reason;
-    return m;
-  }();
-  return model;
-}
-
-struct Outcome {
-  std::unique_ptr<Pipeline> run;
-  RunSeries series;
-  ExplainReport report;
-};
-
-Outcome ExplainRun(const sim::SimConfig& c) {
-  Outcome o;
-  o.run = RunPipeline(c);
-  const Rig& rig = o.run->sim.rig_file;
-  o.series = MakeRunSeries(rig, o.run->sim.run.profiles, o.run->geometry, *o.run->sim.run.log, o.run->flow,
-                           CalibrationModel().tf, CalibrationModel().offset);
-  ExplainOptions options;
-  options.catalogue.has_wheel = true;
-  options.catalogue.position_range_counts = rig.encoder.counts_per_rev / 20.0;
-  o.report = Explain(o.series.data, options);
-  return o;
-}
-
-const AddedEffect* Find(const ExplainReport& r, const std::string& name) {
-  for (const auto& e : r.effects_added)
-    if (e.name == name) return &e;
-  return nullptr;
-}
-
-double Param(const AddedEffect& e, const std::string& name, double* ci) {
-  for (const auto& p : e.parameters)
-    if (p.name == name) {
-      *ci = p.ci95;
-      return p.value;
-    }
-  ADD_FAILURE() << "no parameter " << name;
-  return NAN;
-}
-
-std::string Names(const ExplainReport& r) {
-  std::string s = "added:";
-  for (const auto& e : r.effects_added) {
-    s += " " + e.name + " [";
-    for (const auto& p : e.parameters)
-      s += p.name + "=" + std::to_string(p.value) + "+-" + std::to_string(p.ci95) + " ";
-    s += "rms " + std::to_string(e.rms_before) + " -> " + std::to_string(e.rms_after) + "]";
-  }
-  s += "; tried (round, name, BIC drop, held-out F):";
-  for (const auto& c : r.candidates)
-    s += " (" + std::to_string(c.round) + " " + c.name + " " + std::to_string(c.bic_drop) + " " +
-         std::to_string(c.heldout_f) + " " + std::to_string(c.surrogate_f) + ")";
-  return s;
-}
+using namespace twin;
 
 TEST(ExplainRun, CleanRunGetsNothingAndItsOffsetIsTheRigFiles) {
   const Outcome o = ExplainRun(Base(11));
@@ -219,15 +122,7 @@ TEST(ExplainRun, SensorLatencyShowsInTheTimeStampsNotInTheFlow) {
 namespace bead::explain {
 namespace {
 
-// The same runs cut from a longer session (warm_start: the extruder and
-// the wheel already running, in steady state at the command's base
-// level), analysed with the calibration run's model.
-sim::SimConfig Warm(uint64_t seed) {
-  sim::SimConfig c = Base(seed);
-  c.warm_start = true;
-  c.extruder.command.start_s = 0.0;
-  return c;
-}
+using namespace twin;
 
 TEST(ExplainWarmRun, CleanRunGetsNothing) {
   const Outcome o = ExplainRun(Warm(21));
@@ -238,110 +133,6 @@ TEST(ExplainWarmRun, CleanRunGetsNothing) {
   EXPECT_TRUE(std::isfinite(o.report.shift_profile.lo) && std::isfinite(o.report.shift_profile.hi));
   EXPECT_LE(o.report.shift_profile.lo, 0.0);
   EXPECT_GE(o.report.shift_profile.hi, 0.0);
-}
-
-// A stale offset in the rig file, on a warm run: found, the run's offset
-// within its finite interval of the truth, and the corrected flow (the
-// offset re-aligned) closer to the twin's true flow than the flow the rig
-// file gave.
-TEST(ExplainWarmRun, FindsAStaleOffsetAndItsCorrectedFlowIsCloserToTheTruth) {
-  sim::SimConfig c = Warm(22);
-  c.effects.rig_offset_error_counts = 400.0;
-  const Outcome o = ExplainRun(c);
-  ASSERT_TRUE(o.report.position_shift_estimated);
-  const Rig& rig = o.run->sim.rig_file;
-  const double true_offset = o.run->sim.truth.offset_counts;
-  const ShiftProfile& p = o.report.shift_profile;
-  EXPECT_FALSE(p.lo_at_edge || p.hi_at_edge);
-  EXPECT_LE(rig.offset_counts + p.lo, true_offset);
-  EXPECT_GE(rig.offset_counts + p.hi, true_offset);
-  EXPECT_LT(p.hi, 0.0) << "the rig file's offset must lie outside the run's interval";
-  const CorrectedFlow cf = CorrectFlow(rig, o.run->sim.run.profiles, o.run->geometry, *o.run->sim.run.log, {}, {},
-                                       o.report, CalibrationModel().tf, CalibrationModel().offset);
-  // Against the truth (the flow laid, at each sample's extrusion time).
-  const auto& truth = o.run->sim.truth.flow;
-  auto rms = [&](const FlowResult& f) {
-    double s = 0;
-    int n = 0;
-    for (const auto& x : f.samples)
-      if (x.valid && std::isfinite(x.t_s) && std::isfinite(x.flow_mm3_s)) {
-        const double q = InterpolateLinear(truth.t_s, truth.flow_mm3_s, x.t_s);
-        s += (x.flow_mm3_s - q) * (x.flow_mm3_s - q), ++n;
-      }
-    return std::sqrt(s / n);
-  };
-  const double before = rms(o.run->flow), after = rms(cf.flow);
-  std::printf(
-      "warm, stale offset: interval %.1f..%.1f (true %.1f); flow RMS against the truth %.1f -> %.1f mm^3/s; "
-      "against the model %.1f -> %.1f\n",
-      rig.offset_counts + p.lo, rig.offset_counts + p.hi, true_offset, before, after, cf.rms_before, cf.rms_after);
-  EXPECT_LT(after, before);
-  EXPECT_LT(cf.rms_after, cf.rms_before);
-}
-
-// The dwell-time shrink: 10 % with a time constant of 1.2 s, the
-// wheel stepped +-25 % on its own, a minute at 128 points, on three seeds.
-// Its constant part is a gain the run cannot tell from the base model's,
-// so the corrected flow undoes only its change with the time to the laser:
-// where it is written, it must lie closer to the truth than the
-// uncorrected flow once each takes its best constant gain, and what it
-// undoes must not reach the constant (the mean moves by less than the
-// shrink's spread over the run). The shrink is found on two of the three
-// (on the third it fails the held-out test and nothing is added); at
-// least one must find it.
-struct AgainstTruth {
-  double gain, rms_at_gain, mean;
-};
-AgainstTruth Against(const FlowResult& f, const sim::FlowTruth& truth) {
-  double qq = 0, qt = 0, sum = 0;
-  std::vector<std::pair<double, double>> pairs;
-  for (const auto& x : f.samples)
-    if (x.valid && std::isfinite(x.t_s) && std::isfinite(x.flow_mm3_s)) {
-      const double t = InterpolateLinear(truth.t_s, truth.flow_mm3_s, x.t_s);
-      pairs.push_back({x.flow_mm3_s, t});
-      qq += x.flow_mm3_s * x.flow_mm3_s, qt += x.flow_mm3_s * t, sum += x.flow_mm3_s;
-    }
-  const double k = qt / qq;
-  double ss = 0;
-  for (const auto& [q, t] : pairs) ss += (k * q - t) * (k * q - t);
-  const auto n = static_cast<double>(pairs.size());
-  return {k, std::sqrt(ss / n), sum / n};
-}
-
-TEST(ExplainWarmRun, ADwellShrinkIsUndoneOnlyInWhatTheRunIdentifies) {
-  int found = 0;
-  for (uint64_t seed : {31, 32, 33}) {
-    sim::SimConfig c = Warm(seed);
-    c.duration_s = 60.0;
-    c.sensor.points = 128;
-    c.wheel.cmd_levels_v = {6.0, 4.5, 7.5, 6.0, 4.5, 7.5};
-    c.wheel.cmd_durations_s = {10.0, 10.0, 10.0, 10.0, 10.0, 10.0};
-    c.effects.shrink_frac = 0.10;
-    c.effects.shrink_tau_s = 1.2;
-    const Outcome o = ExplainRun(c);
-    if (!Find(o.report, "cooling_shrink")) continue;
-    ++found;
-    const Rig& rig = o.run->sim.rig_file;
-    const CorrectedFlow cf = CorrectFlow(rig, o.run->sim.run.profiles, o.run->geometry, *o.run->sim.run.log, {}, {},
-                                         o.report, CalibrationModel().tf, CalibrationModel().offset);
-    if (!cf.lowers_error) continue;  // not written: nothing to hold against the truth
-    const AgainstTruth before = Against(o.run->flow, o.run->sim.truth.flow);
-    const AgainstTruth after = Against(cf.flow, o.run->sim.truth.flow);
-    // The shrink's spread over the run: 10 % times the spread of 1 - exp(-dt / 1.2).
-    double lo = 1, hi = 0;
-    for (double dt : o.series.data.time_to_laser_s) {
-      const double f = 1 - std::exp(-dt / 1.2);
-      lo = std::min(lo, f), hi = std::max(hi, f);
-    }
-    std::printf(
-        "seed %d, dwell shrink: at the best gain (%.4f, %.4f) RMS against the truth %.2f -> %.2f mm^3/s; mean "
-        "%.1f -> %.1f mm^3/s; the shrink spans %.2f %% of the flow\n",
-        static_cast<int>(seed), before.gain, after.gain, before.rms_at_gain, after.rms_at_gain, before.mean, after.mean,
-        100 * 0.10 * (hi - lo));
-    EXPECT_LT(after.rms_at_gain, before.rms_at_gain) << "seed " << seed;
-    EXPECT_LT(std::abs(after.mean - before.mean), 0.10 * (hi - lo) * before.mean) << "seed " << seed;
-  }
-  EXPECT_GE(found, 1);
 }
 
 TEST(ExplainWarmRun, WheelEccentricityIsNeverTakenForAnotherEffect) {
