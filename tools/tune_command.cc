@@ -129,8 +129,18 @@ Run AddTune(CLI::App& app) {
     if (!chosen.fopdt.how.empty())
       std::printf("first order plus delay (%s): k %.5g, tau %.4g s, theta %.4g s\n", chosen.fopdt.how.c_str(),
                   chosen.fopdt.k, chosen.fopdt.tau_s, chosen.fopdt.theta_s);
-    if (!verdict.ok)
-      throw Error(Located(args->model, "", args->method + ": no controller written: " + verdict.Summary()));
+    if (!verdict.ok) {
+      std::string pass;
+      for (const std::string& m : control::Methods()) {
+        if (m == args->method) continue;
+        const control::Design d = design(m);
+        if (d.ok && control::CheckLoop(g, control::Evaluate(g, d), args->need).ok)
+          pass += (pass.empty() ? "" : ", ") + m;
+      }
+      throw Error(Located(args->model, "",
+                          args->method + ": no controller written: " + verdict.Summary() +
+                              (pass.empty() ? "" : " (methods that pass: " + pass + ")")));
+    }
     if (!args->out.empty()) {
       control::WriteControllerFile(args->out, e, g, args->model);
       std::printf("wrote %s\n", args->out.c_str());

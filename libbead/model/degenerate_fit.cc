@@ -88,7 +88,7 @@ void GainSign(const IdentifiedModel& m, const std::vector<double>& t, const std:
   for (std::size_t i = 1; i < n; ++i) r1 += r[i] * r[i - 1];
   const double rho = std::clamp(rr > 0 ? r1 / rr : 0.0, 0.0, 0.999);
   const double n_eff = std::max(3.0, static_cast<double>(n) * (1 - rho) / (1 + rho));
-  const double se = std::sqrt(rr / (n_eff - 2) / sxx * static_cast<double>(n) / n_eff);
+  const double se = std::sqrt(rr / static_cast<double>(n - 2) / sxx * static_cast<double>(n) / n_eff);
   const double gain = m.tf.DcGain();
   if (std::abs(slope) > 4 * se && slope * gain < 0)
     d.findings.push_back(

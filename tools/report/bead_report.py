@@ -148,15 +148,27 @@ def spectrum_figure(spectrum, unexplained, effects):
             if keep.any():
                 lo = min(lo, f[keep].min())
                 ax.loglog(f[keep], p[keep], lw=0.7, color=colour, label="residual " + key)
-    marks = [(u.get("frequency_hz"), "%s (unexplained)" % u.get("tracks", "")) for u in unexplained]
-    for e in effects:
-        f = (e.get("frequency_hz") if isinstance(e, dict) else None)
-        if f:
-            marks.append((f, "%s (added)" % e.get("name", "")))
-    for k, (f, label) in enumerate(m for m in marks if isinstance(m[0], (int, float)) and m[0] > 0):
-        ax.axvline(f, color="#d62728", lw=0.6, ls="--")
-        ax.text(f, 0.97 - 0.12 * (k % 4), " %.3g Hz: %s" % (f, label), fontsize=6.5, va="top", color="#d62728",
-                transform=ax.get_xaxis_transform())
+    # The unexplained peaks by what they track; the residual's peaks before
+    # that are not among them were taken by the effects added.
+    def short(tracks):
+        return "unexplained" if tracks.startswith("frequency") else tracks + ", unexplained"
+
+    marks = [(u.get("frequency_hz"), short(u.get("tracks", "")), "#d62728")
+             for u in unexplained if isinstance(u.get("frequency_hz"), (int, float))]
+    names = ", ".join(e.get("name", "") for e in effects)
+    after = [p.get("frequency_hz") for p in (spectrum.get("after") or {}).get("peaks", []) if isinstance(p, dict)]
+
+    def near(f, others):
+        return any(isinstance(g, (int, float)) and abs(f - g) <= 0.02 * f for g in others)
+
+    for peak in (spectrum.get("before") or {}).get("peaks", []):
+        f = peak.get("frequency_hz") if isinstance(peak, dict) else None
+        if names and isinstance(f, (int, float)) and f > 0 and not near(f, [m[0] for m in marks] + after):
+            marks.append((f, "taken by " + names, "#2ca02c"))
+    for k, (f, label, colour) in enumerate(sorted(marks)):
+        ax.axvline(f, color=colour, lw=0.6, ls="--")
+        ax.text(f, 0.98 if k % 2 == 0 else 0.62, "%.3g Hz %s" % (f, label), rotation=90, fontsize=6, va="top",
+                ha="right", color=colour, transform=ax.get_xaxis_transform())
     if math.isfinite(lo):
         ax.set_xlim(left=lo)
     ax.set_xlabel("frequency, Hz (log)")
@@ -176,21 +188,27 @@ def compare_figure(compare, explain):
     ax.plot(t, np.array(compare["model_after"], dtype=float), "-", lw=0.9, color="#1f77b4",
             label="model with the effects: fit %.2f %%" % explain.get("fit_after_pct", math.nan))
     ax.set_xlabel("time, s")
-    ax.set_ylabel(compare.get("unit", "output"))
+    unit = compare.get("unit", "")
+    ax.set_ylabel("flow, mm³/s" if unit == "mm3_s" else (unit or "output"))
     ax.legend(fontsize=7, loc="lower right")
     return png(fig)
 
 
 def resid_figure(diagnostics):
     """MATLAB's resid: the residual's autocorrelation and its cross-
-    correlation with the input, before and after, with their 99 % bounds."""
+    correlation with the input, before and after, with their 99 % bounds
+    (2.58 / sqrt(N))."""
     fig, axes = plt.subplots(1, 2, figsize=(10, 3.0))
     for ax, key, title in ((axes[0], "whiteness", "autocorrelation of the residual"),
                            (axes[1], "input_correlation", "cross-correlation with the input")):
         for when, colour in (("before", "#7f7f7f"), ("after", "#1f77b4")):
             d = diagnostics.get("%s_%s" % (key, when)) or {}
-            lags, values = d.get("lags") or [], d.get("acf" if key == "whiteness" else "ccf") or []
-            if lags and len(lags) == len(values):
+            values = d.get("acf" if key == "whiteness" else "ccf") or []
+            m = d.get("lags") if isinstance(d.get("lags"), int) else 0
+            # acf: lags 1..M; ccf: lags -M..M (explain.md)
+            lags = list(range(1, m + 1)) if key == "whiteness" else list(range(-m, m + 1))
+            values = [math.nan if v is None else v for v in values]
+            if m > 0 and len(lags) == len(values):
                 ax.plot(lags, values, ".-", ms=3, lw=0.6, color=colour, label=when)
                 b = d.get("bound")
                 if isinstance(b, (int, float)) and math.isfinite(b):
