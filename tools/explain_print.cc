@@ -93,7 +93,13 @@ void PrintRun(const explain::RunExplanation& e, const Rig& rig, const std::strin
   std::printf("%s: %zu samples of flow in extrusion time\n", path.c_str(), e.series.data.size());
   PrintReport(e.report, "mm^3/s");
   const explain::OffsetFromRun& o = e.offset;
-  if (!o.pinned)
+  if (!o.pinned && e.report.shift_profile.inseparable)
+    std::printf(
+        "encoder offset from the run: NOT pinned by this run: it trades with the delay (correlation %.3f), so "
+        "the wheel's speed changes too little to tell a position error from a time error, and where the error "
+        "is least (%.1f counts) is the model's misfit, not the offset; rig file: %.1f counts\n",
+        o.delay_correlation, o.counts, rig.offset_counts);
+  else if (!o.pinned)
     std::printf(
         "encoder offset from the run: NOT pinned by this run: its 95 %% interval %.1f to %.1f counts reaches "
         "the searched range (lowest error at %.1f; the wheel's speed changes too little to tell a position "

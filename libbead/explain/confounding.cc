@@ -74,6 +74,10 @@ void SayAlternative(const SeriesData& d, const Active& kept, const Active& alt, 
 
 namespace {
 
+// Above this |correlation| of the offset with the delay the run cannot
+// tell them apart (the variance inflation 1 / (1 - r^2) exceeds 10).
+constexpr double kInseparable = 0.95;
+
 // The split-half check: the profile's best on the first and on the second
 // half of the rows. Each half's best scatters sqrt(2) times the whole's
 // standard deviation (sd, from the interval), their difference 2 sd; two
@@ -140,15 +144,26 @@ void EstimateShift(const SeriesData& d, const EffectSet& current, const Effect& 
       p.hi = std::min(grid.back(), p.best + 1.96 * sd), p.hi_at_edge |= p.hi >= grid.back();
   }
   if (!(p.lo_at_edge || p.hi_at_edge)) CheckHalves(d, current, shift, rows, p);
+  for (std::size_t e = 0; e + 1 < joint.size(); ++e)
+    if (joint[e].effect.kind == Effect::Kind::kDelay)
+      report.shift_delay_correlation = jc.Correlation(joint.size() - 1, 0, e, 0);
+  // Inseparable from the delay: with |correlation| above kInseparable the
+  // offset keeps under a tenth of its information once the delay is free
+  // (1 - r^2 < 0.1); what is left is of the order of the base model's own
+  // misfit, which no interval from this run bounds (the twin's 120-s run at
+  // a steady wheel: r = -0.990 and an interval of +-7 counts 36 counts from
+  // the truth). Not pinned: the pins, or a run whose wheel changes speed,
+  // pin it.
+  if (std::abs(report.shift_delay_correlation) > kInseparable) {
+    p.lo = grid.front(), p.hi = grid.back(), p.lo_at_edge = p.hi_at_edge = true;
+    p.inseparable = true;
+  }
 
   report.position_shift_estimated = true;
   report.position_shift_counts = p.best;
   // Half-width, the larger side; unbounded where the interval reaches the
   // searched range (the run does not pin the offset).
   report.position_shift_ci95_counts = p.lo_at_edge || p.hi_at_edge ? kInf : std::max(p.hi - p.best, p.best - p.lo);
-  for (std::size_t e = 0; e + 1 < joint.size(); ++e)
-    if (joint[e].effect.kind == Effect::Kind::kDelay)
-      report.shift_delay_correlation = jc.Correlation(joint.size() - 1, 0, e, 0);
   if (p.halves_disagree) {
     char note[400];
     std::snprintf(note, sizeof note,

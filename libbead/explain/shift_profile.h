@@ -32,6 +32,9 @@ struct ShiftProfile {
   // the run, and whether they differ by more than the interval allows.
   double first_half = NAN, second_half = NAN;
   bool halves_disagree = false;
+  // The offset trades with the delay beyond what the run can separate
+  // (confounding.h): not pinned whatever the profile's curvature.
+  bool inseparable = false;
 };
 
 // The profile: SSE at every grid shift, the best (refined between grid

@@ -179,10 +179,10 @@ void Coverage(Covered& n) {
     const double gain = set.back().params[2], gain_ci = 1.96 * cov.sd.back()[2];
     n.gain.Add(gain - truth_gain, gain_ci);
     std::printf(
-        "seed %2d: delay %+.4f +- %.4f s, offset shift %+.1f [%+.1f, %+.1f] (truth %+.1f), channel gain %.5f +- "
-        "%.5f per C (truth %.5f)\n",
-        seed, delay->parameters[0].value, delay->parameters[0].ci95, p.best, p.lo, p.hi, truth_shift, gain, gain_ci,
-        truth_gain);
+        "seed %2d: delay %+.4f +- %.4f s, offset shift %+.1f [%+.1f, %+.1f] (truth %+.1f, r with the delay %.3f), "
+        "channel gain %.5f +- %.5f per C (truth %.5f)\n",
+        seed, delay->parameters[0].value, delay->parameters[0].ci95, p.best, p.lo, p.hi, truth_shift,
+        r.shift_delay_correlation, gain, gain_ci, truth_gain);
   }
 }
 void ExpectCoverage(const char* name, const Kind& kind) {
