@@ -110,7 +110,13 @@ Run AddBatch(CLI::App& app) {
                   runs.size(), s.failed);
       return 0;
     }
-    const Shard shard = ResolveShard(args->shard);
+    Shard shard;
+    try {
+      shard = ResolveShard(args->shard);
+    } catch (const Error& e) {
+      if (args->shard.empty()) throw;
+      throw CLI::ValidationError("--shard", e.what());  // a usage error: exit 2
+    }
     std::printf("batch: %zu of %zu runs (shard %zu/%zu: %s) into %s\n", ShardRuns(runs, shard).size(), runs.size(),
                 shard.index + 1, shard.count, shard.source.c_str(), options.out.c_str());
     std::fflush(stdout);

@@ -32,7 +32,7 @@ void PrintHelp() {
       "  bead export --rig /tmp/run/rig.yaml /tmp/run/run.h5 -o run.ply (a point cloud)\n"
       "  bead frames --plane plane.yaml --rate-hz 200 frames/*.png -o run.h5 (camera frames)\n"
       "  bead report --rig /tmp/run/rig.yaml /tmp/run/run.h5 --pins /tmp/run/pins.h5 -o report.html\n"
-      "Run 'bead SUBCOMMAND --help' for each subcommand's inputs and outputs.\n");
+      "Run 'bead SUBCOMMAND --help' for each subcommand's inputs and outputs; 'bead --version' for the version.\n");
 }
 
 }  // namespace
@@ -41,6 +41,10 @@ int main(int argc, char** argv) {
   if (argc < 2 || std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0) {
     PrintHelp();
     return argc < 2 ? 2 : 0;
+  }
+  if (std::strcmp(argv[1], "--version") == 0) {
+    std::printf("bead %s\n", BEAD_VERSION);
+    return 0;
   }
   const char* name = argv[1];
   if (*bead::tools::Summary(name) == '\0') {

@@ -3,6 +3,7 @@
 // time when they earn it, and the error before and after.
 #include <memory>
 
+#include "libbead/io/atomic_file.h"
 #include "tools/commands.h"
 #include "tools/explain_modes.h"
 #include "tools/occlusion_step.h"
@@ -92,7 +93,11 @@ Run AddExplain(CLI::App& app) {
   cmd->add_option("--max-effects", args->max_effects, "At most this many effects")->capture_default_str();
   cmd->add_option("-o,--out", args->out, "explain.json to write (atomically)")->required();
   AddOcclusionOption(cmd, args->occlusion);
-  return [args]() { return args->rig.empty() ? ExplainSeriesMode(*args) : ExplainRunMode(*args); };
+  return [args]() {
+    CheckWritable(args->out);  // before the run is measured
+    if (!args->flow_out.empty()) CheckWritable(args->flow_out);
+    return args->rig.empty() ? ExplainSeriesMode(*args) : ExplainRunMode(*args);
+  };
 }
 
 }  // namespace bead::tools

@@ -239,11 +239,22 @@ void ProbeProfileRows(const h5::File& f, const std::string& path) {
   }
 }
 
+// A run archive holds /profiles; the other archives libbead reads are said
+// by name when given in its place.
+void CheckIsRunArchive(const h5::File& f, const std::string& path) {
+  if (f.Exists("/profiles")) return;
+  if (f.Exists("/scans"))
+    throw Error(Located(path, "",
+                        "is a pin-scan archive (it holds /scans): this command takes a run archive "
+                        "(/profiles and /log; bead simulate's run.h5)"));
+}
+
 // What a reader of the archive touches in libhdf5: every profile dataset's
 // header and rows (ProbeProfileRows), and the log with its channels.
 void ProbeRunArchive(const std::string& path, bool with_log) {
   {
     const h5::File f = h5::File::OpenRead(path);
+    CheckIsRunArchive(f, path);
     ProbeProfileRows(f, path);
   }
   ReadRunArchiveDirect(path, false, with_log);
@@ -292,7 +303,13 @@ namespace {
 
 PinScanArchive ReadPinScanArchiveDirect(const std::string& path) {
   const h5::File f = h5::File::OpenRead(path);
-  if (!f.Exists("/scans")) throw Error(Located(path, "/scans", "missing group (is this a run archive?)"));
+  if (!f.Exists("/scans")) {
+    if (f.Exists("/profiles"))
+      throw Error(Located(path, "",
+                          "is a run archive (it holds /profiles): this takes a pin-scan archive (/scans; "
+                          "bead simulate's pins.h5)"));
+    throw Error(Located(path, "/scans", "missing group: not a pin-scan archive"));
+  }
   PinScanArchive pins;
   const std::vector<std::string> names = f.Members("/scans");
   std::vector<std::pair<long, std::string>> numbered;

@@ -67,11 +67,11 @@ TEST(CommandErrors, EachCommandNamesTheFileAndThePlace) {
       {"frames --plane {}/good_plane.yaml --rate-hz 10 {}/frame.png -o {}/f.h5",
        {"frame.png: not an image OpenCV can read"}},
       {"simulate {}/sim.yaml -o {}/simout", {"sim.yaml: line 1: seed: must be a number"}},
-      {"calibrate offset --rig {}/run/rig.yaml {}/run/run.h5", {"run.h5: /scans: missing group"}},
+      {"calibrate offset --rig {}/run/rig.yaml {}/run/run.h5",
+       {"run.h5: is a run archive (it holds /profiles): this takes a pin-scan archive"}},
       {"flow --rig {}/rig.yaml {}/run/run.h5 -o {}/flow.csv", {"rig.yaml", "counts_per_rev"}},
       {"measure --rig {}/run/rig.yaml {}/good.csv -o {}/g.csv", {"good.csv"}},
       {"batch --manifest {}/manifest.csv -o {}/out", {"manifest.csv: line 1", "rig"}},
-      {"batch --shard 3/2 --rig {}/run/rig.yaml -o {}/out {}/run/run.h5", {"--shard '3/2': K must be from 1 to N"}},
   };
   for (const Case& k : cases) {
     const auto [status, out] = test::RunCli(dir, Fill(k.args, dir / ""));
@@ -102,6 +102,20 @@ TEST(CommandLine, BeadListsEverySubcommandAndNamesAWrongOne) {
 // `bead measure`, `bead flow` and `bead batch` start without loading what
 // they do not use: no OpenCV (about 100 shared libraries), and no Ceres
 // (glog, SuiteSparse, BLAS: about 20), whose fit they load when it runs.
+// `bead --version` prints the version; a --shard that names no shard is a
+// usage error (exit 2), as the README says usage errors are.
+TEST(CommandLine, VersionAndAShardOutOfRange) {
+  test::TempDir dir;
+  auto [status, out] = test::RunCli(dir, "--version");
+  EXPECT_EQ(status, 0) << out;
+  EXPECT_EQ(out, std::string("bead ") + BEAD_VERSION + "\n");
+  test::WriteText(dir / "rig.yaml", test::kCliRigYaml);
+  std::tie(status, out) = test::RunCli(
+      dir, "batch --rig " + (dir / "rig.yaml") + " -o " + (dir / "out") + " --shard 3/2 " + (dir / "rig.yaml"));
+  EXPECT_EQ(status, 2) << out;
+  EXPECT_NE(out.find("--shard '3/2': K must be from 1 to N"), std::string::npos) << out;
+}
+
 TEST(CommandLine, MeasureFlowAndBatchLoadNoOpenCvNorCeres) {
   test::TempDir dir;
   for (const char* sub : {"measure", "flow", "batch"}) {

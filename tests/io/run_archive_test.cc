@@ -126,13 +126,25 @@ TEST(PinScanArchive, RoundTrips) {
   ASSERT_EQ(back.scans.size(), 3u);
   EXPECT_EQ(back.scans[2].start_encoder, 1026);
   EXPECT_EQ(back.scans[1].profiles.t_s, pins.scans[1].profiles.t_s);
-  // A run archive is not a pin-scan archive, and says so.
+  // A run archive is not a pin-scan archive, and says so; nor the reverse.
   WriteRunArchive(dir / "run.h5", SmallRun(true));
   try {
     ReadPinScanArchive(dir / "run.h5");
     ADD_FAILURE();
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("/scans: missing group"), std::string::npos) << e.what();
+    EXPECT_NE(
+        std::string(e.what()).find("run.h5: is a run archive (it holds /profiles): this takes a pin-scan archive"),
+        std::string::npos)
+        << e.what();
+  }
+  try {
+    ReadRunArchive(dir / "pins.h5");
+    ADD_FAILURE();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("pins.h5: is a pin-scan archive (it holds /scans): this command takes a run "
+                                         "archive"),
+              std::string::npos)
+        << e.what();
   }
 }
 
