@@ -95,9 +95,10 @@ void PrintRun(const explain::RunExplanation& e, const Rig& rig, const std::strin
   const explain::OffsetFromRun& o = e.offset;
   if (!o.pinned && e.report.shift_profile.inseparable)
     std::printf(
-        "encoder offset from the run: NOT pinned by this run: it trades with the delay (correlation %.3f), so "
-        "the wheel's speed changes too little to tell a position error from a time error, and where the error "
-        "is least (%.1f counts) is the model's misfit, not the offset; rig file: %.1f counts\n",
+        "encoder offset from the run: NOT pinned by this run: it trades with the delay (correlation %.3f): the "
+        "wheel's speed changes too little, or only in step with the flow, to tell a position error from a time "
+        "error, and where the error is least (%.1f counts) is the model's misfit, not the offset; rig file: %.1f "
+        "counts\n",
         o.delay_correlation, o.counts, rig.offset_counts);
   else if (!o.pinned)
     std::printf(
