@@ -94,12 +94,12 @@ Run AddCalibrateReference(CLI::App* cal) {
         "bead edges over the run: left %.2f mm (median %.2f), right %.2f mm (median %.2f); outermost = the "
         "0.1 %% quantile\n",
         s.bead_left_mm[0], s.bead_left_mm[1], s.bead_right_mm[0], s.bead_right_mm[1]);
+    // To 0.01 mm, rounded away from the bead: printed as written.
+    s.left.area = {std::ceil(s.left.area.x_min_mm * 100.0) / 100.0, std::floor(s.left.area.x_max_mm * 100.0) / 100.0};
+    s.right.area = {std::ceil(s.right.area.x_min_mm * 100.0) / 100.0,
+                    std::floor(s.right.area.x_max_mm * 100.0) / 100.0};
     PrintAreas(s, surveyor, file, args->rig);
     if (!args->output.empty()) {
-      // To 0.01 mm, rounded away from the bead.
-      s.left.area = {std::ceil(s.left.area.x_min_mm * 100.0) / 100.0, std::floor(s.left.area.x_max_mm * 100.0) / 100.0};
-      s.right.area = {std::ceil(s.right.area.x_min_mm * 100.0) / 100.0,
-                      std::floor(s.right.area.x_max_mm * 100.0) / 100.0};
       file.rig.reference_left = s.left.area;
       file.rig.reference_right = s.right.area;
       WriteRigFile(args->output, file);

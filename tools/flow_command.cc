@@ -46,7 +46,12 @@ Run AddFlow(CLI::App& app) {
       const std::string sample = std::string(BEAD_SOURCE_DIR) + "/testdata/sample";
       args->rig = sample + "/rig.yaml";
       args->run = sample + "/run.h5";
-      if (args->output.empty()) args->output = "flow.csv";
+      if (args->output.empty()) {
+        args->output = "flow.csv";
+        // The user's own flow.csv is never replaced by the sample's.
+        if (std::filesystem::exists(args->output))
+          throw CLI::ValidationError("-o", "./flow.csv exists: name the output with -o to write the sample's flow");
+      }
       std::printf("no run given: using the bundled sample run %s (written to %s)\n", args->run.c_str(),
                   args->output.c_str());
     }

@@ -96,7 +96,7 @@ Columns ReadMat(const std::string& path, const std::vector<std::string>& names, 
 Columns Read(const std::string& path, const std::vector<std::string>& names, bool first_is_time) {
   if (IsMat(path)) return ReadMat(path, names, first_is_time);
   CsvReader csv(path);
-  const auto header = csv.Header({}, "data CSV with a header row");
+  const auto header = csv.Header({}, "data CSV's");
   auto find = [&](const std::string& name) -> long {
     if (name.empty()) return -1;
     for (std::size_t i = 0; i < header.size(); ++i)

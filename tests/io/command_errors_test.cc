@@ -116,6 +116,18 @@ TEST(CommandLine, VersionAndAShardOutOfRange) {
   EXPECT_NE(out.find("--shard '3/2': K must be from 1 to N"), std::string::npos) << out;
 }
 
+// `bead flow` with nothing given writes the bundled sample's flow to
+// ./flow.csv, but never over a flow.csv the user has there.
+TEST(CommandLine, TheSamplesFlowNeverReplacesTheUsersFlowCsv) {
+  test::TempDir dir;
+  test::WriteText(dir / "flow.csv", "mine\n");
+  const int status = std::system(("cd " + dir.path().string() + " && " + BEAD_CLI + " flow >out.txt 2>&1").c_str());
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 2) << test::ReadText(dir / "out.txt");
+  EXPECT_NE(test::ReadText(dir / "out.txt").find("flow.csv exists"), std::string::npos)
+      << test::ReadText(dir / "out.txt");
+  EXPECT_EQ(test::ReadText(dir / "flow.csv"), "mine\n");
+}
+
 TEST(CommandLine, MeasureFlowAndBatchLoadNoOpenCvNorCeres) {
   test::TempDir dir;
   for (const char* sub : {"measure", "flow", "batch"}) {
