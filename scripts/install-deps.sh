@@ -5,6 +5,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libceres-dev libhdf5-dev libdeflate-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
   libopencv-dev libmatio-dev libpcl-dev libgtest-dev libgmock-dev libbenchmark-dev python3-numpy python3-matplotlib
+  pybind11-dev python3-dev python3-pytest
   clang clang-format libclang-rt-14-dev openmpi-bin
 )
 missing=()
