@@ -131,6 +131,9 @@ py::dict Flow(const std::string& rig_path, const std::string& run_path, const st
 }
 
 }  // namespace
+
+void AddModels(py::module_& m);  // models.cc
+
 }  // namespace bead::python
 
 PYBIND11_MODULE(bead, m) {
@@ -161,4 +164,5 @@ PYBIND11_MODULE(bead, m) {
         "columns as [N] arrays: t_s (extrusion time, s), encoder, surface_speed_mm_s, area_mm2, area_corrected_mm2, "
         "flow_mm3_s, screw_rpm, profile, valid, occlusion_bias_mm2, area_corrected_sigma_mm2, flow_sigma_mm3_s; and "
         "total_volume_mm3.");
+  AddModels(m);
 }

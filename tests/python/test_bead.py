@@ -108,3 +108,31 @@ def test_the_example_runs_on_the_sample():
     assert "volume" in done.stdout and "profiles of" in done.stdout
     g = bead.measure_run(RIG, RUN)
     assert "valid %d;" % g["valid"].sum() in done.stdout
+
+
+def test_simulate_identify_and_tune(tmp_path):
+    config = tmp_path / "sim.yaml"
+    config.write_text("seed: 3\nduration_s: 2\nsensor: {points: 100}\n")
+    out = bead.simulate(str(config), str(tmp_path / "twin"))
+    r = bead.read_run(os.path.join(out, "run.h5"))
+    assert r["z_mm"].shape[1] == 100 and r["log"] is not None
+    # A first-order process (gain 2, 0.5 s) under a random binary input.
+    rng = np.random.default_rng(7)
+    t = np.arange(3000) * 0.01
+    u = np.repeat(rng.choice([-1.0, 1.0], 60), 50)
+    y = np.zeros_like(t)
+    for k in range(1, len(t)):  # exact zero-order hold of 2 / (0.5 s + 1)
+        a = math.exp(-0.01 / 0.5)
+        y[k] = a * y[k - 1] + 2 * (1 - a) * u[k - 1]
+    m = bead.identify(t, u, y + rng.normal(0, 0.01, len(t)), poles=1, zeros=0)
+    assert m["fit_percent"] > 95
+    assert abs(m["num"][-1] / m["den"][-1] - 2) < 0.05
+    assert m["prediction"].shape == t.shape
+    # Seed 004's eq. 14 and its Table I row 4 (kp 10.836, ki 0.7611, kd 21.032).
+    c = bead.tune([1.0033], [174.14596084, 179.28493203, 48.1046, 1.0])
+    assert c["ok"] and abs(c["kp"] - 10.836) < 0.01 * 10.836
+    # Thesis eq. 22 has a direct feedthrough and a delay: refused, with the reason.
+    f = bead.tune([9.175, 149.2, 905.3], [1, 12.84, 47.52], 0.15, method="simc")
+    assert not f["ok"] and any("unstable" in reason for reason in f["reasons"])
+    with pytest.raises(bead.Error, match="direct feedthrough"):
+        bead.tune([9.175, 149.2, 905.3], [1, 12.84, 47.52], 0.15)
