@@ -121,7 +121,9 @@ TEST(TuneCommand, AFeedthroughWithAFilterIsWrittenOnlyWithinItsMargins) {
   const YAML::Node y = YAML::LoadFile(dir / "c.yaml");
   EXPECT_GT(y["stability_degree"].as<double>(), 0);
   EXPECT_LE(y["margins"]["ms"].as<double>(), 5.0);
-  if (y["pid"]["kd"].as<double>() != 0) EXPECT_GT(y["pid"]["derivative_filter_s"].as<double>(), 0);
+  if (y["pid"]["kd"].as<double>() != 0) {
+    EXPECT_GT(y["pid"]["derivative_filter_s"].as<double>(), 0);
+  }
   const control::Pid pid{y["pid"]["kp"].as<double>(), y["pid"]["ki"].as<double>(), y["pid"]["kd"].as<double>(),
                          y["pid"]["derivative_filter_s"].as<double>()};
   // The loop from the file alone: L(inf) = g_inf kp (1 + N) below 1, and

@@ -61,7 +61,9 @@ TEST(ExplainWarmRun, NoFalseOutsideOnRunsOfEveryShape) {
     outside += out.find("OUTSIDE") != std::string::npos || out.find("DISAGREE") != std::string::npos;
     EXPECT_EQ(out.find("OUTSIDE"), std::string::npos) << s.name << "\n" << out;
     EXPECT_EQ(out.find("DISAGREE"), std::string::npos) << s.name << "\n" << out;
-    if (s.steady) EXPECT_NE(out.find("NOT pinned"), std::string::npos) << s.name << "\n" << out;
+    if (s.steady) {
+      EXPECT_NE(out.find("NOT pinned"), std::string::npos) << s.name << "\n" << out;
+    }
   }
   std::printf("false OUTSIDE or DISAGREE: %d of %zu runs\n", outside, std::size(shapes));
 }

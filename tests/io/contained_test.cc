@@ -283,7 +283,9 @@ TEST(Contained, AChunkFarBeyondItsDatasetIsRefused) {
   EXPECT_NE(e.find("/profiles/z_mm: damaged: its chunks declare 201326592 bytes each for a dataset of 6 values"),
             std::string::npos)
       << e;
-  if (kAddressCapped) EXPECT_LT(PeakBytes(), before + (std::size_t{100} << 20));
+  if (kAddressCapped) {
+    EXPECT_LT(PeakBytes(), before + (std::size_t{100} << 20));
+  }
   // The command answers in one line, exit 1, under an address-space cap of
   // 2 GB (where no sanitizer reserves its shadow).
   test::WriteText(dir / "rig.yaml", test::kCliRigYaml);
