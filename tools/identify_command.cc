@@ -134,8 +134,6 @@ void PrintOrderTable(const Series& est, const std::vector<Segment>& on, const Se
                 r.delay_s);
 }
 
-// One input: the model, its fit (and on the validation run), the order
-// table when asked, the model file.
 // The smaller structure's options, as the user would type them.
 std::string StructureFlags(const model::IdentifyOptions& o) {
   if (o.real_poles) return "--structure P" + std::to_string(o.poles) + "D" + (o.zeros > 0 ? "Z" : "");
@@ -168,6 +166,8 @@ nlohmann::json SayDegeneracy(const model::IdentifiedModel& m, const model::Ident
   return out;
 }
 
+// One input: the model, its fit (and on the validation run), the order
+// table when asked, the model file.
 int IdentifyOne(const SeriesNames& names, const model::IdentifyOptions& o, const std::string& validate, bool keep_off,
                 bool orders, const std::string& out) {
   const std::string input = names.inputs[0];

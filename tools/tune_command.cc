@@ -38,16 +38,89 @@ void PrintHeader() {
               "PM_deg", "Ms", "overshoot%", "settle_s", "IAE_step", "IAE_load");
 }
 
+struct TuneArgs {
+  std::string model, method = "max-stability", out;
+  double degree = 0, filter_n = 0;
+  bool compare = false;
+  control::LoopRequirements need;
+};
+
+// The design by `method`, its derivative filtered as asked.
+control::Design DesignFor(const model::TransferFunction& g, const TuneArgs& a, const std::string& method) {
+  const std::optional<double> degree = a.degree > 0 ? std::optional<double>(a.degree) : std::nullopt;
+  control::Design d = control::DesignPid(g, method, method == "max-stability" ? degree : std::nullopt);
+  control::FilterDerivative(g, d, a.filter_n);
+  return d;
+}
+
+// Every method's row, each with the check's verdict under it.
+void PrintComparison(const model::TransferFunction& g, const TuneArgs& a, const control::Design& chosen) {
+  PrintHeader();
+  for (const std::string& m : control::Methods()) {
+    const control::Design d = m == a.method ? chosen : DesignFor(g, a, m);
+    if (!d.ok) {
+      std::printf("%-14s %s\n", m.c_str(), d.reason.c_str());
+      continue;
+    }
+    const control::Evaluated e = control::Evaluate(g, d);
+    PrintRow(e);
+    PrintVerdict(control::CheckLoop(g, e, a.need));
+  }
+}
+
+// The other methods whose loops pass, for a refusal's message.
+std::string MethodsThatPass(const model::TransferFunction& g, const TuneArgs& a) {
+  std::string pass;
+  for (const std::string& m : control::Methods()) {
+    if (m == a.method) continue;
+    const control::Design d = DesignFor(g, a, m);
+    if (d.ok && control::CheckLoop(g, control::Evaluate(g, d), a.need).ok) pass += (pass.empty() ? "" : ", ") + m;
+  }
+  return pass;
+}
+
+int Tune(const TuneArgs& a) {
+  if (!a.out.empty()) CheckWritable(a.out);
+  const model::ModelFile f = model::ReadModelFile(a.model);
+  if (f.tfs.size() != 1)
+    throw Error(Located(a.model, "inputs", "a model of several inputs: tune takes a model of one input"));
+  const model::TransferFunction& g = f.tfs[0];
+  std::printf("%s: %s\n", a.model.c_str(),
+              g.delay_s > 0 ? ("delay " + std::to_string(g.delay_s) + " s").c_str() : "no delay");
+  std::printf("derivative: %s\n", a.filter_n > 0 ? "filtered, Tf = kd / (N kp)" : "ideal (seed 004 eq. 16)");
+  const control::Design chosen = DesignFor(g, a, a.method);
+  if (a.compare) PrintComparison(g, a, chosen);
+  if (!chosen.ok) throw Error(Located(a.model, "", a.method + ": no controller written: " + chosen.reason));
+  const control::Evaluated e = control::Evaluate(g, chosen);
+  const control::LoopVerdict verdict = control::CheckLoop(g, e, a.need);
+  if (!a.compare) {
+    PrintHeader();
+    PrintRow(e);
+    PrintVerdict(verdict);
+  }
+  if (!chosen.note.empty()) std::printf("%s: %s\n", chosen.method.c_str(), chosen.note.c_str());
+  if (!chosen.fopdt.how.empty())
+    std::printf("first order plus delay (%s): k %.5g, tau %.4g s, theta %.4g s\n", chosen.fopdt.how.c_str(),
+                chosen.fopdt.k, chosen.fopdt.tau_s, chosen.fopdt.theta_s);
+  if (!verdict.ok) {
+    const std::string pass = MethodsThatPass(g, a);
+    throw Error(Located(a.model, "",
+                        a.method + ": no controller written: " + verdict.Summary() +
+                            (pass.empty() ? "" : " (methods that pass: " + pass + ")")));
+  }
+  if (!a.out.empty()) {
+    control::WriteControllerFile(a.out, e, g, a.model);
+    std::printf("wrote %s\n", a.out.c_str());
+  }
+  std::printf("kp=%.6g ki=%.6g kd=%.6g stability_degree=%.6g\n", chosen.pid.kp, chosen.pid.ki, chosen.pid.kd,
+              chosen.stability_degree);
+  return 0;
+}
+
 }  // namespace
 
 Run AddTune(CLI::App& app) {
-  struct Args {
-    std::string model, method = "max-stability", out;
-    double degree = 0, filter_n = 0;
-    bool compare = false;
-    control::LoopRequirements need;
-  };
-  auto args = std::make_shared<Args>();
+  auto args = std::make_shared<TuneArgs>();
   CLI::App* cmd = app.add_subcommand("tune", Summary("tune"));
   cmd->footer(
       "In:  a model file of `bead identify -o` (one input: a transfer function or process model, with or\n"
@@ -88,67 +161,7 @@ Run AddTune(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--compare", args->compare, "Every method side by side");
   cmd->add_option("-o,--out", args->out, "Controller YAML to write");
-  return [args]() {
-    if (!args->out.empty()) CheckWritable(args->out);
-    const model::ModelFile f = model::ReadModelFile(args->model);
-    if (f.tfs.size() != 1)
-      throw Error(Located(args->model, "inputs", "a model of several inputs: tune takes a model of one input"));
-    const model::TransferFunction& g = f.tfs[0];
-    const std::optional<double> degree = args->degree > 0 ? std::optional<double>(args->degree) : std::nullopt;
-    auto design = [&](const std::string& method) {
-      control::Design d = control::DesignPid(g, method, method == "max-stability" ? degree : std::nullopt);
-      control::FilterDerivative(g, d, args->filter_n);
-      return d;
-    };
-    std::printf("%s: %s\n", args->model.c_str(),
-                g.delay_s > 0 ? ("delay " + std::to_string(g.delay_s) + " s").c_str() : "no delay");
-    std::printf("derivative: %s\n", args->filter_n > 0 ? "filtered, Tf = kd / (N kp)" : "ideal (seed 004 eq. 16)");
-    const control::Design chosen = design(args->method);
-    if (args->compare) {
-      PrintHeader();
-      for (const std::string& m : control::Methods()) {
-        const control::Design d = m == args->method ? chosen : design(m);
-        if (!d.ok) {
-          std::printf("%-14s %s\n", m.c_str(), d.reason.c_str());
-          continue;
-        }
-        const control::Evaluated e = control::Evaluate(g, d);
-        PrintRow(e);
-        PrintVerdict(control::CheckLoop(g, e, args->need));
-      }
-    }
-    if (!chosen.ok) throw Error(Located(args->model, "", args->method + ": no controller written: " + chosen.reason));
-    const control::Evaluated e = control::Evaluate(g, chosen);
-    const control::LoopVerdict verdict = control::CheckLoop(g, e, args->need);
-    if (!args->compare) {
-      PrintHeader();
-      PrintRow(e);
-      PrintVerdict(verdict);
-    }
-    if (!chosen.note.empty()) std::printf("%s: %s\n", chosen.method.c_str(), chosen.note.c_str());
-    if (!chosen.fopdt.how.empty())
-      std::printf("first order plus delay (%s): k %.5g, tau %.4g s, theta %.4g s\n", chosen.fopdt.how.c_str(),
-                  chosen.fopdt.k, chosen.fopdt.tau_s, chosen.fopdt.theta_s);
-    if (!verdict.ok) {
-      std::string pass;
-      for (const std::string& m : control::Methods()) {
-        if (m == args->method) continue;
-        const control::Design d = design(m);
-        if (d.ok && control::CheckLoop(g, control::Evaluate(g, d), args->need).ok)
-          pass += (pass.empty() ? "" : ", ") + m;
-      }
-      throw Error(Located(args->model, "",
-                          args->method + ": no controller written: " + verdict.Summary() +
-                              (pass.empty() ? "" : " (methods that pass: " + pass + ")")));
-    }
-    if (!args->out.empty()) {
-      control::WriteControllerFile(args->out, e, g, args->model);
-      std::printf("wrote %s\n", args->out.c_str());
-    }
-    std::printf("kp=%.6g ki=%.6g kd=%.6g stability_degree=%.6g\n", chosen.pid.kp, chosen.pid.ki, chosen.pid.kd,
-                chosen.stability_degree);
-    return 0;
-  };
+  return [args]() { return Tune(*args); };
 }
 
 }  // namespace bead::tools
