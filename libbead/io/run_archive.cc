@@ -222,16 +222,15 @@ void ProbeProfileRows(const h5::File& f, const std::string& path) {
     const char* name;
     h5::Kind kind;
     hid_t mem;
-    std::size_t size;
   };
-  for (const Dataset& d : {Dataset{"/profiles/t_s", h5::Kind::kFloat, H5T_NATIVE_DOUBLE, 8},
-                           Dataset{"/profiles/encoder", h5::Kind::kInteger, H5T_NATIVE_INT64, 8},
-                           Dataset{"/profiles/x_mm", h5::Kind::kFloat, H5T_NATIVE_FLOAT, 4},
-                           Dataset{"/profiles/z_mm", h5::Kind::kFloat, H5T_NATIVE_FLOAT, 4}}) {
+  for (const Dataset& d : {Dataset{"/profiles/t_s", h5::Kind::kFloat, H5T_NATIVE_DOUBLE},
+                           Dataset{"/profiles/encoder", h5::Kind::kInteger, H5T_NATIVE_INT64},
+                           Dataset{"/profiles/x_mm", h5::Kind::kFloat, H5T_NATIVE_FLOAT},
+                           Dataset{"/profiles/z_mm", h5::Kind::kFloat, H5T_NATIVE_FLOAT}}) {
     if (!f.Exists(d.name)) continue;
     h5::RowReader rows(f, d.name, {1, 2}, d.kind, d.mem);
     const std::size_t n = rows.rows(), window = std::max<std::size_t>(rows.chunk_rows(), 256);
-    std::vector<uint8_t> buffer(std::min(window, n) * rows.row_length() * d.size);
+    std::vector<uint8_t> buffer(std::min(window, n) * rows.row_length() * H5Tget_size(d.mem));
     for (std::size_t begin = 0; begin < n; begin += window) {
       if (!whole && begin > 0 && begin + window < n) begin = n - std::min(window, n);
       rows.Read(begin, std::min(window, n - begin), buffer.data(), nullptr);

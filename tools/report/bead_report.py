@@ -223,7 +223,7 @@ def resid_figure(diagnostics):
 def offset_rows(explain):
     """The encoder offset from the run beside the rig file's and the pins'."""
     rows = []
-    o, lo, hi = explain.get("offset_from_run_counts"), None, None
+    o = explain.get("offset_from_run_counts")
     prof = explain.get("offset_profile") or {}
     lo, hi = prof.get("ci95_low_counts"), prof.get("ci95_high_counts")
     if isinstance(o, (int, float)):
