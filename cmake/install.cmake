@@ -40,5 +40,32 @@ configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/beadConfig.cmake.in
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/beadConfigVersion.cmake COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/beadConfig.cmake ${PROJECT_BINARY_DIR}/beadConfigVersion.cmake
   DESTINATION ${bead_cmake_dir})
-configure_file(${PROJECT_SOURCE_DIR}/cmake/bead.pc.in ${PROJECT_BINARY_DIR}/bead.pc @ONLY)
-install(FILES ${PROJECT_BINARY_DIR}/bead.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+# bead.pc twice: the installed one finds PREFIX from its own folder; the
+# build tree's (PKG_CONFIG_PATH=BUILD) names the source's header and the
+# build's library.
+configure_file(${PROJECT_SOURCE_DIR}/cmake/bead.pc.in ${PROJECT_BINARY_DIR}/pkgconfig-install/bead.pc @ONLY)
+install(FILES ${PROJECT_BINARY_DIR}/pkgconfig-install/bead.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+configure_file(${PROJECT_SOURCE_DIR}/cmake/bead-build.pc.in ${PROJECT_BINARY_DIR}/bead.pc @ONLY)
+
+# What --help points at, installed: the documents (PREFIX/share/doc/bead),
+# the example configs, the sample run and the README chains' data
+# (PREFIX/share/bead/testdata: `bead flow` with no arguments finds the
+# sample there), a man page per command made from its --help, and bash
+# completion read from --help at completion time.
+set(bead_doc_dir ${CMAKE_INSTALL_DATAROOTDIR}/doc/bead)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/ DESTINATION ${bead_doc_dir})
+install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${bead_doc_dir})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/testdata/configs ${PROJECT_SOURCE_DIR}/testdata/sample
+                  ${PROJECT_SOURCE_DIR}/testdata/step ${PROJECT_SOURCE_DIR}/testdata/plan
+        DESTINATION ${CMAKE_INSTALL_DATADIR}/bead/testdata)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/examples DESTINATION ${bead_doc_dir})
+set(bead_man_dir ${PROJECT_BINARY_DIR}/man1)
+add_custom_command(OUTPUT ${bead_man_dir}/bead.1
+  COMMAND bash ${PROJECT_SOURCE_DIR}/tools/shell/man_pages.sh $<TARGET_FILE:bead> ${PROJECT_VERSION} ${bead_man_dir}
+  DEPENDS bead bead-measure bead-flow bead-batch bead-calibrate bead-simulate bead-import bead-export bead-frames
+          bead-identify bead-explain bead-report bead-tune bead-feedforward ${PROJECT_SOURCE_DIR}/tools/shell/man_pages.sh
+  COMMENT "Man pages from each command's --help")
+add_custom_target(bead_man_pages ALL DEPENDS ${bead_man_dir}/bead.1)
+install(DIRECTORY ${bead_man_dir} DESTINATION ${CMAKE_INSTALL_MANDIR})
+install(FILES ${PROJECT_SOURCE_DIR}/tools/shell/bead.bash DESTINATION ${CMAKE_INSTALL_DATADIR}/bash-completion/completions
+        RENAME bead)

@@ -98,12 +98,21 @@ py::dict Measure(const py::array_t<float, py::array::c_style | py::array::forcec
   return GeometryColumns(g);
 }
 
+// The rig file, its key warnings (a key one edit from a listed one) given
+// to Python's warnings module.
+Rig ReadRigWarning(const std::string& path) {
+  const RigFile file = ReadRigFile(path);
+  for (const std::string& w : file.warnings)
+    if (PyErr_WarnEx(PyExc_UserWarning, w.c_str(), 1) != 0) throw py::error_already_set();
+  return file.rig;
+}
+
 py::dict MeasureRunColumns(const std::string& rig_path, const std::string& run_path, const std::string& occlusion,
                            unsigned threads) {
   std::vector<GeometryRow> rows;
+  const Rig rig = ReadRigWarning(rig_path);
   {
     py::gil_scoped_release free;
-    const Rig rig = ReadRig(rig_path);
     WorkerPool pool(threads);
     OpenedRun opened = OpenRun(run_path, pool, /*with_log=*/false);
     MeasureRunOptions options;
@@ -117,9 +126,9 @@ py::dict MeasureRunColumns(const std::string& rig_path, const std::string& run_p
 py::dict Flow(const std::string& rig_path, const std::string& run_path, const std::string& occlusion,
               unsigned threads) {
   FlowResult flow;
+  const Rig rig = ReadRigWarning(rig_path);
   {
     py::gil_scoped_release free;
-    const Rig rig = ReadRig(rig_path);
     WorkerPool pool(threads);
     RunFlowRequest request;
     request.measure.occlusion = ParseOcclusionMode(occlusion);
@@ -132,7 +141,8 @@ py::dict Flow(const std::string& rig_path, const std::string& run_path, const st
 
 }  // namespace
 
-void AddModels(py::module_& m);  // models.cc
+void AddModels(py::module_& m);   // models.cc
+void AddExplain(py::module_& m);  // explain.cc
 
 }  // namespace bead::python
 
@@ -165,4 +175,5 @@ PYBIND11_MODULE(bead, m) {
         "flow_mm3_s, screw_rpm, profile, valid, occlusion_bias_mm2, area_corrected_sigma_mm2, flow_sigma_mm3_s; and "
         "total_volume_mm3.");
   AddModels(m);
+  AddExplain(m);
 }

@@ -21,7 +21,8 @@ void PrintHelp() {
       "Usage: bead SUBCOMMAND [OPTIONS]\n\nSubcommands:\n");
   for (const auto& s : bead::tools::kSubcommands) std::printf("  %-10s %s\n", s.name, s.summary);
   std::printf(
-      "\nUnits: mm, s, mm^2, mm^3/s, RPM, V. File formats: docs/data-formats.md.\n"
+      "\nUnits: mm, s, mm^2, mm^3/s, RPM, V. File formats: docs/data-formats.md (installed: PREFIX/share/doc/bead;\n"
+      "testdata/: PREFIX/share/bead/testdata; man bead-SUBCOMMAND).\n"
       "Example:\n"
       "  bead simulate testdata/configs/sample.yaml -o /tmp/run\n"
       "  bead measure --rig /tmp/run/rig.yaml /tmp/run/run.h5 -o geometry.csv\n"

@@ -2,6 +2,7 @@
 #include <filesystem>
 
 #include "calibration/pin_offset.h"
+#include "tools/rig_input.h"
 #include "libbead/core/error.h"
 #include "libbead/io/profiles_csv.h"
 #include "libbead/io/rig_yaml.h"
@@ -34,7 +35,7 @@ Run AddCalibrateOffset(CLI::App* cal) {
   cmd->add_option("pins", args->pins, "Pin-scan archive (.h5) or CSV (.csv)")->required()->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", args->output, "Rig file to write with the calibrated offset");
   return [args]() {
-    RigFile rig = ReadRigFile(args->rig);
+    RigFile rig = ReadRigFileSaying(args->rig);
     const std::string ext = std::filesystem::path(args->pins).extension().string();
     const PinScanArchive pins = ext == ".csv" ? ReadPinScansCsv(args->pins) : ReadPinScanArchive(args->pins);
     const calibration::OffsetCalibration cal = calibration::CalibrateOffset(rig.rig, pins);

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "calibration/reference_areas.h"
+#include "tools/rig_input.h"
 #include "libbead/archive/open_run.h"
 #include "libbead/core/error.h"
 #include "libbead/core/worker_pool.h"
@@ -74,7 +75,7 @@ Run AddCalibrateReference(CLI::App* cal) {
       ->capture_default_str()
       ->check(CLI::Range(std::size_t{100}, std::size_t{100000000}));
   return [args]() {
-    RigFile file = ReadRigFile(args->rig, /*areas_required=*/false);
+    RigFile file = ReadRigFileSaying(args->rig, /*areas_required=*/false);
     WorkerPool pool;
     OpenedRun opened = OpenRun(args->run, pool, /*with_log=*/false);
     ProfileStream& stream = *opened.profiles;

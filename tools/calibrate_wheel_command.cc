@@ -2,6 +2,7 @@
 #include <cstdio>
 
 #include "calibration/wheel_runout.h"
+#include "tools/rig_input.h"
 #include "libbead/archive/measured_run.h"
 #include "libbead/archive/open_run.h"
 #include "libbead/core/error.h"
@@ -38,7 +39,7 @@ Run AddCalibrateWheel(CLI::App* cal) {
   cmd->add_option("run", args->run, "Run archive (.h5)")->required()->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", args->output, "Rig file to write with the wheel's eccentricity");
   return [args]() {
-    RigFile file = ReadRigFile(args->rig);
+    RigFile file = ReadRigFileSaying(args->rig);
     Rig rig = file.rig;
     WorkerPool pool;
     OpenedRun opened = OpenRun(args->run, pool);

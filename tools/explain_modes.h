@@ -21,7 +21,8 @@ struct ExplainArgs {
   std::string rig, data, model, out, output, time, input_file, input_time, validate, validate_input_file, pins,
       flow_out, structure = "tf", occlusion = "pooled";
   std::vector<std::string> inputs;
-  int poles = 2, zeros = 2;
+  // The identified model's order: the one default, identify's (model/identify.h).
+  int poles = model::IdentifyOptions{}.poles, zeros = model::IdentifyOptions{}.zeros;
   double max_delay_s = 1.0, alpha = 0.01;
   int max_effects = 5;
   std::size_t profiles_per_sample = 0;

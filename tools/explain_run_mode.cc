@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "calibration/pin_offset.h"
+#include "tools/rig_input.h"
 #include "libbead/archive/run_flow.h"
 #include "libbead/core/error.h"
 #include "libbead/explain/explain_json.h"
@@ -16,6 +17,7 @@
 #include "libbead/occlusion/occlusion_fit.h"
 #include "tools/explain_modes.h"
 #include "tools/occlusion_step.h"
+#include "tools/tty_progress.h"
 
 namespace bead::tools {
 
@@ -25,7 +27,7 @@ int ExplainRunMode(const ExplainArgs& a) {
   // A model file that cannot serve is said before the run is measured.
   if (!a.model.empty() && model::ReadModelFile(a.model).tfs.size() != 1)
     throw Error(Located(a.model, "inputs", "run mode takes a model of flow from the screw speed alone (one input)"));
-  const Rig rig = ReadRig(args->rig);
+  const Rig rig = ReadRigSaying(args->rig);
   // A run measured and its flow in extrusion time, kept in memory.
   struct Measured {
     RunFlow run;
@@ -35,6 +37,7 @@ int ExplainRunMode(const ExplainArgs& a) {
   RunFlowRequest request;
   request.measure.occlusion = ParseOcclusionMode(args->occlusion);
   request.measure.estimate = occlusion::EstimateOcclusion;
+  request.measure.progress = TtyProgress("measured");
   request.keep = true;
   request.needs = "explain";
   auto measure = [&](const std::string& path) {

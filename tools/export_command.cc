@@ -1,26 +1,74 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "tools/rig_input.h"
 #include "libbead/archive/open_run.h"
 #include "libbead/archive/wheel_cloud_builder.h"
 #include "libbead/core/error.h"
 #include "libbead/core/worker_pool.h"
+#include "libbead/io/atomic_file.h"
 #include "libbead/io/point_cloud.h"
+#include "libbead/io/profiles_csv.h"
 #include "libbead/io/rig_yaml.h"
 #include "tools/commands.h"
 #include "tools/subcommands.h"
 
 namespace bead::tools {
+namespace {
+
+// Every n-th profile of a block (n = 1: the block).
+ProfileBlock EveryNth(ProfileBlock all, std::size_t n) {
+  if (n <= 1) return all;
+  ProfileBlock kept;
+  kept.points = all.points;
+  kept.shared_x = all.shared_x;
+  if (all.shared_x) kept.x_mm = all.x_mm;
+  for (std::size_t i = 0; i < all.size(); i += n) {
+    kept.t_s.push_back(all.t_s[i]);
+    kept.encoder.push_back(all.encoder[i]);
+    const auto row = [&](const std::vector<float>& v) { return v.begin() + static_cast<long>(i * all.points); };
+    kept.z_mm.insert(kept.z_mm.end(), row(all.z_mm), row(all.z_mm) + static_cast<long>(all.points));
+    if (!all.shared_x) kept.x_mm.insert(kept.x_mm.end(), row(all.x_mm), row(all.x_mm) + static_cast<long>(all.points));
+  }
+  return kept;
+}
+
+// The profiles CSV long form of docs/data-formats.md: the sensor's own
+// points, what the C and Python examples read.
+void ExportProfilesCsv(const std::string& run, const std::string& output, std::size_t every) {
+  WorkerPool pool;
+  OpenedRun opened = OpenRun(run, pool, /*with_log=*/false);
+  ProfileBlock profiles;
+  opened.profiles->Read(0, opened.profiles->size(), profiles);
+  const ProfileBlock kept = EveryNth(std::move(profiles), every);
+  WriteProfilesCsv(output, kept);
+  std::printf("%s: %zu profiles of %zu points each; wrote %s\n", run.c_str(), kept.size(), kept.points, output.c_str());
+}
+
+// The acquisition log CSV of docs/data-formats.md (t_s,encoder,screw_rpm
+// and the two commands when recorded): for bead identify's voltage -> RPM.
+void ExportLogCsv(const std::string& run, const std::string& output) {
+  WorkerPool pool;
+  const OpenedRun opened = OpenRun(run, pool, /*with_log=*/true);
+  if (!opened.archive || !opened.run.log || opened.run.log->size() == 0)
+    throw Error(Located(run, "/log", "holds no acquisition log to export"));
+  WriteLogCsv(output, *opened.run.log);
+  std::printf("%s: %zu log samples%s; wrote %s\n", run.c_str(), opened.run.log->size(),
+              opened.run.log->extruder_cmd_v.empty() ? "" : " with the extruder and wheel commands", output.c_str());
+}
+
+}  // namespace
 
 Run AddExport(CLI::App& app) {
   struct Args {
     std::string rig, run, output;
     WheelCloudOptions options;
+    bool log = false;
   };
   auto args = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand("export", Summary("export"));
   cmd->footer(
-      "In:  RIG.yaml and RUN.h5 (or a profiles CSV).\n"
+      "In:  RIG.yaml and RUN.h5 (or a profiles CSV); a profiles CSV out needs RUN.h5 alone.\n"
       "Out: the run as one point cloud in wheel coordinates, for CloudCompare, pcl_viewer, MeshLab:\n"
       "       x  across the bead, mm (the sensor's x, so the rig's reference areas still hold)\n"
       "       y  s along the wheel's surface from the first profile, mm (the unwrapped encoder,\n"
@@ -33,22 +81,41 @@ Run AddExport(CLI::App& app) {
       "     .pcd: binary compressed PCD. Written atomically. Profiles without a reference line\n"
       "     (too few points in an area) are left out and counted. The cloud is built in memory\n"
       "     (about 70 bytes a point): --every thins a long run.\n"
+      "     .csv: the profiles CSV (profile,t_s,encoder,x_mm,z_mm, one row per point, the sensor's\n"
+      "     own coordinates; no rig needed), what examples/c and examples/python read.\n"
+      "     --log with .csv: the acquisition log CSV (t_s,encoder,screw_rpm[,extruder_cmd_v,wheel_cmd_v]).\n"
       "Example:\n"
-      "  bead export --rig rig.yaml run.h5 -o run.ply && pcl_viewer run.ply");
-  cmd->add_option("--rig", args->rig, "Rig file (YAML)")->required()->check(CLI::ExistingFile);
+      "  bead export --rig rig.yaml run.h5 -o run.ply && pcl_viewer run.ply\n"
+      "  bead export run.h5 --every 10 -o profiles.csv\n"
+      "  bead export run.h5 --log -o log.csv");
+  cmd->add_option("--rig", args->rig, "Rig file (YAML; for a point cloud)")->check(CLI::ExistingFile);
   cmd->add_option("run", args->run, "Run archive (.h5) or profiles CSV (.csv)")->required()->check(CLI::ExistingFile);
-  cmd->add_option("-o,--output", args->output, "Point cloud to write (.ply or .pcd)")->required();
+  cmd->add_option("-o,--output", args->output, "Point cloud to write (.ply or .pcd), or profiles CSV (.csv)")
+      ->required();
   cmd->add_option("--every", args->options.every, "Keep every N-th profile")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  cmd->add_flag("--log", args->log, "Write the run's acquisition log (CSV), not its profiles");
   cmd->add_option("--surface-speed-mm-s", args->options.surface_speed_mm_s,
                   "Place s = v t at this surface speed, mm/s (for runs without encoder readings)")
       ->check(CLI::PositiveNumber);
 
   return [args]() {
+    CheckWritable(args->output);  // before the run is read
+    if (args->log) {
+      if (!args->output.ends_with(".csv"))
+        throw CLI::ValidationError("--log", "the log is written as a CSV (-o LOG.csv)");
+      ExportLogCsv(args->run, args->output);
+      return 0;
+    }
+    if (args->output.ends_with(".csv")) {
+      ExportProfilesCsv(args->run, args->output, args->options.every);
+      return 0;
+    }
     if (!IsPointCloudPath(args->output))
-      throw Error(Located(args->output, "", "a point cloud is written as .ply or .pcd"));
-    const Rig rig = ReadRig(args->rig);
+      throw Error(Located(args->output, "", "is written as a point cloud (.ply or .pcd) or a profiles CSV (.csv)"));
+    if (args->rig.empty()) throw CLI::RequiredError("--rig (a point cloud is placed in wheel coordinates)");
+    const Rig rig = ReadRigSaying(args->rig);
     WorkerPool pool;
     OpenedRun opened = OpenRun(args->run, pool, /*with_log=*/false);
     ProfileBlock profiles;

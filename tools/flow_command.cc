@@ -1,12 +1,15 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "tools/rig_input.h"
 #include "libbead/archive/run_flow.h"
 #include "libbead/core/error.h"
 #include "libbead/flow/flow.h"
 #include "libbead/io/rig_yaml.h"
 #include "tools/commands.h"
+#include "tools/own_folder.h"
 #include "tools/subcommands.h"
+#include "tools/tty_progress.h"
 #include "tools/occlusion_module.h"
 #include "tools/occlusion_step.h"
 
@@ -43,7 +46,7 @@ Run AddFlow(CLI::App& app) {
   AddOcclusionOption(cmd, args->occlusion);
   return [args]() {
     if (args->rig.empty() && args->run.empty()) {
-      const std::string sample = std::string(BEAD_SOURCE_DIR) + "/testdata/sample";
+      const std::string sample = InstalledOr("testdata/sample", std::string(BEAD_SOURCE_DIR) + "/testdata/sample");
       args->rig = sample + "/rig.yaml";
       args->run = sample + "/run.h5";
       if (args->output.empty()) {
@@ -57,12 +60,13 @@ Run AddFlow(CLI::App& app) {
     }
     if (args->rig.empty() || args->run.empty() || args->output.empty())
       throw CLI::RequiredError("--rig, RUN and -o are all needed (or none, for the bundled sample)");
-    const Rig rig = ReadRig(args->rig);
+    const Rig rig = ReadRigSaying(args->rig);
     WorkerPool pool;
     RunFlowRequest request;
     request.measure.profile = args->profile;
     request.measure.occlusion = ParseOcclusionMode(args->occlusion);
     request.measure.estimate = EstimateOcclusionOnDemand;
+    request.measure.progress = TtyProgress("measured");
     request.flow = args->flow;
     request.flow_csv = args->output;
     const RunFlow f = MeasureRunFlow(args->run, rig, pool, request);

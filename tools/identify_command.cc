@@ -1,4 +1,5 @@
 #include <nlohmann/json.hpp>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -129,7 +130,14 @@ void PrintOrderTable(const Series& est, const std::vector<Segment>& on, const Se
     }
   }
   std::printf("\n%6s %6s %12s %12s %12s %10s\n", "poles", "zeros", "fit_est_%", "fit_val_%", "AICc", "delay_s");
-  for (const auto& r : model::OrderTable(a.t, a.u, a.y, b.t, b.u, b.y, o, sa, sb))
+  const bool tty = isatty(STDERR_FILENO);
+  std::fflush(stdout);
+  const auto progress = [tty](int done, int total) {
+    if (tty) std::fprintf(stderr, "\rorder table: %d of %d orders fitted", done, total);
+  };
+  const auto rows = model::OrderTable(a.t, a.u, a.y, b.t, b.u, b.y, o, sa, sb, progress);
+  if (tty) std::fprintf(stderr, "\r\033[K");
+  for (const auto& r : rows)
     std::printf("%6d %6d %12.2f %12.2f %12.6g %10.4f\n", r.poles, r.zeros, r.fit_estimation, r.fit_validation, r.aicc,
                 r.delay_s);
 }
@@ -212,7 +220,7 @@ Run AddIdentify(CLI::App& app) {
   struct Args {
     std::string data, output, time, input_file, input_time, validate, validate_input_file, out;
     std::vector<std::string> inputs, structure = {"tf"}, delay = {"auto"};
-    std::vector<int> poles = {2}, zeros = {1};
+    std::vector<int> poles = {model::IdentifyOptions{}.poles}, zeros = {model::IdentifyOptions{}.zeros};
     double max_delay_s = 1.0;
     bool orders = false, from_rest = false, keep_off = false;
   };

@@ -1,12 +1,13 @@
 #include <cstdio>
-#include <unistd.h>
 
+#include "tools/rig_input.h"
 #include "libbead/archive/measure_run.h"
 #include "libbead/archive/open_run.h"
 #include "libbead/io/geometry_csv.h"
 #include "libbead/io/rig_yaml.h"
 #include "tools/commands.h"
 #include "tools/subcommands.h"
+#include "tools/tty_progress.h"
 #include "tools/occlusion_module.h"
 #include "tools/occlusion_step.h"
 
@@ -54,22 +55,17 @@ Run AddMeasure(CLI::App& app) {
   AddOcclusionOption(cmd, args->occlusion);
 
   return [args]() {
-    const Rig rig = ReadRig(args->rig);
+    const Rig rig = ReadRigSaying(args->rig);
     WorkerPool pool(args->threads);
     OpenedRun opened = OpenRun(args->run, pool, /*with_log=*/false);
-    const bool tty = isatty(STDERR_FILENO);
     MeasureRunOptions options;
     options.profile = args->options;
     options.occlusion = ParseOcclusionMode(args->occlusion);
     options.estimate = EstimateOcclusionOnDemand;
-    if (tty)
-      options.progress = [](std::size_t done, std::size_t total) {
-        std::fprintf(stderr, "\rmeasured %zu / %zu profiles", done, total);
-      };
+    options.progress = TtyProgress("measured");
     GeometryCsvWriter out(args->output);
     const MeasureRunSummary s =
         MeasureRun(*opened.profiles, rig, pool, options, [&](const GeometryRow& row) { out.Append(row); });
-    if (tty) std::fprintf(stderr, "\n");
     out.Commit();
     if (const std::string line = OcclusionLine(s); !line.empty()) std::printf("%s\n", line.c_str());
     std::printf("%s: %zu profiles, %zu valid, measured in %.3f s; wrote %s\n", args->run.c_str(), s.profiles, s.valid,

@@ -25,6 +25,7 @@ void PrintBasins(const model::DelayProfile& p, const char* indent) {
     std::printf("%sdelay basin %zu: %.4f s, loss %.5g%s\n", indent, k + 1, p.basins[k].delay_s,
                 p.basins[k].refined_loss, k == 0 ? " (chosen)" : "");
   if (p.ambiguous) std::printf("%swarning: %s\n", indent, p.note.c_str());
+  if (p.at_limit) std::printf("%swarning: %s\n", indent, p.limit_note.c_str());
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <limits.h>
 #include <unistd.h>
 
+#include <filesystem>
 #include <string>
 
 namespace bead::tools {
@@ -16,6 +17,15 @@ inline std::string OwnFolder(const char* fallback) {
   const std::string self = n > 0 ? std::string(path, static_cast<std::size_t>(n)) : std::string(fallback);
   const auto slash = self.rfind('/');
   return slash == std::string::npos ? "." : self.substr(0, slash);
+}
+
+// What `cmake --install` puts in PREFIX/share/bead (`relative` there,
+// beside PREFIX/bin of this program), else `source_path` in the source tree
+// the program was built from.
+inline std::string InstalledOr(const std::string& relative, const std::string& source_path) {
+  const std::filesystem::path installed =
+      std::filesystem::path(OwnFolder("")).parent_path() / "share" / "bead" / relative;
+  return std::filesystem::exists(installed) ? installed.string() : source_path;
 }
 
 }  // namespace bead::tools

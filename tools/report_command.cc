@@ -12,6 +12,7 @@
 #include <fstream>
 
 #include "calibration/pin_offset.h"
+#include "tools/rig_input.h"
 #include "libbead/archive/run_flow.h"
 #include "libbead/core/error.h"
 #include "libbead/core/worker_pool.h"
@@ -25,6 +26,7 @@
 #include "libbead/archive/measure_run.h"
 #include "libbead/occlusion/occlusion_fit.h"
 #include "tools/occlusion_step.h"
+#include "tools/tty_progress.h"
 
 namespace bead::tools {
 namespace {
@@ -34,9 +36,7 @@ namespace fs = std::filesystem;
 // The report script: installed beside the tool (PREFIX/share/bead), else
 // in the source tree this tool was built from.
 std::string ReportScript() {
-  const fs::path installed = fs::path(OwnFolder("")).parent_path() / "share" / "bead" / "bead_report.py";
-  if (fs::exists(installed)) return installed.string();
-  return std::string(BEAD_SOURCE_DIR) + "/tools/report/bead_report.py";
+  return InstalledOr("bead_report.py", std::string(BEAD_SOURCE_DIR) + "/tools/report/bead_report.py");
 }
 
 // A few profiles across the run (valid ones first), their points and lines.
@@ -135,7 +135,7 @@ Run AddReport(CLI::App& app) {
   return [args]() {
     CheckWritable(args->output);
     if (!args->explain.empty()) CheckExplainReport(args->explain);
-    const Rig rig = ReadRig(args->rig);
+    const Rig rig = ReadRigSaying(args->rig);
     WorkerPool pool;
     char tmpl[] = "/tmp/bead-report-XXXXXX";
     if (!mkdtemp(tmpl)) throw Error("cannot make a scratch folder in /tmp for the report");
@@ -150,6 +150,7 @@ Run AddReport(CLI::App& app) {
     RunFlowRequest request;
     request.measure.occlusion = ParseOcclusionMode(args->occlusion);
     request.measure.estimate = occlusion::EstimateOcclusion;
+    request.measure.progress = TtyProgress("measured");
     request.geometry_csv = (dir / "geometry.csv").string();
     request.flow_csv = (dir / "flow.csv").string();
     request.keep = true;  // the sample profiles are drawn from the measured run

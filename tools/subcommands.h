@@ -19,7 +19,7 @@ inline constexpr Subcommand kSubcommands[] = {
     {"calibrate", "Calibrate a rig placement"},
     {"simulate", "Simulate a run of the bead rig with a known truth (the digital twin)"},
     {"import", "Another tool's file (CSV, .mat, PLY, PCD) as a run archive"},
-    {"export", "A run as a point cloud in wheel coordinates (PLY, PCD)"},
+    {"export", "A run as a point cloud in wheel coordinates (PLY, PCD), or its profiles or log as CSV"},
     {"frames", "Camera frames of the laser stripe as a run archive"},
     {"identify", "Identify a transfer function (poles, zeros, delay) from data"},
     {"explain", "Find what the model lacks: residual diagnostics and effects added"},

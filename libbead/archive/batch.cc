@@ -118,7 +118,7 @@ RunResult ProcessRun(const BatchRun& job, const BatchOptions& options, WorkerPoo
   if (ec) throw Error(Located(dir.string(), "", "cannot create the run's output folder: " + ec.message()));
   const std::string inputs = Fingerprint(job, options);
   try {
-    const Rig rig = ReadRig(job.rig);
+    const Rig rig = ReadRig(job.rig, &r.warnings);
     r.offset_counts = rig.offset_counts;
     MeasureRunOptions measure;
     measure.profile = options.profile;

@@ -31,6 +31,7 @@ BaseModel IdentifyBaseModel(const std::vector<double>& t, const std::vector<std:
   for (const auto& part : im.inputs) {
     m.tfs.push_back(part.tf);
     if (part.delay_profile.ambiguous) m.warnings.push_back(part.delay_profile.note);
+    if (part.delay_profile.at_limit) m.warnings.push_back(part.delay_profile.limit_note);
   }
   if (!im.note.empty()) m.warnings.push_back(im.note);
   m.offset = im.offset;

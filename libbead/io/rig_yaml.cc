@@ -5,6 +5,7 @@
 
 #include "libbead/core/error.h"
 #include "libbead/io/atomic_file.h"
+#include "libbead/io/rig_keys.h"
 #include "libbead/io/yaml_text.h"
 
 namespace bead {
@@ -150,6 +151,7 @@ class RigParser {
 RigFile ParseRig(const std::string& text, const std::string& name, bool areas_required) {
   RigFile out;
   out.document = ParseYamlText(text, name);
+  out.warnings = RigKeyWarnings(out.document, name);
   const RigParser parser(name);
   out.rig = parser.Parse(out.document, areas_required, out.has_reference_areas);
   parser.Check(out.document, out.rig, out.has_reference_areas);

@@ -7,6 +7,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <string>
+#include <vector>
 
 #include "libbead/core/rig.h"
 
@@ -16,12 +17,20 @@ struct RigFile {
   Rig rig;
   YAML::Node document;              // the whole file as read
   bool has_reference_areas = true;  // false: absent, and not required
+  // Keys one edit away from a listed one, each "file:line N: key: ... did
+  // you mean ...?" (io/rig_keys.h); the caller says them.
+  std::vector<std::string> warnings;
 };
 
 // areas_required = false: a file without sensor.reference_areas_mm is read
 // (bead calibrate reference proposes them); when present they are checked.
 RigFile ReadRigFile(const std::string& path, bool areas_required = true);
-inline Rig ReadRig(const std::string& path) { return ReadRigFile(path).rig; }
+// The rig alone; its key warnings appended to `warnings` when given.
+inline Rig ReadRig(const std::string& path, std::vector<std::string>* warnings = nullptr) {
+  RigFile f = ReadRigFile(path);
+  if (warnings) warnings->insert(warnings->end(), f.warnings.begin(), f.warnings.end());
+  return f.rig;
+}
 // Parses YAML text; `name` is used in errors in place of a file name.
 RigFile ParseRig(const std::string& text, const std::string& name, bool areas_required = true);
 

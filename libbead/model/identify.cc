@@ -338,6 +338,15 @@ IdentifiedModel IdentifyTransferFunction(const std::vector<double>& t, const std
   out.fitted_samples = problem.rows.size();
   out.criteria = CriteriaFromResiduals(pr.residual, out.parameters);
   NoteAmbiguity(profile, pr.residual, problem.rows.size(), st.dt);
+  if (!o.delay_s && best.delay >= o.max_delay_s - st.dt) {
+    profile.at_limit = true;
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  "the delay, %.4g s, is at the end of the searched range (max delay %.4g s): the best delay may "
+                  "lie beyond it; search further (--max-delay-s)",
+                  best.delay, o.max_delay_s);
+    profile.limit_note = buf;
+  }
   out.ok = true;
   return out;
 }
@@ -363,11 +372,13 @@ void SetStructure(const std::string& name, IdentifyOptions& o) {
 std::vector<OrderRow> OrderTable(const std::vector<double>& t, const std::vector<double>& u,
                                  const std::vector<double>& y, const std::vector<double>& tv,
                                  const std::vector<double>& uv, const std::vector<double>& yv, IdentifyOptions o,
-                                 const std::vector<Segment>& segments,
-                                 const std::vector<Segment>& validation_segments) {
+                                 const std::vector<Segment>& segments, const std::vector<Segment>& validation_segments,
+                                 const std::function<void(int done, int total)>& progress) {
   std::vector<OrderRow> rows;
+  constexpr int kOrders = 8;
   for (int p = 1; p <= 3; ++p)
     for (int z = 0; z <= std::min(p, 2); ++z) {  // thesis Table 3: (1,0) (1,1) (2,0) (2,1) (2,2) (3,0) (3,1) (3,2)
+      if (progress) progress(static_cast<int>(rows.size()), kOrders);
       o.poles = p;
       o.zeros = z;
       const IdentifiedModel mdl = IdentifyTransferFunction(t, u, y, o, segments);

@@ -25,6 +25,7 @@
 // K (1 + Tz s) / ((1 + Tp1 s)(1 + Tp2 s)) e^(-Td s).
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -37,6 +38,9 @@
 namespace bead::model {
 
 struct IdentifyOptions {
+  // The default order of every identified model (bead identify's and
+  // bead explain's): two poles and one zero, a proper model a controller
+  // can be designed for without a derivative filter.
   int poles = 2;
   int zeros = 1;
   bool real_poles = false;        // a process model: poles real, reported as time constants
@@ -61,6 +65,11 @@ struct DelayProfile {
   std::vector<DelayBasin> basins;     // refined, best first
   bool ambiguous = false;             // the second basin fits as well as the best, within the noise
   std::string note;                   // what to say about it, if anything
+  // The chosen delay lies at the searched range's end (max_delay_s): the
+  // best delay may lie beyond it, and the model's other terms bend to make
+  // up for the cut. Said in `limit_note`.
+  bool at_limit = false;
+  std::string limit_note;
 };
 
 struct ProcessForm {  // K (1 + Tz s) / prod (1 + Tp_k s) e^(-Td s); NaN where not applicable
@@ -102,7 +111,7 @@ IdentifiedModel IdentifyTransferFunction(const std::vector<double>& t, const std
 void SetStructure(const std::string& name, IdentifyOptions& options);
 
 // Thesis Table 3: poles 1-3, zeros 0-2 (zeros <= poles), estimated on one
-// data set and validated on another.
+// data set and validated on another; `progress` told before each order.
 struct OrderRow {
   int poles, zeros;
   double fit_estimation, fit_validation, aicc, delay_s;
@@ -112,6 +121,7 @@ std::vector<OrderRow> OrderTable(const std::vector<double>& t, const std::vector
                                  const std::vector<double>& y, const std::vector<double>& tv,
                                  const std::vector<double>& uv, const std::vector<double>& yv, IdentifyOptions options,
                                  const std::vector<Segment>& segments = {},
-                                 const std::vector<Segment>& validation_segments = {});
+                                 const std::vector<Segment>& validation_segments = {},
+                                 const std::function<void(int done, int total)>& progress = {});
 
 }  // namespace bead::model

@@ -59,7 +59,8 @@ json InputJson(const IdentifiedModel& m, const IdentifyOptions& o) {
               {"loss", loss},
               {"basins", basins},
               {"ambiguous", m.delay_profile.ambiguous},
-              {"note", m.delay_profile.note}}}};
+              {"note", m.delay_profile.note},
+              {"at_limit", m.delay_profile.at_limit}}}};
   if (m.process.valid)
     j["process"] = {
         {"K", m.process.K}, {"Tp_s", m.process.Tp_s}, {"Tz_s", Finite(m.process.Tz_s)}, {"Td_s", m.process.Td_s}};

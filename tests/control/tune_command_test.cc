@@ -173,7 +173,7 @@ std::pair<int, std::string> RunFeedforward(const test::TempDir& dir, int ticks) 
   for (int i = 0; i <= ticks; ++i) plan += std::to_string(0.01 * i) + "," + (i < ticks / 2 ? "3.0" : "4.0") + "\n";
   test::WriteText(dir / "plan.csv", plan);
   return test::RunCli(dir, "feedforward --plan " + (dir / "plan.csv") + " --flow-model " + (dir / "flow.json") +
-                               " --target-area 14 -o " + (dir / "wheel.csv"));
+                               " --thesis-rpm-model --thesis-wheel --target-area 14 -o " + (dir / "wheel.csv"));
 }
 
 // `bead feedforward`: a plan of extruder steps and the thesis' flow model
@@ -190,12 +190,52 @@ TEST(FeedforwardCommand, WritesTheWheelCommandToPlay) {
       csv.rfind("t_s,extruder_cmd_v,wheel_cmd_v,predicted_flow_mm3_s,predicted_speed_mm_s,predicted_area_mm2\n", 0),
       0u);
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 1001);
-  std::tie(status, out) =
-      test::RunCli(dir, "feedforward --plan " + (dir / "plan.csv") + " --command volts --flow-model " +
-                            (dir / "flow.json") + " -o " + (dir / "w2.csv"));
+  std::tie(status, out) = test::RunCli(
+      dir, "feedforward --plan " + (dir / "plan.csv") + " --command volts --flow-model " + (dir / "flow.json") +
+               " --thesis-rpm-model --thesis-wheel --target-area 14 -o " + (dir / "w2.csv"));
   EXPECT_EQ(status, 1) << out;
   EXPECT_NE(out.find("no column 'volts'"), std::string::npos) << out;
   EXPECT_FALSE(std::filesystem::exists(dir / "w2.csv"));
+}
+
+// The rig's constants come from the user's files, the thesis rig's only by
+// name: without an RPM model, a wheel model or a target the command
+// refuses (usage, exit 2) naming the ways to give each; the same constants
+// given as the user's files (models of the thesis' eq. 21 and 3.3.3 wheel,
+// the rig's 254.762 mm wheel, a measured run whose median valid area is 14
+// mm^2) give the same command as the thesis' by name.
+TEST(FeedforwardCommand, TheRigsConstantsComeFromTheUsersFilesOrByName) {
+  test::TempDir dir;
+  auto [status, out] = RunFeedforward(dir, 400);
+  ASSERT_EQ(status, 0) << out;
+  const std::string base = "feedforward --plan " + (dir / "plan.csv") + " --flow-model " + (dir / "flow.json");
+  std::tie(status, out) = test::RunCli(dir, base + " --target-area 14 --thesis-wheel -o " + (dir / "a.csv"));
+  EXPECT_EQ(status, 2) << out;
+  EXPECT_NE(out.find("--thesis-rpm-model"), std::string::npos) << out;
+  std::tie(status, out) = test::RunCli(dir, base + " --target-area 14 --thesis-rpm-model -o " + (dir / "a.csv"));
+  EXPECT_EQ(status, 2) << out;
+  EXPECT_NE(out.find("--wheel-model WHEEL.json"), std::string::npos) << out;
+  std::tie(status, out) = test::RunCli(dir, base + " --thesis-rpm-model --thesis-wheel -o " + (dir / "a.csv"));
+  EXPECT_EQ(status, 2) << out;
+  EXPECT_NE(out.find("--target-from"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "a.csv"));
+
+  test::WriteText(dir / "rpm.json", R"({"num": [439.0, 35.08], "den": [1.523, 11.44, 1.0], "delay_s": 0.054})");
+  test::WriteText(dir / "wheel.json", R"({"num": [2.517], "den": [0.0377, 1.0], "delay_s": 0.009})");
+  test::WriteText(dir / "rig.yaml", test::kCliRigYaml);
+  test::WriteText(dir / "flow.csv", "t_s,area_mm2,valid\n0,13,1\n1,14,1\n2,15,1\n3,100,0\n4,,1\n");
+  std::tie(status, out) = test::RunCli(dir, base + " --rpm-model " + (dir / "rpm.json") + " --wheel-model " +
+                                                (dir / "wheel.json") + " --rig " + (dir / "rig.yaml") +
+                                                " --target-from " + (dir / "flow.csv") + " -o " + (dir / "mine.csv"));
+  ASSERT_EQ(status, 0) << out;
+  EXPECT_NE(out.find("target area: 14 mm^2"), std::string::npos) << out;
+  EXPECT_EQ(test::ReadText(dir / "mine.csv"), test::ReadText(dir / "wheel.csv"));
+  test::WriteText(dir / "two_poles.json", R"({"num": [1.0], "den": [1.0, 2.0, 1.0], "delay_s": 0})");
+  std::tie(status, out) =
+      test::RunCli(dir, base + " --thesis-rpm-model --wheel-model " + (dir / "two_poles.json") + " --rig " +
+                            (dir / "rig.yaml") + " --target-area 14 -o " + (dir / "b.csv"));
+  EXPECT_EQ(status, 1) << out;
+  EXPECT_NE(out.find("one stable pole and no zero"), std::string::npos) << out;
 }
 
 // The played plan, as a user runs it: `bead feedforward` writes the wheel

@@ -23,7 +23,9 @@ int RunCli(const std::string& args, const std::string& out) {
 TEST(ExplainCommand, SampleRunReportsOffsetDiagnosticsAndSpectrum) {
   test::TempDir dir;
   const std::string sample = std::string(BEAD_SOURCE_DIR) + "/testdata/sample";
-  ASSERT_EQ(RunCli("explain --rig " + sample + "/rig.yaml " + sample + "/run.h5 -o " + (dir / "explain.json"),
+  // The thesis' flow model's form (eq. 22: two poles, two zeros).
+  ASSERT_EQ(RunCli("explain --rig " + sample + "/rig.yaml " + sample + "/run.h5 --poles 2 --zeros 2 -o " +
+                       (dir / "explain.json"),
                    dir / "out.txt"),
             0)
       << test::ReadText(dir / "out.txt");
@@ -44,6 +46,20 @@ TEST(ExplainCommand, SampleRunReportsOffsetDiagnosticsAndSpectrum) {
   EXPECT_NE(out.find("NOT pinned by this run"), std::string::npos) << out;
   EXPECT_TRUE(j["diagnostics"]["whiteness_before"].contains("chi2"));
   EXPECT_FALSE(j["spectrum"]["before"]["frequency_hz"].empty());
+  // The default order (two poles, one zero, as identify's): whatever the
+  // run says of the offset, its interval holds the truth and no alarm is
+  // raised against the right rig file and pins.
+  ASSERT_EQ(RunCli("explain --rig " + sample + "/rig.yaml " + sample + "/run.h5 --pins " + sample + "/pins.h5 -o " +
+                       (dir / "default.json"),
+                   dir / "default.txt"),
+            0)
+      << test::ReadText(dir / "default.txt");
+  const std::string said = test::ReadText(dir / "default.txt");
+  const auto d = nlohmann::json::parse(test::ReadText(dir / "default.json"));
+  EXPECT_LE(d["offset_profile"]["ci95_low_counts"].get<double>(), 3071.5) << said;
+  EXPECT_GE(d["offset_profile"]["ci95_high_counts"].get<double>(), 3071.5) << said;
+  EXPECT_EQ(said.find("OUTSIDE"), std::string::npos) << said;
+  EXPECT_EQ(said.find("DISAGREE"), std::string::npos) << said;
 }
 
 // Width of a weld bead against wire feed speed: sampled unevenly, off for a

@@ -48,4 +48,28 @@ cc -std=c11 "$src/tests/install/consumer/c_consumer.c" $(pkg-config --cflags --l
 # The installed tool finds its occlusion module (LIBDIR/bead) when a fit runs.
 "$prefix/bin/bead" measure --rig "$src/testdata/sample/rig.yaml" "$src/testdata/sample/run.h5" \
   -o "$work/geometry.csv" | grep -q "occlusion (pooled"
+# What --help points at is installed: the documents, the example configs,
+# the sample (found by the installed tool itself), a man page per command
+# made from its --help, and bash completion read from --help.
+for f in share/doc/bead/data-formats.md share/doc/bead/README.md share/bead/testdata/configs/sample.yaml \
+  share/bead/testdata/step/heater_step.csv share/man/man1/bead.1 share/man/man1/bead-measure.1 \
+  share/man/man1/bead-calibrate.1 share/bash-completion/completions/bead; do
+  [ -s "$prefix/$f" ] || { echo "$f not installed" >&2; exit 1; }
+done
+grep -q '^\.TH BEAD-MEASURE 1' "$prefix/share/man/man1/bead-measure.1"
+grep -q -- '--rig' "$prefix/share/man/man1/bead-measure.1"
+grep -q -- '--board' "$prefix/share/man/man1/bead-calibrate.1"  # calibrate laser's help in calibrate's page
+mkdir -p "$work/empty"
+(cd "$work/empty" && "$prefix/bin/bead" flow) | grep -q "bundled sample run $prefix/share/bead/testdata/sample/run.h5"
+source "$prefix/share/bash-completion/completions/bead"
+COMP_WORDS=("$prefix/bin/bead" me) COMP_CWORD=1 && _bead
+[ "${COMPREPLY[*]}" = measure ] || { echo "completion of 'bead me': '${COMPREPLY[*]}'" >&2; exit 1; }
+COMP_WORDS=("$prefix/bin/bead" measure --ri) COMP_CWORD=2 && _bead
+[ "${COMPREPLY[*]}" = --rig ] || { echo "completion of 'bead measure --ri': '${COMPREPLY[*]}'" >&2; exit 1; }
+COMP_WORDS=("$prefix/bin/bead" calibrate w) COMP_CWORD=2 && _bead
+[ "${COMPREPLY[*]}" = wheel ] || { echo "completion of 'bead calibrate w': '${COMPREPLY[*]}'" >&2; exit 1; }
+# The build tree's bead.pc (PKG_CONFIG_PATH=BUILD) builds the C interface's user.
+PKG_CONFIG_PATH=$build cc -std=c11 "$src/tests/install/consumer/c_consumer.c" $(PKG_CONFIG_PATH=$build pkg-config \
+  --cflags --libs bead) -lm -o "$work/c_build_tree"
+"$work/c_build_tree"
 echo "consumer: all ran"

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "libbead/core/error.h"
+#include "libbead/io/rig_keys.h"
 #include "tests/support/temp_dir.h"
 
 namespace bead {
@@ -101,6 +102,48 @@ TEST(RigYaml, RewriteKeepsUnknownKeysAndIsAtomic) {
   EXPECT_EQ(entries, 1);
   // A write into a missing folder fails with a message, leaving nothing.
   EXPECT_THROW(WriteRigFile(dir / "missing/rig.yaml", file), Error);
+}
+
+// A key one edit from a listed one is a typo that silently changes the
+// answer (no laser origin: another hidden area): named with the key meant,
+// at its line. A key nowhere near a listed one is kept without a word (the
+// format's promise), and the spec's own example warns of nothing.
+TEST(RigYaml, AKeyOneEditFromAListedOneIsNamedWithTheKeyMeant) {
+  EXPECT_TRUE(ParseRig(kSpecExample, "rig.yaml").warnings.empty());
+  std::string text = kSpecExample;
+  text.replace(text.find("laser_origin_mm"), 15, "laser_orign_mm");
+  text.replace(text.find("name:"), 5, "nmae:");
+  const RigFile file = ParseRig(text, "my-rig.yaml");
+  EXPECT_FALSE(file.rig.laser_origin.has_value());  // still read as the format says: ignored
+  ASSERT_EQ(file.warnings.size(), 2u) << (file.warnings.empty() ? "" : file.warnings[0]);
+  EXPECT_NE(file.warnings[0].find("my-rig.yaml: line 1: nmae"), std::string::npos) << file.warnings[0];
+  EXPECT_NE(file.warnings[0].find("did you mean 'name'?"), std::string::npos) << file.warnings[0];
+  EXPECT_NE(file.warnings[1].find("line 12: sensor.laser_orign_mm"), std::string::npos) << file.warnings[1];
+  EXPECT_NE(file.warnings[1].find("'sensor.laser_origin_mm'"), std::string::npos) << file.warnings[1];
+  // Two edits away, or another section's key: not a typo of a listed key.
+  EXPECT_TRUE(ParseRig(std::string(kSpecExample) + "sensr_note: x\ncount: 3\n", "r.yaml").warnings.empty());
+  EXPECT_EQ(EditDistance("laser_orign_mm", "laser_origin_mm"), 1u);
+  EXPECT_EQ(EditDistance("bist", "bits"), 1u);  // two neighbours swapped: one edit
+  EXPECT_EQ(EditDistance("offest", "offset"), 1u);
+  EXPECT_GT(EditDistance("operator", "offset"), 1u);
+}
+
+// Units other than millimetres would change what every number means: the
+// file is refused at the key, never read as if in mm.
+TEST(RigYaml, UnitsOtherThanMillimetresAreRefused) {
+  EXPECT_NO_THROW(ParseRig(std::string(kSpecExample) + "units: mm\n", "r.yaml"));
+  for (const std::string units : {"units: inch\n", "units: [mm]\n"}) {
+    try {
+      ParseRig(std::string(kSpecExample) + units, "r.yaml");
+      ADD_FAILURE() << "accepted " << units;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("r.yaml: line 14: units: is "), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("millimetres"), std::string::npos) << e.what();
+    }
+  }
+  std::string in_section = kSpecExample;
+  in_section.replace(in_section.find("  counts: 3071.5"), 16, "  counts: 3071.5\n  units: inch");
+  EXPECT_THROW(ParseRig(in_section, "r.yaml"), Error);
 }
 
 }  // namespace

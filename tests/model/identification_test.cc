@@ -220,6 +220,14 @@ TEST(Identify, DelayBasinIsFoundOnTheProfile) {
   EXPECT_NEAR(m.tf.DcGain(), 2.0, 0.01);
   EXPECT_GE(m.delay_profile.basins.size(), 1u);
   EXPECT_FALSE(m.delay_profile.ambiguous);
+  EXPECT_FALSE(m.delay_profile.at_limit);
+  // The same data searched only to 0.4 s: the fit's delay stops at the
+  // range's end, and that is said (the best lies beyond it).
+  o.max_delay_s = 0.4;
+  const IdentifiedModel cut = IdentifyTransferFunction(t, u, y, o);
+  ASSERT_TRUE(cut.ok) << cut.reason;
+  EXPECT_TRUE(cut.delay_profile.at_limit) << cut.tf.delay_s;
+  EXPECT_NE(cut.delay_profile.limit_note.find("--max-delay-s"), std::string::npos);
 }
 
 // A process model (MATLAB procest P2D): K e^(-Td s) / ((1 + Tp1 s)(1 + Tp2 s))
