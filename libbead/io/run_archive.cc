@@ -241,6 +241,11 @@ void ProbeProfileRows(const h5::File& f, const std::string& path) {
 // A run archive holds /profiles; the other archives libbead reads are said
 // by name when given in its place.
 void CheckIsRunArchive(const h5::File& f, const std::string& path) {
+  const std::map<std::string, std::string> root = f.ReadStringAttributes("/");
+  if (const auto kind = root.find("kind"); kind != root.end() && kind->second == "part")
+    throw Error(Located(path, "",
+                        "is a part scan (root attribute kind = \"part\", format 1.1: beads on the layers of a "
+                        "printed part): this version measures beads on the wheel (run archives) only"));
   if (f.Exists("/profiles")) return;
   if (f.Exists("/scans"))
     throw Error(Located(path, "",

@@ -117,6 +117,23 @@ TEST(RunArchive, AChannelOfTheWrongLengthOrNameIsRefusedByTheWriter) {
   EXPECT_THROW(WriteRunArchive(dir / "spec_name.h5", run), Error);
 }
 
+// A part scan (format 1.1: root attribute kind = "part") is said as such,
+// never measured as if it were a run on the wheel.
+TEST(RunArchive, APartScanIsNamedAndRefused) {
+  test::TempDir dir;
+  RunArchive run = SmallRun(true);
+  run.attributes["kind"] = "part";
+  WriteRunArchive(dir / "part.h5", run);
+  try {
+    ReadRunArchive(dir / "part.h5");
+    ADD_FAILURE() << "a part scan was read as a run";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("part.h5: is a part scan (root attribute kind = \"part\""),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(PinScanArchive, RoundTrips) {
   test::TempDir dir;
   PinScanArchive pins;
