@@ -32,6 +32,15 @@
 #endif
 
 namespace bead {
+
+bool AddressSpaceCapped() {
+#ifdef BEAD_NO_ADDRESS_CAP
+  return false;
+#else
+  return true;
+#endif
+}
+
 namespace {
 
 // The process's mapped address space, bytes (/proc/self/statm's first

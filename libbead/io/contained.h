@@ -30,6 +30,11 @@ struct ContainLimits {
 // one second (wall and CPU) for every 32 MB of it.
 ContainLimits LimitsForWholeFile(const std::string& path);
 
+// Whether the child's address space is capped (ContainLimits::bytes): not
+// under a sanitizer (gcc's or clang's), which reserves terabytes of
+// address space for its shadow memory; there only the time bounds apply.
+bool AddressSpaceCapped();
+
 // Runs `work` in a child process under `limits` and returns what it
 // returned (bytes: the child's result, serialised). Throws bead::Error
 // with work's own message when it threw one (a file our validation

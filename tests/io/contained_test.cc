@@ -61,11 +61,7 @@ TEST(Contained, ACrashInsideTheLibraryIsTheFilesCorruptionEveryTime) {
 
 // Sanitizers reserve terabytes of address space: there the child runs
 // uncapped (io/contained.cc) and only the time bound is checked.
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-constexpr bool kAddressCapped = false;
-#else
-constexpr bool kAddressCapped = true;
-#endif
+const bool kAddressCapped = AddressSpaceCapped();
 
 TEST(Contained, MemoryAndTimeAreBounded) {
   const ContainLimits limits{std::size_t{256} << 20, 1.0};
