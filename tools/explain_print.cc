@@ -102,10 +102,12 @@ void PrintRun(const explain::RunExplanation& e, const Rig& rig, const std::strin
         o.delay_correlation, o.counts, rig.offset_counts);
   else if (!o.pinned)
     std::printf(
-        "encoder offset from the run: NOT pinned by this run: its 95 %% interval %.1f to %.1f counts reaches "
-        "the searched range (lowest error at %.1f; the wheel's speed changes too little to tell a position "
-        "error from a time error); rig file: %.1f counts\n",
-        o.lo_counts, o.hi_counts, o.counts, rig.offset_counts);
+        "encoder offset from the run: NOT pinned by this run: the error stays within the noise of its least "
+        "(at %.1f counts) from %.1f to %.1f counts, out to the end of the range searched, so the run does not "
+        "locate the offset (no interval: the wheel's speed changes too little, or only in step with the flow, "
+        "to tell a position error from a time error, or the model's misfit moves the least); rig file: %.1f "
+        "counts\n",
+        o.counts, o.lo_counts, o.hi_counts, rig.offset_counts);
   else
     std::printf(
         "encoder offset from the run: %.1f counts, 95 %% interval %.1f to %.1f (the residual's colour and the "
