@@ -151,8 +151,9 @@ std::string StructureFlags(const model::IdentifyOptions& o) {
 // A degenerate fit said, with the smaller structure refitted beside it;
 // the findings (and the smaller structure's fit) for the model file.
 nlohmann::json SayDegeneracy(const model::IdentifiedModel& m, const model::IdentifyOptions& o, const Series& est,
-                             const std::vector<Segment>& on) {
+                             const std::vector<Segment>& on, bool& wrong_sign) {
   const model::Degeneracy d = model::FindDegeneracy(m, est.t, est.u, est.y, on);
+  wrong_sign = d.wrong_sign;
   nlohmann::json out = nlohmann::json::array();
   if (!d.any()) return out;
   for (const std::string& f : d.findings) {
@@ -192,7 +193,8 @@ int IdentifyOne(const SeriesNames& names, const model::IdentifyOptions& o, const
   }
   PrintModel(m, o);
   std::printf("fit on estimation data: %.2f %%\n", m.fit_percent);
-  const nlohmann::json warnings = SayDegeneracy(m, o, est, on.segments);
+  bool wrong_sign = false;
+  const nlohmann::json warnings = SayDegeneracy(m, o, est, on.segments, wrong_sign);
   double fit_val = NAN;
   if (val) {
     fit_val = model::ValidateFitPercent(m.tf, m.offset, val->t, val->u, val->y, val_on->segments);
@@ -202,6 +204,11 @@ int IdentifyOne(const SeriesNames& names, const model::IdentifyOptions& o, const
               m.criteria.bic, m.criteria.fpe, m.parameters);
   if (orders)
     PrintOrderTable(est, on.segments, val ? &*val : nullptr, val ? val_on->segments : std::vector<Segment>{}, o);
+  if (!out.empty() && wrong_sign)
+    throw Error(Located(out, "",
+                        "not written: the model's gain has the opposite sign of the data's (above), and a controller "
+                        "or feed-forward built on it would push the wrong way; try another --max-delay-s, "
+                        "--structure or order"));
   if (!out.empty()) {
     nlohmann::json j = model::ModelJson(m, o, input, names.output, est.t, on.segments, on.excluded);
     if (val) j["fit_validation_pct"] = fit_val;
@@ -248,7 +255,10 @@ Run AddIdentify(CLI::App& app) {
       "     DATA; -o a JSON model file (written atomically) with the delay profile.\n"
       "Checked: a degenerate fit (a pole faster than the sample interval, a zero that all but cancels a\n"
       "     pole, a gain whose sign the data contradict) is said with WARNING, the smaller structure refitted\n"
-      "     and its fit printed beside; the model file carries the findings as `degenerate`.\n"
+      "     and its fit printed beside; the model file carries the findings as `degenerate`. A model whose\n"
+      "     gain has the data's opposite sign is not written (exit 1). A delay at the end of the range\n"
+      "     searched is said (raise --max-delay-s); an input that holds one value over every sample\n"
+      "     fitted is refused (nothing there shows the gain).\n"
       "Examples:\n"
       "  bead identify flow.csv --time t_s --input screw_rpm --output flow_mm3_s --poles 2 --zeros 2 -o model.json\n"
       "  bead identify run.csv --time t_s --input screw_rpm,barrel_temp_c --output flow_mm3_s --poles 2,1 --zeros 1,0\n"

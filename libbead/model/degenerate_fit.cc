@@ -56,11 +56,15 @@ void CancellingPairs(const IdentifiedModel& m, Degeneracy& d) {
 }
 
 // The slope of y on u(t - delay) within the segments, each demeaned, and
-// its t statistic with the sample count cut by the residual's lag-one
-// correlation (AR(1): n (1 - r) / (1 + r)).
+// its t statistic: the noise is the model's own residual (y minus its
+// prediction, where it has one), its sample count cut by that residual's
+// lag-one correlation (AR(1): n (1 - r) / (1 + r)). The slope's own
+// residual is no noise estimate: on a step test it is the step response's
+// transient, smooth and large, and would hide a gain of the wrong sign.
 void GainSign(const IdentifiedModel& m, const std::vector<double>& t, const std::vector<double>& u,
               const std::vector<double>& y, const std::vector<Segment>& segments, Degeneracy& d) {
-  std::vector<double> xs, ys;
+  std::vector<double> xs, ys, noise;
+  const bool predicted = m.prediction.size() == y.size();
   for (const Segment& s : segments) {
     std::vector<double> sx, sy;
     for (std::size_t i = s.begin; i < s.end && i < t.size(); ++i) {
@@ -69,6 +73,7 @@ void GainSign(const IdentifiedModel& m, const std::vector<double>& t, const std:
       const auto it = std::upper_bound(t.begin(), t.end(), when);
       const std::size_t k = static_cast<std::size_t>(std::max<std::ptrdiff_t>(1, it - t.begin())) - 1;
       sx.push_back(u[k]), sy.push_back(y[i]);
+      if (predicted && std::isfinite(m.prediction[i])) noise.push_back(y[i] - m.prediction[i]);
     }
     if (sx.size() < 3) continue;
     double mx = 0, my = 0;
@@ -82,19 +87,28 @@ void GainSign(const IdentifiedModel& m, const std::vector<double>& t, const std:
   for (std::size_t i = 0; i < n; ++i) sxx += xs[i] * xs[i], sxy += xs[i] * ys[i];
   if (!(sxx > 0)) return;
   const double slope = sxy / sxx;
-  std::vector<double> r(n);
-  double rr = 0, r1 = 0;
-  for (std::size_t i = 0; i < n; ++i) r[i] = ys[i] - slope * xs[i], rr += r[i] * r[i];
-  for (std::size_t i = 1; i < n; ++i) r1 += r[i] * r[i - 1];
+  std::vector<double> r = noise;
+  if (r.size() < n / 2) {  // no prediction: the slope's own residual
+    r.assign(n, 0.0);
+    for (std::size_t i = 0; i < n; ++i) r[i] = ys[i] - slope * xs[i];
+  }
+  const std::size_t nr = r.size();
+  double rr = 0, r1 = 0, rm = 0;
+  for (double v : r) rm += v / static_cast<double>(nr);
+  for (std::size_t i = 0; i < nr; ++i) rr += (r[i] - rm) * (r[i] - rm);
+  for (std::size_t i = 1; i < nr; ++i) r1 += (r[i] - rm) * (r[i - 1] - rm);
   const double rho = std::clamp(rr > 0 ? r1 / rr : 0.0, 0.0, 0.999);
   const double n_eff = std::max(3.0, static_cast<double>(n) * (1 - rho) / (1 + rho));
-  const double se = std::sqrt(rr / static_cast<double>(n - 2) / sxx * static_cast<double>(n) / n_eff);
+  const double var = rr / static_cast<double>(nr - 1);
+  const double se = std::sqrt(var / sxx * static_cast<double>(n) / n_eff);
   const double gain = m.tf.DcGain();
-  if (std::abs(slope) > 4 * se && slope * gain < 0)
+  if (std::abs(slope) > 4 * se && slope * gain < 0) {
+    d.wrong_sign = true;
     d.findings.push_back(
         Format("its steady-state gain %.4g has the opposite sign of the data's slope of output on "
                "the delayed input (%.4g +- %.2g)",
                gain, slope, se));
+  }
 }
 
 }  // namespace

@@ -16,6 +16,9 @@ namespace bead::model {
 struct Degeneracy {
   std::vector<std::string> findings;   // each a sentence with its numbers
   int drop_poles = 0, drop_zeros = 0;  // the smaller structure: this many fewer
+  // The gain's sign is the data's opposite: a controller designed for the
+  // model would push the wrong way, so no model file is written for it.
+  bool wrong_sign = false;
   bool any() const { return !findings.empty(); }
 };
 

@@ -82,6 +82,29 @@ std::string CheckInputs(const std::vector<double>& t, const std::vector<double>&
   return "";
 }
 
+// Why the fitted samples cannot show the gain ("" when they can): the
+// input holds one value over all of them. With the initial state
+// estimated, the first max_delay_s of a stretch is left out, and a step
+// inside it leaves only its response, which a free initial state mimics
+// as well as the input does (a step 10 s into a record, searched to 10 s
+// of delay, came back with the gain's sign wrong and a 99 % fit).
+std::string InputHeldOverRows(const ProjectionProblem& p, const IdentifyOptions& o) {
+  const std::vector<double>& u = *p.u;
+  double lo = u[p.rows.front()], hi = lo;
+  for (std::size_t i : p.rows) lo = std::min(lo, u[i]), hi = std::max(hi, u[i]);
+  if (hi - lo > 1e-12 * std::max(1.0, std::abs(hi))) return "";
+  char buf[400];
+  std::snprintf(buf, sizeof buf,
+                "the input holds one value (%.6g) over every sample fitted (from t = %.4g s%s): nothing there shows "
+                "the gain; give a record whose input changes after that, a shorter --max-delay-s, or --from-rest "
+                "for a record that starts at rest",
+                hi, (*p.t)[p.rows.front()],
+                o.estimate_initial_state ? ": each stretch's first max-delay is left out, its output depending on "
+                                           "input from before it"
+                                         : "");
+  return buf;
+}
+
 // What every stage shares: the fitted rows, the sample step and the
 // slowest pole the data can tell from the initial state's drift (one time
 // constant across the longest stretch).
@@ -290,6 +313,8 @@ IdentifiedModel IdentifyTransferFunction(const std::vector<double>& t, const std
     out.reason = "too few samples (" + std::to_string(problem.rows.size()) + ") for this model";
     return out;
   }
+  out.reason = InputHeldOverRows(problem, o);
+  if (!out.reason.empty()) return out;
   DelayProfile& profile = out.delay_profile;
   std::vector<std::vector<double>> starts;
   ProfileDelays(st, o, profile, starts);

@@ -3,8 +3,8 @@
 third-order model eq. 14, H(s) = 1.0033 / ((44.1315 s + 1)(2.0042 s + 1)
 (1.9689 s + 1)) (the command in degrees C of set point, 218 C at 12 V in
 the paper's Fig. 3), simulated exactly (zero-order hold at the 0.5 s
-sample) from ambient 25 C, the command stepped 25 -> 218 C at t = 10 s,
-400 s in all, with 0.3 C of white measurement noise (seeded). Needs
+sample) from ambient 25 C, the command stepped 25 -> 218 C at t = 30 s,
+430 s in all, with 0.3 C of white measurement noise (seeded). Needs
 Debian's python3-numpy and python3-scipy:
     python3 testdata/step/make_heater_step.py > testdata/step/heater_step.csv
 """
@@ -13,7 +13,7 @@ import sys
 import numpy as np
 from scipy import signal
 
-DT_S, DURATION_S, STEP_AT_S = 0.5, 400.0, 10.0
+DT_S, DURATION_S, STEP_AT_S = 0.5, 430.0, 30.0
 AMBIENT_C, SET_POINT_C, NOISE_C = 25.0, 218.0, 0.3
 GAIN, TAUS_S = 1.0033, (44.1315, 2.0042, 1.9689)  # seed 004, eq. (14)
 

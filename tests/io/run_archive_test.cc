@@ -128,8 +128,7 @@ TEST(RunArchive, APartScanIsNamedAndRefused) {
     ReadRunArchive(dir / "part.h5");
     ADD_FAILURE() << "a part scan was read as a run";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("part.h5: is a part scan (root attribute kind = \"part\""),
-              std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("part.h5: is a part scan (root attribute kind = \"part\""), std::string::npos)
         << e.what();
   }
 }

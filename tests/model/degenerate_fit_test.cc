@@ -85,5 +85,32 @@ TEST(DegenerateFit, AGainOfTheWrongSignIsFlagged) {
   EXPECT_FALSE(SmallerStructure(IdentifyOptions{}, d, smaller));  // nothing to drop for a sign
 }
 
+// A step test (one step of 193 at t = 30 s into a 44 s first-order lag,
+// 0.3 of noise) and a model of the wrong sign whose prediction follows the
+// data anyway (a free initial state mimicking the step's response, as a
+// fit with the step inside its first max-delay does): flagged, with the
+// model's own residual as the noise. The step response's transient is no
+// noise; counted as such (AR(1) over the slope's residual) it left a
+// gain of -49.8 against a slope of +0.89 unflagged.
+TEST(DegenerateFit, AStepTestsWrongSignIsFlaggedAgainstTheModelsOwnResidual) {
+  Record r;
+  std::mt19937 rng(4);
+  std::normal_distribution<double> noise(0.0, 0.3);
+  for (int i = 0; i <= 860; ++i) r.t.push_back(0.5 * i), r.u.push_back(r.t.back() >= 30 ? 218.0 : 25.0);
+  const TransferFunction truth{{1.0}, {44.0, 1.0}, 0.0};
+  std::vector<double> deviation = r.u;
+  for (double& v : deviation) v -= 25.0;
+  const std::vector<double> clean = Simulate(truth, r.t, deviation);
+  for (std::size_t i = 0; i < clean.size(); ++i) r.y.push_back(25.0 + clean[i] + noise(rng));
+  IdentifiedModel wrong = Model({{-0.15}, {44.0, 1.0}, 0.0});
+  wrong.prediction = clean;
+  for (double& v : wrong.prediction) v += 25.0;
+  const Degeneracy d = FindDegeneracy(wrong, r.t, r.u, r.y);
+  EXPECT_TRUE(d.wrong_sign) << (d.any() ? d.findings[0] : "not flagged");
+  IdentifiedModel right = wrong;
+  right.tf = truth;
+  EXPECT_FALSE(FindDegeneracy(right, r.t, r.u, r.y).wrong_sign);
+}
+
 }  // namespace
 }  // namespace bead::model

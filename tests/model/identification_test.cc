@@ -230,6 +230,23 @@ TEST(Identify, DelayBasinIsFoundOnTheProfile) {
   EXPECT_NE(cut.delay_profile.limit_note.find("--max-delay-s"), std::string::npos);
 }
 
+// A step 5 s into a record, searched to 10 s of delay with the initial
+// state estimated: the first 10 s are left out of the fit, and with them
+// every change of the input. Refused with the reason, never fitted (a free
+// initial state mimics the response with a gain of either sign).
+TEST(Identify, AnInputHeldOverEverySampleFittedIsRefused) {
+  std::vector<double> t, u;
+  for (int i = 0; i <= 400; ++i) t.push_back(0.1 * i), u.push_back(t.back() >= 5.0 ? 2.0 : 0.0);
+  const std::vector<double> y = Simulate(TransferFunction{{1.0}, {3.0, 1.0}, 0.5}, t, u);
+  IdentifyOptions o;
+  o.poles = 1, o.zeros = 0, o.max_delay_s = 10.0;
+  const IdentifiedModel m = IdentifyTransferFunction(t, u, y, o);
+  EXPECT_FALSE(m.ok);
+  EXPECT_NE(m.reason.find("the input holds one value (2)"), std::string::npos) << m.reason;
+  o.max_delay_s = 2.0;  // the step now inside the fitted samples
+  EXPECT_TRUE(IdentifyTransferFunction(t, u, y, o).ok);
+}
+
 // A process model (MATLAB procest P2D): K e^(-Td s) / ((1 + Tp1 s)(1 + Tp2 s))
 // with real poles, sampled unevenly (jitter of +-40 % of the step): K, the
 // two time constants and the delay come back within 2 % (noise 0.5 % of
