@@ -9,7 +9,7 @@ include(CMakePackageConfigHelpers)
 # Core: Eigen and the standard library only (and libbead.so over it).
 set(bead_core_targets bead_core bead_c)
 # The rest: HDF5, yaml-cpp, Ceres, OpenCV.
-set(bead_full_targets bead_io bead_flow bead_model bead_sim bead_occlusion_pool bead_occlusion bead_explain bead_archive bead_vision bead_control)
+set(bead_full_targets bead_io bead_flow bead_model bead_sim bead_occlusion_pool bead_occlusion bead_explain bead_archive bead_vision bead_control bead_part)
 foreach(t ${bead_full_targets})
   string(REGEX REPLACE "^bead_" "" short ${t})
   set_target_properties(${t} PROPERTIES EXPORT_NAME ${short})

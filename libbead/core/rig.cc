@@ -22,9 +22,8 @@ bool Broken(std::string* key, std::string* error, const char* k, const std::stri
   return false;
 }
 
-}  // namespace
-
-bool IsValid(const Rig& r, bool with_areas, std::string* key, std::string* error) {
+// The wheel's sections: encoder, wheel, offset.
+bool WheelIsValid(const Rig& r, std::string* key, std::string* error) {
   const EncoderSpec& e = r.encoder;
   if (!(std::isfinite(e.counts_per_rev) && e.counts_per_rev > 0))
     return Broken(key, error, "encoder.counts_per_rev", "must be positive");
@@ -40,6 +39,15 @@ bool IsValid(const Rig& r, bool with_areas, std::string* key, std::string* error
   if (!(std::abs(r.wheel_eccentricity_phase_deg) <= 360.0))
     return Broken(key, error, "wheel.eccentricity_phase_deg", "must be an angle within +-360 degrees");
   if (!std::isfinite(r.offset_counts)) return Broken(key, error, "offset.counts", "must be a finite number");
+  return true;
+}
+
+}  // namespace
+
+bool IsValid(const Rig& r, bool with_areas, std::string* key, std::string* error) {
+  if (r.has_wheel && !WheelIsValid(r, key, error)) return false;
+  if (r.part && !(std::isfinite(r.part->radius_mm) && r.part->radius_mm >= 0.0))
+    return Broken(key, error, "part.bed_radius_mm", "must be a positive radius in mm (or left out to be fitted)");
   if (!with_areas) return true;
   const ReferenceArea* areas[2] = {&r.reference_left, &r.reference_right};
   for (int i = 0; i < 2; ++i)

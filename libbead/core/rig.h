@@ -26,8 +26,21 @@ struct LaserOrigin {
   double z_mm = 0.0;
 };
 
+// The bed a part is printed on (format 1.1, the rig file's `part:`
+// section): flat, or a cylinder whose axis runs along the toolpath (a
+// first layer laid along a pipe).
+struct PartBed {
+  enum class Shape { kFlat, kCylinder };
+  Shape shape = Shape::kFlat;
+  double radius_mm = 0.0;  // cylinder: the radius; 0 = fitted from the bare surface
+};
+
 struct Rig {
   std::string name;
+  // false: a part rig whose file has none of the wheel's sections (encoder,
+  // wheel, offset); what needs the wheel refuses it.
+  bool has_wheel = true;
+  std::optional<PartBed> part;  // the rig file's part: section
   EncoderSpec encoder;
   double wheel_diameter_mm = 0.0;
   double offset_counts = 0.0;     // encoder counts from the nozzle to the laser line
@@ -61,6 +74,8 @@ struct Rig {
 //  - with `with_areas`: each reference area a finite, non-empty x range,
 //    the left one ending before the right one begins (the bead lies in the
 //    gap); a laser origin, when given, finite.
+//  - a part rig without the wheel's sections skips their rules; a
+//    cylinder's bed_radius_mm is 0 (fitted) or finite and > 0.
 bool IsValid(const Rig& rig, bool with_areas, std::string* key, std::string* error);
 
 }  // namespace bead

@@ -25,16 +25,21 @@ ProfileStream::ProfileStream(const std::string& path, WorkerPool& pool)
   const h5::File& f = *file_;
   t_ = std::make_unique<h5::RowReader>(f, "/profiles/t_s", std::initializer_list<int>{1}, h5::Kind::kFloat,
                                        H5T_NATIVE_DOUBLE);
-  encoder_ = std::make_unique<h5::RowReader>(f, "/profiles/encoder", std::initializer_list<int>{1}, h5::Kind::kInteger,
-                                             H5T_NATIVE_INT64);
+  // A part scan (format 1.1) has no wheel and no encoder: 0 for each profile.
+  const auto root = f.ReadStringAttributes("/");
+  const auto kind = root.find("kind");
+  const bool part = kind != root.end() && kind->second == "part" && !f.Exists("/profiles/encoder");
+  if (!part)
+    encoder_ = std::make_unique<h5::RowReader>(f, "/profiles/encoder", std::initializer_list<int>{1},
+                                               h5::Kind::kInteger, H5T_NATIVE_INT64);
   z_ = std::make_unique<h5::RowReader>(f, "/profiles/z_mm", std::initializer_list<int>{2}, h5::Kind::kFloat,
                                        H5T_NATIVE_FLOAT);
   x_ = std::make_unique<h5::RowReader>(f, "/profiles/x_mm", std::initializer_list<int>{1, 2}, h5::Kind::kFloat,
                                        H5T_NATIVE_FLOAT);
   size_ = t_->rows();
   points_ = z_->row_length();
-  CheckProfileShapes(path, "/profiles", size_, encoder_->rows(), {z_->dims().begin(), z_->dims().end()},
-                     {x_->dims().begin(), x_->dims().end()});
+  CheckProfileShapes(path, "/profiles", size_, encoder_ ? encoder_->rows() : size_,
+                     {z_->dims().begin(), z_->dims().end()}, {x_->dims().begin(), x_->dims().end()});
   shared_x_ = x_->dims().size() == 1;
   if (shared_x_) {
     x_shared_.resize(points_);
@@ -78,7 +83,10 @@ void ProfileStream::Read(std::size_t begin, std::size_t count, ProfileBlock& b) 
     b.encoder.resize(count);
     b.z_mm.resize(count * points_);
     t_->Read(begin, count, b.t_s.data(), nullptr);
-    encoder_->Read(begin, count, b.encoder.data(), nullptr);
+    if (encoder_)
+      encoder_->Read(begin, count, b.encoder.data(), nullptr);
+    else
+      std::fill(b.encoder.begin(), b.encoder.end(), 0);
     if (shared_x_) {
       if (b.x_mm.size() != points_) b.x_mm = x_shared_;
     } else {
@@ -118,7 +126,10 @@ void ProfileStream::ReadRows(const std::vector<std::size_t>& rows, ProfileBlock&
     return;
   }
   t_->ReadRows(rows, b.t_s.data(), nullptr);
-  encoder_->ReadRows(rows, b.encoder.data(), nullptr);
+  if (encoder_)
+    encoder_->ReadRows(rows, b.encoder.data(), nullptr);
+  else
+    std::fill(b.encoder.begin(), b.encoder.end(), 0);
   if (shared_x_)
     b.x_mm = x_shared_;
   else

@@ -56,11 +56,41 @@ class RigParser {
     return {Number(node[0], key + "[0]"), Number(node[1], key + "[1]")};
   }
 
-  Rig Parse(const YAML::Node& root, bool areas_required, bool& has_areas) const {
+  // The part: section (format 1.1): bed flat or cylinder, its radius.
+  PartBed Part(const YAML::Node& part) const {
+    if (!part.IsMap()) Fail(part, "part", "must be a mapping (bed: flat or cylinder, bed_radius_mm)");
+    PartBed bed;
+    if (const YAML::Node shape = part["bed"]; shape.IsDefined()) {
+      const std::string s = shape.IsScalar() ? shape.Scalar() : "";
+      if (s == "cylinder")
+        bed.shape = PartBed::Shape::kCylinder;
+      else if (s != "flat")
+        Fail(shape, "part.bed", "must be flat or cylinder, got '" + s + "'");
+    }
+    if (const YAML::Node r = part["bed_radius_mm"]; r.IsDefined() && !r.IsNull()) {
+      if (bed.shape != PartBed::Shape::kCylinder)
+        Fail(r, "part.bed_radius_mm", "is for a cylinder bed (bed: cylinder)");
+      bed.radius_mm = Number(r, "part.bed_radius_mm");
+      if (!(bed.radius_mm > 0.0)) Fail(r, "part.bed_radius_mm", "must be a positive radius in mm");
+    }
+    return bed;
+  }
+
+  Rig Parse(const YAML::Node& root, bool areas_required, bool wheel_required, bool& has_areas) const {
     if (!root.IsMap()) Fail(root, "", "a rig file must be a YAML mapping (name, encoder, wheel, offset, sensor)");
     Rig rig;
     if (YAML::Node name = root["name"]; name.IsDefined() && name.IsScalar()) rig.name = name.Scalar();
+    if (const YAML::Node part = root["part"]; part.IsDefined() && !part.IsNull()) rig.part = Part(part);
+    // A part rig needs none of the wheel's sections; with none of them it
+    // is a rig without a wheel.
+    if (!wheel_required && !root["encoder"].IsDefined() && !root["wheel"].IsDefined() && !root["offset"].IsDefined())
+      rig.has_wheel = false;
+    else
+      Wheel(root, rig);
+    return Sensor(root, rig, areas_required, has_areas);
+  }
 
+  void Wheel(const YAML::Node& root, Rig& rig) const {
     const YAML::Node enc = Child(root, "", "encoder");
     const YAML::Node cpr = Child(enc, "encoder", "counts_per_rev");
     rig.encoder.counts_per_rev = Number(cpr, "encoder.counts_per_rev");
@@ -83,7 +113,9 @@ class RigParser {
 
     const YAML::Node offset = Child(root, "", "offset");
     rig.offset_counts = Number(Child(offset, "offset", "counts"), "offset.counts");
+  }
 
+  Rig Sensor(const YAML::Node& root, Rig rig, bool areas_required, bool& has_areas) const {
     const YAML::Node sensor = Child(root, "", "sensor", areas_required);
     if (!sensor.IsDefined()) {
       has_areas = false;
@@ -146,33 +178,7 @@ class RigParser {
   std::string file_;
 };
 
-}  // namespace
-
-RigFile ParseRig(const std::string& text, const std::string& name, bool areas_required) {
-  RigFile out;
-  out.document = ParseYamlText(text, name);
-  out.warnings = RigKeyWarnings(out.document, name);
-  const RigParser parser(name);
-  out.rig = parser.Parse(out.document, areas_required, out.has_reference_areas);
-  parser.Check(out.document, out.rig, out.has_reference_areas);
-  return out;
-}
-
-RigFile ReadRigFile(const std::string& path, bool areas_required) {
-  return ParseRig(ReadTextFile(path, "rig file"), path, areas_required);
-}
-
-RigFile MakeRigFile(const Rig& rig) {
-  RigFile out;
-  out.rig = rig;
-  out.document = YAML::Node(YAML::NodeType::Map);
-  return out;
-}
-
-void WriteRigFile(const std::string& path, const RigFile& file) {
-  YAML::Node doc = YAML::Clone(file.document);
-  const Rig& rig = file.rig;
-  if (!rig.name.empty()) doc["name"] = rig.name;
+void WriteWheel(YAML::Node& doc, const Rig& rig) {
   doc["encoder"]["counts_per_rev"] = rig.encoder.counts_per_rev;
   doc["encoder"]["bits"] = rig.encoder.bits;
   doc["encoder"]["direction"] = rig.encoder.direction;
@@ -185,6 +191,47 @@ void WriteRigFile(const std::string& path, const RigFile& file) {
     doc["wheel"].remove("eccentricity_phase_deg");
   }
   doc["offset"]["counts"] = rig.offset_counts;
+}
+
+void WritePart(YAML::Node& doc, const PartBed& bed) {
+  doc["part"]["bed"] = bed.shape == PartBed::Shape::kCylinder ? "cylinder" : "flat";
+  if (bed.radius_mm > 0.0)
+    doc["part"]["bed_radius_mm"] = bed.radius_mm;
+  else
+    doc["part"].remove("bed_radius_mm");
+}
+
+}  // namespace
+
+RigFile ParseRig(const std::string& text, const std::string& name, bool areas_required, bool wheel_required) {
+  RigFile out;
+  out.document = ParseYamlText(text, name);
+  out.warnings = RigKeyWarnings(out.document, name);
+  const RigParser parser(name);
+  out.rig = parser.Parse(out.document, areas_required, wheel_required, out.has_reference_areas);
+  parser.Check(out.document, out.rig, out.has_reference_areas);
+  return out;
+}
+
+RigFile ReadRigFile(const std::string& path, bool areas_required) {
+  return ParseRig(ReadTextFile(path, "rig file"), path, areas_required);
+}
+
+RigFile ReadPartRigFile(const std::string& path) { return ParseRig(ReadTextFile(path, "rig file"), path, true, false); }
+
+RigFile MakeRigFile(const Rig& rig) {
+  RigFile out;
+  out.rig = rig;
+  out.document = YAML::Node(YAML::NodeType::Map);
+  return out;
+}
+
+void WriteRigFile(const std::string& path, const RigFile& file) {
+  YAML::Node doc = YAML::Clone(file.document);
+  const Rig& rig = file.rig;
+  if (!rig.name.empty()) doc["name"] = rig.name;
+  if (rig.has_wheel) WriteWheel(doc, rig);
+  if (rig.part) WritePart(doc, *rig.part);
   YAML::Node areas(YAML::NodeType::Sequence);
   for (const ReferenceArea& a : {rig.reference_left, rig.reference_right}) {
     YAML::Node pair(YAML::NodeType::Sequence);

@@ -31,8 +31,14 @@ inline Rig ReadRig(const std::string& path, std::vector<std::string>* warnings =
   if (warnings) warnings->insert(warnings->end(), f.warnings.begin(), f.warnings.end());
   return f.rig;
 }
+// The rig of a part scan (format 1.1): the wheel's sections may be left
+// out (rig.has_wheel = false); the reference areas (bare bed either side of
+// the first layer) are required.
+RigFile ReadPartRigFile(const std::string& path);
 // Parses YAML text; `name` is used in errors in place of a file name.
-RigFile ParseRig(const std::string& text, const std::string& name, bool areas_required = true);
+// wheel_required = false: a rig without encoder, wheel and offset is read.
+RigFile ParseRig(const std::string& text, const std::string& name, bool areas_required = true,
+                 bool wheel_required = true);
 
 // Writes `file.document` with the spec keys set from `file.rig`, atomically.
 void WriteRigFile(const std::string& path, const RigFile& file);

@@ -10,6 +10,7 @@
 #include "libbead/io/contained.h"
 #include "libbead/io/hdf5_rows.h"
 #include "libbead/io/hdf5_file.h"
+#include "libbead/io/part_datasets.h"
 
 namespace bead {
 namespace {
@@ -40,13 +41,17 @@ void CheckLength(std::size_t got, std::size_t want, const std::string& file, con
                 "length mismatch: " + std::to_string(got) + " values, but " + other + " has " + std::to_string(want)));
 }
 
-// Reads <group>/t_s, encoder, x_mm, z_mm.
-ProfileBlock ReadBlock(const h5::File& f, const std::string& group) {
+// Reads <group>/t_s, encoder, x_mm, z_mm; a part scan has no encoder
+// (`part`: 0 for each profile).
+ProfileBlock ReadBlock(const h5::File& f, const std::string& group, bool part = false) {
   ProfileBlock b;
   const std::string t_name = Join(group, "t_s"), e_name = Join(group, "encoder");
   const std::string x_name = Join(group, "x_mm"), z_name = Join(group, "z_mm");
   b.t_s = f.ReadDouble(t_name, {1}).data;
-  b.encoder = f.ReadInt64(e_name, {1}).data;
+  if (part)
+    b.encoder.assign(b.t_s.size(), 0);
+  else
+    b.encoder = f.ReadInt64(e_name, {1}).data;
   auto x = f.ReadFloat(x_name, {1, 2});
   auto z = f.ReadFloat(z_name, {2});
   CheckProfileShapes(f.name(), group, b.t_s.size(), b.encoder.size(), {z.dims.begin(), z.dims.end()},
@@ -59,10 +64,10 @@ ProfileBlock ReadBlock(const h5::File& f, const std::string& group) {
   return b;
 }
 
-void WriteBlock(h5::File& f, const std::string& group, const ProfileBlock& b) {
+void WriteBlock(h5::File& f, const std::string& group, const ProfileBlock& b, bool part = false) {
   const hsize_t n = b.size(), p = b.points;
   f.Write(Join(group, "t_s"), b.t_s, {n});
-  f.Write(Join(group, "encoder"), b.encoder, {n});
+  if (!part) f.Write(Join(group, "encoder"), b.encoder, {n});
   if (b.shared_x)
     f.Write(Join(group, "x_mm"), b.x_mm, {p});
   else
@@ -73,18 +78,22 @@ void WriteBlock(h5::File& f, const std::string& group, const ProfileBlock& b) {
 // The log's datasets checked for presence, type, rank and lengths, their
 // values not read (for a command that does not use the log: a damaged log
 // is still reported, and an hour's log is not held for nothing).
-void CheckLogShape(const h5::File& f) {
+void CheckLogShape(const h5::File& f, bool part) {
   std::vector<hsize_t> t, d;
   f.OpenDataset("/log/t_s", {1}, h5::Kind::kFloat, t);
   const struct {
     const char* name;
     h5::Kind kind;
-    bool optional;
-  } columns[] = {{"/log/encoder", h5::Kind::kInteger, false},
-                 {"/log/screw_rpm", h5::Kind::kFloat, false},
-                 {"/log/extruder_cmd_v", h5::Kind::kFloat, true},
-                 {"/log/wheel_cmd_v", h5::Kind::kFloat, true}};
+    bool optional, wheel, part;
+  } columns[] = {{"/log/encoder", h5::Kind::kInteger, false, true, false},
+                 {"/log/screw_rpm", h5::Kind::kFloat, false, false, false},
+                 {"/log/extruder_cmd_v", h5::Kind::kFloat, true, false, false},
+                 {"/log/wheel_cmd_v", h5::Kind::kFloat, true, true, false},
+                 {"/log/layer", h5::Kind::kInteger, false, false, true},
+                 {"/log/path_mm", h5::Kind::kFloat, false, false, true},
+                 {"/log/head_speed_mm_s", h5::Kind::kFloat, true, false, true}};
   for (const auto& c : columns) {
+    if ((c.wheel && part) || (c.part && !part)) continue;
     if (c.optional && !f.Exists(c.name)) continue;
     f.OpenDataset(c.name, {1}, c.kind, d);
     CheckLength(d[0], t[0], f.name(), c.name, "/log/t_s");
@@ -101,10 +110,10 @@ bool IsSpecLogDataset(const std::string& name) {
 // unit from a string attribute `unit` when there is one. Anything else
 // under /log (a group, an integer counter, another length) is not a
 // channel and is left alone.
-std::vector<LogChannel> ReadChannels(const h5::File& f, std::size_t samples) {
+std::vector<LogChannel> ReadChannels(const h5::File& f, std::size_t samples, bool part) {
   std::vector<LogChannel> out;
   for (const std::string& name : f.Members("/log")) {
-    if (IsSpecLogDataset(name)) continue;
+    if (IsSpecLogDataset(name) || (part && IsPartLogDataset(name))) continue;
     const std::string path = "/log/" + name;
     std::vector<hsize_t> dims;
     try {
@@ -171,14 +180,15 @@ void ValidateProfileRows(const ProfileBlock& b, std::size_t first, double previo
 
 void ValidateLog(const AcquisitionLog& log, const std::string& file, const std::string& where) {
   const std::string t_name = Join(where, "t_s");
-  CheckLength(log.encoder.size(), log.size(), file, Join(where, "encoder"), t_name);
+  if (!log.part()) CheckLength(log.encoder.size(), log.size(), file, Join(where, "encoder"), t_name);
   CheckLength(log.screw_rpm.size(), log.size(), file, Join(where, "screw_rpm"), t_name);
   if (!log.extruder_cmd_v.empty())
     CheckLength(log.extruder_cmd_v.size(), log.size(), file, Join(where, "extruder_cmd_v"), t_name);
   if (!log.wheel_cmd_v.empty())
     CheckLength(log.wheel_cmd_v.size(), log.size(), file, Join(where, "wheel_cmd_v"), t_name);
   for (const LogChannel& c : log.channels) {
-    if (c.name.empty() || IsSpecLogDataset(c.name) || c.name.find('/') != std::string::npos)
+    if (c.name.empty() || IsSpecLogDataset(c.name) || (log.part() && IsPartLogDataset(c.name)) ||
+        c.name.find('/') != std::string::npos)
       throw Error(
           Located(file, Join(where, c.name), "a recorded channel needs its own name (not a spec dataset's, no '/')"));
     CheckLength(c.values.size(), log.size(), file, Join(where, c.name), t_name);
@@ -190,23 +200,31 @@ RunArchive ReadRunArchive(const std::string& path) { return ReadRunArchive(path,
 
 namespace {
 
-RunArchive ReadRunArchiveDirect(const std::string& path, bool with_profiles, bool with_log) {
+// `part`: a part scan (format 1.1): no encoder, the places read and checked.
+RunArchive ReadRunArchiveDirect(const std::string& path, bool with_profiles, bool with_log, bool part = false) {
   const h5::File f = h5::File::OpenRead(path);
   RunArchive run;
-  if (with_profiles) run.profiles = ReadBlock(f, "/profiles");
-  if (!with_log && f.Exists("/log")) CheckLogShape(f);
+  if (with_profiles) run.profiles = ReadBlock(f, "/profiles", part);
+  if (part) {
+    std::vector<hsize_t> t;
+    f.OpenDataset("/profiles/t_s", {1}, h5::Kind::kFloat, t);
+    run.part = ReadPartPlaces(f, t[0]);
+  }
+  if (!with_log && f.Exists("/log")) CheckLogShape(f, part);
   if (with_log && f.Exists("/log")) {
     AcquisitionLog log;
     log.t_s = f.ReadDouble("/log/t_s", {1}).data;
-    log.encoder = f.ReadInt64("/log/encoder", {1}).data;
+    if (!part) log.encoder = f.ReadInt64("/log/encoder", {1}).data;
     log.screw_rpm = f.ReadDouble("/log/screw_rpm", {1}).data;
     if (f.Exists("/log/extruder_cmd_v")) log.extruder_cmd_v = f.ReadDouble("/log/extruder_cmd_v", {1}).data;
-    if (f.Exists("/log/wheel_cmd_v")) log.wheel_cmd_v = f.ReadDouble("/log/wheel_cmd_v", {1}).data;
-    log.channels = ReadChannels(f, log.size());
+    if (!part && f.Exists("/log/wheel_cmd_v")) log.wheel_cmd_v = f.ReadDouble("/log/wheel_cmd_v", {1}).data;
+    if (part) ReadPartLog(f, log);
+    log.channels = ReadChannels(f, log.size(), part);
     ValidateLog(log, path, "/log");
     run.log = std::move(log);
   }
   run.attributes = f.ReadStringAttributes("/");
+  if (part) run.attributes[kEncoderAttribute] = kEncoderAbsent;
   return run;
 }
 
@@ -253,15 +271,29 @@ void CheckIsRunArchive(const h5::File& f, const std::string& path) {
                         "(/profiles and /log; bead simulate's run.h5)"));
 }
 
+// A part scan says so at its root; a run archive or a pin-scan archive
+// given in its place is named.
+void CheckIsPartScan(const h5::File& f, const std::string& path) {
+  const std::map<std::string, std::string> root = f.ReadStringAttributes("/");
+  if (const auto kind = root.find(kKindAttribute); kind != root.end() && kind->second == kKindPart) return;
+  if (f.Exists("/scans")) throw Error(Located(path, "", "is a pin-scan archive (it holds /scans), not a part scan"));
+  throw Error(Located(path, "",
+                      "is not a part scan (its root has no attribute kind = \"part\"; a run archive on the wheel "
+                      "is measured without part mode)"));
+}
+
 // What a reader of the archive touches in libhdf5: every profile dataset's
 // header and rows (ProbeProfileRows), and the log with its channels.
-void ProbeRunArchive(const std::string& path, bool with_log) {
+void ProbeRunArchive(const std::string& path, bool with_log, bool part = false) {
   {
     const h5::File f = h5::File::OpenRead(path);
-    CheckIsRunArchive(f, path);
+    if (part)
+      CheckIsPartScan(f, path);
+    else
+      CheckIsRunArchive(f, path);
     ProbeProfileRows(f, path);
   }
-  ReadRunArchiveDirect(path, false, with_log);
+  ReadRunArchiveDirect(path, false, with_log, part);
 }
 
 PinScanArchive ReadPinScanArchiveDirect(const std::string& path);
@@ -273,6 +305,22 @@ RunArchive ReadRunArchive(const std::string& path, bool with_profiles, bool with
   return ReadRunArchiveDirect(path, with_profiles, with_log);
 }
 
+bool IsPartScan(const std::string& path) {
+  auto read = [&] {
+    const h5::File f = h5::File::OpenRead(path);
+    const auto root = f.ReadStringAttributes("/");
+    const auto kind = root.find(kKindAttribute);
+    return kind != root.end() && kind->second == kKindPart;
+  };
+  ProbeContained(path, "HDF5", [&] { read(); });  // in a contained child first
+  return read();
+}
+
+RunArchive ReadPartScan(const std::string& path, bool with_profiles, bool with_log) {
+  ProbeContained(path, "HDF5", [&] { ProbeRunArchive(path, with_log, true); });
+  return ReadRunArchiveDirect(path, with_profiles, with_log, true);
+}
+
 PinScanArchive ReadPinScanArchive(const std::string& path) {
   ProbeContained(path, "HDF5", [&] { ReadPinScanArchiveDirect(path); });
   return ReadPinScanArchiveDirect(path);
@@ -280,15 +328,23 @@ PinScanArchive ReadPinScanArchive(const std::string& path) {
 
 void WriteRunArchive(const std::string& path, const RunArchive& run) {
   ValidateProfileBlock(run.profiles, path, "/profiles");
+  const bool part = run.part.has_value();
+  if (part) ValidatePartPlaces(*run.part, run.profiles.size(), path, "/profiles");
   if (run.log) ValidateLog(*run.log, path, "/log");
+  if (run.log && part != run.log->part())
+    throw Error(Located(path, "/log", "a part scan's log holds layer and path_mm, a run's log the encoder"));
   AtomicFile out(path);
   {
     h5::File f = h5::File::Create(out.temp_path(), path);
-    WriteBlock(f, "/profiles", run.profiles);
+    WriteBlock(f, "/profiles", run.profiles, part);
+    if (part) WritePartPlaces(f, *run.part);
     if (run.log) {
       const hsize_t m = run.log->size();
       f.Write("/log/t_s", run.log->t_s, {m});
-      f.Write("/log/encoder", run.log->encoder, {m});
+      if (part)
+        WritePartLog(f, *run.log);
+      else
+        f.Write("/log/encoder", run.log->encoder, {m});
       f.Write("/log/screw_rpm", run.log->screw_rpm, {m});
       if (!run.log->extruder_cmd_v.empty()) f.Write("/log/extruder_cmd_v", run.log->extruder_cmd_v, {m});
       if (!run.log->wheel_cmd_v.empty()) f.Write("/log/wheel_cmd_v", run.log->wheel_cmd_v, {m});
@@ -297,7 +353,9 @@ void WriteRunArchive(const std::string& path, const RunArchive& run) {
         if (!c.unit.empty()) f.WriteStringAttribute("/log/" + c.name, "unit", c.unit);
       }
     }
-    for (const auto& [key, value] : run.attributes) f.WriteStringAttribute("/", key, value);
+    for (const auto& [key, value] : run.attributes)
+      if (!(part && key == kEncoderAttribute)) f.WriteStringAttribute("/", key, value);
+    if (part) f.WriteStringAttribute("/", kKindAttribute, kKindPart);
     f.Flush();
   }
   out.Commit();

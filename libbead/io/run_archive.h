@@ -15,8 +15,12 @@
 
 namespace bead {
 
+// A run on the wheel, or a part scan (format 1.1: `part` set, the root
+// attribute kind = "part", no encoder: the profiles' encoder holds 0 and
+// the attribute encoder = "absent" says so).
 struct RunArchive {
   ProfileBlock profiles;
+  std::optional<PartPlaces> part;
   std::optional<AcquisitionLog> log;
   std::map<std::string, std::string> attributes;  // root string attributes
 };
@@ -43,6 +47,13 @@ struct PinScanArchive {
 };
 
 RunArchive ReadRunArchive(const std::string& path);
+// Whether the archive's root says kind = "part" (format 1.1); false for
+// anything else (the readers then say what the file is).
+bool IsPartScan(const std::string& path);
+// A part scan (format 1.1), checked as a run archive is, and its places:
+// lengths, finite values, layers from 0 that never fall (a layer's
+// profiles together, the profiler trailing the nozzle).
+RunArchive ReadPartScan(const std::string& path, bool with_profiles = true, bool with_log = true);
 // with_profiles = false: the log and root attributes only (the profiles
 // are then read window by window, io/profile_stream.h); with_log = false:
 // the log's datasets checked (presence, type, lengths) but not read (for
@@ -67,5 +78,7 @@ void ValidateProfileBlock(const ProfileBlock& block, const std::string& file, co
 void ValidateProfileRows(const ProfileBlock& block, std::size_t first, double previous_t, const std::string& file,
                          const std::string& where);
 void ValidateLog(const AcquisitionLog& log, const std::string& file, const std::string& where);
+void ValidatePartPlaces(const PartPlaces& places, std::size_t profiles, const std::string& file,
+                        const std::string& where);
 
 }  // namespace bead

@@ -1,0 +1,318 @@
+#include "libbead/part/added_bead.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace bead::part {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// The points with a known gain, and the gain there.
+struct Gains {
+  std::vector<std::size_t> index;  // into the profile's points
+  std::vector<double> x, d;
+};
+
+Gains GainsAt(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, double s) {
+  Gains g;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double b = below.At(x[i] - s);
+    if (std::isnan(b)) continue;
+    g.index.push_back(i);
+    g.x.push_back(x[i]);
+    g.d.push_back(z[i] - b);
+  }
+  return g;
+}
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return kNaN;
+  auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+double NoiseOf(std::span<const float> z) {
+  std::vector<double> second;
+  for (std::size_t i = 0; i + 2 < z.size(); ++i) second.push_back(std::abs(z[i] - 2.0 * z[i + 1] + z[i + 2]));
+  return std::max(0.002, 1.4826 * Median(std::move(second)) / std::sqrt(6.0));
+}
+
+// The bead in a gain sequence: positions (into Gains) of its feet and of
+// the bare points beyond them.
+struct Span {
+  std::size_t bare_left = 0, foot_left = 0, foot_right = 0, bare_right = 0;
+};
+
+// The run above `tau` with the largest integral; false when there is none
+// of min_points points.
+bool BestRun(const Gains& g, double tau, double max_gap, int min_points, Span& best) {
+  double best_score = 0.0;
+  for (std::size_t i = 0; i < g.d.size();) {
+    if (!(g.d[i] > tau)) {
+      ++i;
+      continue;
+    }
+    std::size_t j = i;
+    double score = 0.0;
+    while (j + 1 < g.d.size() && g.d[j + 1] > tau && g.x[j + 1] - g.x[j] <= max_gap) {
+      score += 0.5 * (g.d[j] + g.d[j + 1]) * (g.x[j + 1] - g.x[j]);
+      ++j;
+    }
+    if (static_cast<int>(j - i + 1) >= min_points && score > best_score) {
+      best_score = score;
+      best.foot_left = i;
+      best.foot_right = j;
+    }
+    i = j + 1;
+  }
+  return best_score > 0.0;
+}
+
+// The feet carried out to the edge floor; false when a foot reaches the
+// end of what is known or a long dropout.
+bool Feet(const Gains& g, double floor, double max_gap, Span& s) {
+  while (s.foot_left > 0 && g.d[s.foot_left - 1] > floor && g.x[s.foot_left] - g.x[s.foot_left - 1] <= max_gap)
+    --s.foot_left;
+  while (s.foot_right + 1 < g.d.size() && g.d[s.foot_right + 1] > floor &&
+         g.x[s.foot_right + 1] - g.x[s.foot_right] <= max_gap)
+    ++s.foot_right;
+  if (s.foot_left == 0 || s.foot_right + 1 >= g.d.size()) return false;
+  s.bare_left = s.foot_left - 1;
+  s.bare_right = s.foot_right + 1;
+  return g.x[s.foot_left] - g.x[s.bare_left] <= max_gap && g.x[s.bare_right] - g.x[s.foot_right] <= max_gap;
+}
+
+// x where the gain crosses `level` between positions a and b.
+double Crossing(const Gains& g, std::size_t a, std::size_t b, double level) {
+  const double da = g.d[a], db = g.d[b];
+  const double t = da == db ? 0.5 : std::clamp((level - da) / (db - da), 0.0, 1.0);
+  return g.x[a] + t * (g.x[b] - g.x[a]);
+}
+
+// The bead's centre: the vertex of the parabola through the new surface
+// within `half` of its highest point (the top of the bead, whatever it
+// overhangs; the gain's centroid leans toward an overhanging side). The
+// highest point itself when the top is not curved downward there.
+double CrestVertex(const Gains& g, std::span<const float> z, const Span& s, std::size_t crest, double half) {
+  const double xc = g.x[crest];
+  double m[3][3] = {}, r[3] = {};
+  int n = 0;
+  for (std::size_t k = s.foot_left; k <= s.foot_right; ++k) {
+    const double u = g.x[k] - xc;
+    if (std::abs(u) > half) continue;
+    const double f[3] = {1.0, u, u * u}, zk = z[g.index[k]];
+    for (int i = 0; i < 3; ++i) {
+      r[i] += f[i] * zk;
+      for (int j = 0; j < 3; ++j) m[i][j] += f[i] * f[j];
+    }
+    ++n;
+  }
+  if (n < 5) return xc;
+  // Cramer's rule for the 3 x 3 normal equations.
+  auto det = [](const double a[3][3]) {
+    return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+           a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+  };
+  const double d = det(m);
+  if (d == 0.0) return xc;
+  double c[3];
+  for (int col = 0; col < 3; ++col) {
+    double a[3][3];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) a[i][j] = j == col ? r[i] : m[i][j];
+    c[col] = det(a) / d;
+  }
+  if (!(c[2] < 0.0)) return xc;
+  const double vertex = -c[1] / (2.0 * c[2]);
+  return std::abs(vertex) <= half ? xc + vertex : xc;
+}
+
+void Geometry(const Gains& g, std::span<const float> z, const Span& s, double floor, AddedBead& out) {
+  double area = 0.0;
+  for (std::size_t k = s.bare_left; k < s.bare_right; ++k) {
+    const double a = std::max(g.d[k], 0.0), b = std::max(g.d[k + 1], 0.0), dx = g.x[k + 1] - g.x[k];
+    area += 0.5 * (a + b) * dx;
+  }
+  out.area_mm2 = area;
+  out.width_mm = Crossing(g, s.foot_right, s.bare_right, floor) - Crossing(g, s.bare_left, s.foot_left, floor);
+  // The crest: the highest median of three new heights; the gain there.
+  std::size_t crest = s.foot_left;
+  double top = -1e300;
+  for (std::size_t k = s.foot_left; k <= s.foot_right; ++k) {
+    const std::size_t lo = k > s.foot_left ? k - 1 : k, hi = std::min(k + 1, s.foot_right);
+    const double m = Median({z[g.index[lo]], z[g.index[k]], z[g.index[hi]]});
+    if (m > top) top = m, crest = k;
+  }
+  const std::size_t lo = crest > s.foot_left ? crest - 1 : crest, hi = std::min(crest + 1, s.foot_right);
+  out.height_mm = Median({g.d[lo], g.d[crest], g.d[hi]});
+  out.center_x_mm = CrestVertex(g, z, s, crest, 0.2 * out.width_mm);
+}
+
+// The truncated squared gain over every point, in noise variances (the
+// new point's and the surface below's there): a point where the surfaces
+// agree counts its squared gain, one inside the new bead (or off the
+// surface below) the threshold's square, whatever the shift. Least where
+// the most points agree.
+double TruncatedCost(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, double s, double tau,
+                     double noise, double margin) {
+  const double cap = tau * tau / (noise * noise);
+  const double lo = below.x0_mm + margin, hi = below.x0_mm + below.dx_mm * (below.z_mm.size() - 1) - margin;
+  double sum = 0.0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (x[i] < lo || x[i] > hi) continue;
+    const double d = z[i] - below.At(x[i] - s);
+    const double variance = noise * noise * (1.0 + below.VarianceAt(x[i] - s));
+    sum += std::isnan(d) ? cap : std::min(d * d / variance, cap);
+  }
+  return sum;
+}
+
+struct Registration {
+  double shift = 0.0, sigma = kNaN, rms = kNaN;
+  int points = 0;
+  bool constrained = false;
+  bool at_end = false;  // the band within 4 of the least reached the search's end
+};
+
+// The cost on a grid of shifts: coarse over the whole range at a quarter
+// of the point spacing (a lone wall of the layer below moves one point in
+// or out of agreement per spacing), then ten times finer around the best.
+struct CostCurve {
+  std::vector<double> s, cost;
+  std::size_t best = 0;
+};
+
+CostCurve Scan(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, double centre, double half,
+               double step, double tau, double noise) {
+  CostCurve c;
+  for (double s = centre - half; s <= centre + half + 1e-12; s += step) {
+    c.s.push_back(s);
+    c.cost.push_back(TruncatedCost(x, z, below, s, tau, noise, half + std::abs(centre)));
+    if (c.cost.back() < c.cost[c.best]) c.best = c.cost.size() - 1;
+  }
+  return c;
+}
+
+// The cost averaged over one point spacing (`half` either side): a wall of
+// the layer below moves a point in or out of agreement per spacing of
+// shift, a step the average turns into a slope.
+std::vector<double> Smoothed(const CostCurve& c, std::size_t half) {
+  std::vector<double> out(c.cost.size());
+  for (std::size_t k = 0; k < c.cost.size(); ++k) {
+    const std::size_t lo = k >= half ? k - half : 0, hi = std::min(k + half, c.cost.size() - 1);
+    double sum = 0.0;
+    for (std::size_t j = lo; j <= hi; ++j) sum += c.cost[j];
+    out[k] = sum / static_cast<double>(hi - lo + 1);
+  }
+  return out;
+}
+
+// The shift: the middle of the shifts whose (smoothed) cost is within 1 of
+// the least; its sigma: half the range within 4 (two sigmas of one
+// parameter), over two, and at least a wall's sampling, spacing / sqrt 12.
+// A range that reaches the search's end leaves the shift unconstrained
+// (nothing outside the bead to register on: a bare bed).
+Registration FromCurve(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
+                       const CostCurve& coarse, double spacing, double tau, double noise, const AddedBeadOptions& o) {
+  const std::vector<double> cost = Smoothed(coarse, 2);
+  const double least = *std::min_element(cost.begin(), cost.end());
+  double lo1 = 1e300, hi1 = -1e300, lo4 = 1e300, hi4 = -1e300;
+  bool at_end = false;
+  for (std::size_t k = 0; k < cost.size(); ++k) {
+    if (cost[k] <= least + 1.0) lo1 = std::min(lo1, coarse.s[k]), hi1 = std::max(hi1, coarse.s[k]);
+    if (cost[k] <= least + 4.0) {
+      lo4 = std::min(lo4, coarse.s[k]), hi4 = std::max(hi4, coarse.s[k]);
+      at_end = at_end || k == 0 || k + 1 == cost.size();
+    }
+  }
+  Registration r;
+  r.shift = 0.5 * (lo1 + hi1);
+  r.at_end = at_end;
+  r.sigma = std::max(0.25 * (hi4 - lo4), spacing / std::sqrt(12.0));
+  double sum = 0.0;
+  int features = 0;
+  const double feature_slope = 3.0 * noise / spacing;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double d = z[i] - below.At(x[i] - r.shift);
+    if (!(std::abs(d) <= tau)) continue;
+    sum += d * d, ++r.points;
+    features += std::abs(below.SlopeAt(x[i] - r.shift)) > feature_slope;
+  }
+  r.rms = r.points ? std::sqrt(sum / r.points) : kNaN;
+  // Only where the layer below shows beside the new bead (a flank it does
+  // not cover) is there anything to register on: a cost that rises because
+  // a shifted old bead would stick out from under the new one says where
+  // the old bead could lie hidden, not where it lies.
+  r.constrained = !at_end && r.sigma <= o.max_shift_sigma_mm && features >= o.min_feature_points;
+  return r;
+}
+
+// A search from `start` (the shift of the profile before, in the same
+// pass) looks within warm_half_mm of it first, and over the whole range
+// when its band reaches that window's end.
+Registration Register(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, double tau,
+                      double noise, const AddedBeadOptions& o, const double* start) {
+  const double spacing = (x.back() - x.front()) / static_cast<double>(std::max<std::size_t>(x.size() - 1, 1));
+  const double step = std::max(0.25 * spacing, 1e-3);
+  if (start && std::abs(*start) + o.warm_half_mm < o.max_shift_mm) {
+    const CostCurve warm = Scan(x, z, below, *start, o.warm_half_mm, step, tau, noise);
+    Registration r = FromCurve(x, z, below, warm, spacing, tau, noise, o);
+    if (!r.at_end) return r;
+  }
+  return FromCurve(x, z, below, Scan(x, z, below, 0.0, o.max_shift_mm, step, tau, noise), spacing, tau, noise, o);
+}
+
+}  // namespace
+
+const char* AddedStatusName(AddedStatus s) {
+  switch (s) {
+    case AddedStatus::kValid:
+      return "valid";
+    case AddedStatus::kTooFewPoints:
+      return "too_few_points";
+    case AddedStatus::kNoSurfaceBelow:
+      return "no_surface_below";
+    case AddedStatus::kNoBead:
+      return "no_bead";
+    case AddedStatus::kBeadEdgeNotSeen:
+      return "bead_edge_not_seen";
+  }
+  return "unknown";
+}
+
+AddedBead MeasureAddedBead(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
+                           bool register_shift, const AddedBeadOptions& o, const double* start_shift) {
+  AddedBead out;
+  out.noise_mm = NoiseOf(z);
+  const double tau = std::max(o.min_threshold_mm, o.threshold_sigmas * out.noise_mm);
+  const double floor = std::max(o.min_edge_floor_mm, o.edge_floor_sigmas * out.noise_mm);
+  Registration reg;
+  for (int round = 0; round < (register_shift ? 2 : 1); ++round) {
+    const Gains g = GainsAt(x, z, below, reg.shift);
+    if (g.d.size() < 10) return out;  // kTooFewPoints
+    Span s;
+    if (!BestRun(g, tau, o.max_gap_mm, o.min_bead_points, s)) {
+      out.status = AddedStatus::kNoBead;
+      return out;
+    }
+    const bool seen = Feet(g, floor, o.max_gap_mm, s);
+    const bool last = round + 1 == (register_shift ? 2 : 1);
+    if (last || !seen) {
+      out.status = seen ? AddedStatus::kValid : AddedStatus::kBeadEdgeNotSeen;
+      if (seen) Geometry(g, z, s, floor, out);
+      break;
+    }
+    if (round == 0) reg = Register(x, z, below, tau, out.noise_mm, o, start_shift);
+  }
+  out.shift_mm = reg.shift;
+  out.shift_sigma_mm = reg.sigma;
+  out.shift_constrained = reg.constrained;
+  out.registration_rms_mm = reg.rms;
+  out.outside_points = reg.points;
+  return out;
+}
+
+}  // namespace bead::part

@@ -1,0 +1,103 @@
+// What one layer added to a part at one profile: the new surface over the
+// surface before it (the bed's reference line for layer 0, the layer
+// below for the others; part/surface_below.h), both in the bed frame.
+//
+// Definitions (the wheel's, profile/bead_geometry.h, with the surface
+// below in place of the reference line):
+//  - gain d(x) = z_new(x) - z_below(x - s), s the lateral shift between
+//    the two passes (registration, below);
+//  - the bead: the connected run of points (dropouts up to max_gap_mm
+//    bridged) with d above the detection threshold max(min_threshold_mm,
+//    threshold_sigmas * noise) whose integral is largest, extended outward
+//    while d stays above the edge floor; the first point beyond each foot
+//    is where the new surface meets the old;
+//  - area: the trapezoid integral of max(d, 0) from the bare point left of
+//    the bead to the bare point right of it; width: between the edges,
+//    where d crosses the edge floor (linear between the foot and the bare
+//    point); height: d at the crest (the median of three around the
+//    highest new point); centre: the top of the bead, the vertex of the
+//    parabola through the new surface within a fifth of the width of its
+//    highest point (the gain's centroid leans toward an overhanging side);
+//  - registration: s minimises the mean squared gain of the points outside
+//    the bead (where the old surface is still what the sensor sees: the
+//    bed, a lower layer's flank that the new bead does not cover): s
+//    minimises the truncated squared gain over all points (each in its
+//    noise variance, capped at the threshold's: a point inside the new bead
+//    costs the same at every shift), on a grid of a quarter point spacing
+//    over +-max_shift_mm, averaged over one spacing. s is the middle of the
+//    shifts within 1 of the least cost, its sigma a quarter of the range
+//    within 4, at least spacing / sqrt 12. Where the layer below shows
+//    nowhere beside the new bead (fewer than min_feature_points sloped
+//    points agree), or the range reaches the search's end, or its sigma
+//    exceeds max_shift_sigma_mm, s is not constrained: the layer below may
+//    lie anywhere it stays hidden. The area is still measured at the least
+//    cost (a hidden bead's place hardly moves it), but the bead's offset
+//    from the one below is not reported: the pass's shift and the wall's
+//    wander cannot be told apart there;
+//  - noise: from second differences of the new profile (a smooth surface
+//    adds little to them): 1.4826 median|z_i - 2 z_i+1 + z_i+2| / sqrt 6,
+//    at least 0.002 mm.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <span>
+
+#include "libbead/part/surface_below.h"
+
+namespace bead::part {
+
+struct AddedBeadOptions {
+  double min_threshold_mm = 0.05;
+  double threshold_sigmas = 6.0;
+  double min_edge_floor_mm = 0.01;
+  double edge_floor_sigmas = 2.0;
+  double max_gap_mm = 1.0;
+  // The lateral registration's search range, mm either way ...
+  double max_shift_mm = 3.0;
+  // ... and the largest sigma at which its shift is used, mm.
+  double max_shift_sigma_mm = 0.05;
+  // Given the shift of the profile before in the same pass, the search
+  // looks this far either side of it first (the whole range when the best
+  // lies at that window's end), mm.
+  double warm_half_mm = 0.3;
+  int min_bead_points = 3;
+  // Fewest points outside the bead where the surface below slopes (three
+  // noise sigmas over a point spacing: a lower layer's flank, not the flat
+  // bed) for the shift to count as found.
+  int min_feature_points = 3;
+};
+
+enum class AddedStatus : uint8_t {
+  kValid = 0,
+  kTooFewPoints,     // the profile holds fewer than 10 valid points over the surface below
+  kNoSurfaceBelow,   // the layer below is not known here
+  kNoBead,           // nothing stands above the threshold over the surface below
+  kBeadEdgeNotSeen,  // the bead runs to the end of what both scans saw
+};
+const char* AddedStatusName(AddedStatus status);
+
+struct AddedBead {
+  static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  AddedStatus status = AddedStatus::kTooFewPoints;
+  double area_mm2 = kNaN;     // what the layer added to the surface before it
+  double width_mm = kNaN;     // where the new surface stands above the old
+  double height_mm = kNaN;    // the gain at the crest
+  double center_x_mm = kNaN;  // the bead's top, this pass's bed frame
+  double shift_mm = 0.0;      // the layer below moved by this into this pass's frame (least cost)
+  double shift_sigma_mm = kNaN;
+  bool shift_constrained = false;
+  double registration_rms_mm = kNaN;  // the gain's RMS outside the bead (0 expected)
+  double noise_mm = kNaN;
+  int outside_points = 0;  // points where the two surfaces agree (|gain| under the threshold)
+  bool valid() const { return status == AddedStatus::kValid; }
+};
+
+// x, z: the new profile's valid points in the bed frame, x increasing.
+// register_shift = false: s = 0 (the bed's line, fitted on this profile).
+// start_shift: the shift found for the profile before in the same pass.
+AddedBead MeasureAddedBead(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
+                           bool register_shift, const AddedBeadOptions& options = {},
+                           const double* start_shift = nullptr);
+
+}  // namespace bead::part

@@ -1,0 +1,114 @@
+#include "libbead/part/measure_part.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <string>
+
+#include "libbead/core/error.h"
+
+namespace bead::part {
+namespace {
+
+// A profile's valid points moved into the bed frame, increasing in x.
+StoredProfile InBedFrame(const ProfileView& v, double path, double frame_x, double frame_z) {
+  StoredProfile p;
+  p.path_mm = path;
+  std::vector<std::pair<float, float>> points;
+  for (std::size_t j = 0; j < v.x_mm.size(); ++j)
+    if (std::isfinite(v.x_mm[j]) && std::isfinite(v.z_mm[j]))
+      points.emplace_back(static_cast<float>(v.x_mm[j] + frame_x), static_cast<float>(v.z_mm[j] + frame_z));
+  std::sort(points.begin(), points.end());
+  for (const auto& [x, z] : points) {
+    p.x_mm.push_back(x);
+    p.z_mm.push_back(z);
+  }
+  return p;
+}
+
+// An eighth of the points' mean spacing: the grid's own interpolation
+// then adds little to the points'.
+double GridStep(const StoredProfile& p) {
+  if (p.x_mm.size() < 2) return 0.01;
+  return 0.125 * (p.x_mm.back() - p.x_mm.front()) / static_cast<double>(p.x_mm.size() - 1);
+}
+
+// The bed under layer 0: the reference line of the profile itself, in the
+// bed frame, over the profile's x range.
+std::optional<SurfaceGrid> BedLine(ProfileProcessor& processor, const ProfileView& v, const StoredProfile& p,
+                                   double frame_x, double frame_z) {
+  const BeadGeometry& g = processor.Process(v);
+  if (!g.reference.ok || p.x_mm.size() < 2) return std::nullopt;
+  SurfaceGrid grid;
+  grid.dx_mm = GridStep(p);
+  grid.x0_mm = p.x_mm.front();
+  const std::size_t n = static_cast<std::size_t>((p.x_mm.back() - p.x_mm.front()) / grid.dx_mm) + 2;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double x = grid.x0_mm + static_cast<double>(k) * grid.dx_mm - frame_x;
+    grid.z_mm.push_back(static_cast<float>(g.reference.intercept_mm + g.reference.slope * x + frame_z));
+  }
+  return grid;
+}
+
+class PartMeasurer {
+ public:
+  PartMeasurer(const Rig& rig, const MeasurePartOptions& o, std::size_t points)
+      : options_(o), processor_(rig.reference_left, rig.reference_right, o.bed, points), below_(o.below) {}
+
+  PartGeometryRow Measure(const ProfileView& v, std::size_t i, const PartPlaces& places) {
+    PartGeometryRow row;
+    row.profile = static_cast<int64_t>(i);
+    row.t_s = v.t_s;
+    row.layer = places.layer[i];
+    row.path_mm = places.path_mm[i];
+    below_.BeginLayer(row.layer);
+    StoredProfile mine = InBedFrame(v, row.path_mm, places.frame_x_mm[i], places.frame_z_mm[i]);
+    std::optional<SurfaceGrid> under;
+    if (row.layer == 0)
+      under = BedLine(processor_, v, mine, places.frame_x_mm[i], places.frame_z_mm[i]);
+    else
+      under = below_.At(row.path_mm, GridStep(mine), nullptr);
+    if (!under) {
+      row.bead.status = row.layer == 0 ? AddedStatus::kTooFewPoints : AddedStatus::kNoSurfaceBelow;
+    } else {
+      const bool shift = row.layer > 0 && options_.register_layers;
+      if (row.layer != warm_layer_) has_warm_ = false;
+      row.bead = MeasureAddedBead(mine.x_mm, mine.z_mm, *under, shift, options_.added, has_warm_ ? &warm_ : nullptr);
+      if (row.bead.shift_constrained) has_warm_ = true, warm_ = row.bead.shift_mm, warm_layer_ = row.layer;
+    }
+    mine.center_x_mm = row.bead.valid() ? row.bead.center_x_mm : std::nan("");
+    if (row.layer > 0 && row.bead.valid() && (row.bead.shift_constrained || !options_.register_layers))
+      row.offset_below_mm = row.bead.center_x_mm - (below_.CenterAt(row.path_mm) + row.bead.shift_mm);
+    below_.Keep(std::move(mine));
+    return row;
+  }
+
+ private:
+  MeasurePartOptions options_;
+  ProfileProcessor processor_;
+  SurfaceBelow below_;
+  bool has_warm_ = false;  // the last found shift of this pass, to search from
+  double warm_ = 0.0;
+  int64_t warm_layer_ = -1;
+};
+
+}  // namespace
+
+void MeasurePart(ProfileStream& stream, const PartPlaces& places, const Rig& rig, const MeasurePartOptions& options,
+                 const std::function<void(const PartGeometryRow&)>& sink,
+                 const std::function<void(std::size_t)>& progress) {
+  if (places.size() != stream.size())
+    throw Error(Located(stream.name(), "/profiles/layer",
+                        std::to_string(places.size()) + " places for " + std::to_string(stream.size()) + " profiles"));
+  PartMeasurer measurer(rig, options, stream.points());
+  ProfileBlock block;
+  const std::size_t window = stream.WindowRows();
+  for (std::size_t begin = 0; begin < stream.size(); begin += window) {
+    const std::size_t count = std::min(window, stream.size() - begin);
+    stream.Read(begin, count, block);
+    for (std::size_t k = 0; k < count; ++k) sink(measurer.Measure(block.view(k), begin + k, places));
+    if (progress) progress(begin + count);
+  }
+}
+
+}  // namespace bead::part

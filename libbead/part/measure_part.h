@@ -1,0 +1,53 @@
+// MeasurePart: a part scan's geometry (format 1.1), streamed. Each
+// profile's bead is measured against the surface it was laid on
+// (part/added_bead.h): layer 0 against the bed (the reference line over
+// the rig's reference areas, as a bead on the wheel), every later layer
+// against the layer below at the same place along the path
+// (part/surface_below.h), registered laterally. The profiles are read
+// window by window and measured in order (a layer needs the one before);
+// memory holds one window and two layers' points, whatever the part's size.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+
+#include "libbead/core/rig.h"
+#include "libbead/core/run_data.h"
+#include "libbead/io/profile_stream.h"
+#include "libbead/part/added_bead.h"
+#include "libbead/part/surface_below.h"
+#include "libbead/profile/profile_processor.h"
+
+namespace bead::part {
+
+struct PartGeometryRow {
+  static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  int64_t profile = 0;
+  double t_s = 0.0;
+  int64_t layer = 0;
+  double path_mm = 0.0;
+  AddedBead bead;
+  // The bead's centre less the centre of the bead below, both in the bed
+  // frame (wall wander); NaN on layer 0 and where the registration was not
+  // constrained (the passes' lateral shift unknown).
+  double offset_below_mm = kNaN;
+  double area_corrected_mm2 = kNaN;  // the occlusion stage's (not yet run on parts)
+};
+
+struct MeasurePartOptions {
+  ProfileOptions bed;  // the reference line of layer 0's bed
+  AddedBeadOptions added;
+  SurfaceBelowOptions below;
+  // false: each layer subtracted from the one below as recorded (the
+  // naive subtraction, for comparison); true: registered laterally.
+  bool register_layers = true;
+};
+
+// Calls `sink` with each profile's row, in the scan's order; `progress`
+// (when given) with the profiles done so far.
+void MeasurePart(ProfileStream& stream, const PartPlaces& places, const Rig& rig, const MeasurePartOptions& options,
+                 const std::function<void(const PartGeometryRow&)>& sink,
+                 const std::function<void(std::size_t)>& progress = nullptr);
+
+}  // namespace bead::part

@@ -1,0 +1,179 @@
+#include "libbead/sim/part_twin.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <random>
+
+namespace bead::sim {
+namespace {
+
+constexpr double kGridMm = 0.01;  // the truth's surfaces are held this finely
+
+// A surface across the wall in the bed frame, on the truth grid.
+struct Surface {
+  double x0 = 0.0;
+  std::vector<double> z;
+  double At(double x) const {
+    const double u = std::clamp((x - x0) / kGridMm, 0.0, static_cast<double>(z.size() - 1));
+    const std::size_t k = std::min(static_cast<std::size_t>(u), z.size() - 2);
+    return z[k] + (u - static_cast<double>(k)) * (z[k + 1] - z[k]);
+  }
+};
+
+struct Layer {
+  double area = 0.0, center = 0.0;
+};
+
+// The ellipse's material over `below` with its centre at height zc: the
+// part of it above the old surface.
+double MaterialArea(const Surface& below, double c, double a, double b, double zc) {
+  double area = 0.0;
+  const std::size_t k0 = static_cast<std::size_t>(std::max(0.0, (c - a - below.x0) / kGridMm));
+  for (std::size_t k = k0; k < below.z.size(); ++k) {
+    const double x = below.x0 + (static_cast<double>(k) + 0.5) * kGridMm;
+    const double u = (x - c) / a;
+    if (u > 1.0) break;
+    if (u < -1.0) continue;
+    const double h = b * std::sqrt(1.0 - u * u);
+    area += std::max(0.0, zc + h - std::max(zc - h, below.At(x))) * kGridMm;
+  }
+  return area;
+}
+
+// Lays a layer's ellipse on `below` (sunk until its material is the
+// layer's area) and returns the top envelope the sensor sees.
+Surface Lay(const Surface& below, const Layer& layer, double a, double b) {
+  double lo = *std::min_element(below.z.begin(), below.z.end()) - b;
+  double hi = *std::max_element(below.z.begin(), below.z.end()) + b + layer.area / a;
+  for (int it = 0; it < 60; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (MaterialArea(below, layer.center, a, b, mid) < layer.area ? lo : hi) = mid;
+  }
+  const double zc = 0.5 * (lo + hi);
+  Surface top = below;
+  for (std::size_t k = 0; k < top.z.size(); ++k) {
+    const double u = (below.x0 + static_cast<double>(k) * kGridMm - layer.center) / a;
+    if (std::abs(u) <= 1.0) top.z[k] = std::max(top.z[k], zc + b * std::sqrt(1.0 - u * u));
+  }
+  return top;
+}
+
+class WallPrinter {
+ public:
+  explicit WallPrinter(const PartTwinConfig& c) : c_(c), rng_(c.seed) {
+    std::normal_distribution<double> wander(0.0, c.wander_sigma_mm), shift(0.0, c.pass_shift_sigma_mm);
+    std::uniform_real_distribution<double> phase(0.0, 1.0);
+    for (int n = 0; n < c.layers; ++n) {
+      wander_.push_back(wander(rng_));
+      shift_.push_back(shift(rng_));
+      phase_.push_back(phase(rng_));
+    }
+  }
+
+  double Shift(int n) const { return shift_[n]; }
+  double Phase(int n) const { return phase_[n]; }
+
+  // The bead of layer n at path p: its area and its centre in the bed frame.
+  Layer LayerAt(int n, double p) const {
+    const double two_pi = 2.0 * std::numbers::pi;
+    Layer l;
+    l.area = c_.area_mm2 + c_.area_wave_mm2 * std::sin(two_pi * p / c_.wave_period_mm + 0.7 * n);
+    l.center = shift_[n] + wander_[n] + 0.1 * std::sin(two_pi * p / 60.0 + 1.3 * n);
+    return l;
+  }
+
+  // The envelopes of layers 0..n at path p (the bed first).
+  std::vector<Surface> Stack(int n, double p) const {
+    Surface bed;
+    bed.x0 = -c_.field_half_mm - 6.0;
+    bed.z.assign(static_cast<std::size_t>(2.0 * (c_.field_half_mm + 6.0) / kGridMm) + 1, 0.0);
+    std::vector<Surface> stack{bed};
+    const double a = 0.5 * c_.width_mm, b = c_.aspect * a;
+    for (int k = 0; k <= n; ++k) stack.push_back(Lay(stack.back(), LayerAt(k, p), a, b));
+    return stack;
+  }
+
+  double Noise() { return std::normal_distribution<double>(0.0, c_.noise_mm)(rng_); }
+
+ private:
+  const PartTwinConfig& c_;
+  std::mt19937_64 rng_;
+  std::vector<double> wander_, shift_, phase_;
+};
+
+PartTruthRow Truth(const WallPrinter& printer, const std::vector<Surface>& stack, int n, double p) {
+  const Surface &now = stack.back(), &before = stack[stack.size() - 2];
+  PartTruthRow t;
+  t.layer = n;
+  t.path_mm = p;
+  const Layer layer = printer.LayerAt(n, p);
+  t.area_mm2 = layer.area;
+  t.center_x_mm = layer.center;
+  t.offset_below_mm = n > 0 ? layer.center - printer.LayerAt(n - 1, p).center : 0.0;
+  t.pass_shift_mm = printer.Shift(n);
+  double first = 1e300, last = -1e300;
+  for (std::size_t k = 0; k < now.z.size(); ++k) {
+    const double gain = now.z[k] - before.z[k];
+    t.visible_area_mm2 += gain * kGridMm;
+    if (gain > 1e-9) first = std::min(first, now.x0 + k * kGridMm), last = std::max(last, now.x0 + k * kGridMm);
+  }
+  t.width_mm = last - first;
+  t.height_mm = now.At(layer.center) - before.At(layer.center);
+  return t;
+}
+
+}  // namespace
+
+PartTwin SimulatePartWall(const PartTwinConfig& c) {
+  PartTwin twin;
+  WallPrinter printer(c);
+  RunArchive& scan = twin.scan;
+  scan.part.emplace();
+  ProfileBlock& b = scan.profiles;
+  b.points = static_cast<std::size_t>(std::lround(2.0 * c.field_half_mm / c.point_spacing_mm)) + 1;
+  for (std::size_t j = 0; j < b.points; ++j)
+    b.x_mm.push_back(static_cast<float>(-c.field_half_mm + static_cast<double>(j) * c.point_spacing_mm));
+  const double pass_s = (c.length_mm + c.trail_mm) / c.head_speed_mm_s, layer_s = pass_s + c.return_s;
+  const double pitch = c.area_mm2 / c.width_mm;
+  for (int n = 0; n < c.layers; ++n) {
+    const double frame_z = n * pitch + c.standoff_mm;
+    for (double p = printer.Phase(n) * c.profile_spacing_mm; p <= c.length_mm; p += c.profile_spacing_mm) {
+      const std::vector<Surface> stack = printer.Stack(n, p);
+      b.t_s.push_back(n * layer_s + (p + c.trail_mm) / c.head_speed_mm_s);
+      b.encoder.push_back(0);
+      for (std::size_t j = 0; j < b.points; ++j)
+        b.z_mm.push_back(static_cast<float>(stack.back().At(b.x_mm[j] + printer.Shift(n)) - frame_z + printer.Noise()));
+      scan.part->layer.push_back(n);
+      scan.part->path_mm.push_back(p);
+      scan.part->frame_z_mm.push_back(frame_z);
+      scan.part->frame_x_mm.push_back(0.0);
+      twin.truth.push_back(Truth(printer, stack, n, p));
+    }
+  }
+  AcquisitionLog log;
+  for (double t = 0.0; t < c.layers * layer_s; t += 1.0 / c.log_rate_hz) {
+    const int n = static_cast<int>(t / layer_s);
+    const double into = t - n * layer_s;
+    const bool printing = into < pass_s;
+    const double path =
+        printing ? into * c.head_speed_mm_s : (c.length_mm + c.trail_mm) * (1.0 - (into - pass_s) / c.return_s);
+    const bool extruding = printing && path <= c.length_mm;
+    log.t_s.push_back(t);
+    log.layer.push_back(n);
+    log.path_mm.push_back(path);
+    log.head_speed_mm_s.push_back(printing ? c.head_speed_mm_s : -(c.length_mm + c.trail_mm) / c.return_s);
+    const double q = extruding ? printer.LayerAt(n, path).area * c.head_speed_mm_s : 0.0;
+    log.screw_rpm.push_back(60.0 * q / c.displacement_mm3_per_rev);
+  }
+  scan.log = std::move(log);
+  scan.attributes["rig"] = "twin part: straight wall";
+  twin.rig.name = "twin-part";
+  twin.rig.has_wheel = false;
+  twin.rig.part = PartBed{};
+  twin.rig.reference_left = {-c.field_half_mm, -c.field_half_mm + 5.0};
+  twin.rig.reference_right = {c.field_half_mm - 5.0, c.field_half_mm};
+  return twin;
+}
+
+}  // namespace bead::sim

@@ -1,0 +1,68 @@
+// The twin prints a part: a straight wall, layer by layer (format 1.1 part
+// scan), with its truth beside each profile.
+//
+// Each layer's bead is an ellipse (half-width a = width / 2, half-height
+// aspect a) laid on the surface the layers before left, sunk into it until
+// the material it adds (the ellipse above the old surface) is the layer's
+// area at that place; where it overhangs the bead below, the groove under
+// its side is filled by nothing and hidden from a sensor looking down. The
+// sensor sees the top envelope, max(old surface, ellipse top). The head's
+// lateral position errs by a shift per pass (the registration's job: the
+// frame's recorded x is 0), the bead wanders off the head's centre line
+// per layer, the profiler trails the nozzle along the path, and the
+// profiles of each layer fall at their own places along it.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "libbead/core/rig.h"
+#include "libbead/io/run_archive.h"
+
+namespace bead::sim {
+
+struct PartTwinConfig {
+  int layers = 6;
+  double length_mm = 100.0;       // the wall's toolpath
+  double head_speed_mm_s = 20.0;  // along the path, while printing
+  double return_s = 2.0;          // travel back to the start between layers
+  double profile_spacing_mm = 0.5;
+  double trail_mm = 30.0;            // the laser line behind the nozzle, along the path
+  double width_mm = 6.0;             // the bead's ellipse, full width ...
+  double aspect = 0.5;               // ... and half-height over half-width
+  double area_mm2 = 12.0;            // the material a layer adds, mean ...
+  double area_wave_mm2 = 2.0;        // ... a wave along the path of this amplitude ...
+  double wave_period_mm = 40.0;      // ... and period
+  double wander_sigma_mm = 0.3;      // the bead's centre off the head's line, per layer
+  double pass_shift_sigma_mm = 0.2;  // the head's lateral error, per pass
+  double standoff_mm = 60.0;         // the profile frame's z = 0 this far above the layer's base
+  double noise_mm = 0.01;
+  double point_spacing_mm = 0.05;
+  double field_half_mm = 20.0;  // the profile spans +-this in x
+  double log_rate_hz = 100.0;
+  double displacement_mm3_per_rev = 100.0;  // screw rpm = 60 Q / this
+  uint64_t seed = 1;
+};
+
+// The truth of one profile, all in the bed frame.
+struct PartTruthRow {
+  int64_t layer = 0;
+  double path_mm = 0.0;
+  double area_mm2 = 0.0;          // the material the layer added
+  double visible_area_mm2 = 0.0;  // the new top envelope over the old one: what the sensor can see was added
+  double height_mm = 0.0;         // the envelope's gain at the crest
+  double width_mm = 0.0;          // where the new envelope stands above the old
+  double center_x_mm = 0.0;       // the bead's centre
+  double offset_below_mm = 0.0;   // its centre less the one below's (0 on layer 0)
+  double pass_shift_mm = 0.0;     // the head's lateral error in this pass
+};
+
+struct PartTwin {
+  RunArchive scan;                  // kind = "part"
+  Rig rig;                          // no wheel; the bed's reference areas; part: flat
+  std::vector<PartTruthRow> truth;  // one per profile, in the scan's order
+};
+
+PartTwin SimulatePartWall(const PartTwinConfig& config);
+
+}  // namespace bead::sim

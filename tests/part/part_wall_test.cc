@@ -1,0 +1,166 @@
+// A wall printed by the twin, layer by layer: each layer's bead measured
+// against the layer below (registered laterally) recovers what the layer
+// added where the sensor can see it, its height and width, and the wall's
+// wander; beside it, the naive subtraction of the layer below as recorded.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "libbead/io/profile_stream.h"
+#include "libbead/io/run_archive.h"
+#include "libbead/part/measure_part.h"
+#include "libbead/sim/part_twin.h"
+#include "tests/support/temp_dir.h"
+
+namespace bead {
+namespace {
+
+std::vector<part::PartGeometryRow> Measure(const RunArchive& scan, const Rig& rig, bool register_layers) {
+  ProfileStream stream("twin", scan.profiles);
+  part::MeasurePartOptions options;
+  options.register_layers = register_layers;
+  std::vector<part::PartGeometryRow> rows;
+  part::MeasurePart(stream, *scan.part, rig, options, [&](const part::PartGeometryRow& r) { rows.push_back(r); });
+  return rows;
+}
+
+struct Errors {
+  std::vector<double> area, height, width, offset;
+  int valid = 0, shift_found = 0, shift_covered = 0;
+};
+
+double Mean(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += x;
+  return v.empty() ? NAN : s / v.size();
+}
+double Rms(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += x * x;
+  return v.empty() ? NAN : std::sqrt(s / v.size());
+}
+
+void Collect(const sim::PartTwin& twin, const std::vector<part::PartGeometryRow>& rows, Errors& e) {
+  std::vector<double> pass_shift(64, 0.0);
+  for (const auto& t : twin.truth) pass_shift[t.layer] = t.pass_shift_mm;
+  for (const auto& r : rows) {
+    const sim::PartTruthRow& t = twin.truth[r.profile];
+    if (!r.bead.valid()) continue;
+    ++e.valid;
+    e.area.push_back(r.bead.area_mm2 - t.visible_area_mm2);
+    e.height.push_back(r.bead.height_mm - t.height_mm);
+    e.width.push_back(r.bead.width_mm - t.width_mm);
+    if (r.layer == 0 || !std::isfinite(r.offset_below_mm)) continue;
+    e.offset.push_back(r.offset_below_mm - t.offset_below_mm);
+    // The layer below moved into this pass's frame: its head's error less this one's.
+    const double truth = pass_shift[r.layer - 1] - pass_shift[r.layer];
+    ++e.shift_found;
+    e.shift_covered += std::abs(r.bead.shift_mm - truth) <= 2.0 * r.bead.shift_sigma_mm;
+  }
+}
+
+// Tolerances from the twin's sampling and noise (PartTwinConfig defaults):
+// points 0.05 mm apart with 0.01 mm of noise, walls up to h = 1.5 mm
+// high where a bead overhangs the one below. Each of the four walls (two
+// of the new surface, two of the old) is known to within one spacing, so
+// a profile's area is off by at most 4 * h * 0.05 / 2 = 0.15 mm^2; height
+// is a median of three gains, each with the noise of two points
+// (sqrt 2 * 0.01); a width's two edges each within a spacing: 0.1 mm.
+constexpr double kAreaBound = 0.15, kWidthBound = 0.1, kHeightNoise = 0.0141;
+
+TEST(PartWall, EachLayerIsMeasuredAgainstTheOneBelowWhereTheNaiveSubtractionIsNot) {
+  Errors registered, naive;
+  for (uint64_t seed : {1u, 2u, 3u, 4u}) {
+    sim::PartTwinConfig config;
+    config.seed = seed;
+    const sim::PartTwin twin = sim::SimulatePartWall(config);
+    Collect(twin, Measure(twin.scan, twin.rig, true), registered);
+    Collect(twin, Measure(twin.scan, twin.rig, false), naive);
+  }
+  const std::size_t n = registered.area.size();
+  std::printf(
+      "registered: area %+.4f rms %.4f mm^2, width rms %.4f, height rms %.4f mm, offset rms %.4f mm in %d of %d, "
+      "shift within 2 sigma %d; naive: area %+.4f rms %.4f, offset rms %.4f\n",
+      Mean(registered.area), Rms(registered.area), Rms(registered.width), Rms(registered.height),
+      Rms(registered.offset), registered.shift_found, 4 * 1000, registered.shift_covered, Mean(naive.area),
+      Rms(naive.area), Rms(naive.offset));
+  ASSERT_EQ(registered.valid, static_cast<int>(n));
+  EXPECT_EQ(n, 4u * 1200u) << "every profile of the wall is measured";
+  // Unbiased within four standard errors, and each profile within its bound.
+  EXPECT_LT(std::abs(Mean(registered.area)), 4.0 * kAreaBound / std::sqrt(static_cast<double>(n)) + 0.02);
+  EXPECT_LT(Rms(registered.area), kAreaBound);
+  EXPECT_LT(Rms(registered.width), kWidthBound);
+  EXPECT_LT(Rms(registered.height), 2.0 * kHeightNoise);
+  // The naive subtraction keeps the passes' lateral error (0.2 mm sigma
+  // each): several times the area error and the wander's.
+  EXPECT_GT(Rms(naive.area), 5.0 * Rms(registered.area));
+  EXPECT_GT(Rms(naive.offset), 5.0 * Rms(registered.offset));
+  // The wall's wander, where the layer below shows beside the new bead:
+  // found in most profiles, to the sampling of a wall (0.05 / sqrt 12 mm
+  // for each of the two passes' walls).
+  EXPECT_GT(registered.shift_found, static_cast<int>(0.8 * 4 * 1000));
+  EXPECT_LT(Rms(registered.offset), 2.0 * 0.05 / std::sqrt(12.0) * std::sqrt(2.0) + 0.01);
+  // The shift's interval: within two sigmas in 90 % or more of the rows.
+  EXPECT_GE(registered.shift_covered, static_cast<int>(0.9 * registered.shift_found));
+}
+
+TEST(PartWall, AStreamedArchiveMeasuresAsTheScanInMemory) {
+  test::TempDir dir;
+  sim::PartTwinConfig config;
+  config.layers = 3;
+  config.length_mm = 30.0;
+  const sim::PartTwin twin = sim::SimulatePartWall(config);
+  WriteRunArchive(dir / "part.h5", twin.scan);
+  const RunArchive places = ReadPartScan(dir / "part.h5", false, false);
+  WorkerPool pool(2);
+  ProfileStream stream(dir / "part.h5", pool);
+  std::vector<part::PartGeometryRow> streamed;
+  part::MeasurePart(stream, *places.part, twin.rig, {}, [&](const part::PartGeometryRow& r) { streamed.push_back(r); });
+  const std::vector<part::PartGeometryRow> memory = Measure(twin.scan, twin.rig, true);
+  ASSERT_EQ(streamed.size(), memory.size());
+  for (std::size_t i = 0; i < memory.size(); ++i) {
+    EXPECT_EQ(streamed[i].bead.area_mm2, memory[i].bead.area_mm2) << i;
+    EXPECT_EQ(streamed[i].bead.shift_mm, memory[i].bead.shift_mm) << i;
+  }
+}
+
+TEST(PartWall, ALayerMissingFromTheScanLeavesTheNextWithoutASurfaceBelow) {
+  sim::PartTwinConfig config;
+  config.layers = 4;
+  config.length_mm = 20.0;
+  sim::PartTwin twin = sim::SimulatePartWall(config);
+  // Keep layers 0, 1 and 3: layer 2 was not scanned.
+  RunArchive& s = twin.scan;
+  RunArchive kept = s;
+  kept.profiles.t_s.clear(), kept.profiles.encoder.clear(), kept.profiles.z_mm.clear();
+  kept.part = PartPlaces{};
+  const std::size_t p = s.profiles.points;
+  for (std::size_t i = 0; i < s.profiles.size(); ++i) {
+    if (s.part->layer[i] == 2) continue;
+    kept.profiles.t_s.push_back(s.profiles.t_s[i]);
+    kept.profiles.encoder.push_back(0);
+    kept.profiles.z_mm.insert(kept.profiles.z_mm.end(), s.profiles.z_mm.begin() + i * p,
+                              s.profiles.z_mm.begin() + (i + 1) * p);
+    kept.part->layer.push_back(s.part->layer[i]);
+    kept.part->path_mm.push_back(s.part->path_mm[i]);
+    kept.part->frame_z_mm.push_back(s.part->frame_z_mm[i]);
+    kept.part->frame_x_mm.push_back(s.part->frame_x_mm[i]);
+  }
+  int layer3 = 0;
+  for (const auto& r : Measure(kept, twin.rig, true)) {
+    if (r.layer != 3) {
+      EXPECT_TRUE(r.bead.valid()) << r.profile;
+      continue;
+    }
+    ++layer3;
+    EXPECT_EQ(r.bead.status, part::AddedStatus::kNoSurfaceBelow);
+    EXPECT_TRUE(std::isnan(r.bead.area_mm2));
+  }
+  EXPECT_GT(layer3, 30);
+}
+
+}  // namespace
+}  // namespace bead
