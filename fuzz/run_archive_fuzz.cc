@@ -3,7 +3,7 @@
 #include "libbead/io/log_stream.h"
 #include "libbead/io/run_archive.h"
 
-// The whole-archive reader, and the log walked window by window as the
+// The whole-archive reader, the part scan's, and the log walked window by window as the
 // streamed flow walks it (small windows, so that edges are crossed).
 namespace {
 void WalkLog(const std::string& path) {
@@ -22,6 +22,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string path = bead::fuzz::WriteInput(data, size, ".h5");
   try {
     bead::ReadRunArchive(path);
+  } catch (const bead::Error&) {
+  }
+  try {  // a part scan (format 1.1), when its root says kind = "part"
+    if (bead::IsPartScan(path)) bead::ReadPartScan(path);
   } catch (const bead::Error&) {
   }
   try {

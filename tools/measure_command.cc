@@ -8,6 +8,8 @@
 #include "tools/commands.h"
 #include "tools/subcommands.h"
 #include "tools/tty_progress.h"
+#include "tools/measure_part_scan.h"
+#include "libbead/io/run_archive.h"
 #include "tools/occlusion_module.h"
 #include "tools/occlusion_step.h"
 
@@ -26,6 +28,13 @@ Run AddMeasure(CLI::App& app) {
       "In:  RIG.yaml (reference areas) and RUN.h5 (run archive) or RUN.csv (profiles CSV),\n"
       "     as docs/data-formats.md defines them. An archive is read in windows of whole\n"
       "     chunks: memory stays flat whatever the run's length.\n"
+      "     A part scan (format 1.1: root attribute kind = \"part\") is measured layer on\n"
+      "     layer: each profile against the layer below at its place along the path\n"
+      "     (layer 0 against the bed's reference line), the layer below registered\n"
+      "     laterally; its rig file needs the reference areas and no wheel. It writes the\n"
+      "     part geometry CSV: profile,t_s,layer,path_mm,area_mm2,width_mm,height_mm,\n"
+      "     area_corrected_mm2,valid, then center_x_mm, offset_below_mm (wall wander),\n"
+      "     shift_mm, shift_sigma_mm, shift_found, registration_rms_mm, noise_mm, status.\n"
       "Out: geometry CSV, one row per profile in order: profile,t_s,encoder,area_mm2,\n"
       "     width_mm,height_mm,area_corrected_mm2,valid, then center_x_mm, reference_rms_mm,\n"
       "     reference_points, threshold_mm, dropped_points, status (why a row is invalid),\n"
@@ -55,6 +64,9 @@ Run AddMeasure(CLI::App& app) {
   AddOcclusionOption(cmd, args->occlusion);
 
   return [args]() {
+    // A part scan (kind = "part") is measured layer on layer.
+    if (args->run.ends_with(".h5") && IsPartScan(args->run))
+      return MeasurePartScan(args->rig, args->run, args->output, args->options, args->threads);
     const Rig rig = ReadRigSaying(args->rig);
     WorkerPool pool(args->threads);
     OpenedRun opened = OpenRun(args->run, pool, /*with_log=*/false);

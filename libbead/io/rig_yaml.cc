@@ -83,7 +83,12 @@ class RigParser {
     if (const YAML::Node part = root["part"]; part.IsDefined() && !part.IsNull()) rig.part = Part(part);
     // A part rig needs none of the wheel's sections; with none of them it
     // is a rig without a wheel.
-    if (!wheel_required && !root["encoder"].IsDefined() && !root["wheel"].IsDefined() && !root["offset"].IsDefined())
+    const bool no_wheel = !root["encoder"].IsDefined() && !root["wheel"].IsDefined() && !root["offset"].IsDefined();
+    if (no_wheel && rig.part && wheel_required)
+      Fail(root, "encoder",
+           "missing key: this is a part rig (a part: section, no wheel), and this command works on a run on the "
+           "wheel (a part scan is measured by bead measure)");
+    if (!wheel_required && no_wheel)
       rig.has_wheel = false;
     else
       Wheel(root, rig);

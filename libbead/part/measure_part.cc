@@ -94,21 +94,56 @@ class PartMeasurer {
 
 }  // namespace
 
-void MeasurePart(ProfileStream& stream, const PartPlaces& places, const Rig& rig, const MeasurePartOptions& options,
-                 const std::function<void(const PartGeometryRow&)>& sink,
-                 const std::function<void(std::size_t)>& progress) {
+double LayerSummary::MedianShift() const {
+  if (shifts_mm.empty()) return kNaN();
+  std::vector<double> v = shifts_mm;
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+namespace {
+
+void Tally(std::vector<LayerSummary>& layers, const PartGeometryRow& r) {
+  if (layers.empty() || layers.back().layer != r.layer) {
+    layers.emplace_back();
+    layers.back().layer = r.layer;
+    layers.back().first_path_mm = r.path_mm;
+  }
+  LayerSummary& l = layers.back();
+  ++l.profiles;
+  l.first_path_mm = std::min(l.first_path_mm, r.path_mm);
+  l.last_path_mm = std::max(l.last_path_mm, r.path_mm);
+  l.no_surface_below += r.bead.status == AddedStatus::kNoSurfaceBelow;
+  if (!r.bead.valid()) return;
+  ++l.valid;
+  l.area_sum_mm2 += r.bead.area_mm2;
+  if (r.bead.shift_constrained) ++l.shift_found, l.shifts_mm.push_back(r.bead.shift_mm);
+}
+
+}  // namespace
+
+std::vector<LayerSummary> MeasurePart(ProfileStream& stream, const PartPlaces& places, const Rig& rig,
+                                      const MeasurePartOptions& options,
+                                      const std::function<void(const PartGeometryRow&)>& sink,
+                                      const std::function<void(std::size_t)>& progress) {
   if (places.size() != stream.size())
     throw Error(Located(stream.name(), "/profiles/layer",
                         std::to_string(places.size()) + " places for " + std::to_string(stream.size()) + " profiles"));
   PartMeasurer measurer(rig, options, stream.points());
+  std::vector<LayerSummary> layers;
   ProfileBlock block;
   const std::size_t window = stream.WindowRows();
   for (std::size_t begin = 0; begin < stream.size(); begin += window) {
     const std::size_t count = std::min(window, stream.size() - begin);
     stream.Read(begin, count, block);
-    for (std::size_t k = 0; k < count; ++k) sink(measurer.Measure(block.view(k), begin + k, places));
+    for (std::size_t k = 0; k < count; ++k) {
+      const PartGeometryRow row = measurer.Measure(block.view(k), begin + k, places);
+      Tally(layers, row);
+      sink(row);
+    }
     if (progress) progress(begin + count);
   }
+  return layers;
 }
 
 }  // namespace bead::part

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <vector>
 
 #include "libbead/core/rig.h"
 #include "libbead/core/run_data.h"
@@ -44,10 +45,23 @@ struct MeasurePartOptions {
   bool register_layers = true;
 };
 
+// A layer's rows in brief, for the tools' report.
+struct LayerSummary {
+  int64_t layer = 0;
+  std::size_t profiles = 0, valid = 0, shift_found = 0, no_surface_below = 0;
+  double area_sum_mm2 = 0.0;  // over the valid rows
+  double first_path_mm = 0.0, last_path_mm = 0.0;
+  std::vector<double> shifts_mm;  // the shifts found (median: the pass's)
+  double MeanArea() const { return valid ? area_sum_mm2 / static_cast<double>(valid) : kNaN(); }
+  double MedianShift() const;
+  static double kNaN() { return std::numeric_limits<double>::quiet_NaN(); }
+};
+
 // Calls `sink` with each profile's row, in the scan's order; `progress`
-// (when given) with the profiles done so far.
-void MeasurePart(ProfileStream& stream, const PartPlaces& places, const Rig& rig, const MeasurePartOptions& options,
-                 const std::function<void(const PartGeometryRow&)>& sink,
-                 const std::function<void(std::size_t)>& progress = nullptr);
+// (when given) with the profiles done so far. Returns each layer's brief.
+std::vector<LayerSummary> MeasurePart(ProfileStream& stream, const PartPlaces& places, const Rig& rig,
+                                      const MeasurePartOptions& options,
+                                      const std::function<void(const PartGeometryRow&)>& sink,
+                                      const std::function<void(std::size_t)>& progress = nullptr);
 
 }  // namespace bead::part

@@ -1,4 +1,5 @@
 // The digital twin against its own physics.
+#include "libbead/sim/part_twin_io.h"
 #include "libbead/sim/rig_simulator.h"
 
 #include <gtest/gtest.h>
@@ -225,11 +226,18 @@ TEST(BundledSample, RegeneratesBitForBitFromItsConfig) {
 namespace bead::sim {
 namespace {
 
-// Every config in testdata/configs parses and simulates (shortened to 2 s).
+// Every config in testdata/configs parses and simulates (shortened to 2 s;
+// a part twin's to two layers of 10 mm).
 TEST(BundledConfigs, AllParseAndRun) {
   int count = 0;
   for (const auto& entry : std::filesystem::directory_iterator(std::string(BEAD_SOURCE_DIR) + "/testdata/configs")) {
     if (entry.path().extension() != ".yaml") continue;
+    if (std::optional<PartTwinConfig> part = ReadPartTwinConfig(entry.path().string())) {
+      part->layers = 2;
+      part->length_mm = 10.0;
+      EXPECT_GT(SimulatePartWall(*part).scan.profiles.size(), 30u) << entry.path();
+      continue;
+    }
     SimConfig c = ReadSimConfig(entry.path().string());
     c.duration_s = std::min(c.duration_s, 2.0);
     const SimulatedRun run = Simulate(c);

@@ -1,0 +1,29 @@
+// The part geometry CSV of docs/data-formats.md (format 1.1): the spec
+// columns profile,t_s,layer,path_mm,area_mm2,width_mm,height_mm,
+// area_corrected_mm2,valid first, then ours: center_x_mm, offset_below_mm,
+// shift_mm, shift_sigma_mm, shift_found, registration_rms_mm, noise_mm,
+// status. Values of an invalid profile are empty, its row kept with the
+// status saying why; offset_below_mm is empty where the passes' shift was
+// not found (shift_found = 0), area_corrected_mm2 where no occlusion model
+// ran.
+#pragma once
+
+#include <string>
+
+#include "libbead/io/atomic_file.h"
+#include "libbead/part/measure_part.h"
+
+namespace bead::part {
+
+class PartGeometryCsvWriter {
+ public:
+  explicit PartGeometryCsvWriter(const std::string& path);
+  void Append(const PartGeometryRow& row);
+  void Commit();
+
+ private:
+  AtomicFile out_;
+  std::string line_;
+};
+
+}  // namespace bead::part

@@ -1,0 +1,101 @@
+#include "libbead/sim/part_twin_io.h"
+
+#include <filesystem>
+
+#include "libbead/io/atomic_file.h"
+#include "libbead/io/csv_reader.h"
+#include "libbead/io/rig_yaml.h"
+#include "libbead/io/run_archive.h"
+#include "libbead/io/yaml_text.h"
+#include "libbead/sim/sim_yaml_reader.h"
+
+namespace bead::sim {
+namespace {
+
+void ParsePart(const YAML::Node& root, const Reader& r, PartTwinConfig& c) {
+  const YAML::Node p = r.Section(root, "part",
+                                 {"shape",
+                                  "layers",
+                                  "length_mm",
+                                  "head_speed_mm_s",
+                                  "return_s",
+                                  "profile_spacing_mm",
+                                  "trail_mm",
+                                  "width_mm",
+                                  "aspect",
+                                  "area_mm2",
+                                  "area_wave_mm2",
+                                  "wave_period_mm",
+                                  "wander_sigma_mm",
+                                  "pass_shift_sigma_mm",
+                                  "standoff_mm",
+                                  "noise_mm",
+                                  "point_spacing_mm",
+                                  "field_half_mm",
+                                  "log_rate_hz",
+                                  "displacement_mm3_per_rev"});
+  if (p["shape"].IsDefined() && r.Text(p["shape"], "part.shape") != "wall")
+    r.Fail(p["shape"], "part.shape", "is '" + p["shape"].Scalar() + "': this version's twin prints a wall");
+  const std::string at = "part.";
+  r.GetInt(p, at, "layers", c.layers, 1, 200);
+  r.Get(p, at, "length_mm", c.length_mm, 1.0, 1e5);
+  r.Get(p, at, "head_speed_mm_s", c.head_speed_mm_s, 0.1, 1e4);
+  r.Get(p, at, "return_s", c.return_s, 0.0, 1e4);
+  r.Get(p, at, "profile_spacing_mm", c.profile_spacing_mm, 0.01, 100.0);
+  r.Get(p, at, "trail_mm", c.trail_mm, 0.0, 1e3);
+  r.Get(p, at, "width_mm", c.width_mm, 0.1, 100.0);
+  r.Get(p, at, "aspect", c.aspect, 0.05, 5.0);
+  r.Get(p, at, "area_mm2", c.area_mm2, 0.01, 1e4);
+  r.Get(p, at, "area_wave_mm2", c.area_wave_mm2, 0.0, 1e4);
+  r.Get(p, at, "wave_period_mm", c.wave_period_mm, 0.1, 1e6);
+  r.Get(p, at, "wander_sigma_mm", c.wander_sigma_mm, 0.0, 10.0);
+  r.Get(p, at, "pass_shift_sigma_mm", c.pass_shift_sigma_mm, 0.0, 10.0);
+  r.Get(p, at, "standoff_mm", c.standoff_mm, 0.0, 1e3);
+  r.Get(p, at, "noise_mm", c.noise_mm, 0.0, 1.0);
+  r.Get(p, at, "point_spacing_mm", c.point_spacing_mm, 0.001, 10.0);
+  r.Get(p, at, "field_half_mm", c.field_half_mm, 1.0, 1e3);
+  r.Get(p, at, "log_rate_hz", c.log_rate_hz, 1.0, 1e5);
+  r.Get(p, at, "displacement_mm3_per_rev", c.displacement_mm3_per_rev, 1e-3, 1e9);
+  if (c.area_wave_mm2 >= c.area_mm2) r.Fail(p["area_wave_mm2"], at + "area_wave_mm2", "must be less than area_mm2");
+  if (c.field_half_mm <= 0.5 * c.width_mm + 5.0)
+    r.Fail(p["field_half_mm"], at + "field_half_mm",
+           "must leave 5 mm of bare bed beside the bead (more than width/2 + 5)");
+}
+
+void WriteTruth(const std::string& path, const std::vector<PartTruthRow>& rows) {
+  AtomicFile out(path);
+  out.stream() << "layer,path_mm,area_mm2,visible_area_mm2,height_mm,width_mm,center_x_mm,offset_below_mm,"
+                  "pass_shift_mm\n";
+  for (const PartTruthRow& t : rows)
+    out.stream() << t.layer << ',' << CsvNumber(t.path_mm) << ',' << CsvNumber(t.area_mm2) << ','
+                 << CsvNumber(t.visible_area_mm2) << ',' << CsvNumber(t.height_mm) << ',' << CsvNumber(t.width_mm)
+                 << ',' << CsvNumber(t.center_x_mm) << ',' << CsvNumber(t.offset_below_mm) << ','
+                 << CsvNumber(t.pass_shift_mm) << '\n';
+  out.Commit();
+}
+
+}  // namespace
+
+std::optional<PartTwinConfig> ReadPartTwinConfig(const std::string& path) {
+  const YAML::Node root = ParseYamlText(ReadTextFile(path, "simulation config"), path);
+  if (!root.IsMap() || !root["part"].IsDefined()) return std::nullopt;
+  const Reader r(path);
+  for (const auto& kv : root) {
+    const std::string k = r.Text(kv.first, "<key>");
+    if (k != "part" && k != "seed" && k != "name")
+      r.Fail(kv.first, k, "a part twin's config holds part: and seed only");
+  }
+  PartTwinConfig c;
+  r.GetInt(root, "", "seed", c.seed, 0, 1e15);
+  ParsePart(root, r, c);
+  return c;
+}
+
+void WritePartTwin(const std::string& folder, const PartTwin& twin) {
+  std::filesystem::create_directories(folder);
+  WriteRunArchive(folder + "/part.h5", twin.scan);
+  WriteRigFile(folder + "/rig.yaml", MakeRigFile(twin.rig));
+  WriteTruth(folder + "/truth.csv", twin.truth);
+}
+
+}  // namespace bead::sim

@@ -1,0 +1,91 @@
+// bead simulate prints a part, bead measure measures it layer on layer
+// (part mode chosen by the archive's kind), the wheel's commands name it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tests/support/run_cli.h"
+
+namespace bead {
+namespace {
+
+std::vector<std::vector<std::string>> Rows(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::vector<std::string>> rows;
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    for (std::string cell; std::getline(ss, cell, ',');) cells.push_back(cell);
+    if (!line.empty() && line.back() == ',') cells.emplace_back();
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+TEST(PartCommand, SimulateThenMeasureWritesThePartGeometryCsv) {
+  test::TempDir dir;
+  {
+    std::ofstream cfg(dir / "wall.yaml");
+    cfg << "seed: 4\npart:\n  layers: 3\n  length_mm: 20\n";
+  }
+  auto [code, out] = test::RunCli(dir, "simulate " + (dir / "wall.yaml") + " -o " + (dir / "sim"));
+  ASSERT_EQ(code, 0) << out;
+  std::tie(code, out) = test::RunCli(
+      dir, "measure --rig " + (dir / "sim/rig.yaml") + " " + (dir / "sim/part.h5") + " -o " + (dir / "geo.csv"));
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("part scan"), std::string::npos) << out;
+  EXPECT_NE(out.find("layer 2:"), std::string::npos) << out;
+  const auto geo = Rows(dir / "geo.csv"), truth = Rows(dir / "sim/truth.csv");
+  ASSERT_GT(geo.size(), 2u);
+  const std::vector<std::string> spec = {
+      "profile", "t_s", "layer", "path_mm", "area_mm2", "width_mm", "height_mm", "area_corrected_mm2", "valid"};
+  ASSERT_GE(geo[0].size(), spec.size());
+  for (std::size_t k = 0; k < spec.size(); ++k) EXPECT_EQ(geo[0][k], spec[k]);
+  ASSERT_EQ(geo.size(), truth.size());
+  // Each row's area against the visible area the twin laid there, within
+  // the bound the library's test derives (four walls of one spacing).
+  for (std::size_t i = 1; i < geo.size(); ++i) {
+    ASSERT_EQ(geo[i][8], "1") << i;
+    EXPECT_EQ(geo[i][2], truth[i][0]);
+    EXPECT_NEAR(std::stod(geo[i][4]), std::stod(truth[i][3]), 0.3) << i;
+  }
+}
+
+TEST(PartCommand, TheWheelsCommandsNameAPartScanAndAPartRigNamesWhatIsMissing) {
+  test::TempDir dir;
+  {
+    std::ofstream cfg(dir / "wall.yaml");
+    cfg << "part:\n  layers: 2\n  length_mm: 5\n";
+    std::ofstream rig(dir / "bare.yaml");
+    rig << "part: {bed: flat}\n";
+  }
+  ASSERT_EQ(test::RunCli(dir, "simulate " + (dir / "wall.yaml") + " -o " + (dir / "sim")).first, 0);
+  auto [code, out] = test::RunCli(
+      dir, "flow --rig " + (dir / "sim/rig.yaml") + " " + (dir / "sim/part.h5") + " -o " + (dir / "flow.csv"));
+  EXPECT_EQ(code, 1) << out;
+  EXPECT_NE(out.find("this is a part rig"), std::string::npos) << out;
+  // With a rig that has the wheel too, the archive is named.
+  {
+    std::ofstream both(dir / "both.yaml");
+    both << test::kCliRigYaml << "part: {bed: flat}\n";
+  }
+  std::tie(code, out) = test::RunCli(
+      dir, "flow --rig " + (dir / "both.yaml") + " " + (dir / "sim/part.h5") + " -o " + (dir / "flow.csv"));
+  EXPECT_EQ(code, 1) << out;
+  EXPECT_NE(out.find("is a part scan"), std::string::npos) << out;
+  std::tie(code, out) = test::RunCli(
+      dir, "measure --rig " + (dir / "bare.yaml") + " " + (dir / "sim/part.h5") + " -o " + (dir / "geo.csv"));
+  EXPECT_EQ(code, 1) << out;
+  EXPECT_NE(out.find("bare.yaml"), std::string::npos) << out;
+  EXPECT_NE(out.find("sensor"), std::string::npos) << out;
+  std::tie(code, out) = test::RunCli(dir, "simulate " + (dir / "bare.yaml") + " -o " + (dir / "x"));
+  EXPECT_EQ(code, 1) << out;
+  EXPECT_NE(out.find("line 1: part.bed: unknown key"), std::string::npos) << out;
+}
+
+}  // namespace
+}  // namespace bead

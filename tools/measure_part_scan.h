@@ -1,0 +1,14 @@
+// bead measure on a part scan (format 1.1; the archive's kind = "part"
+// chooses it): each layer against the one below, the part geometry CSV.
+#pragma once
+
+#include <string>
+
+#include "libbead/profile/profile_processor.h"
+
+namespace bead::tools {
+
+int MeasurePartScan(const std::string& rig_path, const std::string& run, const std::string& output,
+                    const ProfileOptions& bed, unsigned threads);
+
+}  // namespace bead::tools
