@@ -10,6 +10,8 @@
 #include "tools/own_folder.h"
 #include "tools/subcommands.h"
 #include "tools/tty_progress.h"
+#include "tools/part_scan.h"
+#include "libbead/io/run_archive.h"
 #include "tools/occlusion_module.h"
 #include "tools/occlusion_step.h"
 
@@ -30,6 +32,10 @@ Run AddFlow(CLI::App& app) {
       "     area_mm2, area_corrected_mm2, flow_mm3_s, screw_rpm, then profile, valid,\n"
       "     occlusion_bias_mm2, area_corrected_sigma_mm2, flow_sigma_mm3_s (see --occlusion).\n"
       "     Prints the run's total volume (mm^3).\n"
+      "     A part scan (format 1.1, kind = \"part\"; its log holds layer and path_mm) gives the\n"
+      "     flow along the toolpath: t_s (when the nozzle laid each place), layer, path_mm,\n"
+      "     head_speed_mm_s, area_mm2, area_corrected_mm2, flow_mm3_s (head speed x area),\n"
+      "     screw_rpm, then profile, valid; and the volume each layer added.\n"
       "With no arguments it runs on the bundled sample run (testdata/sample) and says so.\n"
       "Example:\n"
       "  bead flow --rig testdata/sample/rig.yaml testdata/sample/run.h5 -o flow.csv");
@@ -60,6 +66,9 @@ Run AddFlow(CLI::App& app) {
     }
     if (args->rig.empty() || args->run.empty() || args->output.empty())
       throw CLI::RequiredError("--rig, RUN and -o are all needed (or none, for the bundled sample)");
+    // A part scan (kind = "part"): the flow along the toolpath.
+    if (args->run.ends_with(".h5") && IsPartScan(args->run))
+      return FlowPartScan(args->rig, args->run, args->output, args->profile);
     const Rig rig = ReadRigSaying(args->rig);
     WorkerPool pool;
     RunFlowRequest request;

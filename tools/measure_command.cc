@@ -8,7 +8,7 @@
 #include "tools/commands.h"
 #include "tools/subcommands.h"
 #include "tools/tty_progress.h"
-#include "tools/measure_part_scan.h"
+#include "tools/part_scan.h"
 #include "libbead/io/run_archive.h"
 #include "tools/occlusion_module.h"
 #include "tools/occlusion_step.h"

@@ -53,6 +53,17 @@ TEST(PartCommand, SimulateThenMeasureWritesThePartGeometryCsv) {
     EXPECT_EQ(geo[i][2], truth[i][0]);
     EXPECT_NEAR(std::stod(geo[i][4]), std::stod(truth[i][3]), 0.3) << i;
   }
+  // The flow along the path: the spec's columns, a volume per layer.
+  std::tie(code, out) = test::RunCli(
+      dir, "flow --rig " + (dir / "sim/rig.yaml") + " " + (dir / "sim/part.h5") + " -o " + (dir / "flow.csv"));
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("layer 2: "), std::string::npos) << out;
+  EXPECT_NE(out.find("total volume"), std::string::npos) << out;
+  const auto flow = Rows(dir / "flow.csv");
+  ASSERT_EQ(flow.size(), geo.size());
+  const std::vector<std::string> flow_spec = {
+      "t_s", "layer", "path_mm", "head_speed_mm_s", "area_mm2", "area_corrected_mm2", "flow_mm3_s", "screw_rpm"};
+  for (std::size_t k = 0; k < flow_spec.size(); ++k) EXPECT_EQ(flow[0][k], flow_spec[k]);
 }
 
 TEST(PartCommand, TheWheelsCommandsNameAPartScanAndAPartRigNamesWhatIsMissing) {

@@ -1,4 +1,4 @@
-#include "libbead/part/part_geometry_csv.h"
+#include "libbead/part/part_csv.h"
 
 #include <cmath>
 
@@ -46,5 +46,30 @@ void PartGeometryCsvWriter::Append(const PartGeometryRow& r) {
 }
 
 void PartGeometryCsvWriter::Commit() { out_.Commit(); }
+
+PartFlowCsvWriter::PartFlowCsvWriter(const std::string& path) : out_(path) {
+  out_.stream() << "t_s,layer,path_mm,head_speed_mm_s,area_mm2,area_corrected_mm2,flow_mm3_s,screw_rpm,profile,valid\n";
+}
+
+void PartFlowCsvWriter::Append(const PartFlowRow& r) {
+  std::string& s = line_;
+  s.clear();
+  auto number = [&s](double v) {
+    AppendCsvNumber(s, v);
+    s += ',';
+  };
+  number(r.t_s);
+  s += std::to_string(r.layer) + ',';
+  number(r.path_mm);
+  number(r.head_speed_mm_s);
+  number(r.area_mm2);
+  number(r.area_corrected_mm2);
+  number(r.flow_mm3_s);
+  number(r.screw_rpm);
+  s += std::to_string(r.profile) + (r.valid ? ",1\n" : ",0\n");
+  out_.stream() << s;
+}
+
+void PartFlowCsvWriter::Commit() { out_.Commit(); }
 
 }  // namespace bead::part

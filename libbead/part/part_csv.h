@@ -1,4 +1,6 @@
-// The part geometry CSV of docs/data-formats.md (format 1.1): the spec
+// The part scan's result CSVs of docs/data-formats.md (format 1.1).
+//
+// Geometry: the spec
 // columns profile,t_s,layer,path_mm,area_mm2,width_mm,height_mm,
 // area_corrected_mm2,valid first, then ours: center_x_mm, offset_below_mm,
 // shift_mm, shift_sigma_mm, shift_found, registration_rms_mm, noise_mm,
@@ -12,6 +14,7 @@
 
 #include "libbead/io/atomic_file.h"
 #include "libbead/part/measure_part.h"
+#include "libbead/part/part_flow.h"
 
 namespace bead::part {
 
@@ -19,6 +22,21 @@ class PartGeometryCsvWriter {
  public:
   explicit PartGeometryCsvWriter(const std::string& path);
   void Append(const PartGeometryRow& row);
+  void Commit();
+
+ private:
+  AtomicFile out_;
+  std::string line_;
+};
+
+// Flow along the path: the spec columns t_s,layer,path_mm,head_speed_mm_s,
+// area_mm2,area_corrected_mm2,flow_mm3_s,screw_rpm, then profile, valid.
+// t_s is when the nozzle laid the place; an invalid row keeps its place
+// and time with the values empty.
+class PartFlowCsvWriter {
+ public:
+  explicit PartFlowCsvWriter(const std::string& path);
+  void Append(const PartFlowRow& row);
   void Commit();
 
  private:

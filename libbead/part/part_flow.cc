@@ -1,0 +1,79 @@
+#include "libbead/part/part_flow.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "libbead/core/error.h"
+
+namespace bead::part {
+
+NozzleClock::NozzleClock(const AcquisitionLog& log, const std::string& file) : log_(log) {
+  if (!log.part() || log.layer.size() != log.size() || log.path_mm.size() != log.size())
+    throw Error(Located(file, "/log", "holds no /log/layer and /log/path_mm: the flow along the path needs them"));
+  // A forward stretch: consecutive samples of one layer whose path grows.
+  std::size_t start = 0;
+  for (std::size_t i = 1; i <= log.size(); ++i) {
+    const bool ends = i == log.size() || log.layer[i] != log.layer[start] || !(log.path_mm[i] > log.path_mm[i - 1]);
+    if (!ends) continue;
+    if (i - 1 > start) forward_[log.layer[start]].push_back({start, i - 1});
+    start = i;
+  }
+}
+
+double NozzleClock::SpeedAt(std::size_t i, double t) const {
+  if (!log_.head_speed_mm_s.empty()) {
+    const double w = (t - log_.t_s[i]) / (log_.t_s[i + 1] - log_.t_s[i]);
+    return (1 - w) * log_.head_speed_mm_s[i] + w * log_.head_speed_mm_s[i + 1];
+  }
+  return (log_.path_mm[i + 1] - log_.path_mm[i]) / (log_.t_s[i + 1] - log_.t_s[i]);
+}
+
+std::optional<NozzleClock::Passing> NozzleClock::At(int64_t layer, double path) const {
+  const auto it = forward_.find(layer);
+  if (it == forward_.end()) return std::nullopt;
+  for (const auto& [first, last] : it->second) {
+    if (path < log_.path_mm[first] || path > log_.path_mm[last]) continue;
+    // The path grows strictly within a stretch: a binary search.
+    const auto begin = log_.path_mm.begin();
+    const auto up = std::upper_bound(begin + first, begin + last + 1, path);
+    const std::size_t i = std::min<std::size_t>(static_cast<std::size_t>(up - begin), last) - 1;
+    const double w = (path - log_.path_mm[i]) / (log_.path_mm[i + 1] - log_.path_mm[i]);
+    Passing p;
+    p.t_s = log_.t_s[i] + w * (log_.t_s[i + 1] - log_.t_s[i]);
+    p.head_speed_mm_s = SpeedAt(i, p.t_s);
+    p.screw_rpm = (1 - w) * log_.screw_rpm[i] + w * log_.screw_rpm[i + 1];
+    return p;
+  }
+  return std::nullopt;
+}
+
+PartFlowRow FlowOf(const PartGeometryRow& g, const NozzleClock& clock) {
+  PartFlowRow r;
+  r.profile = g.profile;
+  r.layer = g.layer;
+  r.path_mm = g.path_mm;
+  const std::optional<NozzleClock::Passing> p = clock.At(g.layer, g.path_mm);
+  if (p) {
+    r.t_s = p->t_s;
+    r.head_speed_mm_s = p->head_speed_mm_s;
+    r.screw_rpm = p->screw_rpm;
+  }
+  if (!p || !g.bead.valid()) return r;
+  r.area_mm2 = g.bead.area_mm2;
+  r.area_corrected_mm2 = g.area_corrected_mm2;
+  const double area = std::isnan(r.area_corrected_mm2) ? r.area_mm2 : r.area_corrected_mm2;
+  r.flow_mm3_s = p->head_speed_mm_s * area;
+  r.valid = true;
+  return r;
+}
+
+void LayerVolumes::Add(const PartFlowRow& r) {
+  if (!r.valid) return;
+  const double area = std::isnan(r.area_corrected_mm2) ? r.area_mm2 : r.area_corrected_mm2;
+  double& v = volume_[r.layer];
+  if (const auto it = last_.find(r.layer); it != last_.end() && r.path_mm > it->second.first)
+    v += 0.5 * (area + it->second.second) * (r.path_mm - it->second.first);
+  last_[r.layer] = {r.path_mm, area};
+}
+
+}  // namespace bead::part

@@ -1,0 +1,77 @@
+// The flow along a part's toolpath: each profile's place found in the
+// nozzle's log (its extrusion time), Q = v_head A, and each layer's volume.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <vector>
+
+#include "libbead/core/error.h"
+#include "libbead/io/profile_stream.h"
+#include "libbead/part/part_flow.h"
+#include "libbead/sim/part_twin.h"
+
+namespace bead {
+namespace {
+
+TEST(PartFlow, EachPlaceIsTimedWhenTheNozzleLaidItAndItsFlowIsHeadSpeedTimesArea) {
+  sim::PartTwinConfig config;
+  config.layers = 3;
+  config.length_mm = 40.0;
+  config.seed = 21;
+  const sim::PartTwin twin = sim::SimulatePartWall(config);
+  const part::NozzleClock clock(*twin.scan.log, "twin");
+  ProfileStream stream("twin", twin.scan.profiles);
+  part::LayerVolumes measured;
+  std::map<int64_t, std::vector<std::pair<double, double>>> truth;  // path, visible area
+  int timed = 0, rows = 0;
+  part::MeasurePart(stream, *twin.scan.part, twin.rig, {}, [&](const part::PartGeometryRow& g) {
+    const part::PartFlowRow r = part::FlowOf(g, clock);
+    const sim::PartTruthRow& t = twin.truth[g.profile];
+    ++rows;
+    measured.Add(r);
+    truth[t.layer].push_back({t.path_mm, t.visible_area_mm2});
+    if (!r.valid) return;
+    ++timed;
+    // The laser line trails the nozzle by trail_mm at the head's speed:
+    // the nozzle laid the place that long before the profile saw it (the
+    // log's path is linear between samples: exact to rounding).
+    EXPECT_NEAR(r.t_s, g.t_s - config.trail_mm / config.head_speed_mm_s, 1e-9) << g.profile;
+    EXPECT_NEAR(r.head_speed_mm_s, config.head_speed_mm_s, 1e-9);
+    EXPECT_DOUBLE_EQ(r.flow_mm3_s, r.head_speed_mm_s * g.bead.area_mm2);
+    // The twin's screw turned for the flow it laid there (Q = rpm D / 60),
+    // read between log samples dt apart: off by at most |dQ/dt| dt, with
+    // dQ/dt = v^2 dA/dpath <= v^2 wave 2 pi / period.
+    const double v = config.head_speed_mm_s, dt = 1.0 / config.log_rate_hz;
+    const double slope = v * v * config.area_wave_mm2 * 2.0 * M_PI / config.wave_period_mm;
+    EXPECT_NEAR(r.screw_rpm * config.displacement_mm3_per_rev / 60.0, v * t.area_mm2, slope * dt + 1e-9);
+  });
+  // Only a place laid before the log's first sample of its layer can be
+  // without a time: at most one per layer.
+  EXPECT_GE(timed, rows - config.layers);
+  // Each layer's volume against the twin's visible volume, over the same
+  // path: the areas' bound (0.15 mm^2, part_wall_test.cc) over the length.
+  for (auto& [layer, v] : truth) {
+    double volume = 0.0;
+    for (std::size_t i = 1; i < v.size(); ++i)
+      volume += 0.5 * (v[i].second + v[i - 1].second) * (v[i].first - v[i - 1].first);
+    EXPECT_NEAR(measured.volumes_mm3().at(layer), volume, 0.15 * config.length_mm) << "layer " << layer;
+  }
+}
+
+TEST(PartFlow, AWheelsLogIsNamed) {
+  AcquisitionLog log;
+  log.t_s = {0.0, 0.1};
+  log.encoder = {0, 10};
+  log.screw_rpm = {1.0, 1.0};
+  try {
+    part::NozzleClock clock(log, "run.h5");
+    FAIL() << "a log without layer and path_mm was taken";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("run.h5"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("/log/layer"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace bead

@@ -1,0 +1,105 @@
+#include "tools/part_scan.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+
+#include "libbead/io/profile_stream.h"
+#include "libbead/io/run_archive.h"
+#include "libbead/part/measure_part.h"
+#include "libbead/core/error.h"
+#include "libbead/part/part_csv.h"
+#include "libbead/part/part_flow.h"
+#include "tools/rig_input.h"
+#include "tools/tty_progress.h"
+
+namespace bead::tools {
+namespace {
+
+void SayLayers(const std::vector<part::LayerSummary>& layers) {
+  for (const part::LayerSummary& l : layers) {
+    std::printf("  layer %lld: %zu profiles over path %.1f to %.1f mm, %zu valid, mean area %.3f mm^2",
+                static_cast<long long>(l.layer), l.profiles, l.first_path_mm, l.last_path_mm, l.valid, l.MeanArea());
+    if (l.layer == 0)
+      std::printf(" (on the bed)\n");
+    else if (l.no_surface_below == l.profiles)
+      std::printf("; layer %lld is not in the scan: nothing to measure it against\n",
+                  static_cast<long long>(l.layer - 1));
+    else if (l.shift_found)
+      std::printf("; pass shift %+.3f mm (median; found in %zu profiles)\n", l.MedianShift(), l.shift_found);
+    else
+      std::printf("; pass shift not found (the layer below shows nowhere beside the new bead): no offset\n");
+  }
+}
+
+// The scan measured layer on layer, each row to `sink`; a line per layer said.
+std::vector<part::LayerSummary> MeasureSaying(const std::string& rig_path, const std::string& run,
+                                              const RunArchive& scan, const ProfileOptions& bed, unsigned threads,
+                                              const std::function<void(const part::PartGeometryRow&)>& sink) {
+  const RigFile rig = ReadPartRigFile(rig_path);
+  SayRigWarnings(rig);
+  WorkerPool pool(threads);
+  ProfileStream stream(run, pool);
+  part::MeasurePartOptions options;
+  options.bed = bed;
+  const auto start = std::chrono::steady_clock::now();
+  const auto tty = TtyProgress("measured");
+  const std::size_t total = stream.size();
+  const std::vector<part::LayerSummary> layers =
+      part::MeasurePart(stream, *scan.part, rig.rig, options, sink, [&](std::size_t done) {
+        if (tty) tty(done, total);
+      });
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::size_t valid = 0;
+  for (const auto& l : layers) valid += l.valid;
+  std::printf("%s: part scan, %zu profiles in %zu layers, %zu valid, measured in %.3f s\n", run.c_str(), total,
+              layers.size(), valid, seconds);
+  SayLayers(layers);
+  return layers;
+}
+
+}  // namespace
+
+int MeasurePartScan(const std::string& rig_path, const std::string& run, const std::string& output,
+                    const ProfileOptions& bed, unsigned threads) {
+  const RunArchive scan = ReadPartScan(run, false, false);
+  part::PartGeometryCsvWriter out(output);
+  MeasureSaying(rig_path, run, scan, bed, threads, [&](const part::PartGeometryRow& r) { out.Append(r); });
+  out.Commit();
+  std::printf("wrote %s\n", output.c_str());
+  std::printf(
+      "  area_corrected_mm2 is empty: what a bead hides under its overhang on the layer below is not yet\n"
+      "  modelled on parts (the area is what the sensor sees the layer add)\n");
+  return 0;
+}
+
+int FlowPartScan(const std::string& rig_path, const std::string& run, const std::string& output,
+                 const ProfileOptions& bed) {
+  const RunArchive scan = ReadPartScan(run, false, true);
+  if (!scan.log) throw Error(Located(run, "/log", "missing group: the flow along the path needs the nozzle's log"));
+  const part::NozzleClock clock(*scan.log, run);
+  part::PartFlowCsvWriter out(output);
+  part::LayerVolumes volumes;
+  std::size_t unplaced = 0;
+  MeasureSaying(rig_path, run, scan, bed, 0, [&](const part::PartGeometryRow& g) {
+    const part::PartFlowRow row = part::FlowOf(g, clock);
+    unplaced += std::isnan(row.t_s);
+    volumes.Add(row);
+    out.Append(row);
+  });
+  out.Commit();
+  std::printf("wrote %s (t_s: when the nozzle laid each place; flow = head speed x area)\n", output.c_str());
+  double total = 0.0;
+  for (const auto& [layer, v] : volumes.volumes_mm3()) {
+    std::printf("  layer %lld: %.1f mm^3 along the path\n", static_cast<long long>(layer), v);
+    total += v;
+  }
+  std::printf("total volume %.1f mm^3 (the area integrated along the path, valid profiles)\n", total);
+  if (unplaced)
+    std::printf("  %zu profiles stand where the log never had the nozzle moving forward in their layer: no time\n",
+                unplaced);
+  return 0;
+}
+
+}  // namespace bead::tools
