@@ -76,7 +76,7 @@ TEST(PartCommand, TheWheelsCommandsNameAPartScanAndAPartRigNamesWhatIsMissing) {
   }
   ASSERT_EQ(test::RunCli(dir, "simulate " + (dir / "wall.yaml") + " -o " + (dir / "sim")).first, 0);
   auto [code, out] = test::RunCli(
-      dir, "flow --rig " + (dir / "sim/rig.yaml") + " " + (dir / "sim/part.h5") + " -o " + (dir / "flow.csv"));
+      dir, "explain --rig " + (dir / "sim/rig.yaml") + " " + (dir / "sim/part.h5") + " -o " + (dir / "e.json"));
   EXPECT_EQ(code, 1) << out;
   EXPECT_NE(out.find("this is a part rig"), std::string::npos) << out;
   // With a rig that has the wheel too, the archive is named.
@@ -85,7 +85,7 @@ TEST(PartCommand, TheWheelsCommandsNameAPartScanAndAPartRigNamesWhatIsMissing) {
     both << test::kCliRigYaml << "part: {bed: flat}\n";
   }
   std::tie(code, out) = test::RunCli(
-      dir, "flow --rig " + (dir / "both.yaml") + " " + (dir / "sim/part.h5") + " -o " + (dir / "flow.csv"));
+      dir, "explain --rig " + (dir / "both.yaml") + " " + (dir / "sim/part.h5") + " -o " + (dir / "e.json"));
   EXPECT_EQ(code, 1) << out;
   EXPECT_NE(out.find("is a part scan"), std::string::npos) << out;
   std::tie(code, out) = test::RunCli(
