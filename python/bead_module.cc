@@ -26,14 +26,22 @@ namespace py = pybind11;
 using namespace pybind11::literals;
 
 namespace bead::python {
+
+void AddPartArrays(RunArchive& run, py::dict& out);  // part.cc
+void AddPartLogArrays(AcquisitionLog& l, py::dict& log);
+
 namespace {
 
 py::dict RunToDict(RunArchive&& run) {
   ProfileBlock& b = run.profiles;
   const auto n = static_cast<py::ssize_t>(b.size()), p = static_cast<py::ssize_t>(b.points);
   py::dict out;
+  out["kind"] = "run";
   out["t_s"] = Owned(std::move(b.t_s), {n});
-  out["encoder"] = Owned(std::move(b.encoder), {n});
+  if (run.part)
+    AddPartArrays(run, out);
+  else
+    out["encoder"] = Owned(std::move(b.encoder), {n});
   out["x_mm"] = b.shared_x ? Owned(std::move(b.x_mm), {p}) : Owned(std::move(b.x_mm), {n, p});
   out["z_mm"] = Owned(std::move(b.z_mm), {n, p});
   if (run.log) {
@@ -41,7 +49,10 @@ py::dict RunToDict(RunArchive&& run) {
     const auto m = static_cast<py::ssize_t>(l.size());
     py::dict log;
     log["t_s"] = Owned(std::move(l.t_s), {m});
-    log["encoder"] = Owned(std::move(l.encoder), {m});
+    if (l.part())
+      AddPartLogArrays(l, log);
+    else
+      log["encoder"] = Owned(std::move(l.encoder), {m});
     log["screw_rpm"] = Owned(std::move(l.screw_rpm), {m});
     if (!l.extruder_cmd_v.empty()) log["extruder_cmd_v"] = Owned(std::move(l.extruder_cmd_v), {m});
     if (!l.wheel_cmd_v.empty()) log["wheel_cmd_v"] = Owned(std::move(l.wheel_cmd_v), {m});
@@ -58,7 +69,7 @@ py::dict ReadRun(const std::string& path) {
   RunArchive run;
   {
     py::gil_scoped_release free;
-    run = ReadRunArchive(path);
+    run = IsPartScan(path) ? ReadPartScan(path) : ReadRunArchive(path);
   }
   return RunToDict(std::move(run));
 }
@@ -143,6 +154,7 @@ py::dict Flow(const std::string& rig_path, const std::string& run_path, const st
 
 void AddModels(py::module_& m);   // models.cc
 void AddExplain(py::module_& m);  // explain.cc
+void AddPart(py::module_& m);     // part.cc
 
 }  // namespace bead::python
 
@@ -154,9 +166,11 @@ PYBIND11_MODULE(bead, m) {
   m.attr("__version__") = BEAD_VERSION;
   py::register_exception<bead::Error>(m, "Error", PyExc_RuntimeError);
   m.def("read_run", &ReadRun, "path"_a,
-        "Read a run archive (HDF5, docs/data-formats.md) into NumPy arrays.\n\n"
-        "Returns a dict: t_s [N] (s), encoder [N] (counts), x_mm [P] or [N, P] (mm), z_mm [N, P] (mm), log (a dict "
-        "of [M] arrays: t_s, encoder, screw_rpm, and the recorded channels; None without a log), attributes.");
+        "Read a run archive or a part scan (HDF5, docs/data-formats.md) into NumPy arrays.\n\n"
+        "Returns a dict: kind ('run' or 'part'), t_s [N] (s), encoder [N] (counts; a run only), x_mm [P] or [N, P] "
+        "(mm), z_mm [N, P] (mm), log (a dict of [M] arrays: t_s, encoder or a part's layer, path_mm and "
+        "head_speed_mm_s, screw_rpm, and the recorded channels; None without a log), attributes; a part scan adds "
+        "layer, path_mm, frame_z_mm, frame_x_mm [N] (mm).");
   m.def("measure", &Measure, "x_mm"_a, "z_mm"_a, "reference_areas_mm"_a, "threads"_a = 0,
         "Measure the bead of each profile of a block.\n\n"
         "x_mm: [P] shared by every profile or [N, P]; z_mm: [N, P] (mm; NaN: no point); reference_areas_mm: "
@@ -176,4 +190,5 @@ PYBIND11_MODULE(bead, m) {
         "total_volume_mm3.");
   AddModels(m);
   AddExplain(m);
+  AddPart(m);
 }

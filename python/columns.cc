@@ -9,25 +9,6 @@ namespace {
 
 constexpr double kNaN = BeadGeometry::kNaN;
 
-// One column: f(item) for every item, as an owning [N] array.
-template <class T, class Items, class F>
-py::array_t<T> Column(const Items& items, F f) {
-  std::vector<T> v;
-  v.reserve(items.size());
-  for (const auto& item : items) v.push_back(static_cast<T>(f(item)));
-  return Owned(std::move(v), {static_cast<py::ssize_t>(v.size())});
-}
-
-// A yes/no column (std::vector<bool> holds no array to hand over: filled in place).
-template <class Items, class F>
-py::array_t<bool> Flags(const Items& items, F f) {
-  py::array_t<bool> out(static_cast<py::ssize_t>(items.size()));
-  auto m = out.mutable_unchecked<1>();
-  py::ssize_t i = 0;
-  for (const auto& item : items) m(i++) = f(item);
-  return out;
-}
-
 // The statuses as a NumPy array of text (dtype <U24), filled in place: a
 // list of Python strings would cost as much as measuring the profiles.
 py::array Statuses(const std::vector<ProfileStatus>& s) {

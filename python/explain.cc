@@ -15,6 +15,7 @@
 #include "libbead/explain/explain_loop.h"
 #include "libbead/explain/model_series.h"
 #include "libbead/model/model_file.h"
+#include "python/numpy_owned.h"
 
 namespace py = pybind11;
 using namespace pybind11::literals;
@@ -22,12 +23,7 @@ using namespace pybind11::literals;
 namespace bead::python {
 namespace {
 
-using Vector = py::array_t<double, py::array::c_style | py::array::forcecast>;
-
-std::vector<double> Column(const Vector& a, const char* name) {
-  if (a.ndim() != 1) throw Error(std::string("explain: ") + name + " must be 1-D");
-  return std::vector<double>(a.data(), a.data() + a.shape(0));
-}
+using Vector = InputVector;
 
 // The report as JSON text (the GIL released while the loop runs).
 std::string ExplainText(const std::vector<double>& t, const std::vector<double>& u, const std::vector<double>& y,
@@ -49,7 +45,8 @@ std::string ExplainText(const std::vector<double>& t, const std::vector<double>&
 
 py::object Explain(const Vector& t, const Vector& u, const Vector& y, const std::string& model, int poles, int zeros,
                    double max_delay_s, double alpha, int max_effects, const std::string& output) {
-  const std::vector<double> tv = Column(t, "t"), uv = Column(u, "u"), yv = Column(y, "y");
+  const std::vector<double> tv = ToVector(t, "explain", "t"), uv = ToVector(u, "explain", "u"),
+                            yv = ToVector(y, "explain", "y");
   if (tv.size() != uv.size() || tv.size() != yv.size()) throw Error("explain: t, u and y must have one length");
   if (tv.size() < 50) throw Error("explain: fewer than 50 samples: nothing to explain");
   model::IdentifyOptions id;

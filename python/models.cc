@@ -25,16 +25,12 @@ using namespace pybind11::literals;
 namespace bead::python {
 namespace {
 
-using Vector = py::array_t<double, py::array::c_style | py::array::forcecast>;
-
-std::vector<double> ToVector(const Vector& a, const char* name) {
-  if (a.ndim() != 1) throw Error(std::string("identify: ") + name + " must be 1-D");
-  return std::vector<double>(a.data(), a.data() + a.shape(0));
-}
+using Vector = InputVector;
 
 py::dict Identify(const Vector& t, const Vector& u, const Vector& y, int poles, int zeros, const std::string& structure,
                   std::optional<double> delay_s, double max_delay_s) {
-  const std::vector<double> tv = ToVector(t, "t"), uv = ToVector(u, "u"), yv = ToVector(y, "y");
+  const std::vector<double> tv = ToVector(t, "identify", "t"), uv = ToVector(u, "identify", "u"),
+                            yv = ToVector(y, "identify", "y");
   if (tv.size() != uv.size() || tv.size() != yv.size()) throw Error("identify: t, u and y must have one length");
   model::IdentifyOptions o;
   o.poles = poles, o.zeros = zeros, o.delay_s = delay_s, o.max_delay_s = max_delay_s;

@@ -169,3 +169,37 @@ def test_explain_is_bead_explain_on_the_same_series(tmp_path):
     assert py["compare"]["measured"] == cli["compare"]["measured"]
     with pytest.raises(bead.Error, match="one length"):
         bead.explain(t, u[:-1], y)
+
+
+def compare_rows(columns, rows, flags):
+    for i, row in enumerate(rows):
+        for key, text in row.items():
+            if key == "status":
+                assert columns[key][i] == text, (i, key)
+            elif key in flags:
+                assert bool(columns[key][i]) == (text == "1"), (i, key)
+            elif text == "":
+                assert math.isnan(float(columns[key][i])), (i, key, columns[key][i])
+            else:
+                assert same(float(columns[key][i]), number(text)), (i, key, columns[key][i], text)
+
+
+def test_a_part_scan_is_read_measured_and_flowed_as_the_commands_do(tmp_path):
+    config = tmp_path / "wall.yaml"
+    config.write_text("seed: 2\npart:\n  layers: 3\n  length_mm: 15\n")
+    run_cli("simulate", str(config), "-o", str(tmp_path / "sim"))
+    rig, scan = str(tmp_path / "sim" / "rig.yaml"), str(tmp_path / "sim" / "part.h5")
+    d = bead.read_run(scan)
+    assert d["kind"] == "part" and "encoder" not in d
+    assert d["layer"].dtype == np.int64 and d["layer"].shape == d["t_s"].shape
+    assert set(["layer", "path_mm"]) <= set(d["log"].keys())
+    run_cli("measure", "--rig", rig, scan, "-o", str(tmp_path / "geo.csv"))
+    rows = read_csv(tmp_path / "geo.csv")
+    g = bead.measure_part(rig, scan)
+    assert len(g["profile"]) == len(rows) == len(d["t_s"])
+    compare_rows(g, rows, {"valid", "shift_found"})
+    run_cli("flow", "--rig", rig, scan, "-o", str(tmp_path / "flow.csv"))
+    rows = read_csv(tmp_path / "flow.csv")
+    f = bead.part_flow(rig, scan)
+    compare_rows(f, rows, {"valid"})
+    assert sorted(f["layer_volume_mm3"]) == [0, 1, 2]
