@@ -6,8 +6,13 @@
 //    the same block from NumPy (Debian's python3, the module in
 //    build/python) and prints its rate; the ratio is printed last. The
 //    issue's bar: the module within 10 % of the C++ call.
+// Both sides report their best of thirty repetitions, taken in three
+// interleaved rounds of ten (the fastest a block goes: on this busy
+// two-core machine the medians of five moved by 16 % between runs, and the
+// old figure set a Python best of five against a C++ median of five).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -19,6 +24,7 @@
 namespace {
 
 constexpr int kRepeat = 8;
+constexpr int kRounds = 3;
 double g_cxx_rate = 0;
 
 struct Block {
@@ -59,7 +65,7 @@ void BM_MeasureProfilesCxx(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(b.n));
   g_cxx_rate = static_cast<double>(state.iterations()) * static_cast<double>(b.n);
 }
-BENCHMARK(BM_MeasureProfilesCxx)->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true);
+BENCHMARK(BM_MeasureProfilesCxx)->Unit(benchmark::kMillisecond)->Repetitions(10);
 
 }  // namespace
 
@@ -69,23 +75,28 @@ int main(int argc, char** argv) {
     double best = 0;
     void ReportRuns(const std::vector<Run>& runs) override {
       for (const Run& r : runs)
-        if (r.aggregate_name == "median") best = r.counters.at("items_per_second");
+        if (r.aggregate_name.empty()) best = std::max(best, static_cast<double>(r.counters.at("items_per_second")));
       ConsoleReporter::ReportRuns(runs);
     }
   } reporter;
-  benchmark::RunSpecifiedBenchmarks(&reporter);
+  // Three rounds, each ten C++ repetitions then ten Python ones: a slow
+  // spell of the machine falls on both sides alike.
   const std::string cmd = "PYTHONPATH='" + std::string(BEAD_PYTHON_DIR) +
                           "' /usr/bin/python3 '" BEAD_BENCH_DIR "/python_measure_block.py' '" BEAD_SOURCE_DIR
                           "/testdata/sample/run.h5' " +
-                          std::to_string(kRepeat);
-  FILE* p = popen(cmd.c_str(), "r");
+                          std::to_string(kRepeat) + " 10";
   double py_rate = 0;
-  if (!p || std::fscanf(p, "%lf", &py_rate) != 1) py_rate = 0;
-  if (p) pclose(p);
+  for (int round = 0; round < kRounds; ++round) {
+    benchmark::RunSpecifiedBenchmarks(&reporter);
+    FILE* p = popen(cmd.c_str(), "r");
+    double rate = 0;
+    if (p && std::fscanf(p, "%lf", &rate) == 1) py_rate = std::max(py_rate, rate);
+    if (p) pclose(p);
+  }
   std::printf(
-      "C++ MeasureProfiles: %.0f profiles/s; bead.measure from NumPy: %.0f profiles/s; the module at %.1f %% "
-      "of the C++ call\n",
-      reporter.best, py_rate, reporter.best > 0 ? 100.0 * py_rate / reporter.best : 0.0);
+      "C++ MeasureProfiles: %.0f profiles/s; bead.measure from NumPy: %.0f profiles/s (each the best of %d "
+      "repetitions in %d interleaved rounds); the module at %.1f %% of the C++ call\n",
+      reporter.best, py_rate, 10 * kRounds, kRounds, reporter.best > 0 ? 100.0 * py_rate / reporter.best : 0.0);
   benchmark::Shutdown();
   return 0;
 }
