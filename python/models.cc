@@ -43,6 +43,8 @@ py::dict Identify(const Vector& t, const Vector& u, const Vector& y, int poles, 
     d = model::FindDegeneracy(m, tv, uv, yv);
   }
   if (!m.ok) throw Error("identify: no model: " + m.reason);
+  // The command's rule: a model of the wrong sign is not handed on.
+  if (const std::string why = model::UnusableReason(d); !why.empty()) throw Error("identify: refused: " + why);
   return py::dict("num"_a = m.tf.num, "den"_a = m.tf.den, "delay_s"_a = m.tf.delay_s, "offset"_a = m.offset,
                   "fit_percent"_a = m.fit_percent, "degenerate"_a = d.findings,
                   "prediction"_a = Owned(std::move(m.prediction), {static_cast<py::ssize_t>(tv.size())}));

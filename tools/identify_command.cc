@@ -148,12 +148,10 @@ std::string StructureFlags(const model::IdentifyOptions& o) {
   return "--poles " + std::to_string(o.poles) + " --zeros " + std::to_string(o.zeros);
 }
 
-// A degenerate fit said, with the smaller structure refitted beside it;
+// A degenerate fit (`d`, FindDegeneracy's) said, with the smaller structure refitted beside it;
 // the findings (and the smaller structure's fit) for the model file.
 nlohmann::json SayDegeneracy(const model::IdentifiedModel& m, const model::IdentifyOptions& o, const Series& est,
-                             const std::vector<Segment>& on, bool& wrong_sign) {
-  const model::Degeneracy d = model::FindDegeneracy(m, est.t, est.u, est.y, on);
-  wrong_sign = d.wrong_sign;
+                             const std::vector<Segment>& on, const model::Degeneracy& d) {
   nlohmann::json out = nlohmann::json::array();
   if (!d.any()) return out;
   for (const std::string& f : d.findings) {
@@ -193,8 +191,8 @@ int IdentifyOne(const SeriesNames& names, const model::IdentifyOptions& o, const
   }
   PrintModel(m, o);
   std::printf("fit on estimation data: %.2f %%\n", m.fit_percent);
-  bool wrong_sign = false;
-  const nlohmann::json warnings = SayDegeneracy(m, o, est, on.segments, wrong_sign);
+  const model::Degeneracy degeneracy = model::FindDegeneracy(m, est.t, est.u, est.y, on.segments);
+  const nlohmann::json warnings = SayDegeneracy(m, o, est, on.segments, degeneracy);
   double fit_val = NAN;
   if (val) {
     fit_val = model::ValidateFitPercent(m.tf, m.offset, val->t, val->u, val->y, val_on->segments);
@@ -204,11 +202,8 @@ int IdentifyOne(const SeriesNames& names, const model::IdentifyOptions& o, const
               m.criteria.bic, m.criteria.fpe, m.parameters);
   if (orders)
     PrintOrderTable(est, on.segments, val ? &*val : nullptr, val ? val_on->segments : std::vector<Segment>{}, o);
-  if (!out.empty() && wrong_sign)
-    throw Error(Located(out, "",
-                        "not written: the model's gain has the opposite sign of the data's (above), and a controller "
-                        "or feed-forward built on it would push the wrong way; try another --max-delay-s, "
-                        "--structure or order"));
+  if (const std::string why = model::UnusableReason(degeneracy); !out.empty() && !why.empty())
+    throw Error(Located(out, "", "not written: " + why + " (--max-delay-s, --structure, --poles, --zeros)"));
   if (!out.empty()) {
     nlohmann::json j = model::ModelJson(m, o, input, names.output, est.t, on.segments, on.excluded);
     if (val) j["fit_validation_pct"] = fit_val;

@@ -132,4 +132,10 @@ bool SmallerStructure(const IdentifyOptions& o, const Degeneracy& d, IdentifyOpt
   return true;
 }
 
+std::string UnusableReason(const Degeneracy& d) {
+  if (!d.wrong_sign) return "";
+  return "the model's gain has the opposite sign of the data's, and a controller or feed-forward built on it would "
+         "push the wrong way; try another delay range, structure or order";
+}
+
 }  // namespace bead::model

@@ -27,6 +27,12 @@ struct Degeneracy {
 Degeneracy FindDegeneracy(const IdentifiedModel& m, const std::vector<double>& t, const std::vector<double>& u,
                           const std::vector<double>& y, const std::vector<Segment>& segments = {});
 
+// Why a model with these findings must not be used ("" when it may): a
+// gain of the data's opposite sign, which a controller or a feed-forward
+// built on it would push the wrong way. identify's file and bead.identify
+// both refuse such a model with this reason.
+std::string UnusableReason(const Degeneracy& d);
+
 // The options of the smaller structure `d` names (poles and zeros
 // lowered; a process model keeps its real poles). False when there is no
 // smaller one (a single pole).

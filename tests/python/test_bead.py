@@ -203,3 +203,16 @@ def test_a_part_scan_is_read_measured_and_flowed_as_the_commands_do(tmp_path):
     f = bead.part_flow(rig, scan)
     compare_rows(f, rows, {"valid"})
     assert sorted(f["layer_volume_mm3"]) == [0, 1, 2]
+
+
+def test_identify_refuses_a_model_of_the_datas_opposite_sign():
+    # The heater step searched for delays up to 10 s falls in a basin whose
+    # gain has the data's opposite sign (README, the step-test chain): the
+    # command writes no model for it, and the module hands none back.
+    path = os.path.join(SOURCE, "testdata", "step", "heater_step.csv")
+    rows = read_csv(path)
+    t, u, y = (np.array([float(r[k]) for r in rows]) for k in ("t_s", "heater_cmd_c", "temp_c"))
+    with pytest.raises(bead.Error, match="opposite sign"):
+        bead.identify(t, u, y, structure="P2D", max_delay_s=10)
+    m = bead.identify(t, u, y, structure="P2D", max_delay_s=5)
+    assert abs(m["num"][-1] / m["den"][-1] - 1.0) < 0.01  # eq. 14's unit gain
