@@ -12,6 +12,7 @@
 #include "libbead/vision/frames_run.h"
 #include "tools/stripe_options.h"
 #include "tools/subcommands.h"
+#include "tools/tty_progress.h"
 
 namespace bead::tools {
 
@@ -61,12 +62,11 @@ Run AddFrames(CLI::App& app) {
       sensor.map = vision::ReadLaserPlaneYaml(args->plane);
     }
     sensor.stripe = ApplyStripeFlags(args->stripe, sensor.stripe);
-    const bool tty = isatty(STDERR_FILENO);
+    const auto tty = TtyProgress("read", "frames");
     vision::FramesRun f =
-        vision::RunFromFrames(args->frames, sensor, args->rate_hz, [tty](std::size_t k, std::size_t n) {
-          if (tty) std::fprintf(stderr, "\rread %zu / %zu frames", k, n);
+        vision::RunFromFrames(args->frames, sensor, args->rate_hz, [&tty](std::size_t k, std::size_t n) {
+          if (tty) tty(k, n);
         });
-    if (tty) std::fprintf(stderr, "\n");
     f.run.attributes[args->sensor.empty() ? "laser_plane" : "sensor"] =
         std::filesystem::path(args->sensor.empty() ? args->plane : args->sensor).filename().string();
     WriteRunArchive(args->output, f.run);  // validates the block

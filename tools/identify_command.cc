@@ -12,6 +12,7 @@
 #include "libbead/series/process_on.h"
 #include "tools/commands.h"
 #include "tools/subcommands.h"
+#include "tools/tty_progress.h"
 #include "libbead/io/series_columns.h"
 #include "tools/series_stretches.h"
 #include "libbead/model/identify_multi.h"
@@ -130,13 +131,12 @@ void PrintOrderTable(const Series& est, const std::vector<Segment>& on, const Se
     }
   }
   std::printf("\n%6s %6s %12s %12s %12s %10s\n", "poles", "zeros", "fit_est_%", "fit_val_%", "AICc", "delay_s");
-  const bool tty = isatty(STDERR_FILENO);
   std::fflush(stdout);
-  const auto progress = [tty](int done, int total) {
-    if (tty) std::fprintf(stderr, "\rorder table: %d of %d orders fitted", done, total);
+  const auto tty = TtyProgress("order table:", "orders fitted");
+  const auto progress = [&tty](int done, int total) {
+    if (tty) tty(static_cast<std::size_t>(done), static_cast<std::size_t>(total));
   };
   const auto rows = model::OrderTable(a.t, a.u, a.y, b.t, b.u, b.y, o, sa, sb, progress);
-  if (tty) std::fprintf(stderr, "\r\033[K");
   for (const auto& r : rows)
     std::printf("%6d %6d %12.2f %12.2f %12.6g %10.4f\n", r.poles, r.zeros, r.fit_estimation, r.fit_validation, r.aicc,
                 r.delay_s);

@@ -12,11 +12,13 @@
 
 namespace bead::tools {
 
-// The callback to hand a MeasureRunOptions::progress; empty off a terminal.
-inline std::function<void(std::size_t, std::size_t)> TtyProgress(const std::string& what) {
+// The callback to hand a MeasureRunOptions::progress (or any step that
+// counts `unit`s: "\r<what> N / M <unit>"); empty off a terminal.
+inline std::function<void(std::size_t, std::size_t)> TtyProgress(const std::string& what,
+                                                                 const std::string& unit = "profiles") {
   if (!isatty(STDERR_FILENO)) return {};
-  return [what](std::size_t done, std::size_t total) {
-    std::fprintf(stderr, "\r%s %zu / %zu profiles", what.c_str(), done, total);
+  return [what, unit](std::size_t done, std::size_t total) {
+    std::fprintf(stderr, "\r%s %zu / %zu %s", what.c_str(), done, total, unit.c_str());
     if (done >= total) std::fprintf(stderr, "\r\033[K");
   };
 }
