@@ -8,6 +8,8 @@
 #include "libbead/core/worker_pool.h"
 #include "libbead/io/atomic_file.h"
 #include "libbead/io/point_cloud.h"
+#include "libbead/io/run_archive.h"
+#include "libbead/part/part_cloud.h"
 #include "libbead/io/profiles_csv.h"
 #include "libbead/io/rig_yaml.h"
 #include "tools/commands.h"
@@ -35,6 +37,18 @@ ProfileBlock EveryNth(ProfileBlock all, std::size_t n) {
 
 // The profiles CSV long form of docs/data-formats.md: the sensor's own
 // points, what the C and Python examples read.
+// A part scan's cloud in the bed frame (part/part_cloud.h).
+int ExportPartCloud(const std::string& run, const std::string& output, std::size_t every) {
+  const RunArchive scan = ReadPartScan(run, true, false);
+  const WheelCloud cloud = part::BuildPartCloud(scan.profiles, *scan.part, every);
+  WritePointCloud(output, cloud);
+  const auto [z_lo, z_hi] = std::minmax_element(cloud.z_mm.begin(), cloud.z_mm.end());
+  std::printf("%s: part scan, %zu points of %zu layers in the bed frame; z %.3f .. %.3f mm; wrote %s\n", run.c_str(),
+              cloud.size(), scan.part->layer.empty() ? 0 : static_cast<std::size_t>(scan.part->layer.back() + 1), *z_lo,
+              *z_hi, output.c_str());
+  return 0;
+}
+
 void ExportProfilesCsv(const std::string& run, const std::string& output, std::size_t every) {
   WorkerPool pool;
   OpenedRun opened = OpenRun(run, pool, /*with_log=*/false);
@@ -84,6 +98,9 @@ Run AddExport(CLI::App& app) {
       "     .csv: the profiles CSV (profile,t_s,encoder,x_mm,z_mm, one row per point, the sensor's\n"
       "     own coordinates; no rig needed), what examples/c and examples/python read.\n"
       "     --log with .csv: the acquisition log CSV (t_s,encoder,screw_rpm[,extruder_cmd_v,wheel_cmd_v]).\n"
+      "     A part scan (format 1.1, kind = \"part\"; no rig needed) as a cloud is in the bed frame:\n"
+      "     x + frame_x_mm across the path, y = path_mm along it, z + frame_z_mm above the bed,\n"
+      "     each point with its layer (field layer; encoder 0): the part as printed.\n"
       "Example:\n"
       "  bead export --rig rig.yaml run.h5 -o run.ply && pcl_viewer run.ply\n"
       "  bead export run.h5 --every 10 -o profiles.csv\n"
@@ -114,6 +131,8 @@ Run AddExport(CLI::App& app) {
     }
     if (!IsPointCloudPath(args->output))
       throw Error(Located(args->output, "", "is written as a point cloud (.ply or .pcd) or a profiles CSV (.csv)"));
+    if (args->run.ends_with(".h5") && IsPartScan(args->run))
+      return ExportPartCloud(args->run, args->output, args->options.every);
     if (args->rig.empty()) throw CLI::RequiredError("--rig (a point cloud is placed in wheel coordinates)");
     const Rig rig = ReadRigSaying(args->rig);
     WorkerPool pool;

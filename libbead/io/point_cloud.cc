@@ -121,11 +121,19 @@ void WritePointCloud(const std::string& path, const WheelCloud& c) {
   if (c.size() == 0) throw Error(Located(path, "", "no point to write: no profile had a reference line"));
   pcl::PCLPointCloud2 cloud;
   uint32_t offset = 0;
+  const bool part = !c.layer.empty();
+  if (part && c.layer.size() != c.size()) throw Error(Located(path, "", "internal: a layer for every point"));
   for (const FieldSpec& spec : kFields) {
     pcl::PCLPointField f;
     f.name = spec.name, f.offset = offset, f.datatype = spec.type, f.count = 1;
     cloud.fields.push_back(f);
     offset += spec.size;
+  }
+  if (part) {  // a part's cloud: each point's layer after the run's fields
+    pcl::PCLPointField f;
+    f.name = "layer", f.offset = offset, f.datatype = pcl::PCLPointField::FLOAT64, f.count = 1;
+    cloud.fields.push_back(f);
+    offset += 8;
   }
   cloud.point_step = offset;
   // PLY and PCD count a cloud's bytes in 32 bits (PCL's row_step).
@@ -148,6 +156,10 @@ void WritePointCloud(const std::string& path, const WheelCloud& c) {
     std::memcpy(p + 16, &c.profile[i], 4);
     std::memcpy(p + 20, &t, 8);
     std::memcpy(p + 28, &encoder, 8);
+    if (part) {
+      const double layer = static_cast<double>(c.layer[i]);
+      std::memcpy(p + 36, &layer, 8);
+    }
   }
   QuietPcl();
   AtomicFile out(path);
