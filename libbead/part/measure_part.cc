@@ -6,6 +6,7 @@
 #include <string>
 
 #include "libbead/core/error.h"
+#include "libbead/part/bed_arc.h"
 
 namespace bead::part {
 namespace {
@@ -50,10 +51,26 @@ std::optional<SurfaceGrid> BedLine(ProfileProcessor& processor, const ProfileVie
   return grid;
 }
 
+// The bed under layer 0 on a pipe (part: {bed: cylinder}): the arc through
+// the profile's bare surface either side, in the bed frame.
+std::optional<SurfaceGrid> BedArcGrid(const Rig& rig, const ProfileView& v, const StoredProfile& p, double frame_x,
+                                      double frame_z) {
+  const BedArc arc = FitBedArc(v.x_mm, v.z_mm, rig.reference_left, rig.reference_right, rig.part->radius_mm);
+  if (!arc.ok || p.x_mm.size() < 2) return std::nullopt;
+  SurfaceGrid grid;
+  grid.dx_mm = GridStep(p);
+  grid.x0_mm = p.x_mm.front();
+  const std::size_t n = static_cast<std::size_t>((p.x_mm.back() - p.x_mm.front()) / grid.dx_mm) + 2;
+  for (std::size_t k = 0; k < n; ++k)
+    grid.z_mm.push_back(
+        static_cast<float>(arc.At(grid.x0_mm + static_cast<double>(k) * grid.dx_mm - frame_x) + frame_z));
+  return grid;
+}
+
 class PartMeasurer {
  public:
   PartMeasurer(const Rig& rig, const MeasurePartOptions& o, std::size_t points)
-      : options_(o), processor_(rig.reference_left, rig.reference_right, o.bed, points), below_(o.below) {}
+      : rig_(rig), options_(o), processor_(rig.reference_left, rig.reference_right, o.bed, points), below_(o.below) {}
 
   PartGeometryRow Measure(const ProfileView& v, std::size_t i, const PartPlaces& places) {
     PartGeometryRow row;
@@ -64,7 +81,10 @@ class PartMeasurer {
     below_.BeginLayer(row.layer);
     StoredProfile mine = InBedFrame(v, row.path_mm, places.frame_x_mm[i], places.frame_z_mm[i]);
     std::optional<SurfaceGrid> under;
-    if (row.layer == 0)
+    const bool pipe = rig_.part && rig_.part->shape == PartBed::Shape::kCylinder;
+    if (row.layer == 0 && pipe)
+      under = BedArcGrid(rig_, v, mine, places.frame_x_mm[i], places.frame_z_mm[i]);
+    else if (row.layer == 0)
       under = BedLine(processor_, v, mine, places.frame_x_mm[i], places.frame_z_mm[i]);
     else
       under = below_.At(row.path_mm, GridStep(mine), nullptr);
@@ -84,6 +104,7 @@ class PartMeasurer {
   }
 
  private:
+  const Rig& rig_;
   MeasurePartOptions options_;
   ProfileProcessor processor_;
   SurfaceBelow below_;

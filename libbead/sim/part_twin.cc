@@ -88,6 +88,12 @@ class WallPrinter {
     Surface bed;
     bed.x0 = -c_.field_half_mm - 6.0;
     bed.z.assign(static_cast<std::size_t>(2.0 * (c_.field_half_mm + 6.0) / kGridMm) + 1, 0.0);
+    // A pipe's top, its crest at x = 0, z = 0, when the bed is a cylinder.
+    const double r = c_.bed_radius_mm;
+    for (std::size_t k = 0; k < bed.z.size() && r > 0; ++k) {
+      const double x = bed.x0 + static_cast<double>(k) * kGridMm;
+      bed.z[k] = std::sqrt(std::max(r * r - x * x, 0.0)) - r;
+    }
     std::vector<Surface> stack{bed};
     const double a = 0.5 * c_.width_mm, b = c_.aspect * a;
     for (int k = 0; k <= n; ++k) stack.push_back(Lay(stack.back(), LayerAt(k, p), a, b));
@@ -171,6 +177,7 @@ PartTwin SimulatePartWall(const PartTwinConfig& c) {
   twin.rig.name = "twin-part";
   twin.rig.has_wheel = false;
   twin.rig.part = PartBed{};
+  if (c.bed_radius_mm > 0) twin.rig.part->shape = PartBed::Shape::kCylinder, twin.rig.part->radius_mm = c.bed_radius_mm;
   twin.rig.reference_left = {-c.field_half_mm, -c.field_half_mm + 5.0};
   twin.rig.reference_right = {c.field_half_mm - 5.0, c.field_half_mm};
   return twin;

@@ -40,6 +40,9 @@ struct PartTwinConfig {
   double point_spacing_mm = 0.05;
   double field_half_mm = 20.0;  // the profile spans +-this in x
   double log_rate_hz = 100.0;
+  // > 0: the wall is laid along the top of a pipe of this radius (its
+  // axis along the path, its crest under the path's centre line), mm.
+  double bed_radius_mm = 0.0;
   double displacement_mm3_per_rev = 100.0;  // screw rpm = 60 Q / this
   uint64_t seed = 1;
 };

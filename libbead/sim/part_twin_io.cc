@@ -33,7 +33,7 @@ void ParsePart(const YAML::Node& root, const Reader& r, PartTwinConfig& c) {
                                   "point_spacing_mm",
                                   "field_half_mm",
                                   "log_rate_hz",
-                                  "displacement_mm3_per_rev"});
+                                  "displacement_mm3_per_rev", "bed_radius_mm"});
   if (p["shape"].IsDefined() && r.Text(p["shape"], "part.shape") != "wall")
     r.Fail(p["shape"], "part.shape", "is '" + p["shape"].Scalar() + "': this version's twin prints a wall");
   const std::string at = "part.";
@@ -56,6 +56,9 @@ void ParsePart(const YAML::Node& root, const Reader& r, PartTwinConfig& c) {
   r.Get(p, at, "field_half_mm", c.field_half_mm, 1.0, 1e3);
   r.Get(p, at, "log_rate_hz", c.log_rate_hz, 1.0, 1e5);
   r.Get(p, at, "displacement_mm3_per_rev", c.displacement_mm3_per_rev, 1e-3, 1e9);
+  r.Get(p, at, "bed_radius_mm", c.bed_radius_mm, 0.0, 1e5);
+  if (c.bed_radius_mm > 0 && c.bed_radius_mm <= c.field_half_mm)
+    r.Fail(p["bed_radius_mm"], at + "bed_radius_mm", "must exceed field_half_mm: the pipe spans the profile");
   if (c.area_wave_mm2 >= c.area_mm2) r.Fail(p["area_wave_mm2"], at + "area_wave_mm2", "must be less than area_mm2");
   if (c.field_half_mm <= 0.5 * c.width_mm + 5.0)
     r.Fail(p["field_half_mm"], at + "field_half_mm",
