@@ -33,7 +33,8 @@ void ParsePart(const YAML::Node& root, const Reader& r, PartTwinConfig& c) {
                                   "point_spacing_mm",
                                   "field_half_mm",
                                   "log_rate_hz",
-                                  "displacement_mm3_per_rev", "bed_radius_mm"});
+                                  "displacement_mm3_per_rev",
+                                  "bed_radius_mm"});
   if (p["shape"].IsDefined() && r.Text(p["shape"], "part.shape") != "wall")
     r.Fail(p["shape"], "part.shape", "is '" + p["shape"].Scalar() + "': this version's twin prints a wall");
   const std::string at = "part.";
