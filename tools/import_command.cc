@@ -20,6 +20,8 @@ ImportedRun ReadForeignRun(const std::string& path, const ImportColumns& columns
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   if (ext == ".csv" || ext == ".txt") return ReadVendorCsv(path, columns);
+  if (columns.part())
+    throw CLI::ValidationError("--layer-column", "a part scan's columns are read from a vendor CSV (.csv) only");
   if (ext == ".mat") return ReadMatRun(path, columns);
   if (IsPointCloudPath(path)) return ReadPointCloud(path, columns);
   throw Error(Located(path, "", "import reads .csv, .mat, .ply or .pcd files (by their extension)"));
@@ -45,9 +47,14 @@ void PrintSummary(const std::string& input, const std::string& output, const Imp
   std::printf(
       "  x %.4g .. %.4g mm, z (height) %.4g .. %.4g mm: the rig's reference_areas_mm must lie in this x range\n", x_lo,
       x_hi, z_lo, z_hi);
-  if (EncoderAbsent(imported.run))
+  if (const auto& part = imported.run.part) {
+    const auto [lo, hi] = std::minmax_element(part->path_mm.begin(), part->path_mm.end());
+    std::printf("  a part scan: layers %lld to %lld, path %.1f .. %.1f mm (bead measure measures it layer on layer)\n",
+                static_cast<long long>(part->layer.front()), static_cast<long long>(part->layer.back()), *lo, *hi);
+  } else if (EncoderAbsent(imported.run)) {
     std::printf(
         "  no encoder column: /profiles/encoder holds 0, marked encoder=absent (flow needs the wheel's motion)\n");
+  }
 }
 
 }  // namespace
@@ -70,6 +77,12 @@ Run AddImport(CLI::App& app) {
       "        a profile per row); also the fields of time, x and z. `bead export` writes such a\n"
       "        cloud (fields profile, t_s, encoder, x, z_sensor) which comes back in this way.\n"
       "  A profile takes the time of its first point; non-finite x or z are dropouts.\n"
+      "  A part scan (format 1.1; .csv): --layer-column names each profile's layer, and\n"
+      "        --path-column its place along the toolpath (mm), or --head-speed-mm-s places it at\n"
+      "        that speed times its time since its layer's first profile; --frame-z-column and\n"
+      "        --frame-x-column the profile frame's height above the bed and lateral offset (0 when\n"
+      "        not named). It writes a part scan (kind = \"part\", no encoder) that bead measure\n"
+      "        measures layer on layer.\n"
       "Out: RUN.h5, the run archive of docs/data-formats.md (profiles only, no /log),\n"
       "     z as height (up): --z-distance turns a distance from the sensor into one.\n"
       "     Without --encoder-column, /profiles/encoder holds 0 and the root attribute\n"
@@ -77,6 +90,9 @@ Run AddImport(CLI::App& app) {
       "Examples:\n"
       "  bead import Representative_Layer_raw_points.csv -o layer.h5 --profile-column ScanID \\\n"
       "       --time-column Timestamp --x-column X --z-column Z --z-distance\n"
+      "  bead import Representative_Layer_raw_points.csv -o layer25.h5 --profile-column ScanID \\\n"
+      "       --time-column Timestamp --x-column X --z-column Z --z-distance --layer-column Layer \\\n"
+      "       --head-speed-mm-s 10\n"
       "  bead import scans.mat -o run.h5 --time-column t --x-column X --z-column Z --encoder-column enc\n"
       "  bead import run.ply -o back.h5 --profile-column profile --time-column t_s --x-column x \\\n"
       "       --z-column z_sensor --encoder-column encoder");
@@ -95,6 +111,13 @@ Run AddImport(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   cmd->add_flag("--z-distance", c.z_is_distance, "z is the distance from the sensor (grows away from it)");
+  cmd->add_option("--layer-column", c.layer, "Column of each profile's layer: the file is a part scan (CSV)");
+  cmd->add_option("--path-column", c.path, "Column of each profile's place along the toolpath, mm (part scan)");
+  cmd->add_option("--head-speed-mm-s", c.head_speed_mm_s,
+                  "Place each profile at this head speed times its time in its layer, mm/s (part scan)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--frame-z-column", c.frame_z, "Column of the profile frame's height above the bed, mm (part)");
+  cmd->add_option("--frame-x-column", c.frame_x, "Column of the profile frame's lateral offset, mm (part)");
 
   return [args]() {
     const ImportedRun imported = ReadForeignRun(args->input, args->columns);

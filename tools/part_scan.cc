@@ -19,8 +19,9 @@ namespace {
 
 void SayLayers(const std::vector<part::LayerSummary>& layers) {
   for (const part::LayerSummary& l : layers) {
-    std::printf("  layer %lld: %zu profiles over path %.1f to %.1f mm, %zu valid, mean area %.3f mm^2",
-                static_cast<long long>(l.layer), l.profiles, l.first_path_mm, l.last_path_mm, l.valid, l.MeanArea());
+    std::printf("  layer %lld: %zu profiles over path %.1f to %.1f mm, %zu valid", static_cast<long long>(l.layer),
+                l.profiles, l.first_path_mm, l.last_path_mm, l.valid);
+    if (l.valid) std::printf(", mean area %.3f mm^2", l.MeanArea());
     if (l.layer == 0)
       std::printf(" (on the bed)\n");
     else if (l.no_surface_below == l.profiles)

@@ -20,6 +20,16 @@ struct ImportColumns {
   std::string encoder;         // empty: the file has none
   double time_scale = 1.0;     // the time column times this is seconds
   bool z_is_distance = false;  // z grows away from the sensor: height = -z
+  // A part scan (format 1.1; vendor CSV): each profile's layer, and its
+  // place along the toolpath (path, mm) or the head's speed to place it
+  // (path = speed x time from the layer's first profile); the frame's
+  // height above the bed and lateral offset when the file has them.
+  std::string layer;             // non-empty: the file is a part scan
+  std::string path;              // mm along the toolpath
+  double head_speed_mm_s = 0.0;  // > 0 and no path column: path = speed x time in the layer
+  std::string frame_z;           // mm; 0 when not named
+  std::string frame_x;           // mm; 0 when not named
+  bool part() const { return !layer.empty(); }
 };
 
 struct ImportedRun {
@@ -30,6 +40,7 @@ struct ImportedRun {
 // Checks what every reader needs of `c` (a positive time scale, the time,
 // x and z named; the profile too when `profile_required`); throws
 // bead::Error naming `path`.
+// A part scan's columns: a path column or a head speed, not both.
 void CheckImportColumns(const std::string& path, const ImportColumns& c, bool profile_required);
 
 }  // namespace bead

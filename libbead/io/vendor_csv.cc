@@ -25,6 +25,25 @@ std::size_t ColumnIndex(const CsvReader& csv, const std::vector<std::string>& he
            " (the header has: " + all + ")");
 }
 
+// A part scan's profile: its layer, place and frame, from its first row.
+void AddPlace(CsvReader& csv, const ImportColumns& c, std::size_t i_layer, std::size_t i_path, std::size_t i_fz,
+              std::size_t i_fx, PartPlaces& places) {
+  places.layer.push_back(csv.Int64(i_layer, c.layer.c_str()));
+  places.path_mm.push_back(c.path.empty() ? 0.0 : csv.Double(i_path, c.path.c_str()));
+  places.frame_z_mm.push_back(c.frame_z.empty() ? 0.0 : csv.Double(i_fz, c.frame_z.c_str()));
+  places.frame_x_mm.push_back(c.frame_x.empty() ? 0.0 : csv.Double(i_fx, c.frame_x.c_str()));
+}
+
+// Without a path column: each profile placed at the head's speed times its
+// time since its layer's first profile.
+void PlaceAtHeadSpeed(const std::vector<double>& t, double speed, PartPlaces& places) {
+  double start = 0.0;
+  for (std::size_t i = 0; i < t.size() && i < places.size(); ++i) {
+    if (i == 0 || places.layer[i] != places.layer[i - 1]) start = t[i];
+    places.path_mm[i] = speed * (t[i] - start);
+  }
+}
+
 }  // namespace
 
 ImportedRun ReadVendorCsv(const std::string& path, const ImportColumns& c) {
@@ -38,9 +57,15 @@ ImportedRun ReadVendorCsv(const std::string& path, const ImportColumns& c) {
   const bool has_encoder = !c.encoder.empty();
   const std::size_t i_encoder = has_encoder ? ColumnIndex(csv, header, c.encoder, "encoder") : 0;
   const float sign = c.z_is_distance ? -1.0f : 1.0f;
+  auto optional_column = [&](const std::string& name, const char* what) {
+    return name.empty() ? header.size() : ColumnIndex(csv, header, name, what);
+  };
+  const std::size_t i_layer = optional_column(c.layer, "layer"), i_path = optional_column(c.path, "path");
+  const std::size_t i_fz = optional_column(c.frame_z, "frame z"), i_fx = optional_column(c.frame_x, "frame x");
 
   ImportedRun result;
   ProfileBlockBuilder builder;
+  PartPlaces places;
   int64_t current = 0;
   double current_t = 0.0;
   while (csv.Next()) {
@@ -48,6 +73,7 @@ ImportedRun ReadVendorCsv(const std::string& path, const ImportColumns& c) {
     if (builder.empty() || id != current) {
       current = id;
       current_t = csv.Double(i_time, c.time.c_str()) * c.time_scale;
+      if (c.part()) AddPlace(csv, c, i_layer, i_path, i_fz, i_fx, places);
     }
     const int64_t encoder = has_encoder ? csv.Int64(i_encoder, c.encoder.c_str()) : 0;
     builder.Add(csv, id, current_t, encoder, csv.Coordinate(i_x, c.x.c_str()), sign * csv.Coordinate(i_z, c.z.c_str()));
@@ -57,6 +83,11 @@ ImportedRun ReadVendorCsv(const std::string& path, const ImportColumns& c) {
   result.run.profiles = builder.Build(path, "profiles");
   result.run.attributes["imported_from"] = std::filesystem::path(path).filename().string();
   if (!has_encoder) result.run.attributes[kEncoderAttribute] = kEncoderAbsent;
+  if (c.part()) {
+    if (c.path.empty()) PlaceAtHeadSpeed(result.run.profiles.t_s, c.head_speed_mm_s, places);
+    ValidatePartPlaces(places, result.run.profiles.size(), path, "profiles");
+    result.run.part = std::move(places);
+  }
   return result;
 }
 

@@ -100,3 +100,46 @@ TEST(PartCommand, TheWheelsCommandsNameAPartScanAndAPartRigNamesWhatIsMissing) {
 
 }  // namespace
 }  // namespace bead
+
+namespace bead {
+namespace {
+
+// Another lab's layer scan (testdata/realdata/bead-observer: one layer, 25,
+// of a thin wall, MIT): imported as a part scan with its Layer column and
+// placed at the print's 10 mm/s, then measured: the layer below is not in
+// the file, and every row says so instead of measuring against nothing.
+TEST(PartCommand, AnotherLabsLayerScanIsImportedAndSaysWhatItLacks) {
+  test::TempDir dir;
+  const std::string csv =
+      std::string(BEAD_SOURCE_DIR) + "/testdata/realdata/bead-observer/Representative_Layer_raw_points.csv";
+  const std::string columns =
+      " --profile-column ScanID --time-column Timestamp --x-column X --z-column Z --z-distance --layer-column Layer";
+  auto [code, out] = test::RunCli(dir, "import " + csv + " -o " + (dir / "l25.h5") + columns + " --head-speed-mm-s 10");
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("a part scan: layers 25 to 25"), std::string::npos) << out;
+  {
+    std::ofstream rig(dir / "rig.yaml");
+    rig << "part: {bed: flat}\nsensor:\n  reference_areas_mm: [[0, 1], [8, 9]]\n";
+  }
+  std::tie(code, out) =
+      test::RunCli(dir, "measure --rig " + (dir / "rig.yaml") + " " + (dir / "l25.h5") + " -o " + (dir / "geo.csv"));
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("layer 24 is not in the scan"), std::string::npos) << out;
+  const auto rows = Rows(dir / "geo.csv");
+  ASSERT_EQ(rows.size(), 400u);
+  EXPECT_EQ(rows[1].back(), "no_surface_below");
+  EXPECT_EQ(rows[1][2], "25");
+  // Its place: 10 mm/s times the time since the layer's first profile.
+  EXPECT_NEAR(std::stod(rows.back()[3]), 10.0 * (std::stod(rows.back()[1]) - std::stod(rows[1][1])), 1e-6);
+  // A place is needed, one way only.
+  std::tie(code, out) = test::RunCli(dir, "import " + csv + " -o " + (dir / "x.h5") + columns);
+  EXPECT_EQ(code, 1) << out;
+  EXPECT_NE(out.find("--path-column, or --head-speed-mm-s"), std::string::npos) << out;
+  std::tie(code, out) =
+      test::RunCli(dir, "import " + csv + " -o " + (dir / "x.h5") + columns + " --path-column X --head-speed-mm-s 10");
+  EXPECT_EQ(code, 1) << out;
+  EXPECT_NE(out.find("not both"), std::string::npos) << out;
+}
+
+}  // namespace
+}  // namespace bead
