@@ -8,14 +8,6 @@
 namespace bead {
 namespace {
 
-void CheckLength(std::size_t got, std::size_t want, const std::string& file, const std::string& dataset,
-                 const std::string& other) {
-  if (got != want)
-    throw Error(
-        Located(file, dataset,
-                "length mismatch: " + std::to_string(got) + " values, but " + other + " has " + std::to_string(want)));
-}
-
 void CheckFinite(const std::vector<double>& v, const std::string& file, const std::string& dataset) {
   for (std::size_t i = 0; i < v.size(); ++i)
     if (!std::isfinite(v[i]))
@@ -35,6 +27,14 @@ void CheckLayers(const std::vector<int64_t>& layer, const std::string& file, con
 }
 
 }  // namespace
+
+void CheckLength(std::size_t got, std::size_t want, const std::string& file, const std::string& dataset,
+                 const std::string& other) {
+  if (got != want)
+    throw Error(
+        Located(file, dataset,
+                "length mismatch: " + std::to_string(got) + " values, but " + other + " has " + std::to_string(want)));
+}
 
 bool IsPartLogDataset(const std::string& name) {
   return name == "layer" || name == "path_mm" || name == "head_speed_mm_s";

@@ -14,6 +14,11 @@ namespace bead {
 inline constexpr const char* kKindAttribute = "kind";
 inline constexpr const char* kKindPart = "part";
 
+// A dataset's length against another's ("length mismatch: G values, but
+// OTHER has W"), naming the file and the dataset: the archives' one check.
+void CheckLength(std::size_t got, std::size_t want, const std::string& file, const std::string& dataset,
+                 const std::string& other);
+
 // The log's datasets that are the nozzle's motion in a part scan, never a
 // recorded channel.
 bool IsPartLogDataset(const std::string& name);

@@ -33,14 +33,6 @@ void CheckTime(const std::vector<double>& t, const std::string& file, const std:
   }
 }
 
-void CheckLength(std::size_t got, std::size_t want, const std::string& file, const std::string& dataset,
-                 const std::string& other) {
-  if (got != want)
-    throw Error(
-        Located(file, dataset,
-                "length mismatch: " + std::to_string(got) + " values, but " + other + " has " + std::to_string(want)));
-}
-
 // Reads <group>/t_s, encoder, x_mm, z_mm; a part scan has no encoder
 // (`part`: 0 for each profile).
 ProfileBlock ReadBlock(const h5::File& f, const std::string& group, bool part = false) {

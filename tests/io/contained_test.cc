@@ -23,19 +23,13 @@
 #include "libbead/io/mat_file.h"
 #include "libbead/io/run_archive.h"
 #include "tests/support/run_cli.h"
+#include "tests/support/expect_rejected.h"
 #include "tests/support/temp_dir.h"
 
 namespace bead {
 namespace {
 
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::ErrorOf;
 
 // The process's peak address space (VmPeak), bytes.
 std::size_t PeakBytes() {

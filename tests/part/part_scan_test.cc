@@ -10,6 +10,7 @@
 #include "libbead/io/rig_yaml.h"
 #include "libbead/io/run_archive.h"
 #include "libbead/sim/part_twin.h"
+#include "tests/support/expect_rejected.h"
 #include "tests/support/temp_dir.h"
 
 namespace bead {
@@ -22,14 +23,7 @@ sim::PartTwinConfig SmallWall() {
   return c;
 }
 
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::ErrorOf;
 
 TEST(PartScan, WrittenAndReadBackWithItsPlacesAndItsLog) {
   test::TempDir dir;

@@ -22,4 +22,14 @@ inline void ExpectRejected(const std::string& path, const std::string& expect, c
   }
 }
 
+// The one-line message `f` throws as bead::Error; "" when it throws none.
+inline std::string ErrorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
 }  // namespace bead::test
