@@ -34,6 +34,13 @@ double Median(std::vector<double> v) {
   return *mid;
 }
 
+// The points' median spacing in x (a stray point far off does not move it).
+double MedianSpacing(std::span<const float> x) {
+  std::vector<double> d;
+  for (std::size_t i = 1; i < x.size(); ++i) d.push_back(static_cast<double>(x[i]) - x[i - 1]);
+  return d.empty() ? 0.05 : std::max(Median(std::move(d)), 1e-4);
+}
+
 double NoiseOf(std::span<const float> z) {
   std::vector<double> second;
   for (std::size_t i = 0; i + 2 < z.size(); ++i) second.push_back(std::abs(z[i] - 2.0 * z[i + 1] + z[i + 2]));
@@ -255,7 +262,7 @@ Registration FromCurve(std::span<const float> x, std::span<const float> z, const
 // when its band reaches that window's end.
 Registration Register(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, double tau,
                       double noise, const AddedBeadOptions& o, const double* start) {
-  const double spacing = (x.back() - x.front()) / static_cast<double>(std::max<std::size_t>(x.size() - 1, 1));
+  const double spacing = MedianSpacing(x);
   const double step = std::max(0.25 * spacing, 1e-3);
   if (start && std::abs(*start) + o.warm_half_mm < o.max_shift_mm) {
     const CostCurve warm = Scan(x, z, below, *start, o.warm_half_mm, step, tau, noise);

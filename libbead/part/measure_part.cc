@@ -27,11 +27,15 @@ StoredProfile InBedFrame(const ProfileView& v, double path, double frame_x, doub
   return p;
 }
 
-// An eighth of the points' mean spacing: the grid's own interpolation
-// then adds little to the points'.
+// An eighth of the points' median spacing: the grid's own interpolation
+// then adds little to the points' (the median: one stray point far off
+// does not coarsen it).
 double GridStep(const StoredProfile& p) {
   if (p.x_mm.size() < 2) return 0.01;
-  return 0.125 * (p.x_mm.back() - p.x_mm.front()) / static_cast<double>(p.x_mm.size() - 1);
+  std::vector<double> d;
+  for (std::size_t i = 1; i < p.x_mm.size(); ++i) d.push_back(p.x_mm[i] - p.x_mm[i - 1]);
+  std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+  return std::max(0.125 * d[d.size() / 2], 1e-4);
 }
 
 // The bed under layer 0: the reference line of the profile itself, in the
@@ -43,7 +47,8 @@ std::optional<SurfaceGrid> BedLine(ProfileProcessor& processor, const ProfileVie
   SurfaceGrid grid;
   grid.dx_mm = GridStep(p);
   grid.x0_mm = p.x_mm.front();
-  const std::size_t n = static_cast<std::size_t>((p.x_mm.back() - p.x_mm.front()) / grid.dx_mm) + 2;
+  const std::size_t n = GridPoints(p.x_mm.front(), p.x_mm.back(), grid.dx_mm);
+  if (n < 2) return std::nullopt;
   for (std::size_t k = 0; k < n; ++k) {
     const double x = grid.x0_mm + static_cast<double>(k) * grid.dx_mm - frame_x;
     grid.z_mm.push_back(static_cast<float>(g.reference.intercept_mm + g.reference.slope * x + frame_z));
@@ -60,7 +65,8 @@ std::optional<SurfaceGrid> BedArcGrid(const Rig& rig, const ProfileView& v, cons
   SurfaceGrid grid;
   grid.dx_mm = GridStep(p);
   grid.x0_mm = p.x_mm.front();
-  const std::size_t n = static_cast<std::size_t>((p.x_mm.back() - p.x_mm.front()) / grid.dx_mm) + 2;
+  const std::size_t n = GridPoints(p.x_mm.front(), p.x_mm.back(), grid.dx_mm);
+  if (n < 2) return std::nullopt;
   for (std::size_t k = 0; k < n; ++k)
     grid.z_mm.push_back(
         static_cast<float>(arc.At(grid.x0_mm + static_cast<double>(k) * grid.dx_mm - frame_x) + frame_z));

@@ -80,7 +80,11 @@ std::optional<SurfaceGrid> SurfaceBelow::At(double path, double dx, std::string*
   g.dx_mm = dx;
   g.x0_mm = std::min(a.x_mm.front(), b.x_mm.front());
   const double x1 = std::max(a.x_mm.back(), b.x_mm.back());
-  const std::size_t n = static_cast<std::size_t>((x1 - g.x0_mm) / dx) + 1;
+  const std::size_t n = GridPoints(g.x0_mm, x1, dx);
+  if (n < 2) {
+    if (why) *why = "the layer below spans too wide an x range for its point spacing";
+    return std::nullopt;
+  }
   g.z_mm.resize(n);
   g.variance.resize(n);
   const double gap = options_.max_x_gap_mm;

@@ -44,6 +44,15 @@ struct SurfaceGrid {
   double SlopeAt(double x_mm) const;
 };
 
+// The points of a grid from x0 to x1 at dx; 0 when it would hold more than
+// kMaxGridPoints (a profile whose x spans metres at micrometre spacing is
+// no bead's: refused, not allocated).
+inline constexpr std::size_t kMaxGridPoints = std::size_t{1} << 22;
+inline std::size_t GridPoints(double x0, double x1, double dx) {
+  const double n = (x1 - x0) / dx + 2.0;
+  return n > 0 && n < static_cast<double>(kMaxGridPoints) ? static_cast<std::size_t>(n) : 0;
+}
+
 // One profile of a layer as the next layer's surface: its valid points in
 // the bed frame, increasing in x, and its bead's centre (NaN: not found).
 struct StoredProfile {

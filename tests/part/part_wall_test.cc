@@ -164,3 +164,26 @@ TEST(PartWall, ALayerMissingFromTheScanLeavesTheNextWithoutASurfaceBelow) {
 
 }  // namespace
 }  // namespace bead
+
+namespace bead {
+namespace {
+
+// A profile whose x spans kilometres at the sensor's spacing is no bead's:
+// its rows are invalid, and nothing the size of that span is allocated.
+TEST(PartWall, AnXFarOutsideTheFieldIsRefusedNotAllocated) {
+  sim::PartTwinConfig config;
+  config.layers = 2;
+  config.length_mm = 3.0;
+  sim::PartTwin twin = sim::SimulatePartWall(config);
+  twin.scan.profiles.x_mm.back() = 1e7f;  // shared by every profile
+  ProfileStream stream("twin", twin.scan.profiles);
+  int rows = 0;
+  part::MeasurePart(stream, *twin.scan.part, twin.rig, {}, [&](const part::PartGeometryRow& r) {
+    ++rows;
+    EXPECT_FALSE(r.bead.valid()) << r.profile;
+  });
+  EXPECT_EQ(rows, static_cast<int>(twin.scan.profiles.size()));
+}
+
+}  // namespace
+}  // namespace bead
