@@ -2,7 +2,7 @@
 # Checks the house style, builds libbead and runs the whole test suite:
 # once optimised, once under
 # AddressSanitizer + UndefinedBehaviorSanitizer; then the tests that run
-# threads under ThreadSanitizer, and every fuzz target for 15 s
+# threads under ThreadSanitizer, and every fuzz target for 10 s
 # (scripts/fuzz.sh). BEAD_SKIP_SANITIZE=1, BEAD_SKIP_TSAN=1 and
 # BEAD_SKIP_FUZZ=1 skip those passes while iterating.
 set -euo pipefail

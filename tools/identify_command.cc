@@ -110,18 +110,14 @@ void PrintOrderTable(const Series& est, const std::vector<Segment>& on, const Se
     sb = val_on;
   } else {
     const std::size_t h = est.t.size() / 2;
-    a = {{est.t.begin(), est.t.begin() + h},
-         {est.u.begin(), est.u.begin() + h},
-         {est.y.begin(), est.y.begin() + h},
-         0,
-         {},
-         {}};
-    b = {{est.t.begin() + h, est.t.end()},
-         {est.u.begin() + h, est.u.end()},
-         {est.y.begin() + h, est.y.end()},
-         0,
-         {},
-         {}};
+    a = Series{};
+    a.t.assign(est.t.begin(), est.t.begin() + h);
+    a.u.assign(est.u.begin(), est.u.begin() + h);
+    a.y.assign(est.y.begin(), est.y.begin() + h);
+    b = Series{};
+    b.t.assign(est.t.begin() + h, est.t.end());
+    b.u.assign(est.u.begin() + h, est.u.end());
+    b.y.assign(est.y.begin() + h, est.y.end());
     sa.clear();
     sb.clear();
     for (const Segment& s : on) {

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <string>
+#include <utility>
 
 #include "libbead/io/run_archive.h"
 
@@ -31,6 +32,16 @@ struct ImportColumns {
   std::string frame_x;           // mm; 0 when not named
   bool part() const { return !layer.empty(); }
 };
+
+// The wheel's columns by name (a part's stay empty), for code that names
+// them all in one line.
+inline ImportColumns Columns(std::string profile, std::string time, std::string x, std::string z, std::string encoder,
+                             double time_scale, bool z_is_distance) {
+  ImportColumns c;
+  c.profile = std::move(profile), c.time = std::move(time), c.x = std::move(x), c.z = std::move(z);
+  c.encoder = std::move(encoder), c.time_scale = time_scale, c.z_is_distance = z_is_distance;
+  return c;
+}
 
 struct ImportedRun {
   RunArchive run;

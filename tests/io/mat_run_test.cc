@@ -57,7 +57,7 @@ TEST(MatRun, TwinRunComesBackPointForPoint) {
   ASSERT_EQ(sim, 0) << sim_out;
   const ProfileBlock b = ReadRunArchive(dir / "twin/run.h5", true, false).profiles;
   ASSERT_GT(b.size(), 100u);
-  const ImportColumns columns{"", "t", "X", "Z", "enc", 1.0, false};
+  const ImportColumns columns = Columns("", "t", "X", "Z", "enc", 1.0, false);
   struct Case {
     mat_ft version;
     bool by_row, x_matrix;

@@ -22,7 +22,7 @@ namespace {
 const std::string kReal =
     std::string(BEAD_SOURCE_DIR) + "/testdata/realdata/bead-observer/Representative_Layer_raw_points.csv";
 
-ImportColumns RealColumns() { return {"ScanID", "Timestamp", "X", "Z", "", 1.0, true}; }
+ImportColumns RealColumns() { return Columns("ScanID", "Timestamp", "X", "Z", "", 1.0, true); }
 
 // The rows of the real file, parsed independently of the importer.
 struct Row {
@@ -112,7 +112,7 @@ TEST(VendorCsv, EncoderColumnAndTimeScaleAreUsed) {
                   "ms,id,enc,height,pos\n"
                   "10,7,100,0.5,-1\n10,7,100,0.6,0\n10,7,100,0.5,1\n"
                   "15,8,140,0.4,-1\n15,8,140,,0\n");
-  const ImportedRun imported = ReadVendorCsv(dir / "v.csv", {"id", "ms", "pos", "height", "enc", 1e-3, false});
+  const ImportedRun imported = ReadVendorCsv(dir / "v.csv", Columns("id", "ms", "pos", "height", "enc", 1e-3, false));
   const ProfileBlock& b = imported.run.profiles;
   ASSERT_EQ(b.size(), 2u);
   EXPECT_FALSE(EncoderAbsent(imported.run));
@@ -126,7 +126,7 @@ TEST(VendorCsv, EncoderColumnAndTimeScaleAreUsed) {
 
 TEST(VendorCsv, MalformedExportsAreRejectedWithFileLineAndColumn) {
   test::TempDir dir;
-  const ImportColumns columns{"id", "t", "x", "z", "", 1.0, false};
+  const ImportColumns columns = Columns("id", "t", "x", "z", "", 1.0, false);
   struct Case {
     std::string name, text, expect;
   };
