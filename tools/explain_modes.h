@@ -11,6 +11,7 @@
 #include "libbead/core/rig.h"
 #include "libbead/explain/base_model.h"
 #include "libbead/explain/explain_loop.h"
+#include "libbead/explain/realigned_run.h"
 #include "libbead/explain/run_explain.h"
 #include "libbead/model/identify.h"
 #include "tools/series_stretches.h"
@@ -39,6 +40,13 @@ struct ExplainArgs {
 explain::BaseModel ModelFor(const ExplainArgs& a, const std::vector<double>& t,
                             const std::vector<std::vector<double>>& u, const std::vector<double>& y,
                             const std::vector<Segment>& segments, const std::string& where);
+
+// Run mode's model and explanation: the model file's, or one identified on
+// the run's flow (and identified again where the run's offset excludes the
+// rig file's: explain/realigned_run.h), said on the terminal.
+explain::IdentifiedRun ExplainWithModel(const ExplainArgs& a, const Rig& rig, const explain::MeasuredFlow& run,
+                                        const explain::MeasuredFlow* held_out,
+                                        const explain::RunExplainOptions& options);
 
 int ExplainRunMode(const ExplainArgs& a);
 int ExplainSeriesMode(const ExplainArgs& a);

@@ -34,6 +34,28 @@ explain::BaseModel ModelFor(const ExplainArgs& a, const std::vector<double>& t,
   return m;
 }
 
+explain::IdentifiedRun ExplainWithModel(const ExplainArgs& a, const Rig& rig, const explain::MeasuredFlow& run,
+                                        const explain::MeasuredFlow* held_out,
+                                        const explain::RunExplainOptions& options) {
+  explain::IdentifiedRun out;
+  if (!a.model.empty()) {
+    out.model = explain::BaseModelFromFile(a.model, 1);
+    out.explanation = explain::ExplainMeasuredRun(rig, run, held_out, out.model.tfs[0], out.model.offset, options);
+    return out;
+  }
+  out = explain::ExplainIdentifiedRun(rig, run, held_out, a.Identify(), options);
+  const explain::BaseModel& m = out.model;
+  for (double at : out.realigned_at)
+    std::printf(
+        "the run's offset (%.1f counts) excludes the one the flow was aligned at: the model identified again on "
+        "the flow aligned there (a model fitted on misaligned flow pins the offset where it was fitted)\n",
+        at);
+  std::printf("model identified: fit %.2f %%, delay %.3f s%s\n", m.fit_percent, m.tfs[0].delay_s,
+              out.realigned_at.empty() ? "" : " (on the realigned flow)");
+  for (const std::string& w : m.warnings) std::printf("warning: %s\n", w.c_str());
+  return out;
+}
+
 void WriteJson(const std::string& path, const nlohmann::json& j) {
   AtomicFile file(path);
   file.stream() << j.dump(2) << "\n";
@@ -93,7 +115,15 @@ void PrintRun(const explain::RunExplanation& e, const Rig& rig, const std::strin
   std::printf("%s: %zu samples of flow in extrusion time\n", path.c_str(), e.series.data.size());
   PrintReport(e.report, "mm^3/s");
   const explain::OffsetFromRun& o = e.offset;
-  if (!o.pinned && e.report.shift_profile.inseparable)
+  if (!o.pinned && e.report.shift_profile.speed_follows_input)
+    std::printf(
+        "encoder offset from the run: NOT pinned by this run: the wheel's speed follows the extruder (%.0f %% of "
+        "its changes are a filter of the model's input, as on a wheel fed forward from the extruder), so a "
+        "position error looks like a change of the model's dynamics, and where the error is least (%.1f counts) "
+        "is the model's misfit, not the offset (a run whose wheel changes speed on its own, or the pins, pin "
+        "it); rig file: %.1f counts\n",
+        100.0 * e.report.shift_profile.speed_input_share, o.counts, rig.offset_counts);
+  else if (!o.pinned && e.report.shift_profile.inseparable)
     std::printf(
         "encoder offset from the run: NOT pinned by this run: it trades with the delay (correlation %.3f): the "
         "wheel's speed changes too little, or only in step with the flow, to tell a position error from a time "

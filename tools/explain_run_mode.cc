@@ -31,7 +31,7 @@ int ExplainRunMode(const ExplainArgs& a) {
   // A run measured and its flow in extrusion time, kept in memory.
   struct Measured {
     RunFlow run;
-    std::vector<double> t, u, y;  // valid samples
+    std::size_t valid = 0;  // samples with a flow
   };
   WorkerPool pool;
   RunFlowRequest request;
@@ -45,9 +45,8 @@ int ExplainRunMode(const ExplainArgs& a) {
     m->run = MeasureRunFlow(path, rig, pool, request);
     if (const std::string line = OcclusionLine(m->run.measure); !line.empty()) std::printf("%s\n", line.c_str());
     for (const std::string& w : m->run.warnings) std::fprintf(stderr, "warning: %s: %s\n", path.c_str(), w.c_str());
-    for (const auto& s : m->run.flow.samples)
-      if (s.valid) m->t.push_back(s.t_s), m->u.push_back(s.screw_rpm), m->y.push_back(s.flow_mm3_s);
-    if (m->t.size() < 50) throw Error(Located(path, "", "fewer than 50 profiles with a flow: nothing to explain"));
+    for (const auto& s : m->run.flow.samples) m->valid += s.valid;
+    if (m->valid < 50) throw Error(Located(path, "", "fewer than 50 profiles with a flow: nothing to explain"));
     return m;
   };
   const auto main_run = measure(args->data);
@@ -56,10 +55,7 @@ int ExplainRunMode(const ExplainArgs& a) {
   const std::size_t bin = a.profiles_per_sample ? a.profiles_per_sample : explain::ExplainBinOf(main_run->run.flow);
   if (bin > 1)
     std::printf("%s: a long run: explained at %zu profiles per sample (%zu samples)\n", args->data.c_str(), bin,
-                main_run->t.size() / bin);
-  const explain::BaseModel mdl =
-      ModelFor(a, explain::AverageInBins(main_run->t, bin), {explain::AverageInBins(main_run->u, bin)},
-               explain::AverageInBins(main_run->y, bin), {}, args->data);
+                main_run->valid / bin);
   std::unique_ptr<Measured> other;
   if (!args->validate.empty()) other = measure(args->validate);
   auto view = [](const Measured& m, const std::string& path) {
@@ -75,8 +71,9 @@ int ExplainRunMode(const ExplainArgs& a) {
   const explain::MeasuredFlow main_view = view(*main_run, args->data);
   const explain::MeasuredFlow other_view = other ? view(*other, args->validate) : explain::MeasuredFlow{};
   std::printf("%s: explaining the flow in extrusion time...\n", args->data.c_str());
-  const explain::RunExplanation e =
-      explain::ExplainMeasuredRun(rig, main_view, other ? &other_view : nullptr, mdl.tfs[0], mdl.offset, run_options);
+  const explain::IdentifiedRun run = ExplainWithModel(a, rig, main_view, other ? &other_view : nullptr, run_options);
+  const explain::BaseModel& mdl = run.model;
+  const explain::RunExplanation& e = run.explanation;
   PrintRun(e, rig, args->data, args->validate);
   std::optional<explain::OffsetComparison> pins;
   if (!args->pins.empty()) {

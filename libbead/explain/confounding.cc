@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <limits>
 
+#include "libbead/explain/speed_follows_input.h"
+
 namespace bead::explain {
 namespace {
 
@@ -77,6 +79,10 @@ namespace {
 // Above this |correlation| of the offset with the delay the run cannot
 // tell them apart (the variance inflation 1 / (1 - r^2) exceeds 10).
 constexpr double kInseparable = 0.95;
+// Above this share of the wheel speed's variance following the model's
+// input, the offset's signature is a change of the model's dynamics (the
+// same 1 - R^2 < 0.1 rule: under a tenth of the speed's changes are its own).
+constexpr double kFollowsInput = 0.9;
 
 // The split-half check: the profile's best on the first and on the second
 // half of the rows. Each half's best scatters sqrt(2) times the whole's
@@ -157,6 +163,15 @@ void EstimateShift(const SeriesData& d, const EffectSet& current, const Effect& 
   if (std::abs(report.shift_delay_correlation) > kInseparable) {
     p.lo = grid.front(), p.hi = grid.back(), p.lo_at_edge = p.hi_at_edge = true;
     p.inseparable = true;
+  }
+  // The wheel's speed a filter of the input (speed_follows_input.h): not
+  // pinned, whatever the delay's correlation says (a fed-forward wheel's
+  // offset correlates with the delay at 0.1 and its least misses the truth
+  // by five of the joint fit's sigmas).
+  p.speed_input_share = SpeedShareFromInput(d);
+  if (p.speed_input_share > kFollowsInput) {
+    p.lo = grid.front(), p.hi = grid.back(), p.lo_at_edge = p.hi_at_edge = true;
+    p.speed_follows_input = true;
   }
 
   report.position_shift_estimated = true;

@@ -135,11 +135,16 @@ json RunJson(const RunExplanation& e, const Rig& rig, const model::TransferFunct
   j["offset_from_run_pinned"] = e.offset.pinned;
   j["offset_delay_correlation"] = Finite(e.offset.delay_correlation);
   j["offset_profile_threshold_q"] = sp.q;  // SSE_min + 3.84 q bounds the interval
-  j["offset_profile"] = {{"offset_counts", json::array()},          {"sse", sp.sse},
-                         {"ci95_low_counts", e.offset.lo_counts},   {"ci95_high_counts", e.offset.hi_counts},
-                         {"low_at_search_edge", sp.lo_at_edge},     {"high_at_search_edge", sp.hi_at_edge},
-                         {"inseparable_from_delay", sp.inseparable}};
-  for (double g : sp.shift_counts) j["offset_profile"]["offset_counts"].push_back(rig.offset_counts + g);
+  j["offset_profile"] = {{"offset_counts", json::array()},
+                         {"sse", sp.sse},
+                         {"ci95_low_counts", e.offset.lo_counts},
+                         {"ci95_high_counts", e.offset.hi_counts},
+                         {"low_at_search_edge", sp.lo_at_edge},
+                         {"high_at_search_edge", sp.hi_at_edge},
+                         {"inseparable_from_delay", sp.inseparable},
+                         {"speed_share_from_input", Finite(sp.speed_input_share)},
+                         {"speed_follows_input", sp.speed_follows_input}};
+  for (double g : sp.shift_counts) j["offset_profile"]["offset_counts"].push_back(e.aligned_at_counts + g);
   j["rig_offset_counts"] = rig.offset_counts;
   j["diagnostics"]["timestamp_offset_s"] = e.series.timestamp_offset_s;
   j["diagnostics"]["timestamp_offset_ci95_s"] = e.series.timestamp_offset_ci95_s;

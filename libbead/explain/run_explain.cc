@@ -66,6 +66,7 @@ RunExplanation ExplainMeasuredRun(const Rig& rig, const MeasuredFlow& run, const
                                   const model::TransferFunction& model, double model_offset,
                                   const RunExplainOptions& o) {
   RunExplanation out;
+  out.aligned_at_counts = rig.offset_counts;
   out.series = SeriesOf(rig, run, model, model_offset, o);
   ExplainOptions options = o.explain;
   std::optional<RunSeries> other;

@@ -59,6 +59,7 @@ struct OffsetComparison {
 };
 
 struct RunExplanation {
+  double aligned_at_counts = NAN;  // the offset the series is aligned at (the rig's given to the call)
   RunSeries series;
   ExplainReport report;
   OffsetFromRun offset;

@@ -35,6 +35,12 @@ struct ShiftProfile {
   // The offset trades with the delay beyond what the run can separate
   // (confounding.h): not pinned whatever the profile's curvature.
   bool inseparable = false;
+  // The share of the wheel speed's variance a filter of the model's input
+  // explains (speed_follows_input.h); above kFollowsInput the offset is
+  // not pinned either: a position error is then a change of the model's
+  // dynamics. NaN: not told.
+  double speed_input_share = NAN;
+  bool speed_follows_input = false;
 };
 
 // The profile: SSE at every grid shift, the best (refined between grid

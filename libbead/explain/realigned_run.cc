@@ -1,0 +1,59 @@
+#include "libbead/explain/realigned_run.h"
+
+#include <cmath>
+
+#include "libbead/explain/run_series.h"
+
+namespace bead::explain {
+namespace {
+
+// The run's view with its flow computed again at another offset.
+MeasuredFlow Realigned(const Rig& aligned, const MeasuredFlow& m, FlowResult& keep) {
+  keep = ComputeFlow(aligned, *m.profiles, *m.geometry, *m.log, {},
+                     m.corrected_area ? *m.corrected_area : std::vector<double>{},
+                     m.corrected_sigma ? *m.corrected_sigma : std::vector<double>{});
+  MeasuredFlow out = m;
+  out.flow = &keep;
+  return out;
+}
+
+// Whether the run's interval excludes `counts`.
+bool Excludes(const OffsetFromRun& o, double counts) {
+  return o.pinned && (o.lo_counts > counts || o.hi_counts < counts);
+}
+
+}  // namespace
+
+BaseModel IdentifyOnFlow(const FlowResult& flow, std::size_t bin, const model::IdentifyOptions& identify,
+                         const std::string& where) {
+  std::vector<double> t, u, y;
+  for (const FlowSample& s : flow.samples)
+    if (s.valid) t.push_back(s.t_s), u.push_back(s.screw_rpm), y.push_back(s.flow_mm3_s);
+  return IdentifyBaseModel(AverageInBins(t, bin), {AverageInBins(u, bin)}, AverageInBins(y, bin), {}, identify, where);
+}
+
+IdentifiedRun ExplainIdentifiedRun(const Rig& rig, const MeasuredFlow& run, const MeasuredFlow* held_out,
+                                   const model::IdentifyOptions& identify, const RunExplainOptions& options) {
+  const std::size_t bin = options.profiles_per_sample ? options.profiles_per_sample : ExplainBinOf(*run.flow);
+  IdentifiedRun out;
+  out.model = IdentifyOnFlow(*run.flow, bin, identify, run.path);
+  out.explanation = ExplainMeasuredRun(rig, run, held_out, out.model.tfs[0], out.model.offset, options);
+  for (int k = 0; k < kMaxRealignments && Excludes(out.explanation.offset, rig.offset_counts); ++k) {
+    const OffsetFromRun last = out.explanation.offset;
+    Rig aligned = rig;
+    aligned.offset_counts = last.counts;
+    const MeasuredFlow main_view = Realigned(aligned, run, out.flow);
+    MeasuredFlow other_view;
+    if (held_out) other_view = Realigned(aligned, *held_out, out.held_out_flow);
+    out.realigned_at.push_back(last.counts);
+    out.model = IdentifyOnFlow(out.flow, bin, identify, run.path);
+    out.explanation = ExplainMeasuredRun(aligned, main_view, held_out ? &other_view : nullptr, out.model.tfs[0],
+                                         out.model.offset, options);
+    out.explanation.offset.excludes_rig = Excludes(out.explanation.offset, rig.offset_counts);
+    const double moved = std::abs(out.explanation.offset.counts - last.counts);
+    if (!out.explanation.offset.pinned || moved < 0.25 * out.explanation.offset.ci95_counts) break;
+  }
+  return out;
+}
+
+}  // namespace bead::explain

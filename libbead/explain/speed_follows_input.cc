@@ -1,0 +1,65 @@
+#include "libbead/explain/speed_follows_input.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace bead::explain {
+namespace {
+
+constexpr double kWindowS = 0.05;  // the speed's differencing span
+
+// The wheel's angular speed at each sample (NaN where it cannot be told).
+std::vector<double> WheelSpeed(const SeriesData& d, const std::vector<double>& angle) {
+  const std::size_t n = d.size();
+  std::vector<double> speed(n, NAN);
+  if (n < 3) return speed;
+  const double span = d.t.back() - d.t.front();
+  const auto half = static_cast<std::size_t>(
+      std::max(1.0, std::round(0.5 * kWindowS / std::max(span / static_cast<double>(n - 1), 1e-9))));
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t a = i >= half ? i - half : 0, b = std::min(n - 1, i + half);
+    const double dt = d.t[b] - d.t[a];
+    if (dt > 0 && std::isfinite(angle[a]) && std::isfinite(angle[b])) speed[i] = (angle[b] - angle[a]) / dt;
+  }
+  return speed;
+}
+
+}  // namespace
+
+double SpeedShareFromInput(const SeriesData& d) {
+  const RotatingPart* wheel = nullptr;
+  for (const RotatingPart& p : d.parts)
+    if (p.name == "wheel" && p.angle_rad.size() == d.size()) wheel = &p;
+  if (!wheel) return NAN;
+  const std::vector<double> speed = WheelSpeed(d, wheel->angle_rad);
+  std::vector<const std::vector<double>*> columns;
+  for (const auto& c : d.dynamics) columns.push_back(&c);
+  if (columns.empty()) columns.push_back(&d.u);
+  std::vector<std::size_t> rows;
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    bool ok = std::isfinite(speed[i]);
+    for (const auto* c : columns) ok = ok && std::isfinite((*c)[i]);
+    if (ok) rows.push_back(i);
+  }
+  if (rows.size() < columns.size() + 10) return NAN;
+  Eigen::MatrixXd a(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(columns.size() + 1));
+  Eigen::VectorXd b(static_cast<Eigen::Index>(rows.size()));
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const auto row = static_cast<Eigen::Index>(r);
+    b(row) = speed[rows[r]];
+    a(row, 0) = 1.0;
+    for (std::size_t c = 0; c < columns.size(); ++c) a(row, static_cast<Eigen::Index>(c + 1)) = (*columns[c])[rows[r]];
+  }
+  const double mean = b.mean();
+  const double total = (b.array() - mean).square().sum();
+  if (!(total > 0)) return NAN;
+  for (Eigen::Index c = 0; c < a.cols(); ++c)
+    if (const double norm = a.col(c).norm(); norm > 0) a.col(c) /= norm;
+  const Eigen::VectorXd x = a.colPivHouseholderQr().solve(b);
+  const double left = (b - a * x).squaredNorm();
+  return std::clamp(1.0 - left / total, 0.0, 1.0);
+}
+
+}  // namespace bead::explain
