@@ -22,6 +22,19 @@ bool Excludes(const OffsetFromRun& o, double counts) {
   return o.pinned && (o.lo_counts > counts || o.hi_counts < counts);
 }
 
+// The report with its shifts `delta` counts further (from the realigned
+// flow's offset to the rig file's): the profile, its interval and a kept
+// shift term.
+ExplainReport ShiftedBy(ExplainReport r, double delta) {
+  ShiftProfile& p = r.shift_profile;
+  for (double& g : p.shift_counts) g += delta;
+  p.best += delta, p.lo += delta, p.hi += delta, p.first_half += delta, p.second_half += delta;
+  r.position_shift_counts += delta;
+  for (std::size_t k = 0; k < r.final_effects.size(); ++k)
+    if (r.final_effects[k].kind == Effect::Kind::kPositionShift) r.final_params[k][0] += delta;
+  return r;
+}
+
 }  // namespace
 
 BaseModel IdentifyOnFlow(const FlowResult& flow, std::size_t bin, const model::IdentifyOptions& identify,
@@ -53,6 +66,14 @@ IdentifiedRun ExplainIdentifiedRun(const Rig& rig, const MeasuredFlow& run, cons
     const double moved = std::abs(out.explanation.offset.counts - last.counts);
     if (!out.explanation.offset.pinned || moved < 0.25 * out.explanation.offset.ci95_counts) break;
   }
+  // The corrected flow from the user's flow, as the rig file aligns it: the
+  // realignment is one of the corrections it undoes.
+  if (!out.realigned_at.empty() && options.correct_flow)
+    out.explanation.corrected = CorrectFlow(
+        rig, *run.profiles, *run.geometry, *run.log, run.corrected_area ? *run.corrected_area : std::vector<double>{},
+        run.corrected_sigma ? *run.corrected_sigma : std::vector<double>{},
+        ShiftedBy(out.explanation.report, out.explanation.aligned_at_counts - rig.offset_counts), out.model.tfs[0],
+        out.model.offset);
   return out;
 }
 

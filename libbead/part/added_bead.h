@@ -71,7 +71,7 @@ struct AddedBeadOptions {
 enum class AddedStatus : uint8_t {
   kValid = 0,
   kTooFewPoints,     // the profile holds fewer than 10 valid points over the surface below
-  kNoSurfaceBelow,   // the layer below is not known here
+  kNoSurfaceBelow,   // the layer below (the bed, on layer 0) is not known here
   kNoBead,           // nothing stands above the threshold over the surface below
   kBeadEdgeNotSeen,  // the bead runs to the end of what both scans saw
 };

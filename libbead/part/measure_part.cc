@@ -38,30 +38,11 @@ double GridStep(const StoredProfile& p) {
   return std::max(0.125 * d[d.size() / 2], 1e-4);
 }
 
-// The bed under layer 0: the reference line of the profile itself, in the
-// bed frame, over the profile's x range.
-std::optional<SurfaceGrid> BedLine(ProfileProcessor& processor, const ProfileView& v, const StoredProfile& p,
-                                   double frame_x, double frame_z) {
-  const BeadGeometry& g = processor.Process(v);
-  if (!g.reference.ok || p.x_mm.size() < 2) return std::nullopt;
-  SurfaceGrid grid;
-  grid.dx_mm = GridStep(p);
-  grid.x0_mm = p.x_mm.front();
-  const std::size_t n = GridPoints(p.x_mm.front(), p.x_mm.back(), grid.dx_mm);
-  if (n < 2) return std::nullopt;
-  for (std::size_t k = 0; k < n; ++k) {
-    const double x = grid.x0_mm + static_cast<double>(k) * grid.dx_mm - frame_x;
-    grid.z_mm.push_back(static_cast<float>(g.reference.intercept_mm + g.reference.slope * x + frame_z));
-  }
-  return grid;
-}
-
-// The bed under layer 0 on a pipe (part: {bed: cylinder}): the arc through
-// the profile's bare surface either side, in the bed frame.
-std::optional<SurfaceGrid> BedArcGrid(const Rig& rig, const ProfileView& v, const StoredProfile& p, double frame_x,
-                                      double frame_z) {
-  const BedArc arc = FitBedArc(v.x_mm, v.z_mm, rig.reference_left, rig.reference_right, rig.part->radius_mm);
-  if (!arc.ok || p.x_mm.size() < 2) return std::nullopt;
+// A bed known as a height at every x of the profile's frame, sampled on
+// the profile's grid in the bed frame.
+template <class HeightAt>
+std::optional<SurfaceGrid> SampledBed(const StoredProfile& p, double frame_x, double frame_z, HeightAt height_at) {
+  if (p.x_mm.size() < 2) return std::nullopt;
   SurfaceGrid grid;
   grid.dx_mm = GridStep(p);
   grid.x0_mm = p.x_mm.front();
@@ -69,8 +50,26 @@ std::optional<SurfaceGrid> BedArcGrid(const Rig& rig, const ProfileView& v, cons
   if (n < 2) return std::nullopt;
   for (std::size_t k = 0; k < n; ++k)
     grid.z_mm.push_back(
-        static_cast<float>(arc.At(grid.x0_mm + static_cast<double>(k) * grid.dx_mm - frame_x) + frame_z));
+        static_cast<float>(height_at(grid.x0_mm + static_cast<double>(k) * grid.dx_mm - frame_x) + frame_z));
   return grid;
+}
+
+// The bed under layer 0 on a flat bed: the profile's reference line.
+std::optional<SurfaceGrid> BedLine(ProfileProcessor& processor, const ProfileView& v, const StoredProfile& p,
+                                   double frame_x, double frame_z) {
+  const BeadGeometry& g = processor.Process(v);
+  if (!g.reference.ok) return std::nullopt;
+  const ReferenceLine line = g.reference;
+  return SampledBed(p, frame_x, frame_z, [&line](double x) { return line.intercept_mm + line.slope * x; });
+}
+
+// The bed under layer 0 on a pipe (part: {bed: cylinder}): the arc through
+// the profile's bare surface either side, in the bed frame.
+std::optional<SurfaceGrid> BedArcGrid(const Rig& rig, const ProfileView& v, const StoredProfile& p, double frame_x,
+                                      double frame_z) {
+  const BedArc arc = FitBedArc(v.x_mm, v.z_mm, rig.reference_left, rig.reference_right, rig.part->radius_mm);
+  if (!arc.ok) return std::nullopt;
+  return SampledBed(p, frame_x, frame_z, [&arc](double x) { return arc.At(x); });
 }
 
 class PartMeasurer {
@@ -95,7 +94,7 @@ class PartMeasurer {
     else
       under = below_.At(row.path_mm, GridStep(mine), nullptr);
     if (!under) {
-      row.bead.status = row.layer == 0 ? AddedStatus::kTooFewPoints : AddedStatus::kNoSurfaceBelow;
+      row.bead.status = AddedStatus::kNoSurfaceBelow;  // on layer 0: no bed found either side of the bead
     } else {
       const bool shift = row.layer > 0 && options_.register_layers;
       if (row.layer != warm_layer_) has_warm_ = false;

@@ -18,8 +18,15 @@
 // fed-forward wheel the run pins nothing and the pins stand alone.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <filesystem>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
+#include <vector>
+
+#include "libbead/series/interpolate.h"
+#include "libbead/sim/sim_writer.h"
 
 #include "tests/support/run_cli.h"
 
@@ -87,20 +94,41 @@ struct Explained {
   std::string out;
   nlohmann::json j;
 };
-Explained SimulateAndExplain(const test::TempDir& dir, const std::string& config) {
+Explained SimulateAndExplain(const test::TempDir& dir, const std::string& config, const std::string& more = "") {
   test::WriteText(dir / "sim.yaml", config);
   auto [sim, sim_out] = test::RunCli(dir, "simulate " + (dir / "sim.yaml") + " -o " + (dir / "twin"));
   EXPECT_EQ(sim, 0) << sim_out;
   const std::string twin = dir / "twin";
   auto [status, out] = test::RunCli(dir, "explain --rig " + twin + "/rig.yaml " + twin + "/run.h5 --pins " + twin +
-                                             "/pins.h5 -o " + (dir / "e.json"));
+                                             "/pins.h5 -o " + (dir / "e.json") + more);
   EXPECT_EQ(status, 0) << out;
   return {out, status == 0 ? nlohmann::json::parse(test::ReadText(dir / "e.json")) : nlohmann::json{}};
 }
 
+// A flow CSV's RMS error against the twin's true flow (in extrusion time)
+// over its valid rows.
+double RmsAgainstTruth(const std::string& csv, const sim::Truth& truth) {
+  std::istringstream in(test::ReadText(csv));
+  std::string line;
+  std::getline(in, line);  // the header: t_s first, flow_mm3_s sixth, valid ninth
+  double sum = 0.0;
+  int n = 0;
+  while (std::getline(in, line)) {
+    std::vector<std::string> f;
+    std::stringstream cells(line);
+    for (std::string c; std::getline(cells, c, ',');) f.push_back(c);
+    if (f.size() < 9 || f[8] != "1") continue;
+    const double t = std::stod(f[0]), q = std::stod(f[5]);
+    const double e = q - InterpolateLinear(truth.flow.t_s, truth.flow.flow_mm3_s, t);
+    sum += e * e, ++n;
+  }
+  return n ? std::sqrt(sum / n) : INFINITY;
+}
+
 TEST(ExplainWarmRun, StaleRigFileOnASteppedWheelIsCalledWithTheTruthCovered) {
   test::TempDir dir;
-  const Explained e = SimulateAndExplain(dir, Prbs(102, 400, true, false, -77.0));
+  const Explained e =
+      SimulateAndExplain(dir, Prbs(102, 400, true, false, -77.0), " --flow-out " + (dir / "corrected.csv"));
   ASSERT_TRUE(e.j.contains("offset_profile")) << e.out;
   const double lo = e.j["offset_profile"]["ci95_low_counts"], hi = e.j["offset_profile"]["ci95_high_counts"];
   std::printf("stale rig file, stepped wheel: run %.1f [%.1f, %.1f], truth %.1f\n",
@@ -111,6 +139,18 @@ TEST(ExplainWarmRun, StaleRigFileOnASteppedWheelIsCalledWithTheTruthCovered) {
   EXPECT_NE(e.out.find("OUTSIDE"), std::string::npos) << e.out;
   EXPECT_NE(e.out.find("identified again"), std::string::npos) << e.out;
   EXPECT_EQ(e.out.find("DISAGREE"), std::string::npos) << e.out;
+  // The corrected flow is the user's flow with the offset undone: written,
+  // and nearer the truth than the flow the rig file aligns.
+  const std::string twin = dir / "twin";
+  auto [status, out] =
+      test::RunCli(dir, "flow --rig " + twin + "/rig.yaml " + twin + "/run.h5 -o " + (dir / "as_filed.csv"));
+  ASSERT_EQ(status, 0) << out;
+  ASSERT_TRUE(std::filesystem::exists(dir / "corrected.csv")) << e.out;
+  const sim::Truth truth = sim::ReadTruth(twin + "/truth.h5");
+  const double before = RmsAgainstTruth(dir / "as_filed.csv", truth);
+  const double after = RmsAgainstTruth(dir / "corrected.csv", truth);
+  std::printf("flow against the truth: RMS %.2f mm^3/s as filed, %.2f corrected\n", before, after);
+  EXPECT_LT(after, before);
 }
 
 TEST(ExplainWarmRun, StaleRigFileOnAFedForwardWheelLeavesThePinsAlone) {
