@@ -47,8 +47,9 @@ explain::IdentifiedRun ExplainWithModel(const ExplainArgs& a, const Rig& rig, co
   const explain::BaseModel& m = out.model;
   for (double at : out.realigned_at)
     std::printf(
-        "the run's offset (%.1f counts) excludes the one the flow was aligned at: the model identified again on "
-        "the flow aligned there (a model fitted on misaligned flow pins the offset where it was fitted)\n",
+        "the run's offset (%.1f counts) lies more than half its interval from the one the flow was aligned at: "
+        "the model identified again on the flow aligned there (a model fitted on misaligned flow pulls the "
+        "offset toward where it was fitted, and widens its interval)\n",
         at);
   std::printf("model identified: fit %.2f %%, delay %.3f s%s\n", m.fit_percent, m.tfs[0].delay_s,
               out.realigned_at.empty() ? "" : " (on the realigned flow)");

@@ -1,5 +1,6 @@
 #include "libbead/explain/realigned_run.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "libbead/explain/run_series.h"
@@ -35,6 +36,31 @@ ExplainReport ShiftedBy(ExplainReport r, double delta) {
   return r;
 }
 
+// Whether the model should be identified again at the run's offset: the
+// run pins it more than half its interval's half-width from where the flow
+// is aligned. A model fitted on misaligned flow widens the interval as
+// well as pulling it (a rig file 77 counts short: [2965.9, 3167.4], which
+// holds the file's offset; identified again at the run's best, [3047.4,
+// 3101.0], as on the same run with the file right).
+bool NeedsRealigning(const OffsetFromRun& o, double aligned_at) {
+  return Excludes(o, aligned_at) || (o.pinned && std::abs(o.counts - aligned_at) > 0.5 * o.ci95_counts);
+}
+
+// The interval widened to hold every alignment's interval [lo, hi] (the
+// run cannot tell which alignment's model is right beyond that: a model
+// identified where the run's best lies confirms that best, and narrows its
+// interval about it); the report's shifts, about the aligned offset, with it.
+void HoldEvery(RunExplanation& e, double lo, double hi, double rig_counts) {
+  OffsetFromRun& o = e.offset;
+  if (!o.pinned) return;
+  o.lo_counts = std::min(o.lo_counts, lo), o.hi_counts = std::max(o.hi_counts, hi);
+  o.ci95_counts = std::max(o.hi_counts - o.counts, o.counts - o.lo_counts);
+  o.excludes_rig = Excludes(o, rig_counts);
+  ShiftProfile& p = e.report.shift_profile;
+  p.lo = o.lo_counts - e.aligned_at_counts, p.hi = o.hi_counts - e.aligned_at_counts;
+  e.report.position_shift_ci95_counts = o.ci95_counts;
+}
+
 }  // namespace
 
 BaseModel IdentifyOnFlow(const FlowResult& flow, std::size_t bin, const model::IdentifyOptions& identify,
@@ -51,7 +77,9 @@ IdentifiedRun ExplainIdentifiedRun(const Rig& rig, const MeasuredFlow& run, cons
   IdentifiedRun out;
   out.model = IdentifyOnFlow(*run.flow, bin, identify, run.path);
   out.explanation = ExplainMeasuredRun(rig, run, held_out, out.model.tfs[0], out.model.offset, options);
-  for (int k = 0; k < kMaxRealignments && Excludes(out.explanation.offset, rig.offset_counts); ++k) {
+  double lo = out.explanation.offset.lo_counts, hi = out.explanation.offset.hi_counts;
+  for (int k = 0; k < kMaxRealignments && NeedsRealigning(out.explanation.offset, out.explanation.aligned_at_counts);
+       ++k) {
     const OffsetFromRun last = out.explanation.offset;
     Rig aligned = rig;
     aligned.offset_counts = last.counts;
@@ -62,10 +90,11 @@ IdentifiedRun ExplainIdentifiedRun(const Rig& rig, const MeasuredFlow& run, cons
     out.model = IdentifyOnFlow(out.flow, bin, identify, run.path);
     out.explanation = ExplainMeasuredRun(aligned, main_view, held_out ? &other_view : nullptr, out.model.tfs[0],
                                          out.model.offset, options);
-    out.explanation.offset.excludes_rig = Excludes(out.explanation.offset, rig.offset_counts);
+    lo = std::min(lo, out.explanation.offset.lo_counts), hi = std::max(hi, out.explanation.offset.hi_counts);
     const double moved = std::abs(out.explanation.offset.counts - last.counts);
     if (!out.explanation.offset.pinned || moved < 0.25 * out.explanation.offset.ci95_counts) break;
   }
+  if (!out.realigned_at.empty()) HoldEvery(out.explanation, lo, hi, rig.offset_counts);
   // The corrected flow from the user's flow, as the rig file aligns it: the
   // realignment is one of the corrections it undoes.
   if (!out.realigned_at.empty() && options.correct_flow)
