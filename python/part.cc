@@ -9,7 +9,6 @@
 #include <string>
 #include <vector>
 
-#include "libbead/io/profile_stream.h"
 #include "libbead/io/rig_yaml.h"
 #include "libbead/io/run_archive.h"
 #include "libbead/part/measure_part.h"
@@ -31,10 +30,8 @@ Rig PartRigWarning(const std::string& path) {
 
 std::vector<part::PartGeometryRow> MeasureRows(const Rig& rig, const std::string& path, unsigned threads) {
   const RunArchive scan = ReadPartScan(path, false, false);
-  WorkerPool pool(threads);
-  ProfileStream stream(path, pool);
   std::vector<part::PartGeometryRow> rows;
-  part::MeasurePart(stream, *scan.part, rig, {}, [&](const part::PartGeometryRow& r) { rows.push_back(r); });
+  part::MeasurePartFile(path, *scan.part, rig, {}, threads, [&](const part::PartGeometryRow& r) { rows.push_back(r); });
   return rows;
 }
 

@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <functional>
 
-#include "libbead/io/profile_stream.h"
 #include "libbead/io/run_archive.h"
 #include "libbead/part/measure_part.h"
 #include "libbead/core/error.h"
@@ -40,17 +39,15 @@ std::vector<part::LayerSummary> MeasureSaying(const std::string& rig_path, const
                                               const std::function<void(const part::PartGeometryRow&)>& sink) {
   const RigFile rig = ReadPartRigFile(rig_path);
   SayRigWarnings(rig);
-  WorkerPool pool(threads);
-  ProfileStream stream(run, pool);
   part::MeasurePartOptions options;
   options.bed = bed;
   const auto start = std::chrono::steady_clock::now();
   const auto tty = TtyProgress("measured");
-  const std::size_t total = stream.size();
   const std::vector<part::LayerSummary> layers =
-      part::MeasurePart(stream, *scan.part, rig.rig, options, sink, [&](std::size_t done) {
+      part::MeasurePartFile(run, *scan.part, rig.rig, options, threads, sink, [&](std::size_t done, std::size_t total) {
         if (tty) tty(done, total);
       });
+  const std::size_t total = scan.part->size();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::size_t valid = 0;
   for (const auto& l : layers) valid += l.valid;

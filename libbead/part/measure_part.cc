@@ -6,6 +6,7 @@
 #include <string>
 
 #include "libbead/core/error.h"
+#include "libbead/core/worker_pool.h"
 #include "libbead/part/bed_arc.h"
 
 namespace bead::part {
@@ -170,6 +171,18 @@ std::vector<LayerSummary> MeasurePart(ProfileStream& stream, const PartPlaces& p
     if (progress) progress(begin + count);
   }
   return layers;
+}
+
+std::vector<LayerSummary> MeasurePartFile(const std::string& path, const PartPlaces& places, const Rig& rig,
+                                          const MeasurePartOptions& options, unsigned threads,
+                                          const std::function<void(const PartGeometryRow&)>& sink,
+                                          const std::function<void(std::size_t, std::size_t)>& progress) {
+  WorkerPool pool(threads);
+  ProfileStream stream(path, pool);
+  const std::size_t total = stream.size();
+  return MeasurePart(stream, places, rig, options, sink, [&](std::size_t done) {
+    if (progress) progress(done, total);
+  });
 }
 
 }  // namespace bead::part

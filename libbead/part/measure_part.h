@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "libbead/core/rig.h"
@@ -63,5 +64,13 @@ std::vector<LayerSummary> MeasurePart(ProfileStream& stream, const PartPlaces& p
                                       const MeasurePartOptions& options,
                                       const std::function<void(const PartGeometryRow&)>& sink,
                                       const std::function<void(std::size_t)>& progress = nullptr);
+
+// The part scan at `path` measured as it streams, its profiles read on
+// `threads` workers (0: every core); `progress` with the profiles done and
+// their total.
+std::vector<LayerSummary> MeasurePartFile(const std::string& path, const PartPlaces& places, const Rig& rig,
+                                          const MeasurePartOptions& options, unsigned threads,
+                                          const std::function<void(const PartGeometryRow&)>& sink,
+                                          const std::function<void(std::size_t, std::size_t)>& progress = nullptr);
 
 }  // namespace bead::part
