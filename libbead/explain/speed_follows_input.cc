@@ -54,7 +54,7 @@ double SpeedShareFromInput(const SeriesData& d) {
   }
   const double mean = b.mean();
   const double total = (b.array() - mean).square().sum();
-  if (!(total > 0)) return NAN;
+  if (!(total > 1e-18 * b.squaredNorm())) return NAN;  // a steady wheel: nothing to share
   for (Eigen::Index c = 0; c < a.cols(); ++c)
     if (const double norm = a.col(c).norm(); norm > 0) a.col(c) /= norm;
   const Eigen::VectorXd x = a.colPivHouseholderQr().solve(b);
