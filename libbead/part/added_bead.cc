@@ -168,11 +168,18 @@ double TruncatedCost(std::span<const float> x, std::span<const float> z, const S
   const double cap = tau * tau / (noise * noise);
   const double lo = below.x0_mm + margin, hi = below.x0_mm + below.dx_mm * (below.z_mm.size() - 1) - margin;
   double sum = 0.0;
+  // The surface below's variance is at most one point's (surface_below.h):
+  // a gain beyond cap at twice the noise variance is capped whatever it is.
+  const double capped_beyond = 2.0 * cap * noise * noise;
   for (std::size_t i = 0; i < x.size(); ++i) {
     if (x[i] < lo || x[i] > hi) continue;
     const double d = z[i] - below.At(x[i] - s);
+    if (std::isnan(d) || d * d >= capped_beyond) {
+      sum += cap;
+      continue;
+    }
     const double variance = noise * noise * (1.0 + below.VarianceAt(x[i] - s));
-    sum += std::isnan(d) ? cap : std::min(d * d / variance, cap);
+    sum += std::min(d * d / variance, cap);
   }
   return sum;
 }

@@ -10,11 +10,14 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // z of a stored profile at x: linear between its valid points, NaN beyond
 // its ends or across a gap longer than max_gap; `variance` its noise
-// variance over one point's, (1 - t)^2 + t^2.
-double ProfileAt(const StoredProfile& p, double x, double max_gap, double& variance) {
-  const auto it = std::lower_bound(p.x_mm.begin(), p.x_mm.end(), static_cast<float>(x));
-  if (it == p.x_mm.end()) return kNaN;
-  const std::size_t k = static_cast<std::size_t>(it - p.x_mm.begin());
+// variance over one point's, (1 - t)^2 + t^2. `at`: where the last call
+// with a smaller x found its point (the grid's x rise: a walk from there
+// finds what std::lower_bound would).
+double ProfileAt(const StoredProfile& p, double x, double max_gap, double& variance, std::size_t& at) {
+  const auto xf = static_cast<float>(x);
+  while (at < p.x_mm.size() && p.x_mm[at] < xf) ++at;
+  if (at == p.x_mm.size()) return kNaN;
+  const std::size_t k = at;
   variance = 1.0;
   if (p.x_mm[k] == x) return p.z_mm[k];
   if (k == 0) return kNaN;
@@ -88,10 +91,11 @@ std::optional<SurfaceGrid> SurfaceBelow::At(double path, double dx, std::string*
   g.z_mm.resize(n);
   g.variance.resize(n);
   const double gap = options_.max_x_gap_mm;
+  std::size_t at_a = 0, at_b = 0;
   for (std::size_t k = 0; k < n; ++k) {
     const double x = g.x0_mm + static_cast<double>(k) * dx;
     double va = 1.0, vb = 1.0;
-    const double za = ProfileAt(a, x, gap, va), zb = ProfileAt(b, x, gap, vb);
+    const double za = ProfileAt(a, x, gap, va, at_a), zb = ProfileAt(b, x, gap, vb, at_b);
     // Where only one of the two saw the surface, it stands for both.
     const double z = std::isnan(za) ? zb : std::isnan(zb) ? za : (1 - w) * za + w * zb;
     const double v = std::isnan(za) ? vb : std::isnan(zb) ? va : (1 - w) * (1 - w) * va + w * w * vb;
