@@ -22,15 +22,24 @@ model::IdentifyOptions ExplainArgs::Identify() const {
   return id;
 }
 
+namespace {
+
+// The identified model, as the terminal says it; `how`: where it was fitted.
+void SayModel(const explain::BaseModel& m, const char* how) {
+  std::printf("model identified: fit %.2f %%, delay", m.fit_percent);
+  for (const auto& tf : m.tfs) std::printf(" %.3f", tf.delay_s);
+  std::printf(" s%s\n", how);
+  for (const std::string& w : m.warnings) std::printf("warning: %s\n", w.c_str());
+}
+
+}  // namespace
+
 explain::BaseModel ModelFor(const ExplainArgs& a, const std::vector<double>& t,
                             const std::vector<std::vector<double>>& u, const std::vector<double>& y,
                             const std::vector<Segment>& segments, const std::string& where) {
   if (!a.model.empty()) return explain::BaseModelFromFile(a.model, u.size());
   const explain::BaseModel m = explain::IdentifyBaseModel(t, u, y, segments, a.Identify(), where);
-  std::printf("model identified: fit %.2f %%, delay", m.fit_percent);
-  for (const auto& tf : m.tfs) std::printf(" %.3f", tf.delay_s);
-  std::printf(" s\n");
-  for (const std::string& w : m.warnings) std::printf("warning: %s\n", w.c_str());
+  SayModel(m, "");
   return m;
 }
 
@@ -44,16 +53,13 @@ explain::IdentifiedRun ExplainWithModel(const ExplainArgs& a, const Rig& rig, co
     return out;
   }
   out = explain::ExplainIdentifiedRun(rig, run, held_out, a.Identify(), options);
-  const explain::BaseModel& m = out.model;
   for (double at : out.realigned_at)
     std::printf(
         "the run's offset (%.1f counts) lies more than half its interval from the one the flow was aligned at: "
         "the model identified again on the flow aligned there (a model fitted on misaligned flow pulls the "
         "offset toward where it was fitted, and widens its interval)\n",
         at);
-  std::printf("model identified: fit %.2f %%, delay %.3f s%s\n", m.fit_percent, m.tfs[0].delay_s,
-              out.realigned_at.empty() ? "" : " (on the realigned flow)");
-  for (const std::string& w : m.warnings) std::printf("warning: %s\n", w.c_str());
+  SayModel(out.model, out.realigned_at.empty() ? "" : " (on the realigned flow)");
   return out;
 }
 

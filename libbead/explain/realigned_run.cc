@@ -10,9 +10,7 @@ namespace {
 
 // The run's view with its flow computed again at another offset.
 MeasuredFlow Realigned(const Rig& aligned, const MeasuredFlow& m, FlowResult& keep) {
-  keep = ComputeFlow(aligned, *m.profiles, *m.geometry, *m.log, {},
-                     m.corrected_area ? *m.corrected_area : std::vector<double>{},
-                     m.corrected_sigma ? *m.corrected_sigma : std::vector<double>{});
+  keep = ComputeFlow(aligned, *m.profiles, *m.geometry, *m.log, {}, m.CorrectedArea(), m.CorrectedSigma());
   MeasuredFlow out = m;
   out.flow = &keep;
   return out;
@@ -74,9 +72,13 @@ BaseModel IdentifyOnFlow(const FlowResult& flow, std::size_t bin, const model::I
 IdentifiedRun ExplainIdentifiedRun(const Rig& rig, const MeasuredFlow& run, const MeasuredFlow* held_out,
                                    const model::IdentifyOptions& identify, const RunExplainOptions& options) {
   const std::size_t bin = options.profiles_per_sample ? options.profiles_per_sample : ExplainBinOf(*run.flow);
+  // The corrected flow is computed once, at the end: each pass's would be
+  // thrown away.
+  RunExplainOptions each = options;
+  each.correct_flow = false;
   IdentifiedRun out;
   out.model = IdentifyOnFlow(*run.flow, bin, identify, run.path);
-  out.explanation = ExplainMeasuredRun(rig, run, held_out, out.model.tfs[0], out.model.offset, options);
+  out.explanation = ExplainMeasuredRun(rig, run, held_out, out.model.tfs[0], out.model.offset, each);
   double lo = out.explanation.offset.lo_counts, hi = out.explanation.offset.hi_counts;
   for (int k = 0; k < kMaxRealignments && NeedsRealigning(out.explanation.offset, out.explanation.aligned_at_counts);
        ++k) {
@@ -89,20 +91,19 @@ IdentifiedRun ExplainIdentifiedRun(const Rig& rig, const MeasuredFlow& run, cons
     out.realigned_at.push_back(last.counts);
     out.model = IdentifyOnFlow(out.flow, bin, identify, run.path);
     out.explanation = ExplainMeasuredRun(aligned, main_view, held_out ? &other_view : nullptr, out.model.tfs[0],
-                                         out.model.offset, options);
+                                         out.model.offset, each);
     lo = std::min(lo, out.explanation.offset.lo_counts), hi = std::max(hi, out.explanation.offset.hi_counts);
     const double moved = std::abs(out.explanation.offset.counts - last.counts);
     if (!out.explanation.offset.pinned || moved < 0.25 * out.explanation.offset.ci95_counts) break;
   }
   if (!out.realigned_at.empty()) HoldEvery(out.explanation, lo, hi, rig.offset_counts);
-  // The corrected flow from the user's flow, as the rig file aligns it: the
-  // realignment is one of the corrections it undoes.
-  if (!out.realigned_at.empty() && options.correct_flow)
-    out.explanation.corrected = CorrectFlow(
-        rig, *run.profiles, *run.geometry, *run.log, run.corrected_area ? *run.corrected_area : std::vector<double>{},
-        run.corrected_sigma ? *run.corrected_sigma : std::vector<double>{},
-        ShiftedBy(out.explanation.report, out.explanation.aligned_at_counts - rig.offset_counts), out.model.tfs[0],
-        out.model.offset);
+  // The corrected flow from the user's flow, as the rig file aligns it: a
+  // realignment is one of the corrections it undoes (none: a shift of 0).
+  if (options.correct_flow)
+    out.explanation.corrected =
+        CorrectFlow(rig, *run.profiles, *run.geometry, *run.log, run.CorrectedArea(), run.CorrectedSigma(),
+                    ShiftedBy(out.explanation.report, out.explanation.aligned_at_counts - rig.offset_counts),
+                    out.model.tfs[0], out.model.offset);
   return out;
 }
 

@@ -83,9 +83,8 @@ RunExplanation ExplainMeasuredRun(const Rig& rig, const MeasuredFlow& run, const
   out.report = Explain(out.series.data, options);
   out.offset = OffsetOf(rig, out.report);
   if (o.correct_flow)
-    out.corrected = CorrectFlow(
-        rig, *run.profiles, *run.geometry, *run.log, run.corrected_area ? *run.corrected_area : std::vector<double>{},
-        run.corrected_sigma ? *run.corrected_sigma : std::vector<double>{}, out.report, model, model_offset);
+    out.corrected = CorrectFlow(rig, *run.profiles, *run.geometry, *run.log, run.CorrectedArea(), run.CorrectedSigma(),
+                                out.report, model, model_offset);
   return out;
 }
 

@@ -30,6 +30,16 @@ struct MeasuredFlow {
   const FlowResult* flow = nullptr;
   const std::vector<double>* corrected_area = nullptr;  // the occlusion stage's (may be empty)
   const std::vector<double>* corrected_sigma = nullptr;
+
+  // The occlusion stage's columns, empty where it gave none.
+  const std::vector<double>& CorrectedArea() const { return OrNone(corrected_area); }
+  const std::vector<double>& CorrectedSigma() const { return OrNone(corrected_sigma); }
+
+ private:
+  static const std::vector<double>& OrNone(const std::vector<double>* v) {
+    static const std::vector<double> none;
+    return v ? *v : none;
+  }
 };
 
 struct RunExplainOptions {
