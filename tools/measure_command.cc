@@ -21,6 +21,7 @@ Run AddMeasure(CLI::App& app) {
     ProfileOptions options;
     unsigned threads = 0;
     std::string occlusion = "pooled";
+    std::string beads = "one", laid = "left-first";
   };
   auto args = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand("measure", Summary("measure"));
@@ -41,8 +42,19 @@ Run AddMeasure(CLI::App& app) {
       "     area_sigma_mm2, occlusion_bias_mm2, area_corrected_sigma_mm2.\n"
       "     area_corrected_mm2 = area_mm2 - occlusion_bias_mm2: what the sensor could not see\n"
       "     under the bead's widest point and in the fan's shadow (see --occlusion).\n"
-      "Example:\n"
-      "  bead measure --rig testdata/sample/rig.yaml testdata/sample/run.h5 -o geometry.csv");
+      "--beads all: every bead of each profile (roads of one layer, beads welded side by\n"
+      "     side), over the bed's reference line (a part scan: layer on layer, the layer below\n"
+      "     moved by its registration's shift). Neighbours that overlap are split by the\n"
+      "     overlap model: each road's top a cap of the layer's one shape, laid in order\n"
+      "     (--laid), each adding to the surface before it, so the later road keeps the\n"
+      "     valley's material. One row per bead found:\n"
+      "     profile,bead,t_s,center_x_mm,area_mm2,width_mm,height_mm,area_corrected_mm2,valid,\n"
+      "     then layer, path_mm, spacing_over_width, fit_rms_mm, status; bead counts from 0,\n"
+      "     left to right; a bead cut by the field of view's end has valid = 0 and no size.\n"
+      "Examples:\n"
+      "  bead measure --rig testdata/sample/rig.yaml testdata/sample/run.h5 -o geometry.csv\n"
+      "  bead simulate testdata/configs/part_roads.yaml -o roads && \\\n"
+      "    bead measure --rig roads/rig.yaml roads/part.h5 --beads all -o beads.csv");
   cmd->add_option("--rig", args->rig, "Rig file (YAML)")->required()->check(CLI::ExistingFile);
   cmd->add_option("run", args->run, "Run archive (.h5) or profiles CSV (.csv)")->required()->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", args->output, "Geometry CSV to write (written atomically)")->required();
@@ -60,10 +72,18 @@ Run AddMeasure(CLI::App& app) {
   cmd->add_option("--max-gap-mm", o.bead.max_gap_mm, "Longest dropout bridged inside a bead, mm")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--beads", args->beads, "one: the largest bead of each profile; all: every bead, one row each")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"one", "all"}));
+  cmd->add_option("--laid", args->laid, "With --beads all: the order the beads were laid in")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"left-first", "right-first"}));
   cmd->add_option("--threads", args->threads, "Worker threads (0: all cores)")->capture_default_str();
   AddOcclusionOption(cmd, args->occlusion);
 
   return [args]() {
+    if (args->beads == "all")
+      return MeasureRoads(args->rig, args->run, args->output, args->options, args->laid == "left-first", args->threads);
     // A part scan (kind = "part") is measured layer on layer.
     if (args->run.ends_with(".h5") && IsPartScan(args->run))
       return MeasurePartScan(args->rig, args->run, args->output, args->options, args->threads);

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <functional>
 
+#include "libbead/archive/open_run.h"
+#include "libbead/core/worker_pool.h"
 #include "libbead/io/run_archive.h"
 #include "libbead/part/measure_part.h"
 #include "libbead/core/error.h"
@@ -69,6 +71,72 @@ int MeasurePartScan(const std::string& rig_path, const std::string& run, const s
   std::printf(
       "  area_corrected_mm2 is empty: what a bead hides under its overhang on the layer below is not yet\n"
       "  modelled on parts (the area is what the sensor sees the layer add)\n");
+  return 0;
+}
+
+namespace {
+
+// A run's profiles as a part's first layer: each on the bed.
+PartPlaces OnTheBed(std::size_t n) {
+  PartPlaces p;
+  p.layer.assign(n, 0);
+  p.path_mm.assign(n, std::nan(""));
+  p.frame_z_mm.assign(n, 0.0);
+  p.frame_x_mm.assign(n, 0.0);
+  return p;
+}
+
+void SayRoads(const part::RoadsSummary& s, bool above_bed) {
+  for (const auto& [count, profiles] : s.profiles_by_count)
+    std::printf("  %zu profiles with %zu bead%s\n", profiles, count, count == 1 ? "" : "s");
+  if (s.cut_by_edge)
+    std::printf("  %zu beads cut by the field of view's end: flagged invalid, their size not given\n", s.cut_by_edge);
+  if (s.no_fit) std::printf("  %zu stretches the overlap model could not explain: flagged no_fit\n", s.no_fit);
+  if (const std::string words = s.SpacingInWords(); !words.empty()) std::printf("  %s\n", words.c_str());
+  if (above_bed)
+    std::printf("  layers above the first: their beads over the layer below as recorded (not registered laterally)\n");
+}
+
+}  // namespace
+
+int MeasureRoads(const std::string& rig_path, const std::string& run, const std::string& output,
+                 const ProfileOptions& bed, bool laid_left_first, unsigned threads) {
+  const RigFile rig = ReadPartRigFile(rig_path);
+  SayRigWarnings(rig);
+  part::MeasurePartOptions options;
+  options.bed = bed;
+  options.several_beads = true;
+  options.roads.laid_left_first = laid_left_first;
+  options.roads.spike_mm = bed.bead.spike_mm;
+  WorkerPool pool(threads);
+  std::unique_ptr<ProfileStream> stream;
+  PartPlaces places;
+  if (run.ends_with(".h5") && IsPartScan(run)) {
+    places = *ReadPartScan(run, false, false).part;
+    stream = std::make_unique<ProfileStream>(run, pool);
+  } else {
+    stream = std::move(OpenRun(run, pool, /*with_log=*/false).profiles);
+    places = OnTheBed(stream->size());
+  }
+  part::RoadsCsvWriter out(output);
+  part::RoadsSummary summary;
+  bool above_bed = false;
+  const auto tty = TtyProgress("measured");
+  const std::size_t total = stream->size();
+  part::MeasurePart(
+      *stream, places, rig.rig, options,
+      [&](const part::PartGeometryRow& r) {
+        out.Append(r);
+        summary.Add(r.roads);
+        above_bed |= r.layer > 0;
+      },
+      [&](std::size_t done) {
+        if (tty) tty(done, total);
+      });
+  out.Commit();
+  std::printf("%s: %zu profiles, %zu beads found (laid %s); wrote %s\n", run.c_str(), total, summary.roads,
+              laid_left_first ? "left to right" : "right to left", output.c_str());
+  SayRoads(summary, above_bed);
   return 0;
 }
 

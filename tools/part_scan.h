@@ -11,6 +11,11 @@ namespace bead::tools {
 
 int MeasurePartScan(const std::string& rig_path, const std::string& run, const std::string& output,
                     const ProfileOptions& bed, unsigned threads);
+// bead measure --beads all: each bead of every profile (part/roads.h), the
+// spec's one row per bead; a part scan layer on layer, a run's profiles
+// each on the bed.
+int MeasureRoads(const std::string& rig_path, const std::string& run, const std::string& output,
+                 const ProfileOptions& bed, bool laid_left_first, unsigned threads);
 int FlowPartScan(const std::string& rig_path, const std::string& run, const std::string& output,
                  const ProfileOptions& bed);
 

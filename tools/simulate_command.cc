@@ -37,10 +37,15 @@ Run AddSimulate(CLI::App& app) {
       if (args->seed >= 0) part->seed = static_cast<uint64_t>(args->seed);
       const sim::PartTwin twin = sim::SimulatePartWall(*part);
       sim::WritePartTwin(args->output, twin);
-      std::printf("printed a wall of %d layers, %.0f mm long (seed %llu): %zu profiles, %zu log samples\n",
-                  part->layers, part->length_mm, static_cast<unsigned long long>(part->seed), twin.scan.profiles.size(),
+      const bool roads = part->roads > 1;
+      const std::string what = roads ? "a layer of " + std::to_string(part->roads) + " roads " +
+                                           std::to_string(part->road_spacing_mm).substr(0, 5) + " mm apart"
+                                     : "a wall of " + std::to_string(part->layers) + " layers";
+      std::printf("printed %s, %.0f mm long (seed %llu): %zu profiles, %zu log samples\n", what.c_str(),
+                  part->length_mm, static_cast<unsigned long long>(part->seed), twin.scan.profiles.size(),
                   twin.scan.log ? twin.scan.log->size() : 0);
-      std::printf("wrote %s/{part.h5, rig.yaml, truth.csv}\n", args->output.c_str());
+      std::printf("wrote %s/{part.h5, rig.yaml, truth.csv%s}\n", args->output.c_str(),
+                  roads ? ", truth_roads.csv" : "");
       return 0;
     }
     sim::SimConfig config = sim::ReadSimConfig(args->config);

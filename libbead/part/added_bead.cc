@@ -281,6 +281,8 @@ Registration Register(std::span<const float> x, std::span<const float> z, const 
 
 }  // namespace
 
+double ProfileNoiseMm(std::span<const float> z) { return NoiseOf(z); }
+
 const char* AddedStatusName(AddedStatus s) {
   switch (s) {
     case AddedStatus::kValid:

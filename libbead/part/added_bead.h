@@ -93,6 +93,9 @@ struct AddedBead {
   bool valid() const { return status == AddedStatus::kValid; }
 };
 
+// A profile's noise from its second differences (the definition above).
+double ProfileNoiseMm(std::span<const float> z);
+
 // x, z: the new profile's valid points in the bed frame, x increasing.
 // register_shift = false: s = 0 (the bed's line, fitted on this profile).
 // start_shift: the shift found for the profile before in the same pass.

@@ -73,6 +73,13 @@ std::optional<SurfaceGrid> BedArcGrid(const Rig& rig, const ProfileView& v, cons
   return SampledBed(p, frame_x, frame_z, [&arc](double x) { return arc.At(x); });
 }
 
+// Each bead of the profile over the surface below, moved by `shift`.
+std::vector<Road> RoadsOver(const StoredProfile& p, const SurfaceGrid& under, double shift, const RoadOptions& o) {
+  std::vector<double> gain(p.x_mm.size());
+  for (std::size_t j = 0; j < gain.size(); ++j) gain[j] = p.z_mm[j] - under.At(p.x_mm[j] - shift);
+  return FindRoads(p.x_mm, gain, ProfileNoiseMm(p.z_mm), o);
+}
+
 class PartMeasurer {
  public:
   PartMeasurer(const Rig& rig, const MeasurePartOptions& o, std::size_t points)
@@ -102,6 +109,9 @@ class PartMeasurer {
       row.bead = MeasureAddedBead(mine.x_mm, mine.z_mm, *under, shift, options_.added, has_warm_ ? &warm_ : nullptr);
       if (row.bead.shift_constrained) has_warm_ = true, warm_ = row.bead.shift_mm, warm_layer_ = row.layer;
     }
+    // Several beads over the surface below, at the shift the layer's
+    // registration found (its truncated cost holds any number of beads).
+    if (under && options_.several_beads) row.roads = RoadsOver(mine, *under, row.bead.shift_mm, options_.roads);
     mine.center_x_mm = row.bead.valid() ? row.bead.center_x_mm : std::nan("");
     if (row.layer > 0 && row.bead.valid() && (row.bead.shift_constrained || !options_.register_layers))
       row.offset_below_mm = row.bead.center_x_mm - (below_.CenterAt(row.path_mm) + row.bead.shift_mm);

@@ -18,6 +18,7 @@
 #include "libbead/core/run_data.h"
 #include "libbead/io/profile_stream.h"
 #include "libbead/part/added_bead.h"
+#include "libbead/part/roads.h"
 #include "libbead/part/surface_below.h"
 #include "libbead/profile/profile_processor.h"
 
@@ -35,6 +36,9 @@ struct PartGeometryRow {
   // constrained (the passes' lateral shift unknown).
   double offset_below_mm = kNaN;
   double area_corrected_mm2 = kNaN;  // the occlusion stage's (not yet run on parts)
+  // MeasurePartOptions::several_beads: each bead of the profile, left to
+  // right, over the same surface below, moved by bead.shift_mm.
+  std::vector<Road> roads;
 };
 
 struct MeasurePartOptions {
@@ -44,6 +48,10 @@ struct MeasurePartOptions {
   // false: each layer subtracted from the one below as recorded (the
   // naive subtraction, for comparison); true: registered laterally.
   bool register_layers = true;
+  // Several beads in one profile (part/roads.h): roads of one layer, beads
+  // welded side by side.
+  bool several_beads = false;
+  RoadOptions roads;
 };
 
 // A layer's rows in brief, for the tools' report.

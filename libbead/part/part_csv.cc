@@ -47,6 +47,42 @@ void PartGeometryCsvWriter::Append(const PartGeometryRow& r) {
 
 void PartGeometryCsvWriter::Commit() { out_.Commit(); }
 
+RoadsCsvWriter::RoadsCsvWriter(const std::string& path) : out_(path) {
+  out_.stream() << "profile,bead,t_s,center_x_mm,area_mm2,width_mm,height_mm,area_corrected_mm2,valid,layer,path_mm,"
+                   "spacing_over_width,fit_rms_mm,status\n";
+}
+
+void RoadsCsvWriter::Append(const PartGeometryRow& r) {
+  std::string& s = line_;
+  for (std::size_t k = 0; k < r.roads.size(); ++k) {
+    const Road& b = r.roads[k];
+    s.clear();
+    auto number = [&s](double v) {
+      if (std::isfinite(v)) AppendCsvNumber(s, v);
+      s += ',';
+    };
+    // A road cut by the field of view keeps its place, never its size.
+    auto size = [&](double v) { b.valid() ? number(v) : void(s += ','); };
+    s += std::to_string(r.profile) + ',' + std::to_string(k) + ',';
+    number(r.t_s);
+    number(b.center_x_mm);
+    size(b.area_mm2);
+    size(b.width_mm);
+    size(b.height_mm);
+    s += ',';  // area_corrected_mm2: the occlusion stage is not run on roads
+    s += b.valid() ? "1," : "0,";
+    s += std::to_string(r.layer) + ',';
+    number(r.path_mm);
+    size(b.spacing_over_width);
+    number(b.fit_rms_mm);
+    s += RoadStatusName(b.status);
+    s += '\n';
+    out_.stream() << s;
+  }
+}
+
+void RoadsCsvWriter::Commit() { out_.Commit(); }
+
 PartFlowCsvWriter::PartFlowCsvWriter(const std::string& path) : out_(path) {
   out_.stream() << "t_s,layer,path_mm,head_speed_mm_s,area_mm2,area_corrected_mm2,flow_mm3_s,screw_rpm,profile,valid\n";
 }

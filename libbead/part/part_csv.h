@@ -33,6 +33,21 @@ class PartGeometryCsvWriter {
 // area_mm2,area_corrected_mm2,flow_mm3_s,screw_rpm, then profile, valid.
 // t_s is when the nozzle laid the place; an invalid row keeps its place
 // and time with the values empty.
+// Several beads in one profile (the spec's one row per bead found):
+// profile,bead,t_s,center_x_mm,area_mm2,width_mm,height_mm,
+// area_corrected_mm2,valid, then layer,path_mm,spacing_over_width,
+// fit_rms_mm,status.
+class RoadsCsvWriter {
+ public:
+  explicit RoadsCsvWriter(const std::string& path);
+  void Append(const PartGeometryRow& row);
+  void Commit();
+
+ private:
+  AtomicFile out_;
+  std::string line_;
+};
+
 class PartFlowCsvWriter {
  public:
   explicit PartFlowCsvWriter(const std::string& path);

@@ -5,59 +5,10 @@
 #include <numbers>
 #include <random>
 
+#include "libbead/sim/laid_surface.h"
+
 namespace bead::sim {
 namespace {
-
-constexpr double kGridMm = 0.01;  // the truth's surfaces are held this finely
-
-// A surface across the wall in the bed frame, on the truth grid.
-struct Surface {
-  double x0 = 0.0;
-  std::vector<double> z;
-  double At(double x) const {
-    const double u = std::clamp((x - x0) / kGridMm, 0.0, static_cast<double>(z.size() - 1));
-    const std::size_t k = std::min(static_cast<std::size_t>(u), z.size() - 2);
-    return z[k] + (u - static_cast<double>(k)) * (z[k + 1] - z[k]);
-  }
-};
-
-struct Layer {
-  double area = 0.0, center = 0.0;
-};
-
-// The ellipse's material over `below` with its centre at height zc: the
-// part of it above the old surface.
-double MaterialArea(const Surface& below, double c, double a, double b, double zc) {
-  double area = 0.0;
-  const std::size_t k0 = static_cast<std::size_t>(std::max(0.0, (c - a - below.x0) / kGridMm));
-  for (std::size_t k = k0; k < below.z.size(); ++k) {
-    const double x = below.x0 + (static_cast<double>(k) + 0.5) * kGridMm;
-    const double u = (x - c) / a;
-    if (u > 1.0) break;
-    if (u < -1.0) continue;
-    const double h = b * std::sqrt(1.0 - u * u);
-    area += std::max(0.0, zc + h - std::max(zc - h, below.At(x))) * kGridMm;
-  }
-  return area;
-}
-
-// Lays a layer's ellipse on `below` (sunk until its material is the
-// layer's area) and returns the top envelope the sensor sees.
-Surface Lay(const Surface& below, const Layer& layer, double a, double b) {
-  double lo = *std::min_element(below.z.begin(), below.z.end()) - b;
-  double hi = *std::max_element(below.z.begin(), below.z.end()) + b + layer.area / a;
-  for (int it = 0; it < 60; ++it) {
-    const double mid = 0.5 * (lo + hi);
-    (MaterialArea(below, layer.center, a, b, mid) < layer.area ? lo : hi) = mid;
-  }
-  const double zc = 0.5 * (lo + hi);
-  Surface top = below;
-  for (std::size_t k = 0; k < top.z.size(); ++k) {
-    const double u = (below.x0 + static_cast<double>(k) * kGridMm - layer.center) / a;
-    if (std::abs(u) <= 1.0) top.z[k] = std::max(top.z[k], zc + b * std::sqrt(1.0 - u * u));
-  }
-  return top;
-}
 
 class WallPrinter {
  public:
@@ -132,6 +83,7 @@ PartTruthRow Truth(const WallPrinter& printer, const std::vector<Surface>& stack
 }  // namespace
 
 PartTwin SimulatePartWall(const PartTwinConfig& c) {
+  if (c.roads > 1) return SimulateRoadLayer(c);
   PartTwin twin;
   WallPrinter printer(c);
   RunArchive& scan = twin.scan;

@@ -44,6 +44,10 @@ struct PartTwinConfig {
   // axis along the path, its crest under the path's centre line), mm.
   double bed_radius_mm = 0.0;
   double displacement_mm3_per_rev = 100.0;  // screw rpm = 60 Q / this
+  // > 1: one layer of this many roads laid side by side, left to right,
+  // their centres this far apart, scanned after the layer (part_roads.yaml).
+  int roads = 1;
+  double road_spacing_mm = 5.0;
   uint64_t seed = 1;
 };
 
@@ -60,12 +64,26 @@ struct PartTruthRow {
   double pass_shift_mm = 0.0;     // the head's lateral error in this pass
 };
 
-struct PartTwin {
-  RunArchive scan;                  // kind = "part"
-  Rig rig;                          // no wheel; the bed's reference areas; part: flat
-  std::vector<PartTruthRow> truth;  // one per profile, in the scan's order
+// A road of a layer of roads, at one profile.
+struct PartRoadTruth {
+  std::size_t profile = 0;
+  int road = 0;                 // left to right, the laying order
+  double area_mm2 = 0.0;        // its material
+  double center_x_mm = 0.0;     // its ellipse's centre (the nozzle's line)
+  double width_mm = 0.0;        // its ellipse's chord on the bed (its footprint, hidden parts included)
+  double height_mm = 0.0;       // its ellipse's top over the bed
+  double naive_area_mm2 = 0.0;  // what a vertical cut at the valleys gives it
 };
 
+struct PartTwin {
+  RunArchive scan;                        // kind = "part"
+  Rig rig;                                // no wheel; the bed's reference areas; part: flat
+  std::vector<PartTruthRow> truth;        // one per profile, in the scan's order
+  std::vector<PartRoadTruth> road_truth;  // a layer of roads: one per road and profile
+};
+
+// The wall, the pipe, or (config.roads > 1) a layer of roads.
 PartTwin SimulatePartWall(const PartTwinConfig& config);
+PartTwin SimulateRoadLayer(const PartTwinConfig& config);
 
 }  // namespace bead::sim

@@ -34,7 +34,9 @@ void ParsePart(const YAML::Node& root, const Reader& r, PartTwinConfig& c) {
                                   "field_half_mm",
                                   "log_rate_hz",
                                   "displacement_mm3_per_rev",
-                                  "bed_radius_mm"});
+                                  "bed_radius_mm",
+                                  "roads",
+                                  "road_spacing_mm"});
   if (p["shape"].IsDefined() && r.Text(p["shape"], "part.shape") != "wall")
     r.Fail(p["shape"], "part.shape", "is '" + p["shape"].Scalar() + "': this version's twin prints a wall");
   const std::string at = "part.";
@@ -58,6 +60,14 @@ void ParsePart(const YAML::Node& root, const Reader& r, PartTwinConfig& c) {
   r.Get(p, at, "log_rate_hz", c.log_rate_hz, 1.0, 1e5);
   r.Get(p, at, "displacement_mm3_per_rev", c.displacement_mm3_per_rev, 1e-3, 1e9);
   r.Get(p, at, "bed_radius_mm", c.bed_radius_mm, 0.0, 1e5);
+  r.GetInt(p, at, "roads", c.roads, 1, 50);
+  r.Get(p, at, "road_spacing_mm", c.road_spacing_mm, 0.01, 1e3);
+  if (c.roads > 1 && (c.layers != 1 || c.bed_radius_mm > 0))
+    r.Fail(p["roads"], at + "roads", "above 1 is one layer of roads on a flat bed: set layers: 1 and no bed_radius_mm");
+  const double span = 0.5 * (c.roads - 1) * c.road_spacing_mm;
+  if (c.roads > 1 && c.field_half_mm <= span + 0.5 * c.width_mm + 5.0)
+    r.Fail(p["field_half_mm"], at + "field_half_mm",
+           "must leave 5 mm of bare bed beside the outer roads (more than (roads - 1) spacing / 2 + width / 2 + 5)");
   if (c.bed_radius_mm > 0 && c.bed_radius_mm <= c.field_half_mm)
     r.Fail(p["bed_radius_mm"], at + "bed_radius_mm", "must exceed field_half_mm: the pipe spans the profile");
   if (c.area_wave_mm2 >= c.area_mm2) r.Fail(p["area_wave_mm2"], at + "area_wave_mm2", "must be less than area_mm2");
@@ -75,6 +85,16 @@ void WriteTruth(const std::string& path, const std::vector<PartTruthRow>& rows) 
                  << CsvNumber(t.visible_area_mm2) << ',' << CsvNumber(t.height_mm) << ',' << CsvNumber(t.width_mm)
                  << ',' << CsvNumber(t.center_x_mm) << ',' << CsvNumber(t.offset_below_mm) << ','
                  << CsvNumber(t.pass_shift_mm) << '\n';
+  out.Commit();
+}
+
+void WriteRoadTruth(const std::string& path, const std::vector<PartRoadTruth>& rows) {
+  AtomicFile out(path);
+  out.stream() << "profile,bead,area_mm2,center_x_mm,width_mm,height_mm,naive_area_mm2\n";
+  for (const PartRoadTruth& t : rows)
+    out.stream() << t.profile << ',' << t.road << ',' << CsvNumber(t.area_mm2) << ',' << CsvNumber(t.center_x_mm) << ','
+                 << CsvNumber(t.width_mm) << ',' << CsvNumber(t.height_mm) << ',' << CsvNumber(t.naive_area_mm2)
+                 << '\n';
   out.Commit();
 }
 
@@ -100,6 +120,7 @@ void WritePartTwin(const std::string& folder, const PartTwin& twin) {
   WriteRunArchive(folder + "/part.h5", twin.scan);
   WriteRigFile(folder + "/rig.yaml", MakeRigFile(twin.rig));
   WriteTruth(folder + "/truth.csv", twin.truth);
+  if (!twin.road_truth.empty()) WriteRoadTruth(folder + "/truth_roads.csv", twin.road_truth);
 }
 
 }  // namespace bead::sim

@@ -1,7 +1,8 @@
 // The part twin's config (a simulation config whose top level holds
 // `part:`) and what `bead simulate` writes for it: DIR/part.h5 (part scan),
 // DIR/rig.yaml (a rig without the wheel), DIR/truth.csv (one row per
-// profile: PartTruthRow's columns).
+// profile: PartTruthRow's columns) and, for a layer of roads,
+// DIR/truth_roads.csv (one row per road and profile: PartRoadTruth's).
 #pragma once
 
 #include <optional>
