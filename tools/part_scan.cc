@@ -86,15 +86,21 @@ PartPlaces OnTheBed(std::size_t n) {
   return p;
 }
 
-void SayRoads(const part::RoadsSummary& s, bool above_bed) {
+void SayRoads(const part::RoadsSummary& s, bool above_bed, std::size_t no_surface) {
   for (const auto& [count, profiles] : s.profiles_by_count)
     std::printf("  %zu profiles with %zu bead%s\n", profiles, count, count == 1 ? "" : "s");
   if (s.cut_by_edge)
     std::printf("  %zu beads cut by the field of view's end: flagged invalid, their size not given\n", s.cut_by_edge);
   if (s.no_fit) std::printf("  %zu stretches the overlap model could not explain: flagged no_fit\n", s.no_fit);
   if (const std::string words = s.SpacingInWords(); !words.empty()) std::printf("  %s\n", words.c_str());
+  if (no_surface)
+    std::printf(
+        "  %zu profiles have no surface below to measure against (layer 0: no bare bed in the reference areas; "
+        "above: the layer below not scanned within 5 mm along the path): no beads there\n",
+        no_surface);
   if (above_bed)
-    std::printf("  layers above the first: their beads over the layer below as recorded (not registered laterally)\n");
+    std::printf(
+        "  layers above the first: their beads over the layer below, moved by the shift its registration found\n");
 }
 
 }  // namespace
@@ -121,6 +127,7 @@ int MeasureRoads(const std::string& rig_path, const std::string& run, const std:
   part::RoadsCsvWriter out(output);
   part::RoadsSummary summary;
   bool above_bed = false;
+  std::size_t no_surface = 0;
   const auto tty = TtyProgress("measured");
   const std::size_t total = stream->size();
   part::MeasurePart(
@@ -129,6 +136,7 @@ int MeasureRoads(const std::string& rig_path, const std::string& run, const std:
         out.Append(r);
         summary.Add(r.roads);
         above_bed |= r.layer > 0;
+        no_surface += r.bead.status == part::AddedStatus::kNoSurfaceBelow;
       },
       [&](std::size_t done) {
         if (tty) tty(done, total);
@@ -136,7 +144,7 @@ int MeasureRoads(const std::string& rig_path, const std::string& run, const std:
   out.Commit();
   std::printf("%s: %zu profiles, %zu beads found (laid %s); wrote %s\n", run.c_str(), total, summary.roads,
               laid_left_first ? "left to right" : "right to left", output.c_str());
-  SayRoads(summary, above_bed);
+  SayRoads(summary, above_bed, no_surface);
   return 0;
 }
 

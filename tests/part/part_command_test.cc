@@ -131,6 +131,12 @@ TEST(PartCommand, AnotherLabsLayerScanIsImportedAndSaysWhatItLacks) {
   EXPECT_EQ(rows[1][2], "25");
   // Its place: 10 mm/s times the time since the layer's first profile.
   EXPECT_NEAR(std::stod(rows.back()[3]), 10.0 * (std::stod(rows.back()[1]) - std::stod(rows[1][1])), 1e-6);
+  // Every bead of each profile: none, and the reason said, not invented.
+  std::tie(code, out) = test::RunCli(
+      dir, "measure --rig " + (dir / "rig.yaml") + " " + (dir / "l25.h5") + " --beads all -o " + (dir / "beads.csv"));
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("399 profiles have no surface below"), std::string::npos) << out;
+  EXPECT_EQ(Rows(dir / "beads.csv").size(), 1u);
   // A place is needed, one way only.
   std::tie(code, out) = test::RunCli(dir, "import " + csv + " -o " + (dir / "x.h5") + columns);
   EXPECT_EQ(code, 1) << out;
