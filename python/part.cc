@@ -58,6 +58,8 @@ py::dict PartColumns(const std::vector<part::PartGeometryRow>& rows) {
   out["registration_rms_mm"] =
       Column<double>(rows, [&](const Row& r) { return registered(r, r.bead.registration_rms_mm); });
   out["noise_mm"] = Column<double>(rows, [](const Row& r) { return r.bead.noise_mm; });
+  out["area_corrected_sigma_mm2"] =
+      Column<double>(rows, [&](const Row& r) { return ok(r, r.area_corrected_sigma_mm2); });
   std::vector<std::string> status;
   for (const Row& r : rows) status.emplace_back(part::AddedStatusName(r.bead.status));
   out["status"] = status;
@@ -130,9 +132,10 @@ void AddPart(py::module_& m) {
         "profile against the layer below at its place along the path (layer 0 against the bed), the layer below "
         "registered laterally.\n\nrig: a rig file with the reference areas (no wheel needed). Returns the part "
         "geometry CSV's columns as [N] arrays: profile, t_s (s), layer, path_mm, area_mm2 (what the layer added), "
-        "width_mm, height_mm (mm), area_corrected_mm2 (NaN: not yet modelled on parts), valid, center_x_mm, "
-        "offset_below_mm (wall wander; NaN where the passes' shift was not found), shift_mm, shift_sigma_mm, "
-        "shift_found, registration_rms_mm, noise_mm (mm), status (list of str).");
+        "width_mm, height_mm (mm), area_corrected_mm2 (less the groove the bead hides under its overhangs), "
+        "valid, center_x_mm, offset_below_mm (wall wander; NaN where the passes' shift was not found), shift_mm, "
+        "shift_sigma_mm, shift_found, registration_rms_mm, noise_mm (mm), status (list of str), "
+        "area_corrected_sigma_mm2.");
   m.def("part_flow", &PartFlow, "rig"_a, "scan"_a, "threads"_a = 0,
         "The flow along a part scan's toolpath, as `bead flow` computes it on one: each profile's time is when the "
         "nozzle laid its place (from the log's layer and path_mm), flow_mm3_s = head_speed_mm_s x area.\n\nReturns "

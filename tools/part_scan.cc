@@ -22,7 +22,8 @@ void SayLayers(const std::vector<part::LayerSummary>& layers) {
   for (const part::LayerSummary& l : layers) {
     std::printf("  layer %lld: %zu profiles over path %.1f to %.1f mm, %zu valid", static_cast<long long>(l.layer),
                 l.profiles, l.first_path_mm, l.last_path_mm, l.valid);
-    if (l.valid) std::printf(", mean area %.3f mm^2", l.MeanArea());
+    if (l.valid) std::printf(", mean area %.3f mm^2 seen", l.MeanArea());
+    if (l.corrected) std::printf(", %.3f less the groove hidden under its overhangs", l.MeanCorrected());
     if (l.layer == 0)
       std::printf(" (on the bed)\n");
     else if (l.no_surface_below == l.profiles)
@@ -32,6 +33,14 @@ void SayLayers(const std::vector<part::LayerSummary>& layers) {
       std::printf("; pass shift %+.3f mm (median; found in %zu profiles)\n", l.MedianShift(), l.shift_found);
     else
       std::printf("; pass shift not found (the layer below shows nowhere beside the new bead): no offset\n");
+    if (l.valid > l.corrected)
+      std::printf("    %zu valid profiles without a corrected area: the bead's outline could not be fitted\n",
+                  l.valid - l.corrected);
+    if (l.loose)
+      std::printf(
+          "    %zu profiles' corrected areas are loose (sigma over a tenth of the area): the bead's sides are not "
+          "seen steep enough to place its widest point\n",
+          l.loose);
   }
 }
 
@@ -67,10 +76,8 @@ int MeasurePartScan(const std::string& rig_path, const std::string& run, const s
   part::PartGeometryCsvWriter out(output);
   MeasureSaying(rig_path, run, scan, bed, threads, [&](const part::PartGeometryRow& r) { out.Append(r); });
   out.Commit();
-  std::printf("wrote %s\n", output.c_str());
-  std::printf(
-      "  area_corrected_mm2 is empty: what a bead hides under its overhang on the layer below is not yet\n"
-      "  modelled on parts (the area is what the sensor sees the layer add)\n");
+  std::printf("wrote %s (area_corrected_mm2: less the groove a bead hides under its overhangs, with its sigma)\n",
+              output.c_str());
   return 0;
 }
 

@@ -8,6 +8,7 @@
 #include "libbead/core/error.h"
 #include "libbead/core/worker_pool.h"
 #include "libbead/part/bed_arc.h"
+#include "libbead/part/hidden_groove.h"
 
 namespace bead::part {
 namespace {
@@ -109,6 +110,18 @@ class PartMeasurer {
       row.bead = MeasureAddedBead(mine.x_mm, mine.z_mm, *under, shift, options_.added, has_warm_ ? &warm_ : nullptr);
       if (row.bead.shift_constrained) has_warm_ = true, warm_ = row.bead.shift_mm, warm_layer_ = row.layer;
     }
+    if (under && row.bead.valid() && options_.correct_hidden) {
+      const double shift_sigma = std::isfinite(row.bead.shift_sigma_mm) ? row.bead.shift_sigma_mm : 0.0;
+      const HiddenGroove g = EstimateHiddenGroove(mine.x_mm, mine.z_mm, *under, row.bead.shift_mm, shift_sigma,
+                                                  row.bead.center_x_mm, row.bead.width_mm, row.bead.height_mm);
+      // The visible area's own sampling beside the groove's: each of its
+      // four walls (two of the new surface, two of the old) placed within
+      // a point spacing, as high as the bead: (spacing h)^2 / 3.
+      const double sampled = 8.0 * GridStep(mine) * row.bead.height_mm;
+      if (g.ok)
+        row.area_corrected_mm2 = row.bead.area_mm2 - g.hidden_mm2,
+        row.area_corrected_sigma_mm2 = std::sqrt(g.sigma_mm2 * g.sigma_mm2 + sampled * sampled / 3.0);
+    }
     // Several beads over the surface below, at the shift the layer's
     // registration found (its truncated cost holds any number of beads).
     if (under && options_.several_beads) row.roads = RoadsOver(mine, *under, row.bead.shift_mm, options_.roads);
@@ -154,6 +167,11 @@ void Tally(std::vector<LayerSummary>& layers, const PartGeometryRow& r) {
   if (!r.bead.valid()) return;
   ++l.valid;
   l.area_sum_mm2 += r.bead.area_mm2;
+  if (std::isfinite(r.area_corrected_mm2)) {
+    ++l.corrected;
+    l.corrected_sum_mm2 += r.area_corrected_mm2;
+    l.loose += r.area_corrected_sigma_mm2 > 0.1 * r.area_corrected_mm2;
+  }
   if (r.bead.shift_constrained) ++l.shift_found, l.shifts_mm.push_back(r.bead.shift_mm);
 }
 

@@ -35,7 +35,9 @@ struct PartGeometryRow {
   // frame (wall wander); NaN on layer 0 and where the registration was not
   // constrained (the passes' lateral shift unknown).
   double offset_below_mm = kNaN;
-  double area_corrected_mm2 = kNaN;  // the occlusion stage's (not yet run on parts)
+  // The area less the groove the bead hides under its overhangs
+  // (part/hidden_groove.h), and its 1-sigma.
+  double area_corrected_mm2 = kNaN, area_corrected_sigma_mm2 = kNaN;
   // MeasurePartOptions::several_beads: each bead of the profile, left to
   // right, over the same surface below, moved by bead.shift_mm.
   std::vector<Road> roads;
@@ -48,6 +50,8 @@ struct MeasurePartOptions {
   // false: each layer subtracted from the one below as recorded (the
   // naive subtraction, for comparison); true: registered laterally.
   bool register_layers = true;
+  // The groove an overhanging bead hides, estimated and taken off.
+  bool correct_hidden = true;
   // Several beads in one profile (part/roads.h): roads of one layer, beads
   // welded side by side.
   bool several_beads = false;
@@ -59,6 +63,12 @@ struct LayerSummary {
   int64_t layer = 0;
   std::size_t profiles = 0, valid = 0, shift_found = 0, no_surface_below = 0;
   double area_sum_mm2 = 0.0;  // over the valid rows
+  // Over the rows with a corrected area; `loose`: those whose corrected
+  // area's sigma exceeds a tenth of it (the bead's sides not seen well
+  // enough to place its widest point).
+  std::size_t corrected = 0, loose = 0;
+  double corrected_sum_mm2 = 0.0;
+  double MeanCorrected() const { return corrected ? corrected_sum_mm2 / static_cast<double>(corrected) : kNaN(); }
   double first_path_mm = 0.0, last_path_mm = 0.0;
   std::vector<double> shifts_mm;  // the shifts found (median: the pass's)
   double MeanArea() const { return valid ? area_sum_mm2 / static_cast<double>(valid) : kNaN(); }

@@ -9,7 +9,7 @@ namespace bead::part {
 PartGeometryCsvWriter::PartGeometryCsvWriter(const std::string& path) : out_(path) {
   out_.stream() << "profile,t_s,layer,path_mm,area_mm2,width_mm,height_mm,area_corrected_mm2,valid,"
                    "center_x_mm,offset_below_mm,shift_mm,shift_sigma_mm,shift_found,registration_rms_mm,noise_mm,"
-                   "status\n";
+                   "status,area_corrected_sigma_mm2\n";
 }
 
 void PartGeometryCsvWriter::Append(const PartGeometryRow& r) {
@@ -41,6 +41,8 @@ void PartGeometryCsvWriter::Append(const PartGeometryRow& r) {
   registered ? number(b.registration_rms_mm) : void(s += ',');
   number(b.noise_mm);
   s += AddedStatusName(b.status);
+  s += ',';
+  if (ok) AppendCsvNumber(s, r.area_corrected_sigma_mm2);
   s += '\n';
   out_.stream() << s;
 }

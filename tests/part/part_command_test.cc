@@ -127,7 +127,7 @@ TEST(PartCommand, AnotherLabsLayerScanIsImportedAndSaysWhatItLacks) {
   EXPECT_NE(out.find("layer 24 is not in the scan"), std::string::npos) << out;
   const auto rows = Rows(dir / "geo.csv");
   ASSERT_EQ(rows.size(), 400u);
-  EXPECT_EQ(rows[1].back(), "no_surface_below");
+  EXPECT_EQ(rows[1][16], "no_surface_below");  // the status column
   EXPECT_EQ(rows[1][2], "25");
   // Its place: 10 mm/s times the time since the layer's first profile.
   EXPECT_NEAR(std::stod(rows.back()[3]), 10.0 * (std::stod(rows.back()[1]) - std::stod(rows[1][1])), 1e-6);

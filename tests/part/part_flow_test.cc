@@ -23,14 +23,14 @@ TEST(PartFlow, EachPlaceIsTimedWhenTheNozzleLaidItAndItsFlowIsHeadSpeedTimesArea
   const part::NozzleClock clock(*twin.scan.log, "twin");
   ProfileStream stream("twin", twin.scan.profiles);
   part::LayerVolumes measured;
-  std::map<int64_t, std::vector<std::pair<double, double>>> truth;  // path, visible area
+  std::map<int64_t, std::vector<std::pair<double, double>>> truth;  // path, material laid
   int timed = 0, rows = 0;
   part::MeasurePart(stream, *twin.scan.part, twin.rig, {}, [&](const part::PartGeometryRow& g) {
     const part::PartFlowRow r = part::FlowOf(g, clock);
     const sim::PartTruthRow& t = twin.truth[g.profile];
     ++rows;
     measured.Add(r);
-    truth[t.layer].push_back({t.path_mm, t.visible_area_mm2});
+    truth[t.layer].push_back({t.path_mm, t.area_mm2});
     if (!r.valid) return;
     ++timed;
     // The laser line trails the nozzle by trail_mm at the head's speed:
@@ -38,7 +38,8 @@ TEST(PartFlow, EachPlaceIsTimedWhenTheNozzleLaidItAndItsFlowIsHeadSpeedTimesArea
     // log's path is linear between samples: exact to rounding).
     EXPECT_NEAR(r.t_s, g.t_s - config.trail_mm / config.head_speed_mm_s, 1e-9) << g.profile;
     EXPECT_NEAR(r.head_speed_mm_s, config.head_speed_mm_s, 1e-9);
-    EXPECT_DOUBLE_EQ(r.flow_mm3_s, r.head_speed_mm_s * g.bead.area_mm2);
+    // The area less the groove hidden under the overhangs, where there is one.
+    EXPECT_DOUBLE_EQ(r.flow_mm3_s, r.head_speed_mm_s * g.area_corrected_mm2);
     // The twin's screw turned for the flow it laid there (Q = rpm D / 60),
     // read between log samples dt apart: off by at most |dQ/dt| dt, with
     // dQ/dt = v^2 dA/dpath <= v^2 wave 2 pi / period.
@@ -49,13 +50,15 @@ TEST(PartFlow, EachPlaceIsTimedWhenTheNozzleLaidItAndItsFlowIsHeadSpeedTimesArea
   // Only a place laid before the log's first sample of its layer can be
   // without a time: at most one per layer.
   EXPECT_GE(timed, rows - config.layers);
-  // Each layer's volume against the twin's visible volume, over the same
-  // path: the areas' bound (0.15 mm^2, part_wall_test.cc) over the length.
+  // Each layer's volume against the material the twin laid over the same
+  // path: the areas' sampling bound (0.15 mm^2, part_wall_test.cc) over the
+  // length, and the corrected area's bias over a run (within 1 %,
+  // hidden_groove_test.cc).
   for (auto& [layer, v] : truth) {
     double volume = 0.0;
     for (std::size_t i = 1; i < v.size(); ++i)
       volume += 0.5 * (v[i].second + v[i - 1].second) * (v[i].first - v[i - 1].first);
-    EXPECT_NEAR(measured.volumes_mm3().at(layer), volume, 0.15 * config.length_mm) << "layer " << layer;
+    EXPECT_NEAR(measured.volumes_mm3().at(layer), volume, 0.15 * config.length_mm + 0.01 * volume) << "layer " << layer;
   }
 }
 

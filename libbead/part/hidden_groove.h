@@ -1,0 +1,43 @@
+// What a sensor looking down cannot see on a part: a bead that sinks into
+// the surface below and overhangs it hides the groove under its sides, as
+// a rounded bead hides its undercut on the wheel (the thesis, 4.4: the
+// occlusion bias inflates the measured area). The area a layer visibly
+// added (part/added_bead.h) counts that groove as material.
+//
+// Model: the new bead's cross-section is an ellipse (centre x0, z0;
+// semi-axes A across, B up; the wall's beads as the thesis' rounded beads
+// and the twin's), its material what lies inside it above the surface
+// before it. The sensor sees max(surface below, the ellipse's top); the
+// ellipse is fitted to the profile's points around the bead by
+// Levenberg-Marquardt (the surface below known, moved by the registration's
+// shift), and the groove is the part of the ellipse's outline's shadow
+// that lies above the surface below: the integral of
+// max(0, z0 - B sqrt(1 - u^2) - z_below(x)) over the ellipse's width. Its
+// sigma is the fit's covariance (residual variance times (J^T J)^-1)
+// carried through the groove's gradient. Where the bead's sides are not
+// seen steep enough to place its widest point, the sigma says so.
+#pragma once
+
+#include <limits>
+#include <span>
+
+#include "libbead/part/surface_below.h"
+
+namespace bead::part {
+
+struct HiddenGroove {
+  static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  bool ok = false;
+  double hidden_mm2 = kNaN;  // the groove under the overhangs
+  double sigma_mm2 = kNaN;   // its 1-sigma from the fit
+  double fit_rms_mm = kNaN;
+};
+
+// x, z: the profile's valid points in the bed frame (x increasing); below:
+// the surface before it, moved by `shift` (z_below(x) = below.At(x - shift))
+// known to shift_sigma (0 where not registered); center, width, height:
+// the bead as part/added_bead.h measured it.
+HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
+                                  double shift, double shift_sigma, double center, double width, double height);
+
+}  // namespace bead::part

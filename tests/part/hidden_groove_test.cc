@@ -1,0 +1,81 @@
+// What an overhanging bead hides on a wall: the twin's beads (ellipses
+// sunk into the layer below) hide the groove under their sides from a
+// sensor looking down; the corrected area recovers the material laid.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "libbead/io/profile_stream.h"
+#include "libbead/part/measure_part.h"
+#include "libbead/sim/part_twin.h"
+
+namespace bead {
+namespace {
+
+struct GrooveFigures {
+  std::vector<double> visible_rel, corrected_rel, z;  // per profile
+  double laid = 0.0, visible = 0.0, corrected = 0.0;
+  int rows = 0, corrected_rows = 0;
+};
+
+GrooveFigures Figures(uint64_t seed) {
+  sim::PartTwinConfig c;
+  c.seed = seed;
+  const sim::PartTwin twin = sim::SimulatePartWall(c);
+  ProfileStream stream("twin", twin.scan.profiles);
+  GrooveFigures f;
+  part::MeasurePart(stream, *twin.scan.part, twin.rig, {}, [&](const part::PartGeometryRow& r) {
+    if (!r.bead.valid()) return;
+    ++f.rows;
+    const sim::PartTruthRow& t = twin.truth[r.profile];
+    f.visible_rel.push_back(r.bead.area_mm2 / t.area_mm2 - 1.0);
+    f.visible += r.bead.area_mm2, f.laid += t.area_mm2;
+    if (!std::isfinite(r.area_corrected_mm2)) return;
+    ++f.corrected_rows;
+    f.corrected += r.area_corrected_mm2;
+    f.corrected_rel.push_back(r.area_corrected_mm2 / t.area_mm2 - 1.0);
+    f.z.push_back((r.area_corrected_mm2 - t.area_mm2) / r.area_corrected_sigma_mm2);
+  });
+  return f;
+}
+
+double MedianAbs(std::vector<double> v) {
+  for (double& x : v) x = std::abs(x);
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v.empty() ? NAN : v[v.size() / 2];
+}
+
+// Four walls the thresholds were not set on (seeds 5 to 8, the twin's
+// default wall: six layers whose beads overhang the one below). The
+// issue's bars for a wall: the material laid within 1 % over the run and
+// 3 % per profile (median), where what the sensor sees is 15-23 % over;
+// the corrected area's sigma a promise: its 95 % interval covers the
+// material laid in 90-98 % of the profiles, pooled (4800 rows; their
+// errors correlate along the path, so the band is not the binomial
+// one of independent rows).
+TEST(HiddenGroove, TheCorrectedAreaIsTheMaterialLaidWhereTheSeenAreaIsNot) {
+  int covered = 0, rows = 0;
+  for (uint64_t seed : {5u, 6u, 7u, 8u}) {
+    const GrooveFigures f = Figures(seed);
+    for (double z : f.z) covered += std::abs(z) < 1.96;
+    rows += static_cast<int>(f.z.size());
+    std::printf(
+        "wall seed %llu: over the run seen %+.2f %%, corrected %+.2f %%; per profile median |error| seen "
+        "%.2f %%, corrected %.2f %%\n",
+        static_cast<unsigned long long>(seed), 100 * (f.visible / f.laid - 1), 100 * (f.corrected / f.laid - 1),
+        100 * MedianAbs(f.visible_rel), 100 * MedianAbs(f.corrected_rel));
+    EXPECT_EQ(f.corrected_rows, f.rows) << seed;
+    EXPECT_LT(std::abs(f.corrected / f.laid - 1), 0.01) << seed;
+    EXPECT_LT(MedianAbs(f.corrected_rel), 0.03) << seed;
+    EXPECT_GT(f.visible / f.laid - 1, 0.05) << seed << ": the wall hides nothing; the test says nothing";
+  }
+  std::printf("95 %% intervals covering the material laid: %d of %d\n", covered, rows);
+  EXPECT_GE(covered, 0.90 * rows);
+  EXPECT_LE(covered, 0.98 * rows);
+}
+
+}  // namespace
+}  // namespace bead
