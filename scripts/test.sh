@@ -40,7 +40,7 @@ if [ "${BEAD_SKIP_SANITIZE:-0}" != "1" ]; then
   # added on a cold start); the others repeat its code paths.
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir build-asan --output-on-failure -j "$jobs" \
-      -E '^(ExplainRun\.(CleanRun|FindsAWrong|CoolingShrink|SensorLatency)|ExplainWarmRun\.|IntervalCoverage\.EachKind|OcclusionModule\.TheToolsLoadedFit|PartWall\.EachLayer|HiddenGroove\.)'
+      -E '^(ExplainRun\.(CleanRun|FindsAWrong|CoolingShrink|SensorLatency)|ExplainWarmRun\.|IntervalCoverage\.EachKind|OcclusionModule\.TheToolsLoadedFit|PartWall\.EachLayer|HiddenGroove\.|PartContour\.)'
   took "ASan+UBSan build and suite"
 fi
 

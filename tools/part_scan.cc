@@ -162,11 +162,13 @@ int FlowPartScan(const std::string& rig_path, const std::string& run, const std:
   const part::NozzleClock clock(*scan.log, run);
   part::PartFlowCsvWriter out(output);
   part::LayerVolumes volumes;
+  part::SpeedAndArea speeds;
   std::size_t unplaced = 0;
   MeasureSaying(rig_path, run, scan, bed, 0, [&](const part::PartGeometryRow& g) {
     const part::PartFlowRow row = part::FlowOf(g, clock);
     unplaced += std::isnan(row.t_s);
     volumes.Add(row);
+    speeds.Add(row);
     out.Append(row);
   });
   out.Commit();
@@ -177,6 +179,14 @@ int FlowPartScan(const std::string& rig_path, const std::string& run, const std:
     total += v;
   }
   std::printf("total volume %.1f mm^3 (the area integrated along the path, valid profiles)\n", total);
+  if (const part::CornerBulge b = speeds.Bulge(); b.slow)
+    std::printf(
+        "where the head slowed below 90 %% of its median speed (%zu profiles, %.1f against %.1f mm/s: corners), the "
+        "area is %+.1f %% over the rest and the flow %+.1f %%: %s\n",
+        b.slow, b.slow_speed_mm_s, b.rest_speed_mm_s, 100 * b.area_excess, 100 * b.flow_excess,
+        std::abs(b.flow_excess) < 0.5 * std::abs(b.area_excess)
+            ? "the extruder did not follow the head (the corner bulge, thesis 1.3.2)"
+            : "the extruder's flow followed the head's speed");
   if (unplaced)
     std::printf("  %zu profiles stand where the log never had the nozzle moving forward in their layer: no time\n",
                 unplaced);

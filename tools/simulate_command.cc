@@ -38,11 +38,14 @@ Run AddSimulate(CLI::App& app) {
       const sim::PartTwin twin = sim::SimulatePartWall(*part);
       sim::WritePartTwin(args->output, twin);
       const bool roads = part->roads > 1;
-      const std::string what = roads ? "a layer of " + std::to_string(part->roads) + " roads " +
-                                           std::to_string(part->road_spacing_mm).substr(0, 5) + " mm apart"
-                                     : "a wall of " + std::to_string(part->layers) + " layers";
-      std::printf("printed %s, %.0f mm long (seed %llu): %zu profiles, %zu log samples\n", what.c_str(),
-                  part->length_mm, static_cast<unsigned long long>(part->seed), twin.scan.profiles.size(),
+      const std::string what =
+          roads ? "a layer of " + std::to_string(part->roads) + " roads " +
+                      std::to_string(part->road_spacing_mm).substr(0, 5) + " mm apart"
+                : (part->shape == sim::PartTwinConfig::Shape::kContour ? "a contour with rounded corners, "
+                                                                       : "a wall, ") +
+                      std::to_string(part->layers) + " layers";
+      std::printf("printed %s, %.0f mm of path (seed %llu): %zu profiles, %zu log samples\n", what.c_str(),
+                  twin.path_length_mm, static_cast<unsigned long long>(part->seed), twin.scan.profiles.size(),
                   twin.scan.log ? twin.scan.log->size() : 0);
       std::printf("wrote %s/{part.h5, rig.yaml, truth.csv%s}\n", args->output.c_str(),
                   roads ? ", truth_roads.csv" : "");

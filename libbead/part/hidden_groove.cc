@@ -18,6 +18,7 @@ struct Ellipse {
     return std::abs(u) < 1.0 ? b * std::sqrt(1.0 - u * u) : 0.0;
   }
   double& operator[](std::size_t i) { return i == 0 ? x0 : i == 1 ? z0 : i == 2 ? a : b; }
+  double operator[](std::size_t i) const { return i == 0 ? x0 : i == 1 ? z0 : i == 2 ? a : b; }
 };
 
 // The points around the bead with the surface below under each.
@@ -50,37 +51,50 @@ double Groove(const Ellipse& e, const SurfaceGrid& below, double shift) {
   return sum;
 }
 
-void Keep(Ellipse& e, double min_a) { e.a = std::max(e.a, min_a), e.b = std::max(e.b, 1e-3); }
+// The parameters fitted: x0, z0, a, and b unless the aspect b / a is held
+// (the layer's pooled shape).
+struct Shape {
+  double min_a = 0.0;
+  double aspect = NAN;  // held where finite
+  std::size_t Params() const { return std::isfinite(aspect) ? 3 : 4; }
+  void Keep(Ellipse& e) const {
+    e.a = std::max(e.a, min_a), e.b = std::isfinite(aspect) ? aspect * e.a : std::max(e.b, 1e-3);
+  }
+};
+
+Eigen::MatrixXd Jacobian(const Window& w, const Ellipse& at, const Shape& shape) {
+  Eigen::MatrixXd J(static_cast<Eigen::Index>(w.x.size()), static_cast<Eigen::Index>(shape.Params()));
+  for (std::size_t i = 0; i < shape.Params(); ++i) {
+    Ellipse moved = at;
+    const double step = 1e-5 * std::max(1.0, std::abs(moved[i]));
+    moved[i] += step;
+    shape.Keep(moved);
+    for (std::size_t j = 0; j < w.x.size(); ++j)
+      J(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(i)) =
+          (Seen(moved, w.x[j], w.old[j]) - Seen(at, w.x[j], w.old[j])) / step;
+  }
+  return J;
+}
 
 // Levenberg-Marquardt from `e`; the Jacobian at the end in J.
-double Fit(const Window& w, Ellipse& e, double min_a, Eigen::MatrixXd& J) {
+double Fit(const Window& w, Ellipse& e, const Shape& shape, Eigen::MatrixXd& J) {
+  shape.Keep(e);
   double rss = Rss(w, e), lambda = 1e-3;
-  auto jacobian = [&](const Ellipse& at) {
-    J.resize(static_cast<Eigen::Index>(w.x.size()), 4);
-    for (std::size_t i = 0; i < 4; ++i) {
-      Ellipse moved = at;
-      const double step = 1e-5 * std::max(1.0, std::abs(moved[i]));
-      moved[i] += step;
-      for (std::size_t j = 0; j < w.x.size(); ++j)
-        J(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(i)) =
-            (Seen(moved, w.x[j], w.old[j]) - Seen(at, w.x[j], w.old[j])) / step;
-    }
-  };
   bool converged = false;
   for (int it = 0; it < 80 && !converged; ++it) {
-    jacobian(e);
+    J = Jacobian(w, e, shape);
     Eigen::VectorXd r(static_cast<Eigen::Index>(w.x.size()));
     for (std::size_t j = 0; j < w.x.size(); ++j) r[static_cast<Eigen::Index>(j)] = Seen(e, w.x[j], w.old[j]) - w.z[j];
-    const Eigen::Matrix4d JtJ = J.transpose() * J;
-    const Eigen::Vector4d g = J.transpose() * r;
+    const Eigen::MatrixXd JtJ = J.transpose() * J;
+    const Eigen::VectorXd g = J.transpose() * r;
     bool better = false;
     for (int tries = 0; tries < 8 && !better; ++tries) {
-      Eigen::Matrix4d A = JtJ;
+      Eigen::MatrixXd A = JtJ;
       A.diagonal() += lambda * (JtJ.diagonal().array() + 1e-12).matrix();
-      const Eigen::Vector4d step = A.ldlt().solve(-g);
+      const Eigen::VectorXd step = A.ldlt().solve(-g);
       Ellipse trial = e;
-      for (std::size_t i = 0; i < 4; ++i) trial[i] += step[static_cast<Eigen::Index>(i)];
-      Keep(trial, min_a);
+      for (std::size_t i = 0; i < shape.Params(); ++i) trial[i] += step[static_cast<Eigen::Index>(i)];
+      shape.Keep(trial);
       const double next = Rss(w, trial);
       if (std::isfinite(next) && next < rss) {
         converged = rss - next < 1e-10 * rss;
@@ -91,40 +105,62 @@ double Fit(const Window& w, Ellipse& e, double min_a, Eigen::MatrixXd& J) {
     }
     if (!better) break;
   }
-  jacobian(e);
+  J = Jacobian(w, e, shape);
   return rss;
 }
 
+// What the groove's sigma is made of beyond the fit's own covariance.
+struct Around {
+  const SurfaceGrid& below;
+  double shift, shift_sigma, spacing, aspect_sigma;
+  double noise_mm;  // one point's noise (the grid's variance is in its square)
+};
+
 // The groove's 1-sigma: the fit's covariance (s2 (J^T J)^-1) through the
 // groove's gradient; the surface below known to its own noise (its grid's
-// variance, one independent value per point spacing) and its place to the
-// shift's sigma, both moving the groove as much as the fit's own error
-// does. NaN where the fit cannot place the bead's sides (J^T J singular).
-double GrooveSigma(const Ellipse& e, const Eigen::MatrixXd& J, double s2, double groove, const SurfaceGrid& below,
-                   double shift, double shift_sigma, double spacing) {
-  Eigen::FullPivLU<Eigen::Matrix4d> lu(Eigen::Matrix4d(J.transpose() * J));
+// variance in one point's noise, one independent value per point spacing)
+// and its place to the
+// shift's sigma; a held aspect to its pooled sigma: each moves the groove
+// as the fit's own error does. NaN where the fit cannot place the bead's
+// sides (J^T J singular).
+double GrooveSigma(const Ellipse& e, const Shape& shape, const Eigen::MatrixXd& J, double s2, double groove,
+                   const Around& o) {
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(Eigen::MatrixXd(J.transpose() * J));
   if (!lu.isInvertible()) return NAN;
-  const Eigen::Matrix4d cov = s2 * lu.inverse();
-  Eigen::Vector4d grad;
-  for (std::size_t i = 0; i < 4; ++i) {
-    Ellipse moved = e;
-    const double step = 1e-4 * std::max(1.0, std::abs(moved[i]));
-    moved[i] += step;
-    grad[static_cast<Eigen::Index>(i)] = (Groove(moved, below, shift) - groove) / step;
+  const Eigen::MatrixXd cov = s2 * lu.inverse();
+  auto moved_by = [&](std::size_t i, double by) {
+    Ellipse m = e;
+    m[i] += by;
+    shape.Keep(m);
+    return Groove(m, o.below, o.shift);
+  };
+  Eigen::VectorXd grad(static_cast<Eigen::Index>(shape.Params()));
+  for (std::size_t i = 0; i < shape.Params(); ++i) {
+    const double step = 1e-4 * std::max(1.0, std::abs(e[i]));
+    grad[static_cast<Eigen::Index>(i)] = (moved_by(i, step) - groove) / step;
   }
   double below_var = 0.0;
-  const double step = std::max(below.dx_mm, spacing);
+  const double step = std::max(o.below.dx_mm, o.spacing);
   for (double at = e.x0 - e.a + 0.5 * step; at < e.x0 + e.a; at += step)
-    if (e.z0 - e.Half(at) > below.At(at - shift)) below_var += below.VarianceAt(at - shift) * step * step;
-  const double ds = std::max(1e-3, shift_sigma);
-  const double by_shift = (Groove(e, below, shift + ds) - Groove(e, below, shift - ds)) / (2.0 * ds) * shift_sigma;
-  return std::sqrt(std::max(0.0, grad.dot(cov * grad)) + below_var + by_shift * by_shift);
+    if (e.z0 - e.Half(at) > o.below.At(at - o.shift))
+      below_var += o.noise_mm * o.noise_mm * o.below.VarianceAt(at - o.shift) * step * step;
+  const double ds = std::max(1e-3, o.shift_sigma);
+  const double by_shift =
+      (Groove(e, o.below, o.shift + ds) - Groove(e, o.below, o.shift - ds)) / (2.0 * ds) * o.shift_sigma;
+  double by_aspect = 0.0;
+  if (std::isfinite(shape.aspect) && o.aspect_sigma > 0.0) {
+    Ellipse m = e;
+    m.b = (shape.aspect + o.aspect_sigma) * m.a;
+    by_aspect = Groove(m, o.below, o.shift) - groove;
+  }
+  return std::sqrt(std::max(0.0, grad.dot(cov * grad)) + below_var + by_shift * by_shift + by_aspect * by_aspect);
 }
 
 }  // namespace
 
 HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
-                                  double shift, double shift_sigma, double center, double width, double height) {
+                                  double shift, double shift_sigma, double noise_mm, double center, double width,
+                                  double height, const PooledAspect* pooled) {
   HiddenGroove out;
   if (!(width > 0.0) || !(height > 0.0)) return out;
   Window w;
@@ -136,6 +172,7 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   if (w.x.size() < 12) return out;
   const double spacing = (w.x.back() - w.x.front()) / static_cast<double>(w.x.size() - 1);
   const double base = below.At(center - shift);
+  Shape shape{2.0 * spacing, pooled ? pooled->aspect : NAN};
   // Started sunk to four depths (its centre on the surface below, a
   // quarter, half and three quarters of its height above) and two widths:
   // the least residual kept.
@@ -145,13 +182,15 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   for (double lift : {0.0, 0.25, 0.5, 0.75})
     for (double across : {0.5, 0.6}) {
       Ellipse e{center, base + lift * height, across * width, height * (1.0 - lift)};
-      const double rss = Fit(w, e, 2.0 * spacing, J);
+      const double rss = Fit(w, e, shape, J);
       if (rss < best_rss) best_rss = rss, best = e, best_J = J;
     }
   out.fit_rms_mm = std::sqrt(best_rss / static_cast<double>(w.x.size()));
+  out.aspect = best.b / best.a;
   out.hidden_mm2 = Groove(best, below, shift);
-  const double dof = static_cast<double>(w.x.size()) - 4.0;
-  out.sigma_mm2 = GrooveSigma(best, best_J, best_rss / dof, out.hidden_mm2, below, shift, shift_sigma, spacing);
+  const double dof = static_cast<double>(w.x.size()) - static_cast<double>(shape.Params());
+  const Around around{below, shift, shift_sigma, spacing, pooled ? pooled->sigma : 0.0, noise_mm};
+  out.sigma_mm2 = GrooveSigma(best, shape, best_J, best_rss / dof, out.hidden_mm2, around);
   out.ok = std::isfinite(out.hidden_mm2) && std::isfinite(out.sigma_mm2);
   return out;
 }

@@ -31,13 +31,25 @@ struct HiddenGroove {
   double hidden_mm2 = kNaN;  // the groove under the overhangs
   double sigma_mm2 = kNaN;   // its 1-sigma from the fit
   double fit_rms_mm = kNaN;
+  double aspect = kNaN;  // the ellipse's b / a
+};
+
+// The layer's beads' shape, pooled: the median aspect b / a of the free
+// fits on its first profiles and its standard error (one material, one
+// process: the wheel's pooled occlusion carried over). Held, it leaves the
+// fit the bead's place, depth and size.
+struct PooledAspect {
+  double aspect = HiddenGroove::kNaN, sigma = 0.0;
 };
 
 // x, z: the profile's valid points in the bed frame (x increasing); below:
 // the surface before it, moved by `shift` (z_below(x) = below.At(x - shift))
-// known to shift_sigma (0 where not registered); center, width, height:
-// the bead as part/added_bead.h measured it.
+// known to shift_sigma (0 where not registered), its variance in units of
+// noise_mm^2 (surface_below.h); center, width, height:
+// the bead as part/added_bead.h measured it; pooled: the layer's aspect to
+// hold (nullptr: fitted here).
 HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
-                                  double shift, double shift_sigma, double center, double width, double height);
+                                  double shift, double shift_sigma, double noise_mm, double center, double width,
+                                  double height, const PooledAspect* pooled = nullptr);
 
 }  // namespace bead::part

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <optional>
 #include <string>
 
 #include "libbead/core/error.h"
@@ -112,15 +113,22 @@ class PartMeasurer {
     }
     if (under && row.bead.valid() && options_.correct_hidden) {
       const double shift_sigma = std::isfinite(row.bead.shift_sigma_mm) ? row.bead.shift_sigma_mm : 0.0;
+      if (row.layer != aspects_layer_) aspects_.clear(), pooled_.reset(), aspects_layer_ = row.layer;
       const HiddenGroove g = EstimateHiddenGroove(mine.x_mm, mine.z_mm, *under, row.bead.shift_mm, shift_sigma,
-                                                  row.bead.center_x_mm, row.bead.width_mm, row.bead.height_mm);
+                                                  row.bead.noise_mm, row.bead.center_x_mm, row.bead.width_mm,
+                                                  row.bead.height_mm, pooled_ ? &*pooled_ : nullptr);
+      if (!pooled_ && g.ok) Pool(g.aspect);
       // The visible area's own sampling beside the groove's: each of its
       // four walls (two of the new surface, two of the old) placed within
       // a point spacing, as high as the bead: (spacing h)^2 / 3.
       const double sampled = 8.0 * GridStep(mine) * row.bead.height_mm;
-      if (g.ok)
-        row.area_corrected_mm2 = row.bead.area_mm2 - g.hidden_mm2,
-        row.area_corrected_sigma_mm2 = std::sqrt(g.sigma_mm2 * g.sigma_mm2 + sampled * sampled / 3.0);
+      const double corrected = row.bead.area_mm2 - g.hidden_mm2;
+      const double sigma = std::sqrt(g.sigma_mm2 * g.sigma_mm2 + sampled * sampled / 3.0);
+      // Written only where it means something: material left, and known to
+      // better than half of it (else the ellipse did not find the bead's
+      // sides: the row keeps the area seen, and no correction).
+      if (g.ok && corrected > 0.0 && sigma < 0.5 * corrected)
+        row.area_corrected_mm2 = corrected, row.area_corrected_sigma_mm2 = sigma;
     }
     // Several beads over the surface below, at the shift the layer's
     // registration found (its truncated cost holds any number of beads).
@@ -137,6 +145,22 @@ class PartMeasurer {
   MeasurePartOptions options_;
   ProfileProcessor processor_;
   SurfaceBelow below_;
+  // The layer's first free fits' aspects, then their pool, held.
+  void Pool(double aspect) {
+    aspects_.push_back(aspect);
+    if (aspects_.size() < kPoolProfiles) return;
+    std::vector<double> v = aspects_;
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    const double median = v[v.size() / 2];
+    for (double& a : v) a = std::abs(a - median);
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    // The median's standard error: sqrt(pi / 2) sigma / sqrt(n), sigma from the MAD.
+    pooled_ = PooledAspect{median, 1.2533 * 1.4826 * v[v.size() / 2] / std::sqrt(static_cast<double>(v.size()))};
+  }
+  static constexpr std::size_t kPoolProfiles = 25;
+  std::vector<double> aspects_;
+  std::optional<PooledAspect> pooled_;
+  int64_t aspects_layer_ = -1;
   bool has_warm_ = false;  // the last found shift of this pass, to search from
   double warm_ = 0.0;
   int64_t warm_layer_ = -1;

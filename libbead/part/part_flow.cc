@@ -76,4 +76,31 @@ void LayerVolumes::Add(const PartFlowRow& r) {
   last_[r.layer] = {r.path_mm, area};
 }
 
+void SpeedAndArea::Add(const PartFlowRow& row) {
+  if (!row.valid || !(row.head_speed_mm_s > 0.0)) return;
+  speed_.push_back(row.head_speed_mm_s);
+  area_.push_back(std::isnan(row.area_corrected_mm2) ? row.area_mm2 : row.area_corrected_mm2);
+  flow_.push_back(row.flow_mm3_s);
+}
+
+CornerBulge SpeedAndArea::Bulge(double fraction) const {
+  CornerBulge b;
+  if (speed_.empty()) return b;
+  std::vector<double> v = speed_;
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  const double limit = fraction * v[v.size() / 2];
+  double area[2] = {0, 0}, flow[2] = {0, 0}, speed[2] = {0, 0};
+  std::size_t n[2] = {0, 0};
+  for (std::size_t i = 0; i < speed_.size(); ++i) {
+    const int k = speed_[i] < limit ? 0 : 1;
+    ++n[k], area[k] += area_[i], flow[k] += flow_[i], speed[k] += speed_[i];
+  }
+  b.slow = n[0], b.rest = n[1];
+  if (!n[0] || !n[1]) return b;
+  b.slow_speed_mm_s = speed[0] / n[0], b.rest_speed_mm_s = speed[1] / n[1];
+  b.area_excess = (area[0] / n[0]) / (area[1] / n[1]) - 1.0;
+  b.flow_excess = (flow[0] / n[0]) / (flow[1] / n[1]) - 1.0;
+  return b;
+}
+
 }  // namespace bead::part

@@ -69,4 +69,25 @@ class LayerVolumes {
   std::map<int64_t, std::pair<double, double>> last_;  // path, area of the layer's last valid row
 };
 
+// Where the head slowed (a corner) against where it did not: the thesis'
+// corner bulge (1.3.2: the gantry slows into a corner with the extruder's
+// command unchanged, so the bead grows there). Rows slower than `fraction`
+// of the median head speed are the slow ones.
+struct CornerBulge {
+  std::size_t slow = 0, rest = 0;
+  double slow_speed_mm_s = 0.0, rest_speed_mm_s = 0.0;  // mean
+  double area_excess = 0.0;                             // mean area slow / rest - 1
+  double flow_excess = 0.0;                             // mean flow slow / rest - 1
+};
+
+class SpeedAndArea {
+ public:
+  void Add(const PartFlowRow& row);
+  // Nothing slow (a straight wall at one speed): slow = 0.
+  CornerBulge Bulge(double fraction = 0.9) const;
+
+ private:
+  std::vector<double> speed_, area_, flow_;  // the valid rows'
+};
+
 }  // namespace bead::part

@@ -95,6 +95,7 @@ AcquisitionLog RoadsLog(const PartTwinConfig& c, const RoadPrinter& printer, dou
 PartTwin SimulateRoadLayer(const PartTwinConfig& c) {
   PartTwin twin;
   RoadPrinter printer(c);
+  twin.path_length_mm = c.length_mm;
   RunArchive& scan = twin.scan;
   scan.part.emplace();
   ProfileBlock& b = scan.profiles;

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <random>
 
+#include "libbead/sim/head_path.h"
 #include "libbead/sim/laid_surface.h"
 
 namespace bead::sim {
@@ -12,7 +13,7 @@ namespace {
 
 class WallPrinter {
  public:
-  explicit WallPrinter(const PartTwinConfig& c) : c_(c), rng_(c.seed) {
+  explicit WallPrinter(const PartTwinConfig& c) : c_(c), head_(c), rng_(c.seed) {
     std::normal_distribution<double> wander(0.0, c.wander_sigma_mm), shift(0.0, c.pass_shift_sigma_mm);
     std::uniform_real_distribution<double> phase(0.0, 1.0);
     for (int n = 0; n < c.layers; ++n) {
@@ -25,11 +26,21 @@ class WallPrinter {
   double Shift(int n) const { return shift_[n]; }
   double Phase(int n) const { return phase_[n]; }
 
-  // The bead of layer n at path p: its area and its centre in the bed frame.
+  const HeadPath& head() const { return head_; }
+
+  // The extruder's flow while the nozzle lays layer n at path p, mm^3/s:
+  // the area wave at the nominal speed, whatever the head's speed there.
+  double FlowAt(int n, double p) const {
+    const double two_pi = 2.0 * std::numbers::pi;
+    return c_.head_speed_mm_s * (c_.area_mm2 + c_.area_wave_mm2 * std::sin(two_pi * p / c_.wave_period_mm + 0.7 * n));
+  }
+
+  // The bead of layer n at path p: its area (the flow over the head's
+  // speed: more where it slows at a corner) and its centre in the bed frame.
   Layer LayerAt(int n, double p) const {
     const double two_pi = 2.0 * std::numbers::pi;
     Layer l;
-    l.area = c_.area_mm2 + c_.area_wave_mm2 * std::sin(two_pi * p / c_.wave_period_mm + 0.7 * n);
+    l.area = FlowAt(n, p) / head_.SpeedAt(p);
     l.center = shift_[n] + wander_[n] + 0.1 * std::sin(two_pi * p / 60.0 + 1.3 * n);
     return l;
   }
@@ -46,7 +57,9 @@ class WallPrinter {
       bed.z[k] = std::sqrt(std::max(r * r - x * x, 0.0)) - r;
     }
     std::vector<Surface> stack{bed};
-    const double a = 0.5 * c_.width_mm, b = c_.aspect * a;
+    // Where the head slows, the bead spreads: its ellipse grows with the
+    // material per length it gets (as the square root: the same shape).
+    const double a = 0.5 * c_.width_mm * std::sqrt(c_.head_speed_mm_s / head_.SpeedAt(p)), b = c_.aspect * a;
     for (int k = 0; k <= n; ++k) stack.push_back(Lay(stack.back(), LayerAt(k, p), a, b));
     return stack;
   }
@@ -55,6 +68,7 @@ class WallPrinter {
 
  private:
   const PartTwinConfig& c_;
+  HeadPath head_;
   std::mt19937_64 rng_;
   std::vector<double> wander_, shift_, phase_;
 };
@@ -92,13 +106,15 @@ PartTwin SimulatePartWall(const PartTwinConfig& c) {
   b.points = static_cast<std::size_t>(std::lround(2.0 * c.field_half_mm / c.point_spacing_mm)) + 1;
   for (std::size_t j = 0; j < b.points; ++j)
     b.x_mm.push_back(static_cast<float>(-c.field_half_mm + static_cast<double>(j) * c.point_spacing_mm));
-  const double pass_s = (c.length_mm + c.trail_mm) / c.head_speed_mm_s, layer_s = pass_s + c.return_s;
+  const HeadPath& head = printer.head();
+  const double length = head.length_mm(), pass_s = head.pass_s(), layer_s = pass_s + c.return_s;
+  twin.path_length_mm = length;
   const double pitch = c.area_mm2 / c.width_mm;
   for (int n = 0; n < c.layers; ++n) {
     const double frame_z = n * pitch + c.standoff_mm;
-    for (double p = printer.Phase(n) * c.profile_spacing_mm; p <= c.length_mm; p += c.profile_spacing_mm) {
+    for (double p = printer.Phase(n) * c.profile_spacing_mm; p <= length; p += c.profile_spacing_mm) {
       const std::vector<Surface> stack = printer.Stack(n, p);
-      b.t_s.push_back(n * layer_s + (p + c.trail_mm) / c.head_speed_mm_s);
+      b.t_s.push_back(n * layer_s + head.TimeAt(p + c.trail_mm));
       b.encoder.push_back(0);
       for (std::size_t j = 0; j < b.points; ++j)
         b.z_mm.push_back(static_cast<float>(stack.back().At(b.x_mm[j] + printer.Shift(n)) - frame_z + printer.Noise()));
@@ -114,18 +130,18 @@ PartTwin SimulatePartWall(const PartTwinConfig& c) {
     const int n = static_cast<int>(t / layer_s);
     const double into = t - n * layer_s;
     const bool printing = into < pass_s;
-    const double path =
-        printing ? into * c.head_speed_mm_s : (c.length_mm + c.trail_mm) * (1.0 - (into - pass_s) / c.return_s);
-    const bool extruding = printing && path <= c.length_mm;
+    const double path = printing ? head.PathAt(into) : (length + c.trail_mm) * (1.0 - (into - pass_s) / c.return_s);
+    const bool extruding = printing && path <= length;
     log.t_s.push_back(t);
     log.layer.push_back(n);
     log.path_mm.push_back(path);
-    log.head_speed_mm_s.push_back(printing ? c.head_speed_mm_s : -(c.length_mm + c.trail_mm) / c.return_s);
-    const double q = extruding ? printer.LayerAt(n, path).area * c.head_speed_mm_s : 0.0;
+    log.head_speed_mm_s.push_back(printing ? head.SpeedAt(path) : -(length + c.trail_mm) / c.return_s);
+    const double q = extruding ? printer.FlowAt(n, path) : 0.0;
     log.screw_rpm.push_back(60.0 * q / c.displacement_mm3_per_rev);
   }
   scan.log = std::move(log);
-  scan.attributes["rig"] = "twin part: straight wall";
+  scan.attributes["rig"] = c.shape == PartTwinConfig::Shape::kContour ? "twin part: a contour with rounded corners"
+                                                                      : "twin part: straight wall";
   twin.rig.name = "twin-part";
   twin.rig.has_wheel = false;
   twin.rig.part = PartBed{};

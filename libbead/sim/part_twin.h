@@ -22,15 +22,23 @@
 namespace bead::sim {
 
 struct PartTwinConfig {
+  // A straight wall, or a closed contour with rounded corners (a rounded
+  // rectangle contour_length_mm x contour_width_mm) that the head takes
+  // slower while the extruder's flow goes on (the corner bulge).
+  enum class Shape { kWall, kContour };
+  Shape shape = Shape::kWall;
+  double contour_length_mm = 100.0, contour_width_mm = 60.0, corner_radius_mm = 5.0;
+  double lateral_accel_mm_s2 = 40.0;     // through a corner: v^2 / R at most this
+  double tangential_accel_mm_s2 = 50.0;  // slowing into it and speeding out
   int layers = 6;
-  double length_mm = 100.0;       // the wall's toolpath
-  double head_speed_mm_s = 20.0;  // along the path, while printing
+  double length_mm = 100.0;       // the wall's toolpath (a contour's is its perimeter)
+  double head_speed_mm_s = 20.0;  // along the path, while printing (a contour's straights)
   double return_s = 2.0;          // travel back to the start between layers
   double profile_spacing_mm = 0.5;
   double trail_mm = 30.0;            // the laser line behind the nozzle, along the path
   double width_mm = 6.0;             // the bead's ellipse, full width ...
   double aspect = 0.5;               // ... and half-height over half-width
-  double area_mm2 = 12.0;            // the material a layer adds, mean ...
+  double area_mm2 = 12.0;            // the material a layer adds, mean (a contour: on its straights) ...
   double area_wave_mm2 = 2.0;        // ... a wave along the path of this amplitude ...
   double wave_period_mm = 40.0;      // ... and period
   double wander_sigma_mm = 0.3;      // the bead's centre off the head's line, per layer
@@ -80,6 +88,7 @@ struct PartTwin {
   Rig rig;                                // no wheel; the bed's reference areas; part: flat
   std::vector<PartTruthRow> truth;        // one per profile, in the scan's order
   std::vector<PartRoadTruth> road_truth;  // a layer of roads: one per road and profile
+  double path_length_mm = 0.0;            // a layer's toolpath (a contour's perimeter)
 };
 
 // The wall, the pipe, or (config.roads > 1) a layer of roads.

@@ -1,5 +1,6 @@
 #include "libbead/sim/part_twin_io.h"
 
+#include <algorithm>
 #include <filesystem>
 
 #include "libbead/io/atomic_file.h"
@@ -36,10 +37,26 @@ void ParsePart(const YAML::Node& root, const Reader& r, PartTwinConfig& c) {
                                   "displacement_mm3_per_rev",
                                   "bed_radius_mm",
                                   "roads",
-                                  "road_spacing_mm"});
-  if (p["shape"].IsDefined() && r.Text(p["shape"], "part.shape") != "wall")
-    r.Fail(p["shape"], "part.shape", "is '" + p["shape"].Scalar() + "': this version's twin prints a wall");
+                                  "road_spacing_mm",
+                                  "contour_length_mm",
+                                  "contour_width_mm",
+                                  "corner_radius_mm",
+                                  "lateral_accel_mm_s2",
+                                  "tangential_accel_mm_s2"});
   const std::string at = "part.";
+  if (p["shape"].IsDefined()) {
+    const std::string shape = r.Text(p["shape"], "part.shape");
+    if (shape != "wall" && shape != "contour")
+      r.Fail(p["shape"], "part.shape", "is '" + shape + "': the twin prints a wall or a contour");
+    if (shape == "contour") c.shape = PartTwinConfig::Shape::kContour;
+  }
+  r.Get(p, at, "contour_length_mm", c.contour_length_mm, 1.0, 1e5);
+  r.Get(p, at, "contour_width_mm", c.contour_width_mm, 1.0, 1e5);
+  r.Get(p, at, "corner_radius_mm", c.corner_radius_mm, 0.1, 1e4);
+  r.Get(p, at, "lateral_accel_mm_s2", c.lateral_accel_mm_s2, 1e-3, 1e6);
+  r.Get(p, at, "tangential_accel_mm_s2", c.tangential_accel_mm_s2, 1e-3, 1e6);
+  if (2.0 * c.corner_radius_mm > std::min(c.contour_length_mm, c.contour_width_mm))
+    r.Fail(p["corner_radius_mm"], at + "corner_radius_mm", "must be at most half the contour's shorter side");
   r.GetInt(p, at, "layers", c.layers, 1, 200);
   r.Get(p, at, "length_mm", c.length_mm, 1.0, 1e5);
   r.Get(p, at, "head_speed_mm_s", c.head_speed_mm_s, 0.1, 1e4);
