@@ -33,15 +33,19 @@ void Rate(benchmark::State& state, std::size_t profiles) {
   state.counters["points"] = static_cast<double>(Wall().scan.profiles.points);
 }
 
-// Every profile of the wall, each layer against the one below.
+// Every profile of the wall, each layer against the one below; with the
+// groove hidden under the overhangs estimated (range 1: the default) or
+// not (0: the area seen only).
 void BM_PartProfile(benchmark::State& state) {
   const bead::sim::PartTwin& twin = Wall();
+  bead::part::MeasurePartOptions options;
+  options.correct_hidden = state.range(0) != 0;
   std::size_t valid = 0;
   for (auto _ : state) {
     state.PauseTiming();
     bead::ProfileStream stream("wall", twin.scan.profiles);
     state.ResumeTiming();
-    bead::part::MeasurePart(stream, *twin.scan.part, twin.rig, {},
+    bead::part::MeasurePart(stream, *twin.scan.part, twin.rig, options,
                             [&](const bead::part::PartGeometryRow& r) { valid += r.bead.valid(); });
   }
   benchmark::DoNotOptimize(valid);
@@ -61,7 +65,7 @@ void BM_WheelProfileOnThePart(benchmark::State& state) {
   Rate(state, b.size());
 }
 
-BENCHMARK(BM_PartProfile)->Repetitions(5)->MinTime(0.5)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PartProfile)->Arg(1)->Arg(0)->Repetitions(5)->MinTime(0.5)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelProfileOnThePart)->Repetitions(5)->MinTime(0.5)->Unit(benchmark::kMillisecond);
 
 }  // namespace

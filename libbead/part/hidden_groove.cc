@@ -6,6 +6,8 @@
 #include <cmath>
 #include <vector>
 
+#include "libbead/part/least_squares.h"
+
 namespace bead::part {
 namespace {
 
@@ -31,15 +33,6 @@ double Seen(const Ellipse& e, double x, double old) {
   return h > 0.0 ? std::max(old, e.z0 + h) : old;
 }
 
-double Rss(const Window& w, const Ellipse& e) {
-  double rss = 0.0;
-  for (std::size_t j = 0; j < w.x.size(); ++j) {
-    const double r = Seen(e, w.x[j], w.old[j]) - w.z[j];
-    rss += r * r;
-  }
-  return rss;
-}
-
 // The groove: the ellipse's lower outline above the surface below.
 double Groove(const Ellipse& e, const SurfaceGrid& below, double shift) {
   const double step = std::max(below.dx_mm, e.a / 400.0);
@@ -62,51 +55,30 @@ struct Shape {
   }
 };
 
-Eigen::MatrixXd Jacobian(const Window& w, const Ellipse& at, const Shape& shape) {
-  Eigen::MatrixXd J(static_cast<Eigen::Index>(w.x.size()), static_cast<Eigen::Index>(shape.Params()));
-  for (std::size_t i = 0; i < shape.Params(); ++i) {
-    Ellipse moved = at;
-    const double step = 1e-5 * std::max(1.0, std::abs(moved[i]));
-    moved[i] += step;
-    shape.Keep(moved);
-    for (std::size_t j = 0; j < w.x.size(); ++j)
-      J(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(i)) =
-          (Seen(moved, w.x[j], w.old[j]) - Seen(at, w.x[j], w.old[j])) / step;
-  }
-  return J;
-}
-
 // Levenberg-Marquardt from `e`; the Jacobian at the end in J.
 double Fit(const Window& w, Ellipse& e, const Shape& shape, Eigen::MatrixXd& J) {
-  shape.Keep(e);
-  double rss = Rss(w, e), lambda = 1e-3;
-  bool converged = false;
-  for (int it = 0; it < 80 && !converged; ++it) {
-    J = Jacobian(w, e, shape);
-    Eigen::VectorXd r(static_cast<Eigen::Index>(w.x.size()));
-    for (std::size_t j = 0; j < w.x.size(); ++j) r[static_cast<Eigen::Index>(j)] = Seen(e, w.x[j], w.old[j]) - w.z[j];
-    const Eigen::MatrixXd JtJ = J.transpose() * J;
-    const Eigen::VectorXd g = J.transpose() * r;
-    bool better = false;
-    for (int tries = 0; tries < 8 && !better; ++tries) {
-      Eigen::MatrixXd A = JtJ;
-      A.diagonal() += lambda * (JtJ.diagonal().array() + 1e-12).matrix();
-      const Eigen::VectorXd step = A.ldlt().solve(-g);
-      Ellipse trial = e;
-      for (std::size_t i = 0; i < shape.Params(); ++i) trial[i] += step[static_cast<Eigen::Index>(i)];
-      shape.Keep(trial);
-      const double next = Rss(w, trial);
-      if (std::isfinite(next) && next < rss) {
-        converged = rss - next < 1e-10 * rss;
-        e = trial, rss = next, lambda = std::max(lambda * 0.3, 1e-9), better = true;
-      } else {
-        lambda *= 10.0;
-      }
-    }
-    if (!better) break;
-  }
-  J = Jacobian(w, e, shape);
-  return rss;
+  auto to_ellipse = [&](const Eigen::VectorXd& v) {
+    Ellipse m = e;
+    for (std::size_t i = 0; i < shape.Params(); ++i) m[i] = v[static_cast<Eigen::Index>(i)];
+    shape.Keep(m);
+    return m;
+  };
+  LeastSquares problem;
+  problem.residuals = [&](const Eigen::VectorXd& v, Eigen::VectorXd& r) {
+    const Ellipse m = to_ellipse(v);
+    r.resize(static_cast<Eigen::Index>(w.x.size()));
+    for (std::size_t j = 0; j < w.x.size(); ++j) r[static_cast<Eigen::Index>(j)] = Seen(m, w.x[j], w.old[j]) - w.z[j];
+  };
+  problem.keep = [&](Eigen::VectorXd& v) {
+    const Ellipse m = to_ellipse(v);
+    for (std::size_t i = 0; i < shape.Params(); ++i) v[static_cast<Eigen::Index>(i)] = m[i];
+  };
+  Eigen::VectorXd start(static_cast<Eigen::Index>(shape.Params()));
+  for (std::size_t i = 0; i < shape.Params(); ++i) start[static_cast<Eigen::Index>(i)] = e[i];
+  LeastSquaresFit fit = Minimise(problem, start);
+  e = to_ellipse(fit.p);
+  J = std::move(fit.J);
+  return fit.rss;
 }
 
 // What the groove's sigma is made of beyond the fit's own covariance.

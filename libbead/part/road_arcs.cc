@@ -1,8 +1,9 @@
 #include "libbead/part/road_arcs.h"
 
-#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+
+#include "libbead/part/least_squares.h"
 
 namespace bead::part {
 
@@ -25,55 +26,31 @@ double LayeredAt(std::span<const Arc> arcs, double x) {
 
 namespace {
 
-double Rss(std::span<const double> x, std::span<const double> d, std::span<const Arc> arcs) {
-  double rss = 0.0;
-  for (std::size_t j = 0; j < x.size(); ++j) {
-    const double e = LayeredAt(arcs, x[j]) - d[j];
-    rss += e * e;
+// The parameters: x0, h, a of each arc in turn, then the shared aspect
+// and, when free, the shared exponent.
+Eigen::VectorXd ToVector(const std::vector<Arc>& arcs, bool free_exponent) {
+  Eigen::VectorXd v(static_cast<Eigen::Index>(3 * arcs.size() + 1 + free_exponent));
+  for (std::size_t i = 0; i < arcs.size(); ++i)
+    v.segment(static_cast<Eigen::Index>(3 * i), 3) << arcs[i].x0, arcs[i].h, arcs[i].a;
+  v[static_cast<Eigen::Index>(3 * arcs.size())] = arcs.front().k;
+  if (free_exponent) v[static_cast<Eigen::Index>(3 * arcs.size() + 1)] = arcs.front().p;
+  return v;
+}
+
+// The arcs at v, kept where an arc means something: a positive height, a
+// half-width of a few points at least, the aspect within [0.02, 50] and
+// the exponent within [1.2, 12] (from nearly a cone to nearly a box), the
+// same for all.
+void FromVector(const Eigen::VectorXd& v, double min_a, double min_h, std::vector<Arc>& arcs) {
+  const std::size_t n = arcs.size();
+  const double k = std::clamp(v[static_cast<Eigen::Index>(3 * n)], 0.02, 50.0);
+  const double p = static_cast<std::size_t>(v.size()) > 3 * n + 1
+                       ? std::clamp(v[static_cast<Eigen::Index>(3 * n + 1)], 1.2, 12.0)
+                       : std::clamp(arcs.front().p, 1.2, 12.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto at = static_cast<Eigen::Index>(3 * i);
+    arcs[i] = Arc{v[at], std::max(v[at + 1], min_h), std::max(v[at + 2], min_a), k, p};
   }
-  return rss;
-}
-
-// The parameters kept where an arc means something: a positive height and
-// a chord of a few points at least.
-// The aspect within [0.02, 50] and the exponent within [1.2, 12] (from
-// nearly a cone to nearly a box), the same for all: the first's.
-void Clamp(std::vector<Arc>& arcs, double min_a, double min_h) {
-  const double k = std::clamp(arcs.front().k, 0.02, 50.0), p = std::clamp(arcs.front().p, 1.2, 12.0);
-  for (Arc& a : arcs) a.h = std::max(a.h, min_h), a.a = std::max(a.a, min_a), a.k = k, a.p = p;
-}
-
-// Parameter i: x0, h, a of each arc in turn, then the shared aspect and
-// exponent (held in the first arc; Clamp hands them to the others).
-std::size_t Params(const std::vector<Arc>& arcs, bool free_exponent) { return 3 * arcs.size() + 1 + free_exponent; }
-double& Param(std::vector<Arc>& arcs, std::size_t i) {
-  if (i == 3 * arcs.size()) return arcs.front().k;
-  if (i == 3 * arcs.size() + 1) return arcs.front().p;
-  Arc& a = arcs[i / 3];
-  return i % 3 == 0 ? a.x0 : (i % 3 == 1 ? a.h : a.a);
-}
-
-// The shared parameters handed from the first arc to the others.
-void Share(std::vector<Arc>& arcs) {
-  for (Arc& a : arcs) a.k = arcs.front().k, a.p = arcs.front().p;
-}
-
-// Forward differences of the residuals (the max of arcs has kinks where
-// two meet: a difference across one is still the slope of one side).
-Eigen::MatrixXd Jacobian(std::span<const double> x, const std::vector<Arc>& arcs, const Eigen::VectorXd& base,
-                         std::size_t params) {
-  Eigen::MatrixXd J(x.size(), params);
-  std::vector<Arc> moved = arcs;
-  for (std::size_t i = 0; i < params; ++i) {
-    double& p = Param(moved, i);
-    const double keep = p, step = 1e-4 * std::max(1.0, std::abs(keep));
-    p = keep + step;
-    Share(moved);
-    for (std::size_t j = 0; j < x.size(); ++j) J(j, i) = (LayeredAt(moved, x[j]) - base[j]) / step;
-    p = keep;
-    Share(moved);
-  }
-  return J;
 }
 
 }  // namespace
@@ -82,41 +59,21 @@ ArcFit FitArcs(std::span<const double> x, std::span<const double> d, std::vector
                bool free_exponent) {
   ArcFit fit;
   fit.arcs = std::move(start);
-  if (fit.arcs.empty()) return fit;
-  Clamp(fit.arcs, min_a, min_h);
-  const std::size_t params = Params(fit.arcs, free_exponent);
-  if (x.size() < params + 1) return fit;
-  fit.rss = Rss(x, d, fit.arcs);
-  double lambda = 1e-3;
-  bool converged = false;
-  for (int it = 0; it < 60 && !converged; ++it) {
-    Eigen::VectorXd surface(x.size()), r(x.size());
-    for (std::size_t j = 0; j < x.size(); ++j) surface[j] = LayeredAt(fit.arcs, x[j]), r[j] = surface[j] - d[j];
-    const Eigen::MatrixXd J = Jacobian(x, fit.arcs, surface, params);
-    const Eigen::MatrixXd JtJ = J.transpose() * J;
-    const Eigen::VectorXd g = J.transpose() * r;
-    bool better = false;
-    for (int tries = 0; tries < 8 && !better; ++tries) {
-      Eigen::MatrixXd A = JtJ;
-      A.diagonal() += lambda * (JtJ.diagonal().array() + 1e-12).matrix();
-      const Eigen::VectorXd step = A.ldlt().solve(-g);
-      std::vector<Arc> trial = fit.arcs;
-      for (std::size_t i = 0; i < params; ++i) Param(trial, i) += step[i];
-      Clamp(trial, min_a, min_h);
-      const double rss = Rss(x, d, trial);
-      if (std::isfinite(rss) && rss < fit.rss) {
-        const double gain = fit.rss - rss;
-        fit.arcs = std::move(trial);
-        fit.rss = rss;
-        lambda = std::max(lambda * 0.3, 1e-9);
-        better = true;
-        converged = gain < 1e-10 * fit.rss;
-      } else {
-        lambda *= 10.0;
-      }
-    }
-    if (!better) break;
-  }
+  if (fit.arcs.empty() || x.size() < 3 * fit.arcs.size() + 3) return fit;
+  std::vector<Arc> scratch = fit.arcs;
+  LeastSquares problem;
+  problem.residuals = [&](const Eigen::VectorXd& v, Eigen::VectorXd& r) {
+    FromVector(v, min_a, min_h, scratch);
+    r.resize(static_cast<Eigen::Index>(x.size()));
+    for (std::size_t j = 0; j < x.size(); ++j) r[static_cast<Eigen::Index>(j)] = LayeredAt(scratch, x[j]) - d[j];
+  };
+  problem.keep = [&](Eigen::VectorXd& v) {
+    FromVector(v, min_a, min_h, scratch);
+    v = ToVector(scratch, free_exponent);
+  };
+  const LeastSquaresFit result = Minimise(problem, ToVector(fit.arcs, free_exponent), 60);
+  FromVector(result.p, min_a, min_h, fit.arcs);
+  fit.rss = result.rss;
   fit.ok = std::isfinite(fit.rss);
   return fit;
 }

@@ -99,9 +99,7 @@ PartTwin SimulateRoadLayer(const PartTwinConfig& c) {
   RunArchive& scan = twin.scan;
   scan.part.emplace();
   ProfileBlock& b = scan.profiles;
-  b.points = static_cast<std::size_t>(std::lround(2.0 * c.field_half_mm / c.point_spacing_mm)) + 1;
-  for (std::size_t j = 0; j < b.points; ++j)
-    b.x_mm.push_back(static_cast<float>(-c.field_half_mm + static_cast<double>(j) * c.point_spacing_mm));
+  SetProfilerPoints(c, b);
   const double pass_s = c.length_mm / c.head_speed_mm_s, scan_from_s = c.roads * (pass_s + c.return_s);
   for (double p = printer.Phase() * c.profile_spacing_mm; p <= c.length_mm; p += c.profile_spacing_mm) {
     const std::size_t profile = b.t_s.size();
@@ -122,11 +120,7 @@ PartTwin SimulateRoadLayer(const PartTwinConfig& c) {
   }
   scan.log = RoadsLog(c, printer, pass_s);
   scan.attributes["rig"] = "twin part: a layer of roads";
-  twin.rig.name = "twin-roads";
-  twin.rig.has_wheel = false;
-  twin.rig.part = PartBed{};
-  twin.rig.reference_left = {-c.field_half_mm, -c.field_half_mm + 5.0};
-  twin.rig.reference_right = {c.field_half_mm - 5.0, c.field_half_mm};
+  twin.rig = PartTwinRig(c, "twin-roads");
   return twin;
 }
 

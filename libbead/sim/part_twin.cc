@@ -103,9 +103,7 @@ PartTwin SimulatePartWall(const PartTwinConfig& c) {
   RunArchive& scan = twin.scan;
   scan.part.emplace();
   ProfileBlock& b = scan.profiles;
-  b.points = static_cast<std::size_t>(std::lround(2.0 * c.field_half_mm / c.point_spacing_mm)) + 1;
-  for (std::size_t j = 0; j < b.points; ++j)
-    b.x_mm.push_back(static_cast<float>(-c.field_half_mm + static_cast<double>(j) * c.point_spacing_mm));
+  SetProfilerPoints(c, b);
   const HeadPath& head = printer.head();
   const double length = head.length_mm(), pass_s = head.pass_s(), layer_s = pass_s + c.return_s;
   twin.path_length_mm = length;
@@ -142,13 +140,25 @@ PartTwin SimulatePartWall(const PartTwinConfig& c) {
   scan.log = std::move(log);
   scan.attributes["rig"] = c.shape == PartTwinConfig::Shape::kContour ? "twin part: a contour with rounded corners"
                                                                       : "twin part: straight wall";
-  twin.rig.name = "twin-part";
-  twin.rig.has_wheel = false;
-  twin.rig.part = PartBed{};
+  twin.rig = PartTwinRig(c, "twin-part");
   if (c.bed_radius_mm > 0) twin.rig.part->shape = PartBed::Shape::kCylinder, twin.rig.part->radius_mm = c.bed_radius_mm;
-  twin.rig.reference_left = {-c.field_half_mm, -c.field_half_mm + 5.0};
-  twin.rig.reference_right = {c.field_half_mm - 5.0, c.field_half_mm};
   return twin;
+}
+
+void SetProfilerPoints(const PartTwinConfig& c, ProfileBlock& b) {
+  b.points = static_cast<std::size_t>(std::lround(2.0 * c.field_half_mm / c.point_spacing_mm)) + 1;
+  for (std::size_t j = 0; j < b.points; ++j)
+    b.x_mm.push_back(static_cast<float>(-c.field_half_mm + static_cast<double>(j) * c.point_spacing_mm));
+}
+
+Rig PartTwinRig(const PartTwinConfig& c, const std::string& name) {
+  Rig rig;
+  rig.name = name;
+  rig.has_wheel = false;
+  rig.part = PartBed{};
+  rig.reference_left = {-c.field_half_mm, -c.field_half_mm + 5.0};
+  rig.reference_right = {c.field_half_mm - 5.0, c.field_half_mm};
+  return rig;
 }
 
 }  // namespace bead::sim

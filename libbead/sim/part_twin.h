@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "libbead/core/rig.h"
@@ -90,6 +91,12 @@ struct PartTwin {
   std::vector<PartRoadTruth> road_truth;  // a layer of roads: one per road and profile
   double path_length_mm = 0.0;            // a layer's toolpath (a contour's perimeter)
 };
+
+// What every part twin shares: the profiler's points across the part
+// (field_half_mm either side, point_spacing_mm apart), and the rig (no
+// wheel; the bed's reference areas the field's outer 5 mm either side).
+void SetProfilerPoints(const PartTwinConfig& config, ProfileBlock& profiles);
+Rig PartTwinRig(const PartTwinConfig& config, const std::string& name);
 
 // The wall, the pipe, or (config.roads > 1) a layer of roads.
 PartTwin SimulatePartWall(const PartTwinConfig& config);

@@ -8,23 +8,13 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/csv_rows.h"
 #include "tests/support/run_cli.h"
 
 namespace bead {
 namespace {
 
-std::vector<std::vector<std::string>> Rows(const std::string& path) {
-  std::ifstream in(path);
-  std::vector<std::vector<std::string>> rows;
-  for (std::string line; std::getline(in, line);) {
-    std::vector<std::string> cells;
-    std::stringstream ss(line);
-    for (std::string cell; std::getline(ss, cell, ',');) cells.push_back(cell);
-    if (!line.empty() && line.back() == ',') cells.emplace_back();
-    rows.push_back(cells);
-  }
-  return rows;
-}
+using test::CsvRows;
 
 TEST(PartCommand, SimulateThenMeasureWritesThePartGeometryCsv) {
   test::TempDir dir;
@@ -39,7 +29,7 @@ TEST(PartCommand, SimulateThenMeasureWritesThePartGeometryCsv) {
   ASSERT_EQ(code, 0) << out;
   EXPECT_NE(out.find("part scan"), std::string::npos) << out;
   EXPECT_NE(out.find("layer 2:"), std::string::npos) << out;
-  const auto geo = Rows(dir / "geo.csv"), truth = Rows(dir / "sim/truth.csv");
+  const auto geo = CsvRows(dir / "geo.csv"), truth = CsvRows(dir / "sim/truth.csv");
   ASSERT_GT(geo.size(), 2u);
   const std::vector<std::string> spec = {
       "profile", "t_s", "layer", "path_mm", "area_mm2", "width_mm", "height_mm", "area_corrected_mm2", "valid"};
@@ -59,7 +49,7 @@ TEST(PartCommand, SimulateThenMeasureWritesThePartGeometryCsv) {
   ASSERT_EQ(code, 0) << out;
   EXPECT_NE(out.find("layer 2: "), std::string::npos) << out;
   EXPECT_NE(out.find("total volume"), std::string::npos) << out;
-  const auto flow = Rows(dir / "flow.csv");
+  const auto flow = CsvRows(dir / "flow.csv");
   ASSERT_EQ(flow.size(), geo.size());
   const std::vector<std::string> flow_spec = {
       "t_s", "layer", "path_mm", "head_speed_mm_s", "area_mm2", "area_corrected_mm2", "flow_mm3_s", "screw_rpm"};
@@ -125,7 +115,7 @@ TEST(PartCommand, AnotherLabsLayerScanIsImportedAndSaysWhatItLacks) {
       test::RunCli(dir, "measure --rig " + (dir / "rig.yaml") + " " + (dir / "l25.h5") + " -o " + (dir / "geo.csv"));
   ASSERT_EQ(code, 0) << out;
   EXPECT_NE(out.find("layer 24 is not in the scan"), std::string::npos) << out;
-  const auto rows = Rows(dir / "geo.csv");
+  const auto rows = CsvRows(dir / "geo.csv");
   ASSERT_EQ(rows.size(), 400u);
   EXPECT_EQ(rows[1][16], "no_surface_below");  // the status column
   EXPECT_EQ(rows[1][2], "25");
@@ -136,7 +126,7 @@ TEST(PartCommand, AnotherLabsLayerScanIsImportedAndSaysWhatItLacks) {
       dir, "measure --rig " + (dir / "rig.yaml") + " " + (dir / "l25.h5") + " --beads all -o " + (dir / "beads.csv"));
   ASSERT_EQ(code, 0) << out;
   EXPECT_NE(out.find("399 profiles have no surface below"), std::string::npos) << out;
-  EXPECT_EQ(Rows(dir / "beads.csv").size(), 1u);
+  EXPECT_EQ(CsvRows(dir / "beads.csv").size(), 1u);
   // A place is needed, one way only.
   std::tie(code, out) = test::RunCli(dir, "import " + csv + " -o " + (dir / "x.h5") + columns);
   EXPECT_EQ(code, 1) << out;

@@ -9,23 +9,13 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/csv_rows.h"
 #include "tests/support/run_cli.h"
 
 namespace bead {
 namespace {
 
-std::vector<std::vector<std::string>> Rows(const std::string& path) {
-  std::ifstream in(path);
-  std::vector<std::vector<std::string>> rows;
-  for (std::string line; std::getline(in, line);) {
-    std::vector<std::string> cells;
-    std::stringstream ss(line);
-    for (std::string cell; std::getline(ss, cell, ',');) cells.push_back(cell);
-    if (!line.empty() && line.back() == ',') cells.emplace_back();
-    rows.push_back(cells);
-  }
-  return rows;
-}
+using test::CsvRows;
 
 TEST(RoadsCommand, ALayerOfRoadsGetsOneRowPerRoadNearItsTruth) {
   test::TempDir dir;
@@ -38,7 +28,7 @@ TEST(RoadsCommand, ALayerOfRoadsGetsOneRowPerRoadNearItsTruth) {
   ASSERT_EQ(code, 0) << out;
   EXPECT_NE(out.find("with 4 beads"), std::string::npos) << out;
   EXPECT_NE(out.find("tangent overlapping model"), std::string::npos) << out;
-  const auto beads = Rows(dir / "beads.csv"), truth = Rows(dir / "sim/truth_roads.csv");
+  const auto beads = CsvRows(dir / "beads.csv"), truth = CsvRows(dir / "sim/truth_roads.csv");
   const std::vector<std::string> spec = {
       "profile", "bead", "t_s", "center_x_mm", "area_mm2", "width_mm", "height_mm", "area_corrected_mm2", "valid"};
   ASSERT_GE(beads[0].size(), spec.size());
@@ -64,7 +54,7 @@ TEST(RoadsCommand, TheWheelsOneBeadIsOneBeadWithTheWheelsArea) {
   std::tie(code, out) =
       test::RunCli(dir, "measure --rig " + sample + "rig.yaml " + sample + "run.h5 -o " + (dir / "geo.csv"));
   ASSERT_EQ(code, 0) << out;
-  const auto beads = Rows(dir / "beads.csv"), geo = Rows(dir / "geo.csv");
+  const auto beads = CsvRows(dir / "beads.csv"), geo = CsvRows(dir / "geo.csv");
   std::map<std::string, int> per_profile;
   for (std::size_t i = 1; i < beads.size(); ++i) ++per_profile[beads[i][0]];
   int valid = 0;
