@@ -55,7 +55,8 @@ Run AddBatch(CLI::App& app) {
       "In:  RUN.h5 ... with --rig RIG.yaml, or --manifest runs.csv (columns run,rig; relative paths\n"
       "     from the manifest's folder) for runs of several rig placements.\n"
       "Out: OUT/<run>/geometry.csv and flow.csv (as bead measure and bead flow write them; no flow\n"
-      "     for a run without a log), OUT/<run>/result.csv (the run's row) and OUT/summary.csv:\n"
+      "     for a run without a log; a part scan's the part forms, measured layer on layer),\n"
+      "     OUT/<run>/result.csv (the run's row) and OUT/summary.csv:\n"
       "     name,run,rig,status,profiles,valid,flow_samples,total_volume_mm3,offset_counts,\n"
       "     occlusion_fraction,warnings. <run> is the file's stem, or its path from the runs'\n"
       "     common folder with '/' as '_' where stems repeat (a/run.h5 -> a_run).\n"
@@ -70,7 +71,7 @@ Run AddBatch(CLI::App& app) {
       "  bead batch --rig rig.yaml -o results runs/*.h5\n"
       "  mpirun -np 8 bead batch --rig rig.yaml -o results runs/*.h5\n"
       "  sbatch --array=0-15 --wrap 'bead batch --manifest runs.csv -o results'");
-  cmd->add_option("runs", args->runs, "Run archives (.h5) or profiles CSVs")->check(CLI::ExistingFile);
+  cmd->add_option("runs", args->runs, "Run archives or part scans (.h5), or profiles CSVs")->check(CLI::ExistingFile);
   cmd->add_option("--rig", args->rig, "Rig file (YAML) of every run given on the command line")
       ->check(CLI::ExistingFile);
   cmd->add_option("--manifest", args->manifest, "CSV with columns run,rig")->check(CLI::ExistingFile);

@@ -11,11 +11,13 @@
 #include <fstream>
 #include <sstream>
 
+#include "libbead/archive/batch_part.h"
 #include "libbead/archive/run_flow.h"
 #include "libbead/core/error.h"
 #include "libbead/io/atomic_file.h"
 #include "libbead/io/csv_reader.h"
 #include "libbead/io/rig_yaml.h"
+#include "libbead/io/run_archive.h"
 
 namespace bead {
 namespace fs = std::filesystem;
@@ -106,6 +108,59 @@ bool RunComplete(const BatchRun& run, const BatchOptions& options) {
          ReadText((dir / "inputs.txt").string()) == Fingerprint(run, options);
 }
 
+namespace {
+
+// A wheel run: measured and its flow computed as it streams.
+void ProcessWheelRun(const BatchRun& job, const std::string& dir_name, const BatchOptions& options, WorkerPool& pool,
+                     const std::function<void(std::size_t, std::size_t)>& progress, RunResult& r) {
+  const fs::path dir = dir_name;
+  std::error_code ec;
+  const Rig rig = ReadRig(job.rig, &r.warnings);
+  r.offset_counts = rig.offset_counts;
+  MeasureRunOptions measure;
+  measure.profile = options.profile;
+  measure.occlusion = options.occlusion;
+  measure.estimate = options.estimate;
+  measure.progress = progress;
+  auto measured = [&](const MeasureRunSummary& summary) {
+    r.profiles = summary.profiles;
+    r.valid = summary.valid;
+    if (options.occlusion == OcclusionMode::kPooled) {
+      if (summary.pooled.ok)
+        r.occlusion_fraction = summary.pooled.bias_fraction;
+      else
+        r.warnings.push_back("occlusion: " + summary.pooled.note);
+    }
+    if (r.valid == 0 && r.profiles > 0) {
+      // Why, in the words of the geometry CSV's status column: the most common reason.
+      const auto& by = summary.by_status;
+      const std::size_t most = static_cast<std::size_t>(std::max_element(by.begin() + 1, by.end()) - by.begin());
+      r.warnings.push_back("no profile could be measured (" + std::to_string(by[most]) + " of " +
+                           std::to_string(r.profiles) + ": " + StatusName(static_cast<ProfileStatus>(most)) + ")");
+    }
+  };
+  RunFlowRequest request;
+  request.measure = measure;
+  request.flow = options.flow;
+  request.geometry_csv = (dir / "geometry.csv").string();
+  request.flow_csv = (dir / "flow.csv").string();
+  request.require_motion = false;
+  const RunFlow f = MeasureRunFlow(job.run, rig, pool, request);
+  measured(f.measure);
+  if (!f.whole_run_why.empty())
+    r.warnings.push_back("the flow was computed on the whole run in memory: " + f.whole_run_why);
+  if (f.gap.none()) {
+    r.flow_samples = f.valid;
+    r.total_volume_mm3 = f.total_volume_mm3;
+    r.warnings.insert(r.warnings.end(), f.warnings.begin(), f.warnings.end());
+  } else {
+    fs::remove(dir / "flow.csv", ec);
+    r.warnings.push_back("no flow: " + f.gap.dataset + " " + f.gap.why);
+  }
+}
+
+}  // namespace
+
 RunResult ProcessRun(const BatchRun& job, const BatchOptions& options, WorkerPool& pool,
                      const std::function<void(std::size_t, std::size_t)>& progress) {
   RunResult r;
@@ -118,48 +173,11 @@ RunResult ProcessRun(const BatchRun& job, const BatchOptions& options, WorkerPoo
   if (ec) throw Error(Located(dir.string(), "", "cannot create the run's output folder: " + ec.message()));
   const std::string inputs = Fingerprint(job, options);
   try {
-    const Rig rig = ReadRig(job.rig, &r.warnings);
-    r.offset_counts = rig.offset_counts;
-    MeasureRunOptions measure;
-    measure.profile = options.profile;
-    measure.occlusion = options.occlusion;
-    measure.estimate = options.estimate;
-    measure.progress = progress;
-    auto measured = [&](const MeasureRunSummary& summary) {
-      r.profiles = summary.profiles;
-      r.valid = summary.valid;
-      if (options.occlusion == OcclusionMode::kPooled) {
-        if (summary.pooled.ok)
-          r.occlusion_fraction = summary.pooled.bias_fraction;
-        else
-          r.warnings.push_back("occlusion: " + summary.pooled.note);
-      }
-      if (r.valid == 0 && r.profiles > 0) {
-        // Why, in the words of the geometry CSV's status column: the most common reason.
-        const auto& by = summary.by_status;
-        const std::size_t most = static_cast<std::size_t>(std::max_element(by.begin() + 1, by.end()) - by.begin());
-        r.warnings.push_back("no profile could be measured (" + std::to_string(by[most]) + " of " +
-                             std::to_string(r.profiles) + ": " + StatusName(static_cast<ProfileStatus>(most)) + ")");
-      }
-    };
-    RunFlowRequest request;
-    request.measure = measure;
-    request.flow = options.flow;
-    request.geometry_csv = (dir / "geometry.csv").string();
-    request.flow_csv = (dir / "flow.csv").string();
-    request.require_motion = false;
-    const RunFlow f = MeasureRunFlow(job.run, rig, pool, request);
-    measured(f.measure);
-    if (!f.whole_run_why.empty())
-      r.warnings.push_back("the flow was computed on the whole run in memory: " + f.whole_run_why);
-    if (f.gap.none()) {
-      r.flow_samples = f.valid;
-      r.total_volume_mm3 = f.total_volume_mm3;
-      r.warnings.insert(r.warnings.end(), f.warnings.begin(), f.warnings.end());
-    } else {
-      fs::remove(dir / "flow.csv", ec);
-      r.warnings.push_back("no flow: " + f.gap.dataset + " " + f.gap.why);
-    }
+    // A part scan (kind = "part") is measured layer on layer.
+    if (job.run.ends_with(".h5") && IsPartScan(job.run))
+      ProcessPartScan(job, dir.string(), options, r);
+    else
+      ProcessWheelRun(job, dir.string(), options, pool, progress, r);
   } catch (const std::exception& e) {
     r.status = std::string("failed: ") + e.what();
   }

@@ -139,3 +139,51 @@ TEST(PartCommand, AnotherLabsLayerScanIsImportedAndSaysWhatItLacks) {
 
 }  // namespace
 }  // namespace bead
+
+namespace bead {
+namespace {
+
+std::string FileText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// bead batch takes a part scan beside a wheel run: the part measured layer
+// on layer, its files those bead measure and bead flow write, byte for byte.
+TEST(PartCommand, BatchMeasuresAPartScanBesideAWheelRun) {
+  test::TempDir dir;
+  {
+    std::ofstream cfg(dir / "wall.yaml");
+    cfg << "seed: 9\npart:\n  layers: 2\n  length_mm: 15\n";
+  }
+  auto [code, out] = test::RunCli(dir, "simulate " + (dir / "wall.yaml") + " -o " + (dir / "sim"));
+  ASSERT_EQ(code, 0) << out;
+  const std::string sample = std::string(BEAD_SOURCE_DIR) + "/testdata/sample/";
+  {
+    std::ofstream manifest(dir / "runs.csv");
+    manifest << "run,rig\n"
+             << (dir / "sim/part.h5") << ',' << (dir / "sim/rig.yaml") << '\n'
+             << sample << "run.h5," << sample << "rig.yaml\n";
+  }
+  std::tie(code, out) = test::RunCli(dir, "batch --manifest " + (dir / "runs.csv") + " -o " + (dir / "out"));
+  ASSERT_EQ(code, 0) << out;
+  const auto summary = CsvRows(dir / "out/summary.csv");
+  ASSERT_EQ(summary.size(), 3u);
+  EXPECT_EQ(summary[1][3], "ok") << out;
+  EXPECT_EQ(summary[2][3], "ok") << out;
+  std::tie(code, out) = test::RunCli(
+      dir, "measure --rig " + (dir / "sim/rig.yaml") + " " + (dir / "sim/part.h5") + " -o " + (dir / "geo.csv"));
+  ASSERT_EQ(code, 0) << out;
+  std::tie(code, out) = test::RunCli(
+      dir, "flow --rig " + (dir / "sim/rig.yaml") + " " + (dir / "sim/part.h5") + " -o " + (dir / "flow.csv"));
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_EQ(FileText(dir / "out/part/geometry.csv"), FileText(dir / "geo.csv"));
+  EXPECT_EQ(FileText(dir / "out/part/flow.csv"), FileText(dir / "flow.csv"));
+  // The wheel run beside it keeps the wheel's columns.
+  EXPECT_EQ(CsvRows(dir / "out/run/geometry.csv")[0][2], "encoder");
+}
+
+}  // namespace
+}  // namespace bead

@@ -1,0 +1,56 @@
+#include "libbead/archive/batch_part.h"
+
+#include <cmath>
+#include <filesystem>
+#include <optional>
+
+#include "libbead/io/rig_yaml.h"
+#include "libbead/io/run_archive.h"
+#include "libbead/part/measure_part.h"
+#include "libbead/part/part_csv.h"
+#include "libbead/part/part_flow.h"
+
+namespace bead {
+
+void ProcessPartScan(const BatchRun& job, const std::string& dir, const BatchOptions& options, RunResult& r) {
+  const RigFile rig = ReadPartRigFile(job.rig);
+  r.warnings.insert(r.warnings.end(), rig.warnings.begin(), rig.warnings.end());
+  const RunArchive scan = ReadPartScan(job.run, /*with_profiles=*/false, /*with_log=*/true);
+  part::MeasurePartOptions measure;
+  measure.bed = options.profile;
+  std::optional<part::NozzleClock> clock;
+  if (scan.log) clock.emplace(*scan.log, job.run);
+  part::PartGeometryCsvWriter geometry(dir + "/geometry.csv");
+  std::optional<part::PartFlowCsvWriter> flow;
+  if (clock) flow.emplace(dir + "/flow.csv");
+  part::LayerVolumes volumes;
+  double seen = 0.0, corrected = 0.0;
+  const std::vector<part::LayerSummary> layers =
+      part::MeasurePartFile(job.run, *scan.part, rig.rig, measure, 1, [&](const part::PartGeometryRow& g) {
+        geometry.Append(g);
+        if (g.bead.valid() && std::isfinite(g.area_corrected_mm2))
+          seen += g.bead.area_mm2, corrected += g.area_corrected_mm2;
+        if (!clock) return;
+        const part::PartFlowRow row = part::FlowOf(g, *clock);
+        r.flow_samples += row.valid;
+        volumes.Add(row);
+        flow->Append(row);
+      });
+  geometry.Commit();
+  for (const part::LayerSummary& l : layers) {
+    r.profiles += l.profiles, r.valid += l.valid;
+    if (l.layer > 0 && l.no_surface_below == l.profiles)
+      r.warnings.push_back("layer " + std::to_string(l.layer) + ": layer " + std::to_string(l.layer - 1) +
+                           " is not in the scan: nothing to measure it against");
+  }
+  if (seen > 0.0) r.occlusion_fraction = 1.0 - corrected / seen;
+  if (!flow) {
+    r.warnings.push_back("no flow: /log missing (the flow along the path needs the nozzle's log)");
+    return;
+  }
+  flow->Commit();
+  r.total_volume_mm3 = 0.0;
+  for (const auto& [layer, v] : volumes.volumes_mm3()) r.total_volume_mm3 += v;
+}
+
+}  // namespace bead
