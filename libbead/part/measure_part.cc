@@ -111,25 +111,7 @@ class PartMeasurer {
       row.bead = MeasureAddedBead(mine.x_mm, mine.z_mm, *under, shift, options_.added, has_warm_ ? &warm_ : nullptr);
       if (row.bead.shift_constrained) has_warm_ = true, warm_ = row.bead.shift_mm, warm_layer_ = row.layer;
     }
-    if (under && row.bead.valid() && options_.correct_hidden) {
-      const double shift_sigma = std::isfinite(row.bead.shift_sigma_mm) ? row.bead.shift_sigma_mm : 0.0;
-      if (row.layer != aspects_layer_) aspects_.clear(), pooled_.reset(), aspects_layer_ = row.layer;
-      const HiddenGroove g = EstimateHiddenGroove(mine.x_mm, mine.z_mm, *under, row.bead.shift_mm, shift_sigma,
-                                                  row.bead.noise_mm, row.bead.center_x_mm, row.bead.width_mm,
-                                                  row.bead.height_mm, pooled_ ? &*pooled_ : nullptr);
-      if (!pooled_ && g.ok) Pool(g.aspect);
-      // The visible area's own sampling beside the groove's: each of its
-      // four walls (two of the new surface, two of the old) placed within
-      // a point spacing, as high as the bead: (spacing h)^2 / 3.
-      const double sampled = 8.0 * GridStep(mine) * row.bead.height_mm;
-      const double corrected = row.bead.area_mm2 - g.hidden_mm2;
-      const double sigma = std::sqrt(g.sigma_mm2 * g.sigma_mm2 + sampled * sampled / 3.0);
-      // Written only where it means something: material left, and known to
-      // better than half of it (else the ellipse did not find the bead's
-      // sides: the row keeps the area seen, and no correction).
-      if (g.ok && corrected > 0.0 && sigma < 0.5 * corrected)
-        row.area_corrected_mm2 = corrected, row.area_corrected_sigma_mm2 = sigma;
-    }
+    if (under && row.bead.valid() && options_.correct_hidden) CorrectHidden(mine, *under, row);
     // Several beads over the surface below, at the shift the layer's
     // registration found (its truncated cost holds any number of beads).
     if (under && options_.several_beads) row.roads = RoadsOver(mine, *under, row.bead.shift_mm, options_.roads);
@@ -145,6 +127,28 @@ class PartMeasurer {
   MeasurePartOptions options_;
   ProfileProcessor processor_;
   SurfaceBelow below_;
+  // The area less the groove the bead hides under its overhangs, with its
+  // sigma; the layer's first fits pool its aspect, held after them.
+  void CorrectHidden(const StoredProfile& mine, const SurfaceGrid& under, PartGeometryRow& row) {
+    const double shift_sigma = std::isfinite(row.bead.shift_sigma_mm) ? row.bead.shift_sigma_mm : 0.0;
+    if (row.layer != aspects_layer_) aspects_.clear(), pooled_.reset(), aspects_layer_ = row.layer;
+    const HiddenGroove g = EstimateHiddenGroove(mine.x_mm, mine.z_mm, under, row.bead.shift_mm, shift_sigma,
+                                                row.bead.noise_mm, row.bead.center_x_mm, row.bead.width_mm,
+                                                row.bead.height_mm, pooled_ ? &*pooled_ : nullptr);
+    if (!pooled_ && g.ok) Pool(g.aspect);
+    // The visible area's own sampling beside the groove's: each of its
+    // four walls (two of the new surface, two of the old) placed within a
+    // point spacing, as high as the bead: (spacing h)^2 / 3.
+    const double sampled = 8.0 * GridStep(mine) * row.bead.height_mm;
+    const double corrected = row.bead.area_mm2 - g.hidden_mm2;
+    const double sigma = std::sqrt(g.sigma_mm2 * g.sigma_mm2 + sampled * sampled / 3.0);
+    // Written only where it means something: material left, and known to
+    // better than half of it (else the ellipse did not find the bead's
+    // sides: the row keeps the area seen, and no correction).
+    if (g.ok && corrected > 0.0 && sigma < 0.5 * corrected)
+      row.area_corrected_mm2 = corrected, row.area_corrected_sigma_mm2 = sigma;
+  }
+
   // The layer's first free fits' aspects, then their pool, held.
   void Pool(double aspect) {
     aspects_.push_back(aspect);
