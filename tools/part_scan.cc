@@ -119,6 +119,7 @@ int MeasureRoads(const std::string& rig_path, const std::string& run, const std:
   part::MeasurePartOptions options;
   options.bed = bed;
   options.several_beads = true;
+  options.correct_hidden = false;  // the roads' rows carry no corrected area: its fit would be thrown away
   options.roads.laid_left_first = laid_left_first;
   options.roads.spike_mm = bed.bead.spike_mm;
   WorkerPool pool(threads);
