@@ -30,7 +30,8 @@ install(FILES ${PROJECT_SOURCE_DIR}/include/bead/bead.h DESTINATION ${CMAKE_INST
 install(TARGETS bead bead-measure bead-flow bead-batch bead-calibrate bead-simulate bead-import bead-export bead-frames
   bead-identify bead-explain bead-report bead-tune bead-feedforward RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(TARGETS bead-occlusion-fit LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/bead)
-install(FILES ${PROJECT_SOURCE_DIR}/tools/report/bead_report.py DESTINATION ${CMAKE_INSTALL_DATADIR}/bead)
+install(FILES ${PROJECT_SOURCE_DIR}/tools/report/bead_report.py ${PROJECT_SOURCE_DIR}/tools/report/report_common.py
+              ${PROJECT_SOURCE_DIR}/tools/report/part_report.py DESTINATION ${CMAKE_INSTALL_DATADIR}/bead)
 
 set(bead_cmake_dir ${CMAKE_INSTALL_LIBDIR}/cmake/bead)
 install(EXPORT beadCoreTargets NAMESPACE bead:: DESTINATION ${bead_cmake_dir})

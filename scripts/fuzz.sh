@@ -39,9 +39,10 @@ classify() {
   case "$frame" in *libhdf5* | *libmatio*) echo upstream ;; *) echo ours ;; esac
 }
 
-failed=0
-for t in "${targets[@]}"; do
-  work=build-fuzz/work/$t crashes=build-fuzz/crashes/$t
+# One target: its fuzzing, then each kept input re-run alone and classified;
+# its lines in $crashes/summary, and exit 1 when it crashed in our code.
+fuzz_target() {
+  local t=$1 work=build-fuzz/work/$1 crashes=build-fuzz/crashes/$1
   mkdir -p "$work" "$crashes"
   rm -f "$crashes"/crash-* "$crashes"/leak-* "$crashes"/timeout-* "$crashes"/oom-* "$crashes"/*.report
   log=$crashes/fuzz.log
@@ -75,14 +76,36 @@ for t in "${targets[@]}"; do
       ours=$((ours + 1))
     fi
   done
-  echo "$t: ${runs:-0} executions, $ours crashes"
-  [ "$upstream" -eq 0 ] || echo "  ($upstream more inside libhdf5 or libmatio itself on a corrupt file: upstream; reports in $crashes/*.report)"
-  [ "$alone" -eq 0 ] || echo "  ($alone out-of-memory input(s) run clean alone: memory grown over a fork's many inputs, whose not known; in $crashes)"
-  if [ "$ours" -ne 0 ]; then
-    failed=1
-    for r in "$crashes"/*.report; do
-      [ "$(classify "$r")" = ours ] && grep -m 2 -E 'ERROR|SUMMARY|runtime error|terminate' "$r" | sed 's/^/  /'
+  {
+    echo "$t: ${runs:-0} executions, $ours crashes"
+    [ "$upstream" -eq 0 ] || echo "  ($upstream more inside libhdf5 or libmatio itself on a corrupt file: upstream; reports in $crashes/*.report)"
+    [ "$alone" -eq 0 ] || echo "  ($alone out-of-memory input(s) run clean alone: memory grown over a fork's many inputs, whose not known; in $crashes)"
+    if [ "$ours" -ne 0 ]; then
+      for r in "$crashes"/*.report; do
+        [ "$(classify "$r")" = ours ] && grep -m 2 -E 'ERROR|SUMMARY|runtime error|terminate' "$r" | sed 's/^/  /'
+      done
+    fi
+  } >"$crashes/summary"
+  [ "$ours" -eq 0 ]
+}
+
+# The targets in as many lanes as there are processors (each fuzzer runs
+# one process at a time), then their lines in the targets' order.
+lanes=$(nproc)
+for ((lane = 0; lane < lanes; lane++)); do
+  (
+    lane_failed=0
+    for ((i = lane; i < ${#targets[@]}; i += lanes)); do
+      fuzz_target "${targets[i]}" || lane_failed=1
     done
-  fi
+    exit "$lane_failed"
+  ) &
+done
+failed=0
+for ((lane = 0; lane < lanes; lane++)); do
+  wait -n || failed=1
+done
+for t in "${targets[@]}"; do
+  cat "build-fuzz/crashes/$t/summary"
 done
 exit "$failed"

@@ -44,28 +44,22 @@ void SayLayers(const std::vector<part::LayerSummary>& layers) {
   }
 }
 
-// The scan measured layer on layer, each row to `sink`; a line per layer said.
-std::vector<part::LayerSummary> MeasureSaying(const std::string& rig_path, const std::string& run,
-                                              const RunArchive& scan, const ProfileOptions& bed, unsigned threads,
-                                              const std::function<void(const part::PartGeometryRow&)>& sink) {
+// The part scan's rig file, its warnings said.
+Rig PartRigSaying(const std::string& rig_path) {
   const RigFile rig = ReadPartRigFile(rig_path);
   SayRigWarnings(rig);
-  part::MeasurePartOptions options;
-  options.bed = bed;
-  const auto start = std::chrono::steady_clock::now();
-  const auto tty = TtyProgress("measured");
-  const std::vector<part::LayerSummary> layers =
-      part::MeasurePartFile(run, *scan.part, rig.rig, options, threads, sink, [&](std::size_t done, std::size_t total) {
-        if (tty) tty(done, total);
-      });
-  const std::size_t total = scan.part->size();
+  return rig.rig;
+}
+
+// What was measured: a line for the scan, one per layer.
+void SayMeasured(const std::string& run, const std::vector<part::LayerSummary>& layers, std::size_t total,
+                 std::chrono::steady_clock::time_point start) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::size_t valid = 0;
   for (const auto& l : layers) valid += l.valid;
   std::printf("%s: part scan, %zu profiles in %zu layers, %zu valid, measured in %.3f s\n", run.c_str(), total,
               layers.size(), valid, seconds);
   SayLayers(layers);
-  return layers;
 }
 
 }  // namespace
@@ -73,9 +67,16 @@ std::vector<part::LayerSummary> MeasureSaying(const std::string& rig_path, const
 int MeasurePartScan(const std::string& rig_path, const std::string& run, const std::string& output,
                     const ProfileOptions& bed, unsigned threads) {
   const RunArchive scan = ReadPartScan(run, false, false);
+  const Rig rig = PartRigSaying(rig_path);
   part::PartGeometryCsvWriter out(output);
-  MeasureSaying(rig_path, run, scan, bed, threads, [&](const part::PartGeometryRow& r) { out.Append(r); });
+  part::MeasurePartOptions options;
+  options.bed = bed;
+  const auto start = std::chrono::steady_clock::now();
+  const auto layers = part::MeasurePartFile(
+      run, *scan.part, rig, options, threads, [&](const part::PartGeometryRow& r) { out.Append(r); },
+      TtyProgress("measured"));
   out.Commit();
+  SayMeasured(run, layers, scan.part->size(), start);
   std::printf("wrote %s (area_corrected_mm2: less the groove a bead hides under its overhangs, with its sigma)\n",
               output.c_str());
   return 0;
@@ -114,8 +115,7 @@ void SayRoads(const part::RoadsSummary& s, bool above_bed, std::size_t no_surfac
 
 int MeasureRoads(const std::string& rig_path, const std::string& run, const std::string& output,
                  const ProfileOptions& bed, bool laid_left_first, unsigned threads) {
-  const RigFile rig = ReadPartRigFile(rig_path);
-  SayRigWarnings(rig);
+  const Rig rig = PartRigSaying(rig_path);
   part::MeasurePartOptions options;
   options.bed = bed;
   options.several_beads = true;
@@ -139,7 +139,7 @@ int MeasureRoads(const std::string& rig_path, const std::string& run, const std:
   const auto tty = TtyProgress("measured");
   const std::size_t total = stream->size();
   part::MeasurePart(
-      *stream, places, rig.rig, options,
+      *stream, places, rig, options,
       [&](const part::PartGeometryRow& r) {
         out.Append(r);
         summary.Add(r.roads);
@@ -160,27 +160,21 @@ int FlowPartScan(const std::string& rig_path, const std::string& run, const std:
                  const ProfileOptions& bed) {
   const RunArchive scan = ReadPartScan(run, false, true);
   if (!scan.log) throw Error(Located(run, "/log", "missing group: the flow along the path needs the nozzle's log"));
-  const part::NozzleClock clock(*scan.log, run);
+  const Rig rig = PartRigSaying(rig_path);
   part::PartFlowCsvWriter out(output);
-  part::LayerVolumes volumes;
-  part::SpeedAndArea speeds;
-  std::size_t unplaced = 0;
-  MeasureSaying(rig_path, run, scan, bed, 0, [&](const part::PartGeometryRow& g) {
-    const part::PartFlowRow row = part::FlowOf(g, clock);
-    unplaced += std::isnan(row.t_s);
-    volumes.Add(row);
-    speeds.Add(row);
-    out.Append(row);
-  });
+  part::MeasurePartOptions options;
+  options.bed = bed;
+  const auto start = std::chrono::steady_clock::now();
+  const part::PartScanFlow f = part::MeasurePartScanFlow(
+      run, *scan.part, &*scan.log, rig, options, 0, nullptr, [&](const part::PartFlowRow& row) { out.Append(row); },
+      TtyProgress("measured"));
   out.Commit();
+  SayMeasured(run, f.layers, scan.part->size(), start);
   std::printf("wrote %s (t_s: when the nozzle laid each place; flow = head speed x area)\n", output.c_str());
-  double total = 0.0;
-  for (const auto& [layer, v] : volumes.volumes_mm3()) {
+  for (const auto& [layer, v] : f.volumes_mm3)
     std::printf("  layer %lld: %.1f mm^3 along the path\n", static_cast<long long>(layer), v);
-    total += v;
-  }
-  std::printf("total volume %.1f mm^3 (the area integrated along the path, valid profiles)\n", total);
-  if (const part::CornerBulge b = speeds.Bulge(); b.slow)
+  std::printf("total volume %.1f mm^3 (the area integrated along the path, valid profiles)\n", f.TotalVolume());
+  if (const part::CornerBulge& b = f.bulge; b.slow)
     std::printf(
         "where the head slowed below 90 %% of its median speed (%zu profiles, %.1f against %.1f mm/s: corners), the "
         "area is %+.1f %% over the rest and the flow %+.1f %%: %s\n",
@@ -188,9 +182,9 @@ int FlowPartScan(const std::string& rig_path, const std::string& run, const std:
         std::abs(b.flow_excess) < 0.5 * std::abs(b.area_excess)
             ? "the extruder did not follow the head (the corner bulge, thesis 1.3.2)"
             : "the extruder's flow followed the head's speed");
-  if (unplaced)
+  if (f.unplaced)
     std::printf("  %zu profiles stand where the log never had the nozzle moving forward in their layer: no time\n",
-                unplaced);
+                f.unplaced);
   return 0;
 }
 

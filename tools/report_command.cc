@@ -23,6 +23,7 @@
 #include "libbead/io/run_archive.h"
 #include "tools/commands.h"
 #include "tools/own_folder.h"
+#include "tools/report_part.h"
 #include "libbead/archive/measure_run.h"
 #include "libbead/occlusion/occlusion_fit.h"
 #include "tools/occlusion_step.h"
@@ -93,6 +94,25 @@ void WritePins(const Rig& rig, const std::string& path, const fs::path& dir) {
       << rig.MmPerCount() << ',' << cal.used << ',' << cal.total << ",\"" << cal.reason << "\"\n";
 }
 
+// Draws the page from the numbers in `dir` (tools/report/bead_report.py).
+void DrawPage(const fs::path& dir, const std::string& output, const std::string& explain) {
+  const std::string script = ReportScript();
+  // Debian's python3 (where python3-matplotlib installs), unless BEAD_PYTHON names another.
+  const char* py = std::getenv("BEAD_PYTHON");
+  const std::string python = py && *py ? py : fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  std::string cmdline = "'" + python + "' '" + script + "' '" + dir.string() + "' '" + output + "'";
+  if (!explain.empty()) cmdline += " --explain '" + explain + "'";
+  const int status = std::system(cmdline.c_str());
+  // The script's exit 3: matplotlib (or NumPy) missing; otherwise its
+  // own one line is above.
+  if (status != 0)
+    throw Error(Located(output, "",
+                        WIFEXITED(status) && WEXITSTATUS(status) == 3
+                            ? "the report needs Debian's python3-matplotlib and python3-numpy (apt-get install "
+                              "python3-matplotlib), or BEAD_PYTHON naming a python that has them"
+                            : "the report script " + script + " failed (its message is above)"));
+}
+
 // The --explain file is an explain report, before any work.
 void CheckExplainReport(const std::string& path) {
   std::ifstream in(path);
@@ -110,8 +130,8 @@ Run AddReport(CLI::App& app) {
     std::string rig, run, pins, explain, output, occlusion = "pooled";
   };
   auto args = std::make_shared<Args>();
-  CLI::App* cmd =
-      app.add_subcommand("report", "One self-contained HTML page about a run: profiles, geometry, flow, pins");
+  CLI::App* cmd = app.add_subcommand(
+      "report", "One self-contained HTML page about a run or a part scan: profiles, geometry, flow, pins");
   cmd->footer(
       "In:  RIG.yaml and RUN.h5; --pins PINS.h5 (pin scans of the rig), --explain explain.json (bead explain -o).\n"
       "Out: REPORT.html, one page that opens offline (pictures embedded, drawn by matplotlib through the\n"
@@ -122,12 +142,15 @@ Run AddReport(CLI::App& app) {
       "     --explain the model before and after, the effects added and the residual's spectrum with its\n"
       "     peaks and what they track (the rotating parts' rates); with --pins each scan's chord widths and\n"
       "     fitted centre, and the offset with its interval against the rig file's. Written atomically.\n"
+      "     A part scan (format 1.1): each layer in brief, the cross-sections of every layer stacked at three\n"
+      "     places along the path (bed frame), the area seen and corrected, the layer height and the wall's\n"
+      "     wander along the path, and the flow and area against the head's speed (the corner bulge).\n"
       "     Needs Debian's python3 with matplotlib (python3-matplotlib); BEAD_PYTHON names another python.\n"
       "Example:\n"
       "  bead report --rig testdata/sample/rig.yaml testdata/sample/run.h5 --pins testdata/sample/pins.h5 -o "
       "report.html");
   cmd->add_option("--rig", args->rig, "Rig file (YAML)")->required()->check(CLI::ExistingFile);
-  cmd->add_option("run", args->run, "Run archive (.h5)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("run", args->run, "Run archive or part scan (.h5)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--pins", args->pins, "Pin-scan archive (.h5) of this rig")->check(CLI::ExistingFile);
   cmd->add_option("--explain", args->explain, "Explain report (JSON, bead explain -o)")->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", args->output, "HTML page to write")->required();
@@ -135,8 +158,9 @@ Run AddReport(CLI::App& app) {
   return [args]() {
     CheckWritable(args->output);
     if (!args->explain.empty()) CheckExplainReport(args->explain);
-    const Rig rig = ReadRigSaying(args->rig);
-    WorkerPool pool;
+    const bool part = args->run.ends_with(".h5") && IsPartScan(args->run);
+    if (part && !args->pins.empty())
+      throw Error(Located(args->run, "", "is a part scan, which has no encoder: --pins takes a wheel run's pin scans"));
     char tmpl[] = "/tmp/bead-report-XXXXXX";
     if (!mkdtemp(tmpl)) throw Error("cannot make a scratch folder in /tmp for the report");
     const fs::path dir(tmpl);
@@ -147,6 +171,14 @@ Run AddReport(CLI::App& app) {
         fs::remove_all(d, ec);
       }
     } cleanup{dir};
+    if (part) {
+      WritePartReportData(args->rig, args->run, ProfileOptions{}, dir);
+      DrawPage(dir, args->output, args->explain);
+      std::printf("wrote %s\n", args->output.c_str());
+      return 0;
+    }
+    const Rig rig = ReadRigSaying(args->rig);
+    WorkerPool pool;
     RunFlowRequest request;
     request.measure.occlusion = ParseOcclusionMode(args->occlusion);
     request.measure.estimate = occlusion::EstimateOcclusion;
@@ -166,21 +198,7 @@ Run AddReport(CLI::App& app) {
             << "\",\"" << args->pins << "\",\"" << args->explain << "\"," << args->occlusion << ",\""
             << OcclusionLine(m.summary) << "\"," << motion << '\n';
     }
-    const std::string script = ReportScript();
-    // Debian's python3 (where python3-matplotlib installs), unless BEAD_PYTHON names another.
-    const char* py = std::getenv("BEAD_PYTHON");
-    const std::string python = py && *py ? py : fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-    std::string cmdline = "'" + python + "' '" + script + "' '" + dir.string() + "' '" + args->output + "'";
-    if (!args->explain.empty()) cmdline += " --explain '" + args->explain + "'";
-    const int status = std::system(cmdline.c_str());
-    // The script's exit 3: matplotlib (or NumPy) missing; otherwise its
-    // own one line is above.
-    if (status != 0)
-      throw Error(Located(args->output, "",
-                          WIFEXITED(status) && WEXITSTATUS(status) == 3
-                              ? "the report needs Debian's python3-matplotlib and python3-numpy (apt-get install "
-                                "python3-matplotlib), or BEAD_PYTHON naming a python that has them"
-                              : "the report script " + script + " failed (its message is above)"));
+    DrawPage(dir, args->output, args->explain);
     std::printf("wrote %s\n", args->output.c_str());
     return 0;
   };

@@ -18,26 +18,20 @@ void ProcessPartScan(const BatchRun& job, const std::string& dir, const BatchOpt
   const RunArchive scan = ReadPartScan(job.run, /*with_profiles=*/false, /*with_log=*/true);
   part::MeasurePartOptions measure;
   measure.bed = options.profile;
-  std::optional<part::NozzleClock> clock;
-  if (scan.log) clock.emplace(*scan.log, job.run);
   part::PartGeometryCsvWriter geometry(dir + "/geometry.csv");
   std::optional<part::PartFlowCsvWriter> flow;
-  if (clock) flow.emplace(dir + "/flow.csv");
-  part::LayerVolumes volumes;
+  if (scan.log) flow.emplace(dir + "/flow.csv");
   double seen = 0.0, corrected = 0.0;
-  const std::vector<part::LayerSummary> layers =
-      part::MeasurePartFile(job.run, *scan.part, rig.rig, measure, 1, [&](const part::PartGeometryRow& g) {
+  const part::PartScanFlow measured = part::MeasurePartScanFlow(
+      job.run, *scan.part, scan.log ? &*scan.log : nullptr, rig.rig, measure, 1,
+      [&](const part::PartGeometryRow& g) {
         geometry.Append(g);
         if (g.bead.valid() && std::isfinite(g.area_corrected_mm2))
           seen += g.bead.area_mm2, corrected += g.area_corrected_mm2;
-        if (!clock) return;
-        const part::PartFlowRow row = part::FlowOf(g, *clock);
-        r.flow_samples += row.valid;
-        volumes.Add(row);
-        flow->Append(row);
-      });
+      },
+      [&](const part::PartFlowRow& row) { flow->Append(row); });
   geometry.Commit();
-  for (const part::LayerSummary& l : layers) {
+  for (const part::LayerSummary& l : measured.layers) {
     r.profiles += l.profiles, r.valid += l.valid;
     if (l.layer > 0 && l.no_surface_below == l.profiles)
       r.warnings.push_back("layer " + std::to_string(l.layer) + ": layer " + std::to_string(l.layer - 1) +
@@ -49,8 +43,8 @@ void ProcessPartScan(const BatchRun& job, const std::string& dir, const BatchOpt
     return;
   }
   flow->Commit();
-  r.total_volume_mm3 = 0.0;
-  for (const auto& [layer, v] : volumes.volumes_mm3()) r.total_volume_mm3 += v;
+  r.flow_samples = measured.flow_samples;
+  r.total_volume_mm3 = measured.TotalVolume();
 }
 
 }  // namespace bead

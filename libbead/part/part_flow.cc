@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "libbead/core/error.h"
 
@@ -61,15 +62,14 @@ PartFlowRow FlowOf(const PartGeometryRow& g, const NozzleClock& clock) {
   if (!p || !g.bead.valid()) return r;
   r.area_mm2 = g.bead.area_mm2;
   r.area_corrected_mm2 = g.area_corrected_mm2;
-  const double area = std::isnan(r.area_corrected_mm2) ? r.area_mm2 : r.area_corrected_mm2;
-  r.flow_mm3_s = p->head_speed_mm_s * area;
+  r.flow_mm3_s = p->head_speed_mm_s * r.Area();
   r.valid = true;
   return r;
 }
 
 void LayerVolumes::Add(const PartFlowRow& r) {
   if (!r.valid) return;
-  const double area = std::isnan(r.area_corrected_mm2) ? r.area_mm2 : r.area_corrected_mm2;
+  const double area = r.Area();
   double& v = volume_[r.layer];
   if (const auto it = last_.find(r.layer); it != last_.end() && r.path_mm > it->second.first)
     v += 0.5 * (area + it->second.second) * (r.path_mm - it->second.first);
@@ -79,7 +79,7 @@ void LayerVolumes::Add(const PartFlowRow& r) {
 void SpeedAndArea::Add(const PartFlowRow& row) {
   if (!row.valid || !(row.head_speed_mm_s > 0.0)) return;
   speed_.push_back(row.head_speed_mm_s);
-  area_.push_back(std::isnan(row.area_corrected_mm2) ? row.area_mm2 : row.area_corrected_mm2);
+  area_.push_back(row.Area());
   flow_.push_back(row.flow_mm3_s);
 }
 
@@ -101,6 +101,41 @@ CornerBulge SpeedAndArea::Bulge(double fraction) const {
   b.area_excess = (area[0] / n[0]) / (area[1] / n[1]) - 1.0;
   b.flow_excess = (flow[0] / n[0]) / (flow[1] / n[1]) - 1.0;
   return b;
+}
+
+double PartScanFlow::TotalVolume() const {
+  double total = 0.0;
+  for (const auto& [layer, v] : volumes_mm3) total += v;
+  return total;
+}
+
+PartScanFlow MeasurePartScanFlow(const std::string& path, const PartPlaces& places, const AcquisitionLog* log,
+                                 const Rig& rig, const MeasurePartOptions& options, unsigned threads,
+                                 const std::function<void(const PartGeometryRow&)>& on_geometry,
+                                 const std::function<void(const PartFlowRow&)>& on_flow,
+                                 const std::function<void(std::size_t, std::size_t)>& progress) {
+  PartScanFlow out;
+  std::optional<NozzleClock> clock;
+  if (log) clock.emplace(*log, path);
+  out.has_flow = clock.has_value();
+  LayerVolumes volumes;
+  SpeedAndArea speeds;
+  out.layers = MeasurePartFile(
+      path, places, rig, options, threads,
+      [&](const PartGeometryRow& g) {
+        if (on_geometry) on_geometry(g);
+        if (!clock) return;
+        const PartFlowRow row = FlowOf(g, *clock);
+        out.flow_samples += row.valid;
+        out.unplaced += std::isnan(row.t_s);
+        volumes.Add(row);
+        speeds.Add(row);
+        if (on_flow) on_flow(row);
+      },
+      progress);
+  out.volumes_mm3 = volumes.volumes_mm3();
+  out.bulge = speeds.Bulge();
+  return out;
 }
 
 }  // namespace bead::part

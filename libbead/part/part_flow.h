@@ -6,7 +6,9 @@
 // wheel's surface speed).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <map>
 #include <optional>
@@ -51,6 +53,8 @@ struct PartFlowRow {
   double screw_rpm = kNaN;
   int64_t profile = 0;
   bool valid = false;
+  // The area the flow stands for: the corrected one where there is one.
+  double Area() const { return std::isnan(area_corrected_mm2) ? area_mm2 : area_corrected_mm2; }
 };
 
 // A profile's flow row; invalid (NaN) where its geometry is, or where the
@@ -89,5 +93,24 @@ class SpeedAndArea {
  private:
   std::vector<double> speed_, area_, flow_;  // the valid rows'
 };
+
+// A part scan's geometry and its flow along the path in one streamed pass
+// (bead flow, bead batch and bead report): each geometry row to
+// `on_geometry`; with a log, each flow row to `on_flow`; `progress` with
+// the profiles done and their total.
+struct PartScanFlow {
+  std::vector<LayerSummary> layers;
+  bool has_flow = false;  // the scan has a log
+  std::map<int64_t, double> volumes_mm3;
+  CornerBulge bulge;
+  std::size_t flow_samples = 0;  // valid flow rows
+  std::size_t unplaced = 0;      // rows whose place the log never had the nozzle pass
+  double TotalVolume() const;
+};
+PartScanFlow MeasurePartScanFlow(const std::string& path, const PartPlaces& places, const AcquisitionLog* log,
+                                 const Rig& rig, const MeasurePartOptions& options, unsigned threads,
+                                 const std::function<void(const PartGeometryRow&)>& on_geometry,
+                                 const std::function<void(const PartFlowRow&)>& on_flow,
+                                 const std::function<void(std::size_t, std::size_t)>& progress = nullptr);
 
 }  // namespace bead::part

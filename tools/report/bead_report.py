@@ -6,54 +6,27 @@
 DATA_DIR holds about.csv, geometry.csv, lines.csv and profiles.csv, and
 when there were: flow.csv, pin_points.csv, pin_fits.csv, pin_offset.csv
 (written by `bead report`; the geometry and flow CSVs are libbead's result
-CSVs). The page is one file: pictures are PNG inside it (base64), no
+CSVs). A part scan's (about.csv's kind: part) are part_report.py's. The page is one file: pictures are PNG inside it (base64), no
 script, no link to anything outside. Written atomically.
 """
-import base64
-import csv
 import html
-import io
 import json
 import math
 import os
 import sys
-import tempfile
 
 try:
-    import matplotlib
+    import matplotlib.pyplot as plt
+    import numpy as np
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt  # noqa: E402
-    import numpy as np  # noqa: E402
+    import part_report
+    from report_common import number, png, read_csv, table, write_page
 except ImportError as missing:  # the command words the fix (exit 3)
     sys.stderr.write("bead report: %s\n" % missing)
     sys.exit(3)
 
 STATUS_COLOURS = {"too_few_points": "#999999", "no_reference": "#d62728", "no_bead": "#bcbd22",
                   "bead_edge_not_seen": "#ff7f0e", "bead_in_reference_area": "#9467bd"}
-
-
-def read_csv(path):
-    """Columns by name: floats where they parse (empty: NaN), else text."""
-    if not os.path.exists(path):
-        return None
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
-    cols = {}
-    for key in (rows[0].keys() if rows else []):
-        values = [r[key] for r in rows]
-        try:
-            cols[key] = np.array([float(v) if v not in ("", "nan") else math.nan for v in values])
-        except ValueError:
-            cols[key] = values
-    return cols
-
-
-def png(fig):
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=110, bbox_inches="tight")
-    plt.close(fig)
-    return '<img alt="" src="data:image/png;base64,%s">' % base64.b64encode(buf.getvalue()).decode()
 
 
 def profiles_figure(points, lines):
@@ -272,18 +245,38 @@ def pins_figure(points, fits, offset):
     return png(fig)
 
 
-def number(value, form):
-    """A JSON number as text; empty where there is none."""
-    return form % value if isinstance(value, (int, float)) and math.isfinite(value) else ""
-
-
-def table(header, rows):
-    out = "<table>"
-    if any(header):
-        out += "<tr>" + "".join("<th>%s</th>" % html.escape(h) for h in header) + "</tr>"
-    for r in rows:
-        out += "<tr>" + "".join("<td>%s</td>" % html.escape(str(v)) for v in r) + "</tr>"
-    return out + "</table>"
+def explain_section(explain):
+    """The model against the data, the effects, the residual and the offsets."""
+    rows = [(e.get("name", e.get("effect", "?")), ", ".join("%s %.4g" % (k, v.get("value", math.nan)) if isinstance(v, dict)
+             else "%s %s" % (k, v) for k, v in (e.get("parameters") or {}).items()),
+             "%.2f" % e.get("fit_before_pct", math.nan), "%.2f" % e.get("fit_after_pct", math.nan))
+            for e in explain.get("effects_added", [])]
+    body = "<p>Model fit %.2f %% before, %.2f %% after; RMS %.4g before, %.4g after.</p>" % (
+        explain.get("fit_before_pct", math.nan), explain.get("fit_after_pct", math.nan),
+        explain.get("rms_before", math.nan), explain.get("rms_after", math.nan))
+    body += table(["effect added", "parameters", "fit before, %", "fit after, %"], rows or [("none", "", "", "")])
+    # The frequency and power tell apart two peaks that track the same
+    # part (both within the run's frequency resolution of its rate).
+    unexplained = [(u.get("what", ""), number(u.get("frequency_hz"), "%.4g"), u.get("tracks", ""),
+                    number(u.get("power"), "%.3g")) for u in explain.get("unexplained", [])]
+    if unexplained:
+        body += "<h3>Unexplained</h3>" + table(["what", "frequency, Hz", "tracks", "power"], unexplained)
+    if explain.get("compare"):
+        body += "<h3>Model against the data</h3><p>The measured output and the model's, alone and with the " \
+                "effects added (as MATLAB's compare).</p>" + compare_figure(explain["compare"], explain)
+    if explain.get("diagnostics"):
+        body += "<h3>Residual</h3><p>Its autocorrelation and its cross-correlation with the input, with " \
+                "their 99 % bounds (as MATLAB's resid): a white residual independent of the input stays " \
+                "inside.</p>" + resid_figure(explain["diagnostics"])
+    if explain.get("spectrum"):
+        body += "<h3>Residual spectrum</h3><p>On a log frequency axis; the unexplained peaks and the periodic " \
+                "effects added are marked with what they track (the wheel's and the screw's rates where the " \
+                "run has them).</p>" + spectrum_figure(explain["spectrum"], explain.get("unexplained", []),
+                                                      explain.get("effects_added", []))
+    offsets = offset_rows(explain)
+    if offsets:
+        body += "<h3>Encoder offset</h3>" + table(["source", "offset, counts", "95 % interval"], offsets)
+    return '<section id="explain"><h2>Model and explain</h2>%s</section>' % body
 
 
 def main(argv):
@@ -295,6 +288,12 @@ def main(argv):
         with open(argv[argv.index("--explain") + 1]) as f:
             explain = json.load(f)
     about = read_csv(os.path.join(data, "about.csv"))
+    if about.get("kind", [""])[0] == "part":
+        sections = part_report.sections(data)
+        if explain is not None:
+            sections.append(explain_section(explain))
+        write_page(about["run"][0], sections, out_path)
+        return
     g = read_csv(os.path.join(data, "geometry.csv"))
     flow = read_csv(os.path.join(data, "flow.csv"))
     lines, points = read_csv(os.path.join(data, "lines.csv")), read_csv(os.path.join(data, "profiles.csv"))
@@ -330,36 +329,7 @@ def main(argv):
         sections.append('<section id="flow"><h2>Flow</h2><p>Q = v A in extrusion time (the time the material left '
                         'the nozzle), with its uncertainty band from the area.</p>%s</section>' % flow_figure(flow, explain))
     if explain is not None:
-        rows = [(e.get("name", e.get("effect", "?")), ", ".join("%s %.4g" % (k, v.get("value", math.nan)) if isinstance(v, dict)
-                 else "%s %s" % (k, v) for k, v in (e.get("parameters") or {}).items()),
-                 "%.2f" % e.get("fit_before_pct", math.nan), "%.2f" % e.get("fit_after_pct", math.nan))
-                for e in explain.get("effects_added", [])]
-        body = "<p>Model fit %.2f %% before, %.2f %% after; RMS %.4g before, %.4g after.</p>" % (
-            explain.get("fit_before_pct", math.nan), explain.get("fit_after_pct", math.nan),
-            explain.get("rms_before", math.nan), explain.get("rms_after", math.nan))
-        body += table(["effect added", "parameters", "fit before, %", "fit after, %"], rows or [("none", "", "", "")])
-        # The frequency and power tell apart two peaks that track the same
-        # part (both within the run's frequency resolution of its rate).
-        unexplained = [(u.get("what", ""), number(u.get("frequency_hz"), "%.4g"), u.get("tracks", ""),
-                        number(u.get("power"), "%.3g")) for u in explain.get("unexplained", [])]
-        if unexplained:
-            body += "<h3>Unexplained</h3>" + table(["what", "frequency, Hz", "tracks", "power"], unexplained)
-        if explain.get("compare"):
-            body += "<h3>Model against the data</h3><p>The measured output and the model's, alone and with the " \
-                    "effects added (as MATLAB's compare).</p>" + compare_figure(explain["compare"], explain)
-        if explain.get("diagnostics"):
-            body += "<h3>Residual</h3><p>Its autocorrelation and its cross-correlation with the input, with " \
-                    "their 99 % bounds (as MATLAB's resid): a white residual independent of the input stays " \
-                    "inside.</p>" + resid_figure(explain["diagnostics"])
-        if explain.get("spectrum"):
-            body += "<h3>Residual spectrum</h3><p>On a log frequency axis; the unexplained peaks and the periodic " \
-                    "effects added are marked with what they track (the wheel's and the screw's rates where the " \
-                    "run has them).</p>" + spectrum_figure(explain["spectrum"], explain.get("unexplained", []),
-                                                          explain.get("effects_added", []))
-        offsets = offset_rows(explain)
-        if offsets:
-            body += "<h3>Encoder offset</h3>" + table(["source", "offset, counts", "95 % interval"], offsets)
-        sections.append('<section id="explain"><h2>Model and explain</h2>%s</section>' % body)
+        sections.append(explain_section(explain))
     if pin_points is not None:
         o = pin_offset
         text = ("offset %.2f ± %.2f counts (95 %%), %d of %d scans used; the rig file says %.2f counts" %
@@ -369,24 +339,7 @@ def main(argv):
                         'counts travelled, its fitted chord, and the offset with its interval: %s.</p>%s</section>'
                         % (html.escape(text), pins_figure(pin_points, pin_fits, o)))
 
-    page = """<!DOCTYPE html>
-<html lang="en"><head><meta charset="utf-8"><title>bead report: %s</title>
-<style>body{font-family:sans-serif;max-width:1150px;margin:1em auto;padding:0 1em;color:#222}
-h1{font-size:1.4em}h2{font-size:1.15em;border-bottom:1px solid #ccc;padding-bottom:.2em}
-table{border-collapse:collapse;font-size:.9em}td,th{border:1px solid #ddd;padding:.2em .6em;text-align:left}
-img{max-width:100%%}p{font-size:.92em}</style></head>
-<body><h1>bead report: %s</h1>
-%s
-<footer><p>Drawn by libbead's bead report; units mm, s, mm², mm³/s.</p></footer>
-</body></html>
-""" % (html.escape(os.path.basename(run)), html.escape(run), "\n".join(sections))
-    folder = os.path.dirname(os.path.abspath(out_path))
-    fd, tmp = tempfile.mkstemp(dir=folder, prefix=".bead-report-")
-    with os.fdopen(fd, "w") as f:
-        f.write(page)
-    os.chmod(tmp, 0o644)
-    os.replace(tmp, out_path)
-
+    write_page(run, sections, out_path)
 
 if __name__ == "__main__":
     try:
