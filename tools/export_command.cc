@@ -7,6 +7,7 @@
 #include "libbead/core/error.h"
 #include "libbead/core/worker_pool.h"
 #include "libbead/io/atomic_file.h"
+#include "libbead/io/part_scan_csv.h"
 #include "libbead/io/point_cloud.h"
 #include "libbead/io/run_archive.h"
 #include "libbead/part/part_cloud.h"
@@ -35,8 +36,6 @@ ProfileBlock EveryNth(ProfileBlock all, std::size_t n) {
   return kept;
 }
 
-// The profiles CSV long form of docs/data-formats.md: the sensor's own
-// points, what the C and Python examples read.
 // A part scan's cloud in the bed frame (part/part_cloud.h).
 int ExportPartCloud(const std::string& run, const std::string& output, std::size_t every) {
   const RunArchive scan = ReadPartScan(run, true, false);
@@ -49,6 +48,25 @@ int ExportPartCloud(const std::string& run, const std::string& output, std::size
   return 0;
 }
 
+// A part scan's CSV forms (io/part_scan_csv.h): its profiles with their
+// places, or (`log`) the nozzle's log.
+int ExportPartCsv(const std::string& run, const std::string& output, std::size_t every, bool log) {
+  const RunArchive scan = ReadPartScan(run, !log, log);
+  if (log) {
+    if (!scan.log || scan.log->size() == 0) throw Error(Located(run, "/log", "holds no nozzle log to export"));
+    WritePartLogCsv(output, *scan.log);
+    std::printf("%s: part scan, %zu log samples (t_s,layer,path_mm,screw_rpm%s); wrote %s\n", run.c_str(),
+                scan.log->size(), scan.log->head_speed_mm_s.empty() ? "" : ",head_speed_mm_s", output.c_str());
+    return 0;
+  }
+  WritePartProfilesCsv(output, scan.profiles, *scan.part, every);
+  std::printf("%s: part scan, %zu profiles of %zu points each with their layer and place; wrote %s\n", run.c_str(),
+              (scan.profiles.size() + every - 1) / every, scan.profiles.points, output.c_str());
+  return 0;
+}
+
+// The profiles CSV long form of docs/data-formats.md: the sensor's own
+// points, what the C and Python examples read.
 void ExportProfilesCsv(const std::string& run, const std::string& output, std::size_t every) {
   WorkerPool pool;
   OpenedRun opened = OpenRun(run, pool, /*with_log=*/false);
@@ -100,7 +118,12 @@ Run AddExport(CLI::App& app) {
       "     --log with .csv: the acquisition log CSV (t_s,encoder,screw_rpm[,extruder_cmd_v,wheel_cmd_v]).\n"
       "     A part scan (format 1.1, kind = \"part\"; no rig needed) as a cloud is in the bed frame:\n"
       "     x + frame_x_mm across the path, y = path_mm along it, z + frame_z_mm above the bed,\n"
-      "     each point with its layer (field layer; encoder 0): the part as printed.\n"
+      "     each point with its layer (field layer; encoder 0): the part as printed. As .csv\n"
+      "     (profile,t_s,layer,path_mm,frame_z_mm,frame_x_mm,x_mm,z_mm, one row per point) its profiles\n"
+      "     with their places; with --log the nozzle's log (t_s,layer,path_mm,screw_rpm[,head_speed_mm_s]).\n"
+      "     `bead import P.csv --profile-column profile --time-column t_s --x-column x_mm --z-column z_mm\n"
+      "     --layer-column layer --path-column path_mm --frame-z-column frame_z_mm --frame-x-column\n"
+      "     frame_x_mm --log LOG.csv` makes the part scan again.\n"
       "Example:\n"
       "  bead export --rig rig.yaml run.h5 -o run.ply && pcl_viewer run.ply\n"
       "  bead export run.h5 --every 10 -o profiles.csv\n"
@@ -119,6 +142,9 @@ Run AddExport(CLI::App& app) {
 
   return [args]() {
     CheckWritable(args->output);  // before the run is read
+    const bool part = args->run.ends_with(".h5") && IsPartScan(args->run);
+    if (part && args->output.ends_with(".csv"))
+      return ExportPartCsv(args->run, args->output, args->options.every, args->log);
     if (args->log) {
       if (!args->output.ends_with(".csv"))
         throw CLI::ValidationError("--log", "the log is written as a CSV (-o LOG.csv)");
@@ -131,8 +157,7 @@ Run AddExport(CLI::App& app) {
     }
     if (!IsPointCloudPath(args->output))
       throw Error(Located(args->output, "", "is written as a point cloud (.ply or .pcd) or a profiles CSV (.csv)"));
-    if (args->run.ends_with(".h5") && IsPartScan(args->run))
-      return ExportPartCloud(args->run, args->output, args->options.every);
+    if (part) return ExportPartCloud(args->run, args->output, args->options.every);
     if (args->rig.empty()) throw CLI::RequiredError("--rig (a point cloud is placed in wheel coordinates)");
     const Rig rig = ReadRigSaying(args->rig);
     WorkerPool pool;

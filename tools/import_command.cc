@@ -5,8 +5,11 @@
 #include <filesystem>
 
 #include "libbead/core/error.h"
+#include "libbead/io/csv_reader.h"
 #include "libbead/io/mat_run.h"
+#include "libbead/io/part_scan_csv.h"
 #include "libbead/io/point_cloud.h"
+#include "libbead/io/profiles_csv.h"
 #include "libbead/io/run_archive.h"
 #include "libbead/io/vendor_csv.h"
 #include "tools/commands.h"
@@ -25,6 +28,19 @@ ImportedRun ReadForeignRun(const std::string& path, const ImportColumns& columns
   if (ext == ".mat") return ReadMatRun(path, columns);
   if (IsPointCloudPath(path)) return ReadPointCloud(path, columns);
   throw Error(Located(path, "", "import reads .csv, .mat, .ply or .pcd files (by their extension)"));
+}
+
+// The run's log from its CSV (--log): a part scan's nozzle log, else the
+// wheel's acquisition log; it must overlap the profiles in time.
+AcquisitionLog ReadLogFor(const std::string& path, const ImportedRun& imported) {
+  AcquisitionLog log = imported.run.part ? ReadPartLogCsv(path) : ReadLogCsv(path);
+  const auto& t = imported.run.profiles.t_s;
+  if (!t.empty() && (log.t_s.back() < t.front() || log.t_s.front() > t.back()))
+    throw Error(Located(path, "",
+                        "the log's times (" + CsvNumber(log.t_s.front()) + " .. " + CsvNumber(log.t_s.back()) +
+                            " s) never meet the profiles' (" + CsvNumber(t.front()) + " .. " + CsvNumber(t.back()) +
+                            " s): the log must be on the profiles' clock (--time-scale applies to the profiles only)"));
+  return log;
 }
 
 void PrintSummary(const std::string& input, const std::string& output, const ImportedRun& imported) {
@@ -61,7 +77,7 @@ void PrintSummary(const std::string& input, const std::string& output, const Imp
 
 Run AddImport(CLI::App& app) {
   struct Args {
-    std::string input, output;
+    std::string input, output, log;
     ImportColumns columns;
   };
   auto args = std::make_shared<Args>();
@@ -82,8 +98,12 @@ Run AddImport(CLI::App& app) {
       "        that speed times its time since its layer's first profile; --frame-z-column and\n"
       "        --frame-x-column the profile frame's height above the bed and lateral offset (0 when\n"
       "        not named). It writes a part scan (kind = \"part\", no encoder) that bead measure\n"
-      "        measures layer on layer.\n"
-      "Out: RUN.h5, the run archive of docs/data-formats.md (profiles only, no /log),\n"
+      "        measures layer on layer; with --log LOG.csv (t_s,layer,path_mm,screw_rpm\n"
+      "        [,head_speed_mm_s]: where the nozzle was, as `bead export PART.h5 --log` writes it)\n"
+      "        bead flow gives its flow along the path.\n"
+      "  --log LOG.csv  the run's log on the profiles' clock: a part scan's as above, a wheel\n"
+      "        run's t_s,encoder,screw_rpm (docs/data-formats.md).\n"
+      "Out: RUN.h5, the run archive of docs/data-formats.md (profiles, and /log from --log),\n"
       "     z as height (up): --z-distance turns a distance from the sensor into one.\n"
       "     Without --encoder-column, /profiles/encoder holds 0 and the root attribute\n"
       "     encoder=absent says so: `bead measure` works, `bead flow` refuses the archive.\n"
@@ -118,11 +138,17 @@ Run AddImport(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--frame-z-column", c.frame_z, "Column of the profile frame's height above the bed, mm (part)");
   cmd->add_option("--frame-x-column", c.frame_x, "Column of the profile frame's lateral offset, mm (part)");
+  cmd->add_option("--log", args->log,
+                  "The run's log (CSV on the profiles' clock): a part scan's t_s,layer,path_mm,screw_rpm"
+                  "[,head_speed_mm_s], a wheel run's t_s,encoder,screw_rpm")
+      ->check(CLI::ExistingFile);
 
   return [args]() {
-    const ImportedRun imported = ReadForeignRun(args->input, args->columns);
+    ImportedRun imported = ReadForeignRun(args->input, args->columns);
+    if (!args->log.empty()) imported.run.log = ReadLogFor(args->log, imported);
     WriteRunArchive(args->output, imported.run);
     PrintSummary(args->input, args->output, imported);
+    if (imported.run.log) std::printf("  /log: %zu samples from %s\n", imported.run.log->size(), args->log.c_str());
     return 0;
   };
 }

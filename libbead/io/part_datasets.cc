@@ -73,17 +73,22 @@ void WritePartPlaces(h5::File& f, const PartPlaces& p) {
   f.Write("/profiles/frame_x_mm", p.frame_x_mm, {n});
 }
 
+void ValidatePartLog(const AcquisitionLog& log, const std::string& file, const std::string& where) {
+  const std::string t_name = where + "/t_s";
+  CheckLength(log.layer.size(), log.size(), file, where + "/layer", t_name);
+  CheckLength(log.path_mm.size(), log.size(), file, where + "/path_mm", t_name);
+  if (!log.head_speed_mm_s.empty())
+    CheckLength(log.head_speed_mm_s.size(), log.size(), file, where + "/head_speed_mm_s", t_name);
+  CheckLayers(log.layer, file, where + "/layer", false);
+  CheckFinite(log.path_mm, file, where + "/path_mm");
+  CheckFinite(log.head_speed_mm_s, file, where + "/head_speed_mm_s");
+}
+
 void ReadPartLog(const h5::File& f, AcquisitionLog& log) {
   log.layer = f.ReadInt64("/log/layer", {1}).data;
   log.path_mm = f.ReadDouble("/log/path_mm", {1}).data;
   if (f.Exists("/log/head_speed_mm_s")) log.head_speed_mm_s = f.ReadDouble("/log/head_speed_mm_s", {1}).data;
-  CheckLength(log.layer.size(), log.size(), f.name(), "/log/layer", "/log/t_s");
-  CheckLength(log.path_mm.size(), log.size(), f.name(), "/log/path_mm", "/log/t_s");
-  if (!log.head_speed_mm_s.empty())
-    CheckLength(log.head_speed_mm_s.size(), log.size(), f.name(), "/log/head_speed_mm_s", "/log/t_s");
-  CheckLayers(log.layer, f.name(), "/log/layer", false);
-  CheckFinite(log.path_mm, f.name(), "/log/path_mm");
-  CheckFinite(log.head_speed_mm_s, f.name(), "/log/head_speed_mm_s");
+  ValidatePartLog(log, f.name(), "/log");
 }
 
 void WritePartLog(h5::File& f, const AcquisitionLog& log) {

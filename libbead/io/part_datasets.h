@@ -25,6 +25,9 @@ bool IsPartLogDataset(const std::string& name);
 
 PartPlaces ReadPartPlaces(const h5::File& f, std::size_t profiles);
 void WritePartPlaces(h5::File& f, const PartPlaces& places);
+// A part scan log's nozzle datasets (`where`/layer, path_mm, and
+// head_speed_mm_s when present): lengths, layers from 0, finite numbers.
+void ValidatePartLog(const AcquisitionLog& log, const std::string& file, const std::string& where);
 // Adds /log/layer, path_mm and head_speed_mm_s (when present) to `log`.
 void ReadPartLog(const h5::File& f, AcquisitionLog& log);
 void WritePartLog(h5::File& f, const AcquisitionLog& log);

@@ -1,0 +1,79 @@
+// A part scan's CSV forms: its profiles with their places and its nozzle
+// log, written by bead export and made into the same part scan again by
+// bead import (the files bead measure and bead flow write on it are the
+// same, byte for byte); a log that is not a part log's, or not on the
+// profiles' clock, is refused by file and line.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <string>
+
+#include "libbead/io/part_scan_csv.h"
+#include "tests/support/expect_rejected.h"
+#include "tests/support/run_cli.h"
+
+namespace bead {
+namespace {
+
+TEST(PartScanCsv, ExportedAndImportedTheScanMeasuresTheSame) {
+  test::TempDir dir;
+  test::WriteText(dir / "wall.yaml", "seed: 5\npart: {shape: wall, layers: 2, length_mm: 30}\n");
+  auto [code, out] = test::RunCli(dir, "simulate " + (dir / "wall.yaml") + " -o " + (dir / "twin"));
+  ASSERT_EQ(code, 0) << out;
+  const std::string twin = dir / "twin", rig = " --rig " + twin + "/rig.yaml ";
+  std::tie(code, out) = test::RunCli(dir, "export " + twin + "/part.h5 -o " + (dir / "p.csv"));
+  ASSERT_EQ(code, 0) << out;
+  std::tie(code, out) = test::RunCli(dir, "export " + twin + "/part.h5 --log -o " + (dir / "log.csv"));
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_EQ(test::ReadText(dir / "p.csv").rfind("profile,t_s,layer,path_mm,frame_z_mm,frame_x_mm,x_mm,z_mm\n", 0), 0u);
+  EXPECT_EQ(test::ReadText(dir / "log.csv").rfind("t_s,layer,path_mm,screw_rpm,head_speed_mm_s\n", 0), 0u);
+  std::tie(code, out) = test::RunCli(
+      dir, "import " + (dir / "p.csv") + " -o " + (dir / "back.h5") +
+               " --profile-column profile --time-column t_s --x-column x_mm --z-column z_mm --layer-column layer"
+               " --path-column path_mm --frame-z-column frame_z_mm --frame-x-column frame_x_mm --log " +
+               (dir / "log.csv"));
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("a part scan: layers 0 to 1"), std::string::npos) << out;
+  EXPECT_NE(out.find("/log: "), std::string::npos) << out;
+  for (const char* command : {"measure", "flow"}) {
+    std::tie(code, out) = test::RunCli(dir, std::string(command) + rig + twin + "/part.h5 -o " + (dir / "a.csv"));
+    ASSERT_EQ(code, 0) << out;
+    std::tie(code, out) = test::RunCli(dir, std::string(command) + rig + (dir / "back.h5") + " -o " + (dir / "b.csv"));
+    ASSERT_EQ(code, 0) << out;
+    EXPECT_EQ(test::ReadText(dir / "a.csv"), test::ReadText(dir / "b.csv")) << command;
+  }
+  // A log on another clock never meets the profiles: refused, nothing written.
+  {
+    std::ofstream late(dir / "late.csv");
+    late << "t_s,layer,path_mm,screw_rpm\n1000,0,0,100\n1001,0,20,100\n";
+  }
+  std::tie(code, out) = test::RunCli(
+      dir, "import " + (dir / "p.csv") + " -o " + (dir / "late.h5") +
+               " --profile-column profile --time-column t_s --x-column x_mm --z-column z_mm --layer-column layer"
+               " --path-column path_mm --log " +
+               (dir / "late.csv"));
+  EXPECT_EQ(code, 1) << out;
+  EXPECT_NE(out.find("never meet the profiles'"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "late.h5"));
+}
+
+TEST(PartScanCsv, ALogThatIsNotAPartLogIsRefusedWhereItIsWrong) {
+  test::TempDir dir;
+  const auto write = [&](const std::string& name, const std::string& text) {
+    std::ofstream(dir / name) << text;
+    return dir / name;
+  };
+  const std::string wheel = write("wheel.csv", "t_s,encoder,screw_rpm\n0,0,100\n");
+  test::ExpectRejected(wheel, "t_s,layer,path_mm,screw_rpm", [&] { ReadPartLogCsv(wheel); });
+  const std::string negative = write("neg.csv", "t_s,layer,path_mm,screw_rpm\n0,0,0,100\n0.1,-1,1,100\n");
+  test::ExpectRejected(negative, "a layer counts from 0", [&] { ReadPartLogCsv(negative); });
+  const std::string word = write("word.csv", "t_s,layer,path_mm,screw_rpm\n0,0,zero,100\n");
+  test::ExpectRejected(word, "path_mm", [&] { ReadPartLogCsv(word); });
+  const std::string backwards = write("back.csv", "t_s,layer,path_mm,screw_rpm\n1,0,0,100\n0.5,0,1,100\n");
+  test::ExpectRejected(backwards, "t_s", [&] { ReadPartLogCsv(backwards); });
+  const std::string empty = write("empty.csv", "t_s,layer,path_mm,screw_rpm\n");
+  test::ExpectRejected(empty, "holds no log rows", [&] { ReadPartLogCsv(empty); });
+}
+
+}  // namespace
+}  // namespace bead
