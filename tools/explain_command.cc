@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "libbead/io/atomic_file.h"
+#include "libbead/io/run_archive.h"
 #include "tools/commands.h"
 #include "tools/explain_modes.h"
 #include "tools/occlusion_step.h"
@@ -30,6 +31,10 @@ Run AddExplain(CLI::App& app) {
       "  scans' (--pins); the profile time stamps against the log (a sensor latency); and with\n"
       "  --flow-out the flow CSV with the kept effects that act on the measurement undone (offset\n"
       "  re-aligned, a wheel's once-per-revolution speed error removed, shrinkage added back).\n"
+      "Part mode: bead explain --rig RIG.yaml PART.h5 [--validate OTHER.h5] -o explain.json\n"
+      "  a part scan (format 1.1): its flow along the toolpath (bead flow's, Q = v_head A in the time the\n"
+      "  nozzle laid each place) is the series, the screw's RPM the input; the loop as in CSV mode, the\n"
+      "  head's speed tried as a recorded cause (--channels to name others, --no-channels for none).\n"
       "CSV mode:  bead explain DATA.csv --input COL --output COL [--time COL] [--validate OTHER.csv]\n"
       "  (--input a,b: a base model with several inputs, a transfer function each; --model of as many)\n"
       "  the same loop on any measured series (uneven sampling, gaps, a start mid-process; stretches where\n"
@@ -96,7 +101,9 @@ Run AddExplain(CLI::App& app) {
   return [args]() {
     CheckWritable(args->out);  // before the run is measured
     if (!args->flow_out.empty()) CheckWritable(args->flow_out);
-    return args->rig.empty() ? ExplainSeriesMode(*args) : ExplainRunMode(*args);
+    if (args->rig.empty()) return ExplainSeriesMode(*args);
+    if (args->data.ends_with(".h5") && IsPartScan(args->data)) return ExplainPartMode(*args);
+    return ExplainRunMode(*args);
   };
 }
 

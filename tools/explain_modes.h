@@ -1,6 +1,7 @@
-// bead explain's two modes behind its options page (explain_command.cc):
-// run mode (a run archive and its rig, explain_run_mode.cc) and series
-// mode (any CSV or .mat series, explain_series_mode.cc), with the
+// bead explain's modes behind its options page (explain_command.cc): run
+// mode (a run archive and its rig, explain_run_mode.cc), series mode (any
+// CSV or .mat series, explain_series_mode.cc) and part mode (a part scan's
+// flow along the path as the series, explain_part_mode.cc), with the
 // printing they share (explain_print.cc).
 #pragma once
 
@@ -28,6 +29,9 @@ struct ExplainArgs {
   int max_effects = 5;
   std::size_t profiles_per_sample = 0;
   bool keep_off = false, no_channels = false;
+  std::string series_mode = "csv";
+  std::string
+      data_name;  // what the model's source names the data by (empty: the data's path)  // the JSON's mode: csv, or part (a part scan's flow as the series)
   std::vector<std::string> channels;
 
   explain::ExplainOptions Explain() const;
@@ -50,6 +54,7 @@ explain::IdentifiedRun ExplainWithModel(const ExplainArgs& a, const Rig& rig, co
 
 int ExplainRunMode(const ExplainArgs& a);
 int ExplainSeriesMode(const ExplainArgs& a);
+int ExplainPartMode(const ExplainArgs& a);
 
 void PrintReport(const explain::ExplainReport& r, const std::string& unit);
 void PrintRun(const explain::RunExplanation& e, const Rig& rig, const std::string& path, const std::string& validate);

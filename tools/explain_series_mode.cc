@@ -60,7 +60,8 @@ int ExplainSeriesMode(const ExplainArgs& a) {
   explain::ExplainOptions options = a.Explain();
   const ReadData r = Read(a, a.data);
   const ProcessOn on = SeriesStretches(r.s, a.data, a.keep_off, "explain");
-  const explain::BaseModel mdl = ModelFor(a, r.s.t, r.u, r.s.y, on.segments, a.data);
+  const explain::BaseModel mdl =
+      ModelFor(a, r.s.t, r.u, r.s.y, on.segments, a.data_name.empty() ? a.data : a.data_name);
   const explain::SeriesData data = Against(a, r, on, mdl, a.data);
   std::optional<explain::SeriesData> other;
   if (!a.validate.empty()) {
@@ -74,7 +75,7 @@ int ExplainSeriesMode(const ExplainArgs& a) {
   std::vector<explain::NamedModel> more;
   for (std::size_t k = 1; k < mdl.tfs.size(); ++k) more.push_back({a.inputs[k], mdl.tfs[k]});
   nlohmann::json j = explain::ReportJson(rep, mdl.tfs[0], mdl.offset, mdl.source, more);
-  j["mode"] = "csv";
+  j["mode"] = a.series_mode;
   j["compare"] = explain::CompareJson(data, rep);
   j["offset_from_run_counts"] = nullptr;  // no wheel in a plain series
   j["offset_from_run_ci95_counts"] = nullptr;
