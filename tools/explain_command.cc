@@ -102,7 +102,7 @@ Run AddExplain(CLI::App& app) {
     CheckWritable(args->out);  // before the run is measured
     if (!args->flow_out.empty()) CheckWritable(args->flow_out);
     if (args->rig.empty()) return ExplainSeriesMode(*args);
-    if (args->data.ends_with(".h5") && IsPartScan(args->data)) return ExplainPartMode(*args);
+    if (IsPartScanFile(args->data)) return ExplainPartMode(*args);
     return ExplainRunMode(*args);
   };
 }

@@ -14,6 +14,7 @@
 #include "libbead/part/part_csv.h"
 #include "libbead/part/part_flow.h"
 #include "tools/explain_modes.h"
+#include "tools/part_scan.h"
 #include "tools/rig_input.h"
 
 namespace bead::tools {
@@ -38,7 +39,7 @@ struct Scratch {
 // The scan's flow along the path into `csv`; its counts said.
 void PartFlowCsv(const Rig& rig, const std::string& run, const fs::path& csv) {
   const RunArchive scan = ReadPartScan(run, /*with_profiles=*/false, /*with_log=*/true);
-  if (!scan.log) throw Error(Located(run, "/log", "missing group: the flow along the path needs the nozzle's log"));
+  if (!scan.log) throw NoNozzleLog(run);
   part::PartFlowCsvWriter out(csv.string());
   const part::PartScanFlow f = part::MeasurePartScanFlow(run, *scan.part, &*scan.log, rig, {}, 0, nullptr,
                                                          [&](const part::PartFlowRow& row) { out.Append(row); });
@@ -67,7 +68,7 @@ int ExplainPartMode(const ExplainArgs& a) {
   s.data = (scratch.dir / (fs::path(a.data).stem().string() + "_flow.csv")).string();
   PartFlowCsv(rig.rig, a.data, s.data);
   if (!a.validate.empty()) {
-    if (!(a.validate.ends_with(".h5") && IsPartScan(a.validate)))
+    if (!(IsPartScanFile(a.validate)))
       throw Error(Located(a.validate, "", "is not a part scan: --validate takes another part scan of the same rig"));
     s.validate = (scratch.dir / (fs::path(a.validate).stem().string() + "_validate_flow.csv")).string();
     PartFlowCsv(rig.rig, a.validate, s.validate);
@@ -76,7 +77,16 @@ int ExplainPartMode(const ExplainArgs& a) {
   if (a.channels.empty() && !a.no_channels) s.channels = {"head_speed_mm_s"};
   s.series_mode = "part";
   s.data_name = a.data + "'s flow along the path";
-  return ExplainSeriesMode(s);
+  // The series is a scratch file: what is said about it is said of the scan's flow.
+  try {
+    return ExplainSeriesMode(s);
+  } catch (const Error& e) {
+    std::string what = e.what();
+    const std::string name = a.data + "'s flow along the path";
+    for (std::size_t at = what.find(s.data); at != std::string::npos; at = what.find(s.data, at + name.size()))
+      what.replace(at, s.data.size(), name);
+    throw Error(what);
+  }
 }
 
 }  // namespace bead::tools

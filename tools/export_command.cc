@@ -142,7 +142,7 @@ Run AddExport(CLI::App& app) {
 
   return [args]() {
     CheckWritable(args->output);  // before the run is read
-    const bool part = args->run.ends_with(".h5") && IsPartScan(args->run);
+    const bool part = IsPartScanFile(args->run);
     if (part && args->output.ends_with(".csv"))
       return ExportPartCsv(args->run, args->output, args->options.every, args->log);
     if (args->log) {

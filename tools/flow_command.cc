@@ -67,8 +67,7 @@ Run AddFlow(CLI::App& app) {
     if (args->rig.empty() || args->run.empty() || args->output.empty())
       throw CLI::RequiredError("--rig, RUN and -o are all needed (or none, for the bundled sample)");
     // A part scan (kind = "part"): the flow along the toolpath.
-    if (args->run.ends_with(".h5") && IsPartScan(args->run))
-      return FlowPartScan(args->rig, args->run, args->output, args->profile);
+    if (IsPartScanFile(args->run)) return FlowPartScan(args->rig, args->run, args->output, args->profile);
     const Rig rig = ReadRigSaying(args->rig);
     WorkerPool pool;
     RunFlowRequest request;

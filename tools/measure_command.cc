@@ -85,7 +85,7 @@ Run AddMeasure(CLI::App& app) {
     if (args->beads == "all")
       return MeasureRoads(args->rig, args->run, args->output, args->options, args->laid == "left-first", args->threads);
     // A part scan (kind = "part") is measured layer on layer.
-    if (args->run.ends_with(".h5") && IsPartScan(args->run))
+    if (IsPartScanFile(args->run))
       return MeasurePartScan(args->rig, args->run, args->output, args->options, args->threads);
     const Rig rig = ReadRigSaying(args->rig);
     WorkerPool pool(args->threads);

@@ -7,6 +7,7 @@
 
 #include "libbead/archive/open_run.h"
 #include "libbead/core/worker_pool.h"
+#include "libbead/io/part_scan_csv.h"
 #include "libbead/io/run_archive.h"
 #include "libbead/part/measure_part.h"
 #include "libbead/core/error.h"
@@ -125,9 +126,9 @@ int MeasureRoads(const std::string& rig_path, const std::string& run, const std:
   WorkerPool pool(threads);
   std::unique_ptr<ProfileStream> stream;
   PartPlaces places;
-  if (run.ends_with(".h5") && IsPartScan(run)) {
+  if (IsPartScanFile(run)) {
     places = *ReadPartScan(run, false, false).part;
-    stream = std::make_unique<ProfileStream>(run, pool);
+    stream = OpenPartProfiles(run, pool);
   } else {
     stream = std::move(OpenRun(run, pool, /*with_log=*/false).profiles);
     places = OnTheBed(stream->size());
@@ -156,10 +157,18 @@ int MeasureRoads(const std::string& rig_path, const std::string& run, const std:
   return 0;
 }
 
+Error NoNozzleLog(const std::string& run) {
+  if (run.ends_with(".csv"))
+    return Error(Located(run, "",
+                         "a part profiles CSV carries no log, and the flow along the path needs the nozzle's: bead "
+                         "import it with --log LOG.csv (docs/data-formats.md, part scan CSV forms)"));
+  return Error(Located(run, "/log", "missing group: the flow along the path needs the nozzle's log"));
+}
+
 int FlowPartScan(const std::string& rig_path, const std::string& run, const std::string& output,
                  const ProfileOptions& bed) {
   const RunArchive scan = ReadPartScan(run, false, true);
-  if (!scan.log) throw Error(Located(run, "/log", "missing group: the flow along the path needs the nozzle's log"));
+  if (!scan.log) throw NoNozzleLog(run);
   const Rig rig = PartRigSaying(rig_path);
   part::PartFlowCsvWriter out(output);
   part::MeasurePartOptions options;

@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "libbead/core/error.h"
 #include "libbead/profile/profile_processor.h"
 
 namespace bead::tools {
@@ -16,6 +17,9 @@ int MeasurePartScan(const std::string& rig_path, const std::string& run, const s
 // each on the bed.
 int MeasureRoads(const std::string& rig_path, const std::string& run, const std::string& output,
                  const ProfileOptions& bed, bool laid_left_first, unsigned threads);
+// Why a part scan has no flow: its file has no nozzle log (a part profiles
+// CSV never has one).
+Error NoNozzleLog(const std::string& run);
 int FlowPartScan(const std::string& rig_path, const std::string& run, const std::string& output,
                  const ProfileOptions& bed);
 

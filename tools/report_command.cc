@@ -158,7 +158,7 @@ Run AddReport(CLI::App& app) {
   return [args]() {
     CheckWritable(args->output);
     if (!args->explain.empty()) CheckExplainReport(args->explain);
-    const bool part = args->run.ends_with(".h5") && IsPartScan(args->run);
+    const bool part = IsPartScanFile(args->run);
     if (part && !args->pins.empty())
       throw Error(Located(args->run, "", "is a part scan, which has no encoder: --pins takes a wheel run's pin scans"));
     char tmpl[] = "/tmp/bead-report-XXXXXX";

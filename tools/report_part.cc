@@ -8,6 +8,7 @@
 
 #include "libbead/core/error.h"
 #include "libbead/core/worker_pool.h"
+#include "libbead/io/part_scan_csv.h"
 #include "libbead/io/profile_stream.h"
 #include "libbead/io/rig_yaml.h"
 #include "libbead/io/run_archive.h"
@@ -52,12 +53,12 @@ std::map<std::pair<std::size_t, int64_t>, std::size_t> SectionProfiles(const Par
 void WriteSections(const std::string& run, const PartPlaces& p, const std::vector<double>& places,
                    const fs::path& file) {
   WorkerPool pool(1);
-  ProfileStream stream(run, pool);
+  const std::unique_ptr<ProfileStream> stream = OpenPartProfiles(run, pool);
   ProfileBlock block;
   std::ofstream out(file);
   out << "section,place_mm,layer,profile,path_mm,x_mm,z_mm\n";
   for (const auto& [key, i] : SectionProfiles(p, places)) {
-    stream.Read(i, 1, block);
+    stream->Read(i, 1, block);
     const ProfileView v = block.view(0);
     for (std::size_t k = 0; k < v.x_mm.size(); ++k)
       if (std::isfinite(v.x_mm[k]) && std::isfinite(v.z_mm[k]))

@@ -174,7 +174,7 @@ RunResult ProcessRun(const BatchRun& job, const BatchOptions& options, WorkerPoo
   const std::string inputs = Fingerprint(job, options);
   try {
     // A part scan (kind = "part") is measured layer on layer.
-    if (job.run.ends_with(".h5") && IsPartScan(job.run))
+    if (IsPartScanFile(job.run))
       ProcessPartScan(job, dir.string(), options, r);
     else
       ProcessWheelRun(job, dir.string(), options, pool, progress, r);

@@ -10,6 +10,7 @@
 #include "libbead/io/contained.h"
 #include "libbead/io/hdf5_rows.h"
 #include "libbead/io/hdf5_file.h"
+#include "libbead/io/part_scan_csv.h"
 #include "libbead/io/part_datasets.h"
 
 namespace bead {
@@ -255,7 +256,8 @@ void CheckIsRunArchive(const h5::File& f, const std::string& path) {
   if (const auto kind = root.find("kind"); kind != root.end() && kind->second == "part")
     throw Error(Located(path, "",
                         "is a part scan (root attribute kind = \"part\", format 1.1: beads on the layers of a "
-                        "printed part): this version measures beads on the wheel (run archives) only"));
+                        "printed part): this command works on a run on the wheel; bead measure, flow, report, explain, "
+                        "export and batch take a part scan"));
   if (f.Exists("/profiles")) return;
   if (f.Exists("/scans"))
     throw Error(Located(path, "",
@@ -298,6 +300,7 @@ RunArchive ReadRunArchive(const std::string& path, bool with_profiles, bool with
 }
 
 bool IsPartScan(const std::string& path) {
+  if (path.ends_with(".csv")) return IsPartProfilesCsv(path);
   auto read = [&] {
     const h5::File f = h5::File::OpenRead(path);
     const auto root = f.ReadStringAttributes("/");
@@ -309,6 +312,7 @@ bool IsPartScan(const std::string& path) {
 }
 
 RunArchive ReadPartScan(const std::string& path, bool with_profiles, bool with_log) {
+  if (path.ends_with(".csv")) return ReadPartProfilesCsv(path);  // profiles and places; a CSV has no log
   ProbeContained(path, "HDF5", [&] { ProbeRunArchive(path, with_log, true); });
   return ReadRunArchiveDirect(path, with_profiles, with_log, true);
 }

@@ -47,13 +47,20 @@ struct PinScanArchive {
 };
 
 RunArchive ReadRunArchive(const std::string& path);
-// Whether the archive's root says kind = "part" (format 1.1); false for
-// anything else (the readers then say what the file is).
+// Whether the archive's root says kind = "part" (format 1.1), or a .csv
+// is a part profiles CSV (io/part_scan_csv.h); false for anything else
+// (the readers then say what the file is).
 bool IsPartScan(const std::string& path);
+// The same by the file's extension: a .h5's kind, a .csv's header; false
+// for any other file (a .mat, a point cloud).
+inline bool IsPartScanFile(const std::string& path) {
+  return (path.ends_with(".h5") || path.ends_with(".csv")) && IsPartScan(path);
+}
 // A part scan (format 1.1), checked as a run archive is, and its places:
 // lengths, finite values, layers from 0 that never fall (a layer's
 // profiles together, the profiler trailing the nozzle).
 RunArchive ReadPartScan(const std::string& path, bool with_profiles = true, bool with_log = true);
+// A .csv: the part profiles CSV, read whole (profiles and places, no log).
 // with_profiles = false: the log and root attributes only (the profiles
 // are then read window by window, io/profile_stream.h); with_log = false:
 // the log's datasets checked (presence, type, lengths) but not read (for

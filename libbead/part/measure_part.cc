@@ -8,6 +8,7 @@
 
 #include "libbead/core/error.h"
 #include "libbead/core/worker_pool.h"
+#include "libbead/io/part_scan_csv.h"
 #include "libbead/part/bed_arc.h"
 #include "libbead/part/hidden_groove.h"
 
@@ -234,9 +235,9 @@ std::vector<LayerSummary> MeasurePartFile(const std::string& path, const PartPla
                                           const std::function<void(const PartGeometryRow&)>& sink,
                                           const std::function<void(std::size_t, std::size_t)>& progress) {
   WorkerPool pool(threads);
-  ProfileStream stream(path, pool);
-  const std::size_t total = stream.size();
-  return MeasurePart(stream, places, rig, options, sink, [&](std::size_t done) {
+  const std::unique_ptr<ProfileStream> stream = OpenPartProfiles(path, pool);
+  const std::size_t total = stream->size();
+  return MeasurePart(*stream, places, rig, options, sink, [&](std::size_t done) {
     if (progress) progress(done, total);
   });
 }

@@ -65,19 +65,28 @@ TEST(PartCommand, TheWheelsCommandsNameAPartScanAndAPartRigNamesWhatIsMissing) {
     rig << "part: {bed: flat}\n";
   }
   ASSERT_EQ(test::RunCli(dir, "simulate " + (dir / "wall.yaml") + " -o " + (dir / "sim")).first, 0);
+  // bead explain takes a part scan (its flow along the path); 5 mm of it are too few samples, and the
+  // error names the scan's flow, not the scratch file it was written to.
   auto [code, out] = test::RunCli(
       dir, "explain --rig " + (dir / "sim/rig.yaml") + " " + (dir / "sim/part.h5") + " -o " + (dir / "e.json"));
   EXPECT_EQ(code, 1) << out;
+  EXPECT_NE(out.find("part.h5's flow along the path: fewer than 20 usable rows"), std::string::npos) << out;
+  EXPECT_EQ(out.find("/tmp/bead-explain-"), std::string::npos) << out;
+  // A wheel's command: with a part rig, the rig is named; with a rig that has the wheel too, the archive.
+  std::tie(code, out) = test::RunCli(
+      dir, "calibrate wheel --rig " + (dir / "sim/rig.yaml") + " " + (dir / "sim/part.h5") + " -o " + (dir / "w.yaml"));
+  EXPECT_EQ(code, 1) << out;
   EXPECT_NE(out.find("this is a part rig"), std::string::npos) << out;
-  // With a rig that has the wheel too, the archive is named.
   {
     std::ofstream both(dir / "both.yaml");
     both << test::kCliRigYaml << "part: {bed: flat}\n";
   }
   std::tie(code, out) = test::RunCli(
-      dir, "explain --rig " + (dir / "both.yaml") + " " + (dir / "sim/part.h5") + " -o " + (dir / "e.json"));
+      dir, "calibrate wheel --rig " + (dir / "both.yaml") + " " + (dir / "sim/part.h5") + " -o " + (dir / "w.yaml"));
   EXPECT_EQ(code, 1) << out;
   EXPECT_NE(out.find("is a part scan"), std::string::npos) << out;
+  EXPECT_NE(out.find("bead measure, flow, report, explain, export and batch take a part scan"), std::string::npos)
+      << out;
   std::tie(code, out) = test::RunCli(
       dir, "measure --rig " + (dir / "bare.yaml") + " " + (dir / "sim/part.h5") + " -o " + (dir / "geo.csv"));
   EXPECT_EQ(code, 1) << out;

@@ -42,6 +42,16 @@ TEST(PartScanCsv, ExportedAndImportedTheScanMeasuresTheSame) {
     ASSERT_EQ(code, 0) << out;
     EXPECT_EQ(test::ReadText(dir / "a.csv"), test::ReadText(dir / "b.csv")) << command;
   }
+  // The profiles CSV is a part scan as it stands: measured as the archive is, byte for byte; its flow
+  // needs the log it cannot carry, and the tool says how to join them.
+  std::tie(code, out) = test::RunCli(dir, "measure" + rig + twin + "/part.h5 -o " + (dir / "a.csv"));
+  ASSERT_EQ(code, 0) << out;
+  std::tie(code, out) = test::RunCli(dir, "measure" + rig + (dir / "p.csv") + " -o " + (dir / "b.csv"));
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_EQ(test::ReadText(dir / "a.csv"), test::ReadText(dir / "b.csv"));
+  std::tie(code, out) = test::RunCli(dir, "flow" + rig + (dir / "p.csv") + " -o " + (dir / "c.csv"));
+  EXPECT_EQ(code, 1) << out;
+  EXPECT_NE(out.find("bead import it with --log LOG.csv"), std::string::npos) << out;
   // A log on another clock never meets the profiles: refused, nothing written.
   {
     std::ofstream late(dir / "late.csv");
@@ -55,6 +65,17 @@ TEST(PartScanCsv, ExportedAndImportedTheScanMeasuresTheSame) {
   EXPECT_EQ(code, 1) << out;
   EXPECT_NE(out.find("never meet the profiles'"), std::string::npos) << out;
   EXPECT_FALSE(std::filesystem::exists(dir / "late.h5"));
+}
+
+TEST(PartScanCsv, AProfileWhoseRowsDisagreeOnItsPlaceIsRefusedAtItsLine) {
+  test::TempDir dir;
+  std::ofstream(dir / "p.csv") << "profile,t_s,layer,path_mm,frame_z_mm,frame_x_mm,x_mm,z_mm\n"
+                                  "0,0.1,0,1.5,60,0,-1,-60\n0,0.1,0,1.5,60,0,0,-59\n"
+                                  "1,0.2,0,2.0,60,0,-1,-60\n1,0.2,0,2.5,60,0,0,-59\n";
+  EXPECT_TRUE(IsPartProfilesCsv(dir / "p.csv"));
+  test::ExpectRejected(dir / "p.csv", "line 5", [&] { ReadPartProfilesCsv(dir / "p.csv"); });
+  std::ofstream(dir / "w.csv") << "profile,t_s,encoder,x_mm,z_mm\n0,0.1,5,-1,-60\n";
+  EXPECT_FALSE(IsPartProfilesCsv(dir / "w.csv"));  // the wheel's profiles CSV
 }
 
 TEST(PartScanCsv, ALogThatIsNotAPartLogIsRefusedWhereItIsWrong) {
