@@ -17,12 +17,6 @@
 namespace bead {
 namespace {
 
-int Count(const std::string& text, const std::string& what) {
-  int n = 0;
-  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
-  return n;
-}
-
 // The layers table's rows: layer, profiles, valid, area seen, area
 // corrected, height, pass shift, volume.
 std::vector<std::vector<std::string>> LayerRows(const std::string& page) {
@@ -56,8 +50,9 @@ TEST(PartReport, EachLayersRowIsTheMaterialTheTwinLaid) {
   ASSERT_EQ(code, 0) << out;
   const std::string page = test::ReadText(dir / "p.html");
   for (const char* id : {"summary", "layers", "sections", "path", "speed"})
-    EXPECT_EQ(Count(page, std::string("<section id=\"") + id + "\">"), 1) << id;
-  EXPECT_EQ(Count(page, "<img alt=\"\" src=\"data:image/png;base64,"), 3);  // sections, along the path, speed
+    EXPECT_EQ(test::Occurrences(page, std::string("<section id=\"") + id + "\">"), 1) << id;
+  EXPECT_EQ(test::Occurrences(page, "<img alt=\"\" src=\"data:image/png;base64,"),
+            3);  // sections, along the path, speed
   EXPECT_FALSE(std::regex_search(page, std::regex(R"((src|href)=\"(https?:|file:|/))"))) << "a link outside the page";
 
   // The twin's truth per layer: the material laid (mean) and the height gained (median).
@@ -111,8 +106,8 @@ TEST(PartReport, AScanWithoutTheLayerBelowSaysWhy) {
   EXPECT_NE(page.find("invalid: no_surface_below</td><td>399"), std::string::npos);
   EXPECT_NE(page.find("No valid profile"), std::string::npos);
   EXPECT_NE(page.find("none: the scan has no /log"), std::string::npos);
-  EXPECT_EQ(Count(page, "<section id=\"speed\">"), 0);
-  EXPECT_EQ(Count(page, "<img alt=\"\" src=\"data:image/png;base64,"), 1);  // its cross-sections
+  EXPECT_EQ(test::Occurrences(page, "<section id=\"speed\">"), 0);
+  EXPECT_EQ(test::Occurrences(page, "<img alt=\"\" src=\"data:image/png;base64,"), 1);  // its cross-sections
 }
 
 }  // namespace

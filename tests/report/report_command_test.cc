@@ -12,12 +12,6 @@
 namespace bead {
 namespace {
 
-int Count(const std::string& text, const std::string& what) {
-  int n = 0;
-  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
-  return n;
-}
-
 TEST(ReportCommand, OnePageWithEverySectionAndNothingOutside) {
   test::TempDir dir;
   test::WriteText(dir / "sim.yaml", "seed: 4\nduration_s: 4\nsensor: {points: 200}\npins: {scans: 3}\n");
@@ -34,14 +28,14 @@ TEST(ReportCommand, OnePageWithEverySectionAndNothingOutside) {
   const std::string page = test::ReadText(dir / "r.html");
   ASSERT_EQ(page.rfind("<!DOCTYPE html>", 0), 0u);
   for (const char* id : {"summary", "profiles", "geometry", "flow", "explain", "pins"})
-    EXPECT_EQ(Count(page, std::string("<section id=\"") + id + "\">"), 1) << id;
+    EXPECT_EQ(test::Occurrences(page, std::string("<section id=\"") + id + "\">"), 1) << id;
   // Pictures: profiles, geometry, flow, the model against the data, the
   // residual's correlations, its spectrum, pins; all inside the page.
-  EXPECT_EQ(Count(page, "<img alt=\"\" src=\"data:image/png;base64,"), 7);
+  EXPECT_EQ(test::Occurrences(page, "<img alt=\"\" src=\"data:image/png;base64,"), 7);
   for (const char* h : {"Model against the data", "Residual</h3>", "Residual spectrum", "Encoder offset"})
-    EXPECT_EQ(Count(page, h), 1) << h;
+    EXPECT_EQ(test::Occurrences(page, h), 1) << h;
   EXPECT_NE(page.find("rig file</td>"), std::string::npos);
-  EXPECT_EQ(Count(page, "<script"), 0);
+  EXPECT_EQ(test::Occurrences(page, "<script"), 0);
   EXPECT_FALSE(std::regex_search(page, std::regex(R"((src|href)=\"(https?:|file:|/))"))) << "a link outside the page";
   EXPECT_NE(page.find("profiles</td><td>801</td>"), std::string::npos);  // 4 s at 200 Hz, both ends
   EXPECT_NE(page.find("scans used"), std::string::npos);
@@ -51,8 +45,8 @@ TEST(ReportCommand, OnePageWithEverySectionAndNothingOutside) {
   ASSERT_EQ(imp, 0) << imp_out;
   // A page without pins or explain has neither section.
   const std::string page2 = test::ReadText(dir / "r2.html");
-  EXPECT_EQ(Count(page2, "<section id=\"pins\">"), 0);
-  EXPECT_EQ(Count(page2, "<section id=\"explain\">"), 0);
+  EXPECT_EQ(test::Occurrences(page2, "<section id=\"pins\">"), 0);
+  EXPECT_EQ(test::Occurrences(page2, "<section id=\"explain\">"), 0);
 
   // The drawing fails (a python that cannot run the script): an error, and no page.
   const std::string env_cmd = "BEAD_PYTHON=/bin/false " + std::string(BEAD_CLI) + " report --rig " + twin +
@@ -76,7 +70,7 @@ TEST(ReportCommand, OutputAndExplainFileAreCheckedBeforeAnyWork) {
   auto [status, out] = test::RunCli(dir, "report " + run + " -o " + (dir / "nodir/r.html"));
   EXPECT_EQ(status, 1) << out;
   EXPECT_NE(out.find("nodir/r.html: cannot write: folder"), std::string::npos) << out;
-  EXPECT_EQ(Count(out, "\n"), 1) << out;
+  EXPECT_EQ(test::Occurrences(out, "\n"), 1) << out;
   test::WriteText(dir / "model.json", R"({"num": [1], "den": [1, 1], "delay_s": 0.1})");
   std::tie(status, out) =
       test::RunCli(dir, "report " + run + " --explain " + (dir / "model.json") + " -o " + (dir / "r.html"));
@@ -84,7 +78,7 @@ TEST(ReportCommand, OutputAndExplainFileAreCheckedBeforeAnyWork) {
   EXPECT_NE(out.find("model.json: is a model file (bead identify -o): --explain takes an explain report"),
             std::string::npos)
       << out;
-  EXPECT_EQ(Count(out, "\n"), 1) << out;
+  EXPECT_EQ(test::Occurrences(out, "\n"), 1) << out;
   EXPECT_EQ(out.find("Traceback"), std::string::npos) << out;
   EXPECT_FALSE(std::filesystem::exists(dir / "r.html"));
 }

@@ -26,4 +26,11 @@ inline std::pair<int, std::string> RunCli(const TempDir& dir, const std::string&
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ReadText(dir / "out.txt")};
 }
 
+// How many times `what` occurs in `text` (what a command printed or wrote).
+inline int Occurrences(const std::string& text, const std::string& what) {
+  int n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
 }  // namespace bead::test

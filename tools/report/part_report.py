@@ -88,7 +88,8 @@ def speed_figure(f, colours):
     return png(fig)
 
 
-def number(v, form):
+def cell(v, form):
+    """A table cell: the number in `form`, "-" where there is none."""
     return form % v if isinstance(v, float) and math.isfinite(v) else "-"
 
 
@@ -104,7 +105,7 @@ def summary_rows(about, g, f):
     if f is None:
         rows.append(("flow", "none: the scan has no /log (the nozzle's place and time)"))
         return rows
-    rows.append(("volume laid (area integrated along the path)", number(about["total_volume_mm3"][0], "%.1f mm³")))
+    rows.append(("volume laid (area integrated along the path)", cell(about["total_volume_mm3"][0], "%.1f mm³")))
     if about["unplaced"][0] > 0:
         rows.append(("profiles the log never had the nozzle pass", int(about["unplaced"][0])))
     slow = about["slow_profiles"][0]
@@ -122,9 +123,9 @@ def layer_rows(layers, g):
         sel = (g["layer"] == layer) & (g["valid"] == 1)
         height = np.median(g["height_mm"][sel]) if np.any(sel) else math.nan
         rows.append((int(layer), int(layers["profiles"][k]), int(layers["valid"][k]),
-                     number(layers["mean_area_mm2"][k], "%.3f"), number(layers["mean_area_corrected_mm2"][k], "%.3f"),
-                     number(float(height), "%.3f"), number(layers["shift_mm"][k], "%+.3f"),
-                     number(layers["volume_mm3"][k], "%.1f")))
+                     cell(layers["mean_area_mm2"][k], "%.3f"), cell(layers["mean_area_corrected_mm2"][k], "%.3f"),
+                     cell(float(height), "%.3f"), cell(layers["shift_mm"][k], "%+.3f"),
+                     cell(layers["volume_mm3"][k], "%.1f")))
     return rows
 
 
