@@ -132,7 +132,7 @@ double GrooveSigma(const Ellipse& e, const Shape& shape, const Eigen::MatrixXd& 
 
 HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
                                   double shift, double shift_sigma, double noise_mm, double center, double width,
-                                  double height, const PooledAspect* pooled) {
+                                  double height, const PooledAspect* pooled, const HiddenGroove* previous) {
   HiddenGroove out;
   if (!(width > 0.0) || !(height > 0.0)) return out;
   Window w;
@@ -151,14 +151,24 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   Ellipse best;
   Eigen::MatrixXd J, best_J;
   double best_rss = INFINITY;
+  // With the shape held, the neighbour's ellipse first: kept where it
+  // fits as well as the neighbour's did.
+  bool warm = false;
+  if (pooled && previous && previous->ok && std::isfinite(previous->fit_rms_mm)) {
+    Ellipse e{center + previous->dx0, base + previous->dz0, previous->a, previous->b};
+    best_rss = Fit(w, e, shape, best_J), best = e;
+    warm = std::sqrt(best_rss / static_cast<double>(w.x.size())) <= 1.2 * previous->fit_rms_mm;
+  }
   for (double lift : {0.0, 0.25, 0.5, 0.75})
     for (double across : {0.5, 0.6}) {
+      if (warm) break;
       Ellipse e{center, base + lift * height, across * width, height * (1.0 - lift)};
       const double rss = Fit(w, e, shape, J);
       if (rss < best_rss) best_rss = rss, best = e, best_J = J;
     }
   out.fit_rms_mm = std::sqrt(best_rss / static_cast<double>(w.x.size()));
   out.aspect = best.b / best.a;
+  out.dx0 = best.x0 - center, out.dz0 = best.z0 - base, out.a = best.a, out.b = best.b;
   out.hidden_mm2 = Groove(best, below, shift);
   const double dof = static_cast<double>(w.x.size()) - static_cast<double>(shape.Params());
   const Around around{below, shift, shift_sigma, spacing, pooled ? pooled->sigma : 0.0, noise_mm};

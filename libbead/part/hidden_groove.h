@@ -32,6 +32,9 @@ struct HiddenGroove {
   double sigma_mm2 = kNaN;   // its 1-sigma from the fit
   double fit_rms_mm = kNaN;
   double aspect = kNaN;  // the ellipse's b / a
+  // The ellipse fitted, its centre from the bead's centre and the surface
+  // below there: where the next profile's fit starts.
+  double dx0 = kNaN, dz0 = kNaN, a = kNaN, b = kNaN;
 };
 
 // The layer's beads' shape, pooled: the median aspect b / a of the free
@@ -50,6 +53,7 @@ struct PooledAspect {
 // hold (nullptr: fitted here).
 HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
                                   double shift, double shift_sigma, double noise_mm, double center, double width,
-                                  double height, const PooledAspect* pooled = nullptr);
+                                  double height, const PooledAspect* pooled = nullptr,
+                                  const HiddenGroove* previous = nullptr);
 
 }  // namespace bead::part

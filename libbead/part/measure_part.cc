@@ -132,10 +132,11 @@ class PartMeasurer {
   // sigma; the layer's first fits pool its aspect, held after them.
   void CorrectHidden(const StoredProfile& mine, const SurfaceGrid& under, PartGeometryRow& row) {
     const double shift_sigma = std::isfinite(row.bead.shift_sigma_mm) ? row.bead.shift_sigma_mm : 0.0;
-    if (row.layer != aspects_layer_) aspects_.clear(), pooled_.reset(), aspects_layer_ = row.layer;
-    const HiddenGroove g = EstimateHiddenGroove(mine.x_mm, mine.z_mm, under, row.bead.shift_mm, shift_sigma,
-                                                row.bead.noise_mm, row.bead.center_x_mm, row.bead.width_mm,
-                                                row.bead.height_mm, pooled_ ? &*pooled_ : nullptr);
+    if (row.layer != aspects_layer_) aspects_.clear(), pooled_.reset(), last_.reset(), aspects_layer_ = row.layer;
+    const HiddenGroove g = EstimateHiddenGroove(
+        mine.x_mm, mine.z_mm, under, row.bead.shift_mm, shift_sigma, row.bead.noise_mm, row.bead.center_x_mm,
+        row.bead.width_mm, row.bead.height_mm, pooled_ ? &*pooled_ : nullptr, last_ ? &*last_ : nullptr);
+    if (g.ok) last_ = g;
     if (!pooled_ && g.ok) Pool(g.aspect);
     // The visible area's own sampling beside the groove's: each of its
     // four walls (two of the new surface, two of the old) placed within a
@@ -165,6 +166,7 @@ class PartMeasurer {
   static constexpr std::size_t kPoolProfiles = 25;
   std::vector<double> aspects_;
   std::optional<PooledAspect> pooled_;
+  std::optional<HiddenGroove> last_;  // the layer's last fit: where the next starts
   int64_t aspects_layer_ = -1;
   bool has_warm_ = false;  // the last found shift of this pass, to search from
   double warm_ = 0.0;
