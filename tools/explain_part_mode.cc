@@ -16,25 +16,12 @@
 #include "tools/explain_modes.h"
 #include "tools/part_scan.h"
 #include "tools/rig_input.h"
+#include "tools/scratch_folder.h"
 
 namespace bead::tools {
 namespace {
 
 namespace fs = std::filesystem;
-
-// A scratch folder, removed with what it holds.
-struct Scratch {
-  fs::path dir;
-  Scratch() {
-    char tmpl[] = "/tmp/bead-explain-XXXXXX";
-    if (!mkdtemp(tmpl)) throw Error("cannot make a scratch folder in /tmp for the part's flow");
-    dir = tmpl;
-  }
-  ~Scratch() {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
-  }
-};
 
 // The scan's flow along the path into `csv`; its counts said.
 void PartFlowCsv(const Rig& rig, const std::string& run, const fs::path& csv) {
@@ -62,7 +49,7 @@ int ExplainPartMode(const ExplainArgs& a) {
                                "output flow_mm3_s, time t_s)");
   const RigFile rig = ReadPartRigFile(a.rig);
   SayRigWarnings(rig);
-  Scratch scratch;
+  const ScratchFolder scratch("the part's flow");
   ExplainArgs s = a;
   s.rig.clear();
   s.data = (scratch.dir / (fs::path(a.data).stem().string() + "_flow.csv")).string();
@@ -82,7 +69,7 @@ int ExplainPartMode(const ExplainArgs& a) {
     return ExplainSeriesMode(s);
   } catch (const Error& e) {
     std::string what = e.what();
-    const std::string name = a.data + "'s flow along the path";
+    const std::string& name = s.data_name;
     for (std::size_t at = what.find(s.data); at != std::string::npos; at = what.find(s.data, at + name.size()))
       what.replace(at, s.data.size(), name);
     throw Error(what);

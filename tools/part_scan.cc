@@ -110,6 +110,10 @@ void SayRoads(const part::RoadsSummary& s, bool above_bed, std::size_t no_surfac
   if (above_bed)
     std::printf(
         "  layers above the first: their beads over the layer below, moved by the shift its registration found\n");
+  std::printf(
+      "  area_corrected_mm2 is left empty: the overlap model's road tops are surfaces over x, which hide nothing "
+      "from a sensor above, and what an outer road may hide under an overhanging flank the profile cannot show "
+      "(no occlusion model for several beads yet): area_mm2 is the material seen\n");
 }
 
 }  // namespace

@@ -24,6 +24,7 @@
 #include "tools/commands.h"
 #include "tools/own_folder.h"
 #include "tools/report_part.h"
+#include "tools/scratch_folder.h"
 #include "libbead/archive/measure_run.h"
 #include "libbead/occlusion/occlusion_fit.h"
 #include "tools/occlusion_step.h"
@@ -161,16 +162,8 @@ Run AddReport(CLI::App& app) {
     const bool part = IsPartScanFile(args->run);
     if (part && !args->pins.empty())
       throw Error(Located(args->run, "", "is a part scan, which has no encoder: --pins takes a wheel run's pin scans"));
-    char tmpl[] = "/tmp/bead-report-XXXXXX";
-    if (!mkdtemp(tmpl)) throw Error("cannot make a scratch folder in /tmp for the report");
-    const fs::path dir(tmpl);
-    struct Cleanup {
-      fs::path d;
-      ~Cleanup() {
-        std::error_code ec;
-        fs::remove_all(d, ec);
-      }
-    } cleanup{dir};
+    const ScratchFolder scratch("the report");
+    const fs::path& dir = scratch.dir;
     if (part) {
       WritePartReportData(args->rig, args->run, ProfileOptions{}, dir);
       DrawPage(dir, args->output, args->explain);

@@ -28,6 +28,7 @@ TEST(RoadsCommand, ALayerOfRoadsGetsOneRowPerRoadNearItsTruth) {
   ASSERT_EQ(code, 0) << out;
   EXPECT_NE(out.find("with 4 beads"), std::string::npos) << out;
   EXPECT_NE(out.find("tangent overlapping model"), std::string::npos) << out;
+  EXPECT_NE(out.find("area_corrected_mm2 is left empty"), std::string::npos) << out;
   const auto beads = CsvRows(dir / "beads.csv"), truth = CsvRows(dir / "sim/truth_roads.csv");
   const std::vector<std::string> spec = {
       "profile", "bead", "t_s", "center_x_mm", "area_mm2", "width_mm", "height_mm", "area_corrected_mm2", "valid"};
