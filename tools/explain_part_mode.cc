@@ -5,6 +5,7 @@
 // speed tried as a recorded cause.
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 
 #include "libbead/core/error.h"
