@@ -5,7 +5,6 @@
 // speed tried as a recorded cause.
 #include <CLI/CLI.hpp>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 
 #include "libbead/core/error.h"

@@ -60,6 +60,13 @@ explain::IdentifiedRun ExplainWithModel(const ExplainArgs& a, const Rig& rig, co
         "offset toward where it was fitted, and widens its interval)\n",
         at);
   SayModel(out.model, out.realigned_at.empty() ? "" : " (on the realigned flow)");
+  if (out.reidentified && out.reidentified->ok) {
+    const explain::ReidentifiedProfile& r = *out.reidentified;
+    std::printf(
+        "the offset profiled with the model identified again at each of %zu trial offsets: best %.1f counts, "
+        "95 %% interval %.1f%s to %.1f%s (the interval printed below holds it)\n",
+        r.counts.size(), r.best, r.lo, r.lo_at_edge ? " (search end)" : "", r.hi, r.hi_at_edge ? " (search end)" : "");
+  }
   return out;
 }
 

@@ -86,7 +86,8 @@ int ExplainRunMode(const ExplainArgs& a) {
     if (e.corrected->lowers_error) WriteFlowCsv(args->flow_out, e.corrected->flow);
     PrintCorrected(*e.corrected, args->flow_out);
   }
-  const nlohmann::json j = explain::RunJson(e, rig, mdl.tfs[0], mdl.offset, mdl.source, pins, args->flow_out);
+  nlohmann::json j = explain::RunJson(e, rig, mdl.tfs[0], mdl.offset, mdl.source, pins, args->flow_out);
+  if (run.reidentified) j["offset_profile_reidentified"] = explain::ReidentifiedJson(*run.reidentified);
   WriteJson(args->out, j);
   return 0;
 }

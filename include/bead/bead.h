@@ -110,7 +110,7 @@ typedef struct bead_rig {
 
 typedef struct bead_flow_options {
   size_t size;                 /* sizeof(bead_flow_options): set by bead_flow_options_init */
-  double speed_window_s;       /* Savitzky-Golay window on the wheel speed (0.1) */
+  double speed_window_s;       /* Savitzky-Golay window on the wheel speed (0.04) */
   double speed_hampel_s;       /* Hampel half window on the speed (0.05) */
   int32_t area_hampel_half;    /* Hampel half window on the area, profiles (5) */
   double hampel_nsigma;        /* (3) */

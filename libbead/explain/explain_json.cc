@@ -122,6 +122,13 @@ json CompareJson(const SeriesData& d, const ExplainReport& r, std::size_t max_po
   return {{"t_s", t}, {"measured", y}, {"model_before", before}, {"model_after", after}, {"unit", d.y_unit}};
 }
 
+json ReidentifiedJson(const ReidentifiedProfile& r) {
+  return {{"offset_counts", r.counts},          {"sse", r.sse},
+          {"best_counts", Finite(r.best)},      {"ci95_low_counts", Finite(r.lo)},
+          {"ci95_high_counts", Finite(r.hi)},   {"low_at_search_edge", r.lo_at_edge},
+          {"high_at_search_edge", r.hi_at_edge}};
+}
+
 json RunJson(const RunExplanation& e, const Rig& rig, const model::TransferFunction& tf, double offset,
              const std::string& model_source, const std::optional<OffsetComparison>& pins,
              const std::string& flow_out) {

@@ -10,6 +10,7 @@
 
 #include "libbead/core/rig.h"
 #include "libbead/explain/explain_loop.h"
+#include "libbead/explain/reidentified_profile.h"
 #include "libbead/explain/run_explain.h"
 #include "libbead/model/transfer_function.h"
 
@@ -32,6 +33,11 @@ nlohmann::json ReportJson(const ExplainReport& r, const model::TransferFunction&
 nlohmann::json RunJson(const RunExplanation& e, const Rig& rig, const model::TransferFunction& tf, double offset,
                        const std::string& model_source, const std::optional<OffsetComparison>& pins,
                        const std::string& flow_out);
+
+// The offset's profile with the model identified again at every trial
+// offset (reidentified_profile.h): {offset_counts, sse, best_counts,
+// ci95_low_counts, ci95_high_counts, low_at_search_edge, high_at_search_edge}.
+nlohmann::json ReidentifiedJson(const ReidentifiedProfile& r);
 
 // The measured output and the model's, alone and with the effects kept,
 // at every sample of `d` (every k-th where there are more than

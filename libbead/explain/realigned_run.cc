@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "libbead/explain/reidentified_profile.h"
 #include "libbead/explain/run_series.h"
 
 namespace bead::explain {
@@ -44,18 +45,22 @@ bool NeedsRealigning(const OffsetFromRun& o, double aligned_at) {
   return Excludes(o, aligned_at) || (o.pinned && std::abs(o.counts - aligned_at) > 0.5 * o.ci95_counts);
 }
 
-// The interval widened to hold every alignment's interval [lo, hi] (the
-// run cannot tell which alignment's model is right beyond that: a model
-// identified where the run's best lies confirms that best, and narrows its
-// interval about it); the report's shifts, about the aligned offset, with it.
-void HoldEvery(RunExplanation& e, double lo, double hi, double rig_counts) {
+// The interval widened to hold both profiles' (realigned_run.h): the
+// model identified at the last alignment held fixed (the explain loop's
+// profile, whose best stays the estimate: the corrected flow's shift term
+// is its), and the model identified again at every trial offset. A
+// re-identified profile that stays within its limit to the end of its
+// search leaves the offset not pinned: the model's dynamics take up a
+// position error as well.
+void HoldBoth(RunExplanation& e, const ReidentifiedProfile& r, double rig_counts) {
   OffsetFromRun& o = e.offset;
-  if (!o.pinned) return;
-  o.lo_counts = std::min(o.lo_counts, lo), o.hi_counts = std::max(o.hi_counts, hi);
-  o.ci95_counts = std::max(o.hi_counts - o.counts, o.counts - o.lo_counts);
+  o.lo_counts = std::min(o.lo_counts, r.lo), o.hi_counts = std::max(o.hi_counts, r.hi);
+  o.pinned = o.pinned && !r.lo_at_edge && !r.hi_at_edge;
+  o.ci95_counts = o.pinned ? std::max(o.hi_counts - o.counts, o.counts - o.lo_counts) : INFINITY;
   o.excludes_rig = Excludes(o, rig_counts);
   ShiftProfile& p = e.report.shift_profile;
   p.lo = o.lo_counts - e.aligned_at_counts, p.hi = o.hi_counts - e.aligned_at_counts;
+  p.lo_at_edge = p.lo_at_edge || r.lo_at_edge, p.hi_at_edge = p.hi_at_edge || r.hi_at_edge;
   e.report.position_shift_ci95_counts = o.ci95_counts;
 }
 
@@ -79,7 +84,6 @@ IdentifiedRun ExplainIdentifiedRun(const Rig& rig, const MeasuredFlow& run, cons
   IdentifiedRun out;
   out.model = IdentifyOnFlow(*run.flow, bin, identify, run.path);
   out.explanation = ExplainMeasuredRun(rig, run, held_out, out.model.tfs[0], out.model.offset, each);
-  double lo = out.explanation.offset.lo_counts, hi = out.explanation.offset.hi_counts;
   for (int k = 0; k < kMaxRealignments && NeedsRealigning(out.explanation.offset, out.explanation.aligned_at_counts);
        ++k) {
     const OffsetFromRun last = out.explanation.offset;
@@ -92,11 +96,17 @@ IdentifiedRun ExplainIdentifiedRun(const Rig& rig, const MeasuredFlow& run, cons
     out.model = IdentifyOnFlow(out.flow, bin, identify, run.path);
     out.explanation = ExplainMeasuredRun(aligned, main_view, held_out ? &other_view : nullptr, out.model.tfs[0],
                                          out.model.offset, each);
-    lo = std::min(lo, out.explanation.offset.lo_counts), hi = std::max(hi, out.explanation.offset.hi_counts);
     const double moved = std::abs(out.explanation.offset.counts - last.counts);
     if (!out.explanation.offset.pinned || moved < 0.25 * out.explanation.offset.ci95_counts) break;
   }
-  if (!out.realigned_at.empty()) HoldEvery(out.explanation, lo, hi, rig.offset_counts);
+  if (out.explanation.offset.pinned) {
+    // Steps of a third of the held profile's half-width: its interval
+    // crossed within a few steps on either side.
+    const OffsetFromRun& o = out.explanation.offset;
+    out.reidentified = ProfileReidentified(rig, run, out.model.tfs[0], o.counts, std::max(1.0, o.ci95_counts / 3.0),
+                                           out.explanation.report.shift_profile.q, bin, identify);
+    if (out.reidentified->ok) HoldBoth(out.explanation, *out.reidentified, rig.offset_counts);
+  }
   // The corrected flow from the user's flow, as the rig file aligns it: a
   // realignment is one of the corrections it undoes (none: a shift of 0).
   if (options.correct_flow)

@@ -11,17 +11,22 @@
 // the one the flow is aligned at, the flow is aligned at the run's offset,
 // the model identified on it again and the run explained again, until the
 // offset moves by less than a quarter of its interval (at most
-// kMaxRealignments times). The interval printed holds every alignment's
-// interval: a model identified where the run's best lies confirms that
-// best and narrows the interval about it (on fresh seeds the last
-// interval alone missed the truth in 2 of 12 runs), and the run cannot say
-// which alignment's model is right beyond that. The rig file's offset is
-// called OUTSIDE only when every one of them excludes it.
+// kMaxRealignments times). The last model, identified where the run's best
+// lies, confirms that best and narrows the interval about it (on fresh
+// seeds the last interval alone missed the truth in 2 of 12 runs). So the
+// offset is then profiled once more with the whole model identified again
+// at every trial offset (reidentified_profile.h), and the interval printed
+// holds both profiles' intervals: the run cannot say which model is right
+// beyond that. The rig file's offset is called OUTSIDE only when both
+// exclude it; a re-identified profile that does not cross its limit within
+// its search leaves the offset not pinned.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "libbead/explain/base_model.h"
+#include "libbead/explain/reidentified_profile.h"
 #include "libbead/explain/run_explain.h"
 
 namespace bead::explain {
@@ -33,6 +38,7 @@ struct IdentifiedRun {
   RunExplanation explanation;        // against it; its offsets in counts on the rig file's scale
   std::vector<double> realigned_at;  // the offsets the model was identified again at (empty: the rig file's)
   FlowResult flow, held_out_flow;    // the flows the last explanation read (when realigned)
+  std::optional<ReidentifiedProfile> reidentified;  // where the offset was pinned by the held model's profile
 };
 
 // Throws bead::Error (naming run.path) when no model can be identified.

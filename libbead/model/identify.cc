@@ -75,6 +75,10 @@ std::string CheckInputs(const std::vector<double>& t, const std::vector<double>&
                         const IdentifyOptions& o) {
   if (o.poles < 1 || o.poles > 7 || o.zeros < 0 || o.zeros > o.poles)
     return "need 1 to 7 poles and 0 <= zeros <= poles";
+  if (o.start && (static_cast<int>(o.start->den.size()) != o.poles + 1 ||
+                  static_cast<int>(o.start->num.size()) > o.zeros + 1 || !HurwitzStable(o.start->den)))
+    return "the warm start is not a stable model of the orders asked (" + std::to_string(o.poles) + " poles, " +
+           std::to_string(o.zeros) + " zeros)";
   if (t.size() != u.size() || t.size() != y.size()) return "time, input and output lengths differ";
   for (std::size_t i = 0; i < t.size(); ++i)
     if (!std::isfinite(t[i]) || !std::isfinite(u[i]) || (i && !(t[i] > t[i - 1])))
@@ -299,6 +303,42 @@ void NoteAmbiguity(DelayProfile& profile, const std::vector<double>& residual, s
   profile.note = buf;
 }
 
+// 1-3 for a cold start: the delay profile, its best basins refined, the
+// best polished; nullopt when no delay gave a linear start.
+std::optional<Refined> RefineBasins(const Setup& st, const IdentifyOptions& o, DelayProfile& profile) {
+  std::vector<std::vector<double>> starts;
+  ProfileDelays(st, o, profile, starts);
+  const std::vector<Basin> basins = FindBasins(st, o, profile, starts);
+  if (basins.empty()) return std::nullopt;
+  Refined best;
+  for (std::size_t idx = 0; idx < basins.size() && idx < static_cast<std::size_t>(o.basins); ++idx) {
+    const Basin& b = basins[idx];
+    if (!std::isfinite(b.start_loss)) continue;
+    // Bounded by the searched range only: the linear fit's profile is
+    // biased by noise, so the output-error optimum may lie past its basin.
+    // The joint search only has to reach the basin's optimum's
+    // neighbourhood (the best is polished below): at most 15 iterations.
+    IdentifyOptions joint = o;
+    joint.max_iterations = std::min(o.max_iterations, 15);
+    const double hi = o.delay_s ? *o.delay_s : o.max_delay_s;
+    const Refined r = Refine(st.problem, joint, starts[b.at], profile.delay_s[b.at], 0.0, hi, st.dt, st.slowest);
+    profile.basins.push_back({r.delay, profile.loss[b.at], r.loss});
+    if (r.loss < best.loss) best = r;
+  }
+  if (!o.delay_s && std::isfinite(best.loss)) PolishDelay(st, o, profile, best);
+  SortDistinct(profile, st.dt);
+  return best;
+}
+
+// A warm start (IdentifyOptions::start): one refinement from the start's
+// denominator and delay, the delay free within the searched range.
+std::optional<Refined> RefineFromStart(const Setup& st, const IdentifyOptions& o) {
+  const TransferFunction& s = *o.start;  // its orders checked (CheckInputs)
+  const double hi = o.delay_s ? *o.delay_s : o.max_delay_s;
+  const double delay = o.delay_s ? *o.delay_s : std::clamp(s.delay_s, 0.0, hi);
+  return Refine(st.problem, o, ToSearch(s.den, o.real_poles, st.slowest), delay, 0.0, hi, st.dt, st.slowest);
+}
+
 }  // namespace
 
 IdentifiedModel IdentifyTransferFunction(const std::vector<double>& t, const std::vector<double>& u,
@@ -316,30 +356,12 @@ IdentifiedModel IdentifyTransferFunction(const std::vector<double>& t, const std
   out.reason = InputHeldOverRows(problem, o);
   if (!out.reason.empty()) return out;
   DelayProfile& profile = out.delay_profile;
-  std::vector<std::vector<double>> starts;
-  ProfileDelays(st, o, profile, starts);
-  const std::vector<Basin> basins = FindBasins(st, o, profile, starts);
-  if (basins.empty()) {
+  const std::optional<Refined> found = o.start ? RefineFromStart(st, o) : RefineBasins(st, o, profile);
+  if (!found) {
     out.reason = "no linear start at any delay (try other orders, or a fixed --delay)";
     return out;
   }
-  Refined best;
-  for (std::size_t idx = 0; idx < basins.size() && idx < static_cast<std::size_t>(o.basins); ++idx) {
-    const Basin& b = basins[idx];
-    if (!std::isfinite(b.start_loss)) continue;
-    // Bounded by the searched range only: the linear fit's profile is
-    // biased by noise, so the output-error optimum may lie past its basin.
-    // The joint search only has to reach the basin's optimum's
-    // neighbourhood (the best is polished below): at most 15 iterations.
-    IdentifyOptions joint = o;
-    joint.max_iterations = std::min(o.max_iterations, 15);
-    const double hi = o.delay_s ? *o.delay_s : o.max_delay_s;
-    const Refined r = Refine(problem, joint, starts[b.at], profile.delay_s[b.at], 0.0, hi, st.dt, st.slowest);
-    profile.basins.push_back({r.delay, profile.loss[b.at], r.loss});
-    if (r.loss < best.loss) best = r;
-  }
-  if (!o.delay_s && std::isfinite(best.loss)) PolishDelay(st, o, profile, best);
-  SortDistinct(profile, st.dt);
+  const Refined& best = *found;
   if (!std::isfinite(best.loss)) {
     out.reason = "output-error refinement found no stable model (try other orders, or a fixed --delay)";
     return out;
@@ -374,44 +396,6 @@ IdentifiedModel IdentifyTransferFunction(const std::vector<double>& t, const std
   }
   out.ok = true;
   return out;
-}
-
-void SetStructure(const std::string& name, IdentifyOptions& o) {
-  if (name == "tf") return;
-  struct Form {
-    const char* name;
-    int poles, zeros;
-  };
-  static const Form forms[] = {{"P1D", 1, 0},  {"P1DZ", 1, 1}, {"P2D", 2, 0},
-                               {"P2DZ", 2, 1}, {"P3D", 3, 0},  {"P3DZ", 3, 1}};
-  for (const Form& f : forms)
-    if (name == f.name) {
-      o.poles = f.poles;
-      o.zeros = f.zeros;
-      o.real_poles = true;
-      return;
-    }
-  throw Error("the structure must be tf, P1D, P1DZ, P2D, P2DZ, P3D or P3DZ, got '" + name + "'");
-}
-
-std::vector<OrderRow> OrderTable(const std::vector<double>& t, const std::vector<double>& u,
-                                 const std::vector<double>& y, const std::vector<double>& tv,
-                                 const std::vector<double>& uv, const std::vector<double>& yv, IdentifyOptions o,
-                                 const std::vector<Segment>& segments, const std::vector<Segment>& validation_segments,
-                                 const std::function<void(int done, int total)>& progress) {
-  std::vector<OrderRow> rows;
-  constexpr int kOrders = 8;
-  for (int p = 1; p <= 3; ++p)
-    for (int z = 0; z <= std::min(p, 2); ++z) {  // thesis Table 3: (1,0) (1,1) (2,0) (2,1) (2,2) (3,0) (3,1) (3,2)
-      if (progress) progress(static_cast<int>(rows.size()), kOrders);
-      o.poles = p;
-      o.zeros = z;
-      const IdentifiedModel mdl = IdentifyTransferFunction(t, u, y, o, segments);
-      rows.push_back({p, z, mdl.ok ? mdl.fit_percent : NAN,
-                      mdl.ok ? ValidateFitPercent(mdl.tf, mdl.offset, tv, uv, yv, validation_segments) : NAN,
-                      mdl.ok ? mdl.criteria.aicc : NAN, mdl.ok ? mdl.tf.delay_s : NAN, mdl.ok});
-    }
-  return rows;
 }
 
 }  // namespace bead::model

@@ -52,6 +52,11 @@ struct IdentifyOptions {
   int max_iterations = 50;
   int basins = 3;                // delay basins refined by output error
   int max_profile_points = 250;  // delay profile resolution: a sample step, or coarser above this
+  // A warm start: the output-error search refines from this model's
+  // denominator and delay alone (no delay profile, no basins), so that
+  // data changed a little is fitted in the start's basin. Its orders must
+  // be the options' (poles, zeros).
+  std::optional<TransferFunction> start;
 };
 
 struct DelayBasin {

@@ -119,7 +119,7 @@ TEST(Flow, AlignmentExactToQuantisationOnNoiselessRun) {
   // N-point slope of the Savitzky-Golay derivative (the centre weights of
   // order 2 equal order 1's): sigma_v = sqrt(12 / (N (N^2 - 1))) / (sqrt(12) dt).
   const double dt = 1.0 / c.log_rate_hz;
-  const double n = 51;  // 0.1 s at 500 Hz, odd
+  const double n = SpeedWindowSamples(FlowOptions{}, dt);  // the default window at 500 Hz, odd
   const double sigma_v = std::sqrt(12.0 / (n * (n * n - 1))) / std::sqrt(12.0) / dt * c.rig.MmPerCount();
   int checked = 0;
   for (std::size_t k = 0; k < m.flow.samples.size(); ++k) {
