@@ -89,9 +89,9 @@ ReidentifiedProfile ProfileReidentified(const Rig& rig, const MeasuredFlow& run,
                                         const model::IdentifyOptions& identify) {
   ReidentifiedProfile out;
   Trials trials(rig, run, start, centre, step, bin, identify);
-  // The SSE over the explain loop's samples: the mean square scaled to the
-  // centre's count, so that trials whose flow keeps a sample more or less
-  // compare alike.
+  // The SSE over the explain loop's samples: each trial's mean square
+  // scaled to the user's flow's count in bins, so that trials whose flow
+  // keeps a sample more or less compare alike.
   std::size_t samples = 0;
   for (const FlowSample& s : run.flow->samples) samples += s.valid;
   const double scale = static_cast<double>(samples / std::max<std::size_t>(bin, 1));
@@ -126,7 +126,10 @@ ReidentifiedProfile ProfileReidentified(const Rig& rig, const MeasuredFlow& run,
   int a = kb, b = kb;
   for (const auto& [k, t] : all)
     if (scale * t.mean_square <= limit) a = std::min(a, k), b = std::max(b, k);
-  out.lo_at_edge = !all.count(a - 1), out.hi_at_edge = !all.count(b + 1);
+  // A trial beyond the band that identified nothing is no crossing: the
+  // interval is then not known on that side.
+  auto unknown = [&all](int k) { return !all.count(k) || !std::isfinite(all.at(k).mean_square); };
+  out.lo_at_edge = unknown(a - 1), out.hi_at_edge = unknown(b + 1);
   out.lo = centre + step * (out.lo_at_edge ? a : Crossing(all, a, a - 1, limit, scale));
   out.hi = centre + step * (out.hi_at_edge ? b : Crossing(all, b, b + 1, limit, scale));
   return out;

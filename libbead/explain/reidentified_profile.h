@@ -25,8 +25,10 @@ namespace bead::explain {
 struct ReidentifiedProfile {
   std::vector<double> counts, sse;  // the trial offsets (rig file's scale) and their SSE, increasing in counts
   double best = NAN, lo = NAN, hi = NAN;
-  bool lo_at_edge = false, hi_at_edge = false;  // the SSE stayed below the limit to the searched range's end
-  bool ok = false;                              // at least three trials identified
+  // The SSE stayed below the limit to the search's end, or the trial past
+  // the band identified no model.
+  bool lo_at_edge = false, hi_at_edge = false;
+  bool ok = false;  // at least three trials identified
 };
 
 // About `centre` (counts) in steps of `step` counts, out to where the SSE
