@@ -66,6 +66,10 @@ explain::IdentifiedRun ExplainWithModel(const ExplainArgs& a, const Rig& rig, co
         "the offset profiled with the model identified again at each of %zu trial offsets: best %.1f counts, "
         "95 %% interval %.1f%s to %.1f%s (the interval printed below holds it)\n",
         r.counts.size(), r.best, r.lo, r.lo_at_edge ? " (search end)" : "", r.hi, r.hi_at_edge ? " (search end)" : "");
+    if (r.scattered)
+      std::printf(
+          "that profile falls and rises again on one side of its least: identify settled in other delay basins "
+          "at some trials, so it does not pin the offset\n");
   }
   return out;
 }
@@ -137,6 +141,14 @@ void PrintRun(const explain::RunExplanation& e, const Rig& rig, const std::strin
         "is the model's misfit, not the offset (a run whose wheel changes speed on its own, or the pins, pin "
         "it); rig file: %.1f counts\n",
         100.0 * e.report.shift_profile.speed_input_share, o.counts, rig.offset_counts);
+  else if (!o.pinned && e.report.shift_profile.steady_wheel)
+    std::printf(
+        "encoder offset from the run: NOT pinned by this run: the wheel's speed barely changes, and at a steady "
+        "speed a position error is a time error (their signatures correlate at %.4f as the speed's changes "
+        "allow; %.3f in the joint fit at the delay identify took), so where the error is least (%.1f counts) is "
+        "the model's misfit, not the offset (a run whose wheel changes speed, or the pins, pin it); rig file: "
+        "%.1f counts\n",
+        e.report.shift_profile.speed_delay_correlation, o.delay_correlation, o.counts, rig.offset_counts);
   else if (!o.pinned && e.report.shift_profile.inseparable)
     std::printf(
         "encoder offset from the run: NOT pinned by this run: it trades with the delay (correlation %.3f): the "
@@ -144,6 +156,13 @@ void PrintRun(const explain::RunExplanation& e, const Rig& rig, const std::strin
         "error, and where the error is least (%.1f counts) is the model's misfit, not the offset; rig file: %.1f "
         "counts\n",
         o.delay_correlation, o.counts, rig.offset_counts);
+  else if (!o.pinned && o.scattered)
+    std::printf(
+        "encoder offset from the run: NOT pinned by this run: with the model held it lies at %.1f counts, but "
+        "with the model identified again at each trial offset the error falls and rises again (identify's "
+        "delay basins, not the data, shape it), so the run cannot say which model's offset is right (the pins "
+        "pin it); rig file: %.1f counts\n",
+        o.counts, rig.offset_counts);
   else if (!o.pinned)
     std::printf(
         "encoder offset from the run: NOT pinned by this run: the error stays within the noise of its least "

@@ -79,6 +79,13 @@ namespace {
 // Above this |correlation| of the offset with the delay the run cannot
 // tell them apart (the variance inflation 1 / (1 - r^2) exceeds 10).
 constexpr double kInseparable = 0.95;
+// The same bar for the correlation the wheel's speed changes allow
+// (speed_follows_input.h), set where a variance inflation reaches 50: that
+// correlation leaves out the model's other terms and reads the speed's
+// noise as changes, so it tells a steady wheel (0.9993-1.0000: the
+// encoder's quantisation alone) from one that changes speed by a few
+// percent (0.86-0.93 with +-20-25 % steps every 10 s), not more finely.
+constexpr double kSteadyWheel = 0.99;
 // Above this share of the wheel speed's variance following the model's
 // input, the offset's signature is a change of the model's dynamics (the
 // same 1 - R^2 < 0.1 rule: under a tenth of the speed's changes are its own).
@@ -160,7 +167,14 @@ void EstimateShift(const SeriesData& d, const EffectSet& current, const Effect& 
   // a steady wheel: r = -0.990 and an interval of +-7 counts 36 counts from
   // the truth). Not pinned: the pins, or a run whose wheel changes speed,
   // pin it.
-  if (std::abs(report.shift_delay_correlation) > kInseparable) {
+  // The same, read off the wheel's speed changes and the model's output
+  // alone (speed_follows_input.h): a steady wheel cannot tell the offset
+  // from a delay whichever of two delays that fit alike identify took (the
+  // joint fit's correlation, taken at that delay, can miss it: the twin's
+  // 12-s steady run at -0.75 where another delay gave -0.99).
+  p.speed_delay_correlation = OffsetDelayCorrelationFromSpeed(d);
+  p.steady_wheel = std::abs(p.speed_delay_correlation) > kSteadyWheel;
+  if (std::abs(report.shift_delay_correlation) > kInseparable || p.steady_wheel) {
     p.lo = grid.front(), p.hi = grid.back(), p.lo_at_edge = p.hi_at_edge = true;
     p.inseparable = true;
   }

@@ -123,10 +123,10 @@ json CompareJson(const SeriesData& d, const ExplainReport& r, std::size_t max_po
 }
 
 json ReidentifiedJson(const ReidentifiedProfile& r) {
-  return {{"offset_counts", r.counts},          {"sse", r.sse},
-          {"best_counts", Finite(r.best)},      {"ci95_low_counts", Finite(r.lo)},
-          {"ci95_high_counts", Finite(r.hi)},   {"low_at_search_edge", r.lo_at_edge},
-          {"high_at_search_edge", r.hi_at_edge}};
+  return {{"offset_counts", r.counts},           {"sse", r.sse},
+          {"best_counts", Finite(r.best)},       {"ci95_low_counts", Finite(r.lo)},
+          {"ci95_high_counts", Finite(r.hi)},    {"low_at_search_edge", r.lo_at_edge},
+          {"high_at_search_edge", r.hi_at_edge}, {"scattered_by_basins", r.scattered}};
 }
 
 json RunJson(const RunExplanation& e, const Rig& rig, const model::TransferFunction& tf, double offset,
@@ -149,6 +149,8 @@ json RunJson(const RunExplanation& e, const Rig& rig, const model::TransferFunct
                          {"low_at_search_edge", sp.lo_at_edge},
                          {"high_at_search_edge", sp.hi_at_edge},
                          {"inseparable_from_delay", sp.inseparable},
+                         {"speed_delay_correlation", Finite(sp.speed_delay_correlation)},
+                         {"steady_wheel", sp.steady_wheel},
                          {"speed_share_from_input", Finite(sp.speed_input_share)},
                          {"speed_follows_input", sp.speed_follows_input}};
   for (double g : sp.shift_counts) j["offset_profile"]["offset_counts"].push_back(e.aligned_at_counts + g);

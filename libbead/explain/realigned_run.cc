@@ -55,6 +55,7 @@ bool NeedsRealigning(const OffsetFromRun& o, double aligned_at) {
 void HoldBoth(RunExplanation& e, const ReidentifiedProfile& r, double rig_counts) {
   OffsetFromRun& o = e.offset;
   o.lo_counts = std::min(o.lo_counts, r.lo), o.hi_counts = std::max(o.hi_counts, r.hi);
+  o.scattered = o.pinned && r.scattered;
   o.pinned = o.pinned && !r.lo_at_edge && !r.hi_at_edge;
   o.ci95_counts = o.pinned ? std::max(o.hi_counts - o.counts, o.counts - o.lo_counts) : INFINITY;
   o.excludes_rig = Excludes(o, rig_counts);

@@ -29,6 +29,9 @@ struct ReidentifiedProfile {
   // the band identified no model.
   bool lo_at_edge = false, hi_at_edge = false;
   bool ok = false;  // at least three trials identified
+  // The SSE falls and rises again on one side of its least: identify's
+  // basins, not the data, shaped it; not pinned (both sides at the edge).
+  bool scattered = false;
 };
 
 // About `centre` (counts) in steps of `step` counts, out to where the SSE

@@ -58,6 +58,10 @@ struct OffsetFromRun {
   bool pinned = false;                                    // the interval does not reach the searched range
   bool excludes_rig = false;                              // the rig file's offset lies outside it
   double delay_correlation = NAN;
+  // Not pinned because the profile with the model identified again at each
+  // trial offset was scattered by identify's delay basins
+  // (reidentified_profile.h).
+  bool scattered = false;
 };
 
 // The run's offset beside the pin scans'.

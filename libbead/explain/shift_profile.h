@@ -35,6 +35,10 @@ struct ShiftProfile {
   // The offset trades with the delay beyond what the run can separate
   // (confounding.h): not pinned whatever the profile's curvature.
   bool inseparable = false;
+  // The offset-delay correlation the wheel's speed changes allow, from the
+  // speed and the model's output alone (speed_follows_input.h).
+  double speed_delay_correlation = NAN;
+  bool steady_wheel = false;  // that correlation beyond its bar: not pinned
   // The share of the wheel speed's variance a filter of the model's input
   // explains (speed_follows_input.h); above kFollowsInput the offset is
   // not pinned either: a position error is then a change of the model's

@@ -26,12 +26,72 @@ std::vector<double> WheelSpeed(const SeriesData& d, const std::vector<double>& a
   return speed;
 }
 
+// The wheel's angular speed and its rate of change at each sample: a
+// quadratic fitted over kSlopeWindowS about it (NaN where fewer than five
+// samples or a gap).
+constexpr double kSlopeWindowS = 0.2;
+void SpeedAndAcceleration(const SeriesData& d, const std::vector<double>& angle, std::vector<double>& speed,
+                          std::vector<double>& accel) {
+  const std::size_t n = d.size();
+  speed.assign(n, NAN), accel.assign(n, NAN);
+  std::size_t a = 0, b = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    while (d.t[i] - d.t[a] > 0.5 * kSlopeWindowS) ++a;
+    while (b + 1 < n && d.t[b + 1] - d.t[i] <= 0.5 * kSlopeWindowS) ++b;
+    if (b - a + 1 < 5) continue;
+    Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d r = Eigen::Vector3d::Zero();
+    bool ok = true;
+    for (std::size_t j = a; j <= b; ++j) {
+      const double x = d.t[j] - d.t[i];
+      const Eigen::Vector3d row(1.0, x, x * x);
+      ok = ok && std::isfinite(angle[j]);
+      m += row * row.transpose(), r += row * (angle[j] - angle[i]);
+    }
+    if (!ok) continue;
+    const Eigen::Vector3d c = m.ldlt().solve(r);
+    speed[i] = c(1), accel[i] = 2.0 * c(2);
+  }
+}
+
+const RotatingPart* Wheel(const SeriesData& d) {
+  for (const RotatingPart& p : d.parts)
+    if (p.name == "wheel" && p.angle_rad.size() == d.size()) return &p;
+  return nullptr;
+}
+
 }  // namespace
 
+double OffsetDelayCorrelationFromSpeed(const SeriesData& d) {
+  const RotatingPart* wheel = Wheel(d);
+  const std::size_t n = d.size();
+  if (!wheel || n < 10) return NAN;
+  std::vector<double> w, dw;
+  SpeedAndAcceleration(d, wheel->angle_rad, w, dw);
+  std::vector<std::size_t> rows;
+  for (std::size_t i = 1; i + 1 < n; ++i)
+    if (std::isfinite(w[i]) && std::isfinite(dw[i]) && std::abs(w[i]) > 0 && d.t[i + 1] > d.t[i - 1]) rows.push_back(i);
+  if (rows.size() < 10) return NAN;
+  const auto m = static_cast<Eigen::Index>(rows.size());
+  Eigen::MatrixXd nuisance(m, 2);
+  Eigen::VectorXd by_delay(m), by_offset(m);
+  for (Eigen::Index r = 0; r < m; ++r) {
+    const std::size_t i = rows[static_cast<std::size_t>(r)];
+    const double slope = (d.base[i + 1] - d.base[i - 1]) / (d.t[i + 1] - d.t[i - 1]);
+    nuisance(r, 0) = 1.0, nuisance(r, 1) = d.base[i];
+    by_delay(r) = slope;
+    by_offset(r) = (slope - d.base[i] * dw[i] / w[i]) / w[i];
+  }
+  // What the gain and operating point leave of each.
+  const auto qr = nuisance.colPivHouseholderQr();
+  const Eigen::VectorXd a = by_delay - nuisance * qr.solve(by_delay);
+  const Eigen::VectorXd b = by_offset - nuisance * qr.solve(by_offset);
+  const double den = a.norm() * b.norm();
+  return den > 0 ? a.dot(b) / den : NAN;
+}
+
 double SpeedShareFromInput(const SeriesData& d) {
-  const RotatingPart* wheel = nullptr;
-  for (const RotatingPart& p : d.parts)
-    if (p.name == "wheel" && p.angle_rad.size() == d.size()) wheel = &p;
+  const RotatingPart* wheel = Wheel(d);
   if (!wheel) return NAN;
   const std::vector<double> speed = WheelSpeed(d, wheel->angle_rad);
   std::vector<const std::vector<double>*> columns;

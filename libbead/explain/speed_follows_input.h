@@ -22,4 +22,17 @@ namespace bead::explain {
 // vary.
 double SpeedShareFromInput(const SeriesData& d);
 
+// How far the wheel's speed changes let the run tell a position error from
+// a time error, whatever delay the base model took. A position error dx
+// moves the flow the run computes (Q = v A, A from the profile measured dx
+// later) by dx (Q' - Q v'/v) / v at each sample, and a delay error dt
+// moves the model's output by -Q' dt: the two differ only through the
+// speed's own changes (v'/v, and 1/v's variation). Their correlation,
+// with the model's output standing for Q and the gain and operating point
+// projected out, is the offset-delay correlation a steady wheel allows
+// (1 at a constant speed); it reads the wheel and the model's output only,
+// so it does not depend on which of two delays that fit alike identify
+// took (the joint fit's correlation does). NaN without a wheel.
+double OffsetDelayCorrelationFromSpeed(const SeriesData& d);
+
 }  // namespace bead::explain

@@ -42,6 +42,9 @@ TEST(ExplainCommand, SampleRunReportsOffsetDiagnosticsAndSpectrum) {
   EXPECT_LE(j["offset_profile"]["ci95_low_counts"].get<double>(), 3071.5);
   EXPECT_GE(j["offset_profile"]["ci95_high_counts"].get<double>(), 3071.5);
   EXPECT_FALSE(j["offset_from_run_pinned"].get<bool>());
+  // Said from the wheel's speed, whichever of two delays that fit alike
+  // identify took (the joint fit's correlation depends on that).
+  EXPECT_TRUE(j["offset_profile"]["steady_wheel"].get<bool>());
   EXPECT_TRUE(j["offset_from_run_ci95_counts"].is_null());
   EXPECT_NE(out.find("NOT pinned by this run"), std::string::npos) << out;
   EXPECT_TRUE(j["diagnostics"]["whiteness_before"].contains("chi2"));

@@ -2,7 +2,8 @@
 // input explains (explain/speed_follows_input.h): a wheel whose speed is a
 // first-order lag of the input (a fed-forward wheel) shares nearly all of
 // it; a wheel stepped on its own clock next to nothing; a steady wheel
-// has nothing to share.
+// has nothing to share. And the offset-delay correlation the speed's
+// changes allow.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -50,6 +51,29 @@ TEST(SpeedShareFromInput, AFedForwardWheelSharesNearlyAllItsChangesAndAWheelStep
   SeriesData no_wheel = Series([](double, double) { return 1.5; });
   no_wheel.parts.clear();
   EXPECT_TRUE(std::isnan(SpeedShareFromInput(no_wheel)));
+}
+
+// A position error moves the flow the run computes by (Q' - Q v'/v) / v,
+// a delay error the model's output by -Q': at a constant speed the two are
+// proportional (correlation 1 but for the encoder's quantisation); a wheel
+// stepped between 1.2 and 1.8 rad/s every 10 s (its speed's changes
+// weighting the flow's slope by 1/v, and each step adding Q v'/v) tells
+// them apart.
+TEST(OffsetDelayCorrelationFromSpeed, OneAtASteadyWheelAndWellBelowOnAStepped) {
+  const double step = 2.0 * M_PI / 10000.0;  // an encoder of 10000 counts per revolution
+  SeriesData steady = Series([](double, double) { return 1.5; });
+  for (double& a : steady.parts[0].angle_rad) a = step * std::floor(a / step);
+  const double at_steady = OffsetDelayCorrelationFromSpeed(steady);
+  const double at_stepped = OffsetDelayCorrelationFromSpeed(
+      Series([](double t, double) { return static_cast<int>(t / 10.0) % 2 ? 1.8 : 1.2; }));
+  std::printf("offset-delay correlation: steady %.4f, stepped %.4f\n", at_steady, at_stepped);
+  // confounding.cc's kSteadyWheel (0.99): the steady wheel above it, the
+  // stepped one well below (a variance inflation under 10).
+  EXPECT_GT(std::abs(at_steady), 0.99);
+  EXPECT_LT(std::abs(at_stepped), 0.95);
+  SeriesData no_wheel = steady;
+  no_wheel.parts.clear();
+  EXPECT_TRUE(std::isnan(OffsetDelayCorrelationFromSpeed(no_wheel)));
 }
 
 }  // namespace
