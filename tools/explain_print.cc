@@ -1,3 +1,4 @@
+#include <cmath>
 #include <cstdio>
 
 #include "libbead/io/atomic_file.h"
@@ -121,8 +122,11 @@ void PrintReport(const explain::ExplainReport& r, const std::string& unit) {
     std::printf("unexplained: %s, tracks %s (power %.1f, false alarm %.2g)\n", u.what.c_str(), u.tracks.c_str(),
                 u.power, u.false_alarm);
   for (const auto& c : r.confounded)
-    std::printf("confounded: %s and %s trade (correlation %+.3f): %s\n", c.first.c_str(), c.second.c_str(),
-                c.correlation, c.note.c_str());
+    if (std::isfinite(c.correlation))
+      std::printf("confounded: %s and %s trade (correlation %+.3f): %s\n", c.first.c_str(), c.second.c_str(),
+                  c.correlation, c.note.c_str());
+    else  // a pair told apart by something other than a correlation (the run's two halves)
+      std::printf("confounded: %s and %s: %s\n", c.first.c_str(), c.second.c_str(), c.note.c_str());
 }
 
 void PrintRun(const explain::RunExplanation& e, const Rig& rig, const std::string& path, const std::string& validate) {

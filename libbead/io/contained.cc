@@ -17,6 +17,8 @@
 #include <filesystem>
 #include <fstream>
 #include <new>
+#include <sstream>
+#include <string>
 
 #include "libbead/core/error.h"
 
@@ -94,23 +96,94 @@ std::size_t MappedBytes() {
   _exit(0);
 }
 
-// Reads the child's report until it closes the pipe or the time is up.
-bool ReadReport(int fd, double seconds, std::string& report) {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+// A child's state letter and CPU time in clock ticks (/proc/PID/stat's
+// third, fourteenth and fifteenth fields); false when it cannot be read.
+bool ChildCpu(pid_t pid, char& state, unsigned long long& ticks) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+  std::string line;
+  if (!std::getline(in, line)) return false;
+  const std::size_t close = line.rfind(')');  // the name may hold spaces
+  if (close == std::string::npos || close + 2 >= line.size()) return false;
+  std::istringstream rest(line.substr(close + 2));
+  std::string skip;
+  unsigned long long user = 0, system = 0;
+  rest >> state;
+  for (int field = 4; field <= 13; ++field) rest >> skip;
+  if (!(rest >> user >> system)) return false;
+  ticks = user + system;
+  return true;
+}
+
+enum class Outcome { kFinished, kTimedOut, kBlocked };
+
+// A child asleep without a tick of CPU time for this long is blocked, not
+// working: a lock another thread of the caller held when it forked (a
+// sanitizer's allocator, whose locks fork does not take; libhdf5's global
+// lock) stays held in the child forever. Reading headers never sleeps
+// this long.
+constexpr double kBlockedSeconds = 2.0;
+
+// Reads the child's report until it closes the pipe or the time is up;
+// `watch`: also until the child is found blocked (above).
+Outcome ReadReport(int fd, double seconds, pid_t child, bool watch, std::string& report) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto deadline = start + std::chrono::duration<double>(seconds);
+  auto last_progress = start;
+  unsigned long long last_ticks = 0;
   char buf[4096];
   for (;;) {
-    const auto left =
-        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
-    if (left.count() <= 0) return false;
+    const auto now = std::chrono::steady_clock::now();
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - now);
+    if (left.count() <= 0) return Outcome::kTimedOut;
+    char state = '?';
+    unsigned long long ticks = 0;
+    if (watch && ChildCpu(child, state, ticks)) {
+      if (state != 'S' || ticks != last_ticks) last_progress = now, last_ticks = ticks;
+      if (std::chrono::duration<double>(now - last_progress).count() >= kBlockedSeconds) return Outcome::kBlocked;
+    }
     pollfd p{fd, POLLIN, 0};
-    const int ready = poll(&p, 1, static_cast<int>(left.count()));
+    const int ready = poll(&p, 1, static_cast<int>(std::min<long long>(left.count(), watch ? 250 : left.count())));
     if (ready < 0 && errno == EINTR) continue;
-    if (ready <= 0) return false;
+    if (ready < 0) return Outcome::kTimedOut;
+    if (ready == 0) continue;
     const ssize_t n = read(fd, buf, sizeof buf);
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return true;
+    if (n <= 0) return Outcome::kFinished;
     report.append(buf, static_cast<std::size_t>(n));
   }
+}
+
+// One child: forked, its report read, reaped (killed first unless it
+// finished). Returns false where fork or pipe is unavailable.
+struct Attempt {
+  Outcome outcome = Outcome::kFinished;
+  int status = 0;
+  std::string report;
+};
+bool RunChildOnce(const std::function<std::string()>& work, const ContainLimits& limits, bool watch, Attempt& out) {
+  int fds[2];
+  // Close-on-exec: a child another thread starts meanwhile does not hold
+  // the pipe open past this one's end.
+  if (pipe2(fds, O_CLOEXEC) != 0) return false;
+  const std::size_t mapped = MappedBytes();
+  const std::size_t cap = mapped > 0 ? mapped + limits.memory_bytes : 0;
+  const pid_t parent = getpid();
+  const pid_t pid = fork();
+  if (pid < 0) {
+    close(fds[0]), close(fds[1]);
+    return false;
+  }
+  if (pid == 0) {
+    close(fds[0]);
+    RunChild(fds[1], work, cap, parent, limits.cpu_seconds);
+  }
+  close(fds[1]);
+  out.outcome = ReadReport(fds[0], limits.seconds, pid, watch, out.report);
+  close(fds[0]);
+  if (out.outcome != Outcome::kFinished) kill(pid, SIGKILL);
+  while (waitpid(pid, &out.status, 0) < 0 && errno == EINTR) {
+  }
+  return true;
 }
 
 }  // namespace
@@ -138,30 +211,17 @@ void ProbeContained(const std::string& path, const std::string& library, const s
 
 std::string RunContained(const std::string& path, const std::string& library, const std::function<std::string()>& work,
                          const ContainLimits& limits) {
-  int fds[2];
-  // Close-on-exec: a child another thread starts meanwhile does not hold
-  // the pipe open past this one's end.
-  if (pipe2(fds, O_CLOEXEC) != 0) return work();
-  const std::size_t mapped = MappedBytes();
-  const std::size_t cap = mapped > 0 ? mapped + limits.memory_bytes : 0;
-  const pid_t parent = getpid();
-  const pid_t pid = fork();
-  if (pid < 0) {
-    close(fds[0]), close(fds[1]);
-    return work();
+  // A child found blocked (ReadReport) is not the file's doing: forked
+  // again once, that one given the whole time.
+  Attempt a;
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    a = Attempt{};
+    if (!RunChildOnce(work, limits, attempt == 0, a)) return work();
+    if (a.outcome != Outcome::kBlocked) break;
   }
-  if (pid == 0) {
-    close(fds[0]);
-    RunChild(fds[1], work, cap, parent, limits.cpu_seconds);
-  }
-  close(fds[1]);
-  std::string report;
-  const bool finished = ReadReport(fds[0], limits.seconds, report);
-  close(fds[0]);
-  if (!finished) kill(pid, SIGKILL);
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
+  const bool finished = a.outcome == Outcome::kFinished;
+  const int status = a.status;
+  const std::string& report = a.report;
   const std::string corrupt = "corrupt (the " + library + " library failed reading it: ";
   if (!finished) {
     char what[80];

@@ -8,7 +8,12 @@
 // its wall and CPU time bounded (seconds: reading headers and a small
 // file's data needs well under one; a probe that takes longer is kept busy
 // by a damaged file), and killed with its caller (a caller that dies or is
-// killed never leaves a probe spinning). Only when that probe finishes does the caller read
+// killed never leaves a probe spinning). A child found asleep without using
+// the CPU for two seconds is blocked, not busy: fork copies the caller's
+// locks but not the threads holding them (a sanitizer's allocator,
+// libhdf5's global lock, held by another of the caller's threads at that
+// instant), and such a child waits forever. That is no fault of the file:
+// the child is forked once more and given the whole time. Only when that probe finishes does the caller read
 // the file itself; a probe that crashes, runs out of its budget or time is
 // the file's fault, said with the file's name, and the caller never
 // touches it.

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <thread>
 
@@ -78,6 +79,33 @@ TEST(Contained, MemoryAndTimeAreBounded) {
   EXPECT_NE(time.find("slow.h5: corrupt (the HDF5 library failed reading it: it did not finish in 1 s)"),
             std::string::npos)
       << time;
+}
+
+// A probe blocked (a lock another thread held when it was forked, which
+// no thread of the child will release) is forked again, not called
+// corrupt: the first child here sleeps forever, the second finds the
+// first's mark and finishes. One that sleeps in every child is still
+// bounded by the wall time.
+TEST(Contained, ABlockedProbeIsForkedAgainAndAlwaysBlockedIsStillBounded) {
+  test::TempDir dir;
+  const std::string mark = dir / "first_child_was_here";
+  const std::string result = RunContained("locked.h5", "HDF5", [&] {
+    if (!std::filesystem::exists(mark)) {
+      std::ofstream(mark) << "1\n";
+      for (;;) std::this_thread::sleep_for(std::chrono::seconds(60));
+    }
+    return std::string("read");
+  });
+  EXPECT_EQ(result, "read");
+  ContainLimits limits;
+  limits.seconds = 3;
+  const std::string e = ErrorOf([&] {
+    ProbeContained(
+        "asleep.h5", "HDF5", [] { std::this_thread::sleep_for(std::chrono::seconds(60)); }, limits);
+  });
+  EXPECT_NE(e.find("asleep.h5: corrupt (the HDF5 library failed reading it: it did not finish in 3 s)"),
+            std::string::npos)
+      << e;
 }
 
 // A probe kept busy (a damaged file can loop libhdf5) is stopped by its
