@@ -27,8 +27,11 @@ std::vector<double> WheelSpeed(const SeriesData& d, const std::vector<double>& a
 }
 
 // The wheel's angular speed and its rate of change at each sample: a
-// quadratic fitted over kSlopeWindowS about it (NaN where fewer than five
-// samples or a gap).
+// quadratic in time fitted to the angle over kSlopeWindowS about it (NaN
+// where fewer than five samples lie within it, or an angle there is not
+// known). Over 0.2 s an encoder's quantisation barely moves the rate of
+// change (a steady wheel's correlation below: 0.9993 at 10000 counts per
+// revolution, 0.945 over 0.1 s), and a stepped wheel's steps still show.
 constexpr double kSlopeWindowS = 0.2;
 void SpeedAndAcceleration(const SeriesData& d, const std::vector<double>& angle, std::vector<double>& speed,
                           std::vector<double>& accel) {
