@@ -147,11 +147,11 @@ void PrintRun(const explain::RunExplanation& e, const Rig& rig, const std::strin
         100.0 * e.report.shift_profile.speed_input_share, o.counts, rig.offset_counts);
   else if (!o.pinned && e.report.shift_profile.steady_wheel)
     std::printf(
-        "encoder offset from the run: NOT pinned by this run: the wheel's speed barely changes, and at a steady "
-        "speed a position error is a time error (their signatures correlate at %.4f as the speed's changes "
-        "allow; %.3f in the joint fit at the delay identify took), so where the error is least (%.1f counts) is "
-        "the model's misfit, not the offset (a run whose wheel changes speed, or the pins, pin it); rig file: "
-        "%.1f counts\n",
+        "encoder offset from the run: NOT pinned by this run: the wheel's speed changes too little to tell a "
+        "position error from a time error (at a steady speed they are one: their signatures correlate at %.4f "
+        "as this wheel's speed changes allow, beyond 0.99; %.3f in the joint fit at the delay identify took), so "
+        "where the error is least (%.1f counts) is the model's misfit, not the offset (a run whose wheel changes "
+        "speed by tens of percent, or the pins, pin it); rig file: %.1f counts\n",
         e.report.shift_profile.speed_delay_correlation, o.delay_correlation, o.counts, rig.offset_counts);
   else if (!o.pinned && e.report.shift_profile.inseparable)
     std::printf(
