@@ -79,6 +79,7 @@ TEST(StepIdentification, RefusesAFlatResponse) {
 
 #include <algorithm>
 #include <random>
+#include <utility>
 
 #include "libbead/model/identify.h"
 #include "libbead/series/process_on.h"
@@ -200,16 +201,29 @@ TEST(Identify, RecordStartingMidProcessGetsItsOperatingPointAndInitialState) {
   EXPECT_LT(r.fit_percent, m.fit_percent - 5.0) << "from rest should not fit a record that is not";
 }
 
+// A delay far from zero (0.62 s) with an input that steps every 0.3 s, so
+// the output-error loss has basins at other delays; 1 % noise.
+struct DelayBasinRecord {
+  TransferFunction truth{{2.0}, {0.25, 1.0}, 0.62};
+  std::vector<double> t, u, y;
+};
+DelayBasinRecord DelayBasinData() {
+  DelayBasinRecord r;
+  std::mt19937_64 rng(21);
+  std::normal_distribution<double> noise(0.0, 0.01);
+  test::Steps steps = test::RandomSteps(rng, 1.0, 3.0, 3000, 15, 0.02);
+  r.t = std::move(steps.t), r.u = std::move(steps.u);
+  r.y = Simulate(r.truth, r.t, r.u);
+  for (double& x : r.y) x += noise(rng);
+  return r;
+}
+
 // A delay far from zero (0.62 s of a searched 0 - 1 s) with an input that
 // steps every 0.3 s, so the output-error loss has basins at other delays:
 // the profile at every sample step finds the true basin, to a sample.
 TEST(Identify, DelayBasinIsFoundOnTheProfile) {
-  std::mt19937_64 rng(21);
-  std::normal_distribution<double> noise(0.0, 0.01);
-  const TransferFunction truth{{2.0}, {0.25, 1.0}, 0.62};
-  const auto [t, u] = test::RandomSteps(rng, 1.0, 3.0, 3000, 15, 0.02);
-  std::vector<double> y = Simulate(truth, t, u);
-  for (double& x : y) x += noise(rng);
+  const DelayBasinRecord rec = DelayBasinData();
+  const std::vector<double>&t = rec.t, &u = rec.u, &y = rec.y;
   IdentifyOptions o;
   o.poles = 1;
   o.zeros = 0;
@@ -236,12 +250,9 @@ TEST(Identify, DelayBasinIsFoundOnTheProfile) {
 // it: both are the same optimum, reached by other paths), without a delay
 // profile; a start of other orders, or unstable, is refused with the reason.
 TEST(Identify, WarmStartRefinesFromTheStartAlone) {
-  std::mt19937_64 rng(21);
-  std::normal_distribution<double> noise(0.0, 0.01);
-  const TransferFunction truth{{2.0}, {0.25, 1.0}, 0.62};
-  const auto [t, u] = test::RandomSteps(rng, 1.0, 3.0, 3000, 15, 0.02);
-  std::vector<double> y = Simulate(truth, t, u);
-  for (double& x : y) x += noise(rng);
+  const DelayBasinRecord rec = DelayBasinData();
+  const TransferFunction& truth = rec.truth;
+  const std::vector<double>&t = rec.t, &u = rec.u, &y = rec.y;
   IdentifyOptions o;
   o.poles = 1;
   o.zeros = 0;
