@@ -69,10 +69,8 @@ void HoldBoth(RunExplanation& e, const ReidentifiedProfile& r, double rig_counts
 
 BaseModel IdentifyOnFlow(const FlowResult& flow, std::size_t bin, const model::IdentifyOptions& identify,
                          const std::string& where) {
-  std::vector<double> t, u, y;
-  for (const FlowSample& s : flow.samples)
-    if (s.valid) t.push_back(s.t_s), u.push_back(s.screw_rpm), y.push_back(s.flow_mm3_s);
-  return IdentifyBaseModel(AverageInBins(t, bin), {AverageInBins(u, bin)}, AverageInBins(y, bin), {}, identify, where);
+  const BinnedFlow b = BinValidFlow(flow, bin);
+  return IdentifyBaseModel(b.t, {b.u}, b.y, {}, identify, where);
 }
 
 IdentifiedRun ExplainIdentifiedRun(const Rig& rig, const MeasuredFlow& run, const MeasuredFlow* held_out,

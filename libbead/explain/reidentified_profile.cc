@@ -23,12 +23,9 @@ Trial IdentifiedAt(const Rig& rig, const MeasuredFlow& run, double counts, const
   aligned.offset_counts = counts;
   const FlowResult flow =
       ComputeFlow(aligned, *run.profiles, *run.geometry, *run.log, {}, run.CorrectedArea(), run.CorrectedSigma());
-  std::vector<double> t, u, y;
-  for (const FlowSample& s : flow.samples)
-    if (s.valid) t.push_back(s.t_s), u.push_back(s.screw_rpm), y.push_back(s.flow_mm3_s);
-  t = AverageInBins(t, bin), u = AverageInBins(u, bin), y = AverageInBins(y, bin);
+  const BinnedFlow b = BinValidFlow(flow, bin);
   o.start = start;
-  const model::IdentifiedModel m = model::IdentifyTransferFunction(t, u, y, o);
+  const model::IdentifiedModel m = model::IdentifyTransferFunction(b.t, b.u, b.y, o);
   Trial out;
   if (!m.ok) return out;
   if (!std::isfinite(m.criteria.loss)) return out;

@@ -197,4 +197,12 @@ std::vector<double> AverageInBins(const std::vector<double>& v, std::size_t bin)
   return out;
 }
 
+BinnedFlow BinValidFlow(const FlowResult& flow, std::size_t bin) {
+  BinnedFlow b;
+  for (const FlowSample& s : flow.samples)
+    if (s.valid) b.t.push_back(s.t_s), b.u.push_back(s.screw_rpm), b.y.push_back(s.flow_mm3_s);
+  b.t = AverageInBins(b.t, bin), b.u = AverageInBins(b.u, bin), b.y = AverageInBins(b.y, bin);
+  return b;
+}
+
 }  // namespace bead::explain

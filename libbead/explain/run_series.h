@@ -54,4 +54,11 @@ std::size_t ExplainBin(std::size_t samples, double duration_s);
 // out), as MakeRunSeries bins a run.
 std::vector<double> AverageInBins(const std::vector<double>& v, std::size_t bin);
 
+// A flow's valid samples (time, screw speed, flow) averaged in bins of
+// `bin`: what a base model is identified on.
+struct BinnedFlow {
+  std::vector<double> t, u, y;
+};
+BinnedFlow BinValidFlow(const FlowResult& flow, std::size_t bin);
+
 }  // namespace bead::explain

@@ -32,6 +32,8 @@ std::vector<double> WheelSpeed(const SeriesData& d, const std::vector<double>& a
 // known). Over 0.2 s an encoder's quantisation barely moves the rate of
 // change (a steady wheel's correlation below: 0.9993 at 10000 counts per
 // revolution, 0.945 over 0.1 s), and a stepped wheel's steps still show.
+// Fitted in time, not by series/savgol.h: the samples are at extrusion
+// times, spaced as unevenly as the wheel's speed changes.
 constexpr double kSlopeWindowS = 0.2;
 void SpeedAndAcceleration(const SeriesData& d, const std::vector<double>& angle, std::vector<double>& speed,
                           std::vector<double>& accel) {
