@@ -1,5 +1,7 @@
 #include "libbead/part/added_bead.h"
 
+#include "libbead/part/registration.h"
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -158,127 +160,6 @@ void Geometry(const Gains& g, std::span<const float> z, const Span& s, double fl
   out.center_x_mm = CrestVertex(g, z, s, crest, 0.2 * out.width_mm);
 }
 
-// The truncated squared gain over every point, in noise variances (the
-// new point's and the surface below's there): a point where the surfaces
-// agree counts its squared gain, one inside the new bead (or off the
-// surface below) the threshold's square, whatever the shift. Least where
-// the most points agree.
-double TruncatedCost(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, double s, double tau,
-                     double noise, double margin) {
-  const double cap = tau * tau / (noise * noise);
-  const double lo = below.x0_mm + margin, hi = below.x0_mm + below.dx_mm * (below.z_mm.size() - 1) - margin;
-  double sum = 0.0;
-  // The surface below's variance is at most one point's (surface_below.h):
-  // a gain beyond cap at twice the noise variance is capped whatever it is.
-  const double capped_beyond = 2.0 * cap * noise * noise;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    if (x[i] < lo || x[i] > hi) continue;
-    const double d = z[i] - below.At(x[i] - s);
-    if (std::isnan(d) || d * d >= capped_beyond) {
-      sum += cap;
-      continue;
-    }
-    const double variance = noise * noise * (1.0 + below.VarianceAt(x[i] - s));
-    sum += std::min(d * d / variance, cap);
-  }
-  return sum;
-}
-
-struct Registration {
-  double shift = 0.0, sigma = kNaN, rms = kNaN;
-  int points = 0;
-  bool constrained = false;
-  bool at_end = false;  // the band within 4 of the least reached the search's end
-};
-
-// The cost on a grid of shifts: coarse over the whole range at a quarter
-// of the point spacing (a lone wall of the layer below moves one point in
-// or out of agreement per spacing), then ten times finer around the best.
-struct CostCurve {
-  std::vector<double> s, cost;
-  std::size_t best = 0;
-};
-
-CostCurve Scan(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, double centre, double half,
-               double step, double tau, double noise) {
-  CostCurve c;
-  for (double s = centre - half; s <= centre + half + 1e-12; s += step) {
-    c.s.push_back(s);
-    c.cost.push_back(TruncatedCost(x, z, below, s, tau, noise, half + std::abs(centre)));
-    if (c.cost.back() < c.cost[c.best]) c.best = c.cost.size() - 1;
-  }
-  return c;
-}
-
-// The cost averaged over one point spacing (`half` either side): a wall of
-// the layer below moves a point in or out of agreement per spacing of
-// shift, a step the average turns into a slope.
-std::vector<double> Smoothed(const CostCurve& c, std::size_t half) {
-  std::vector<double> out(c.cost.size());
-  for (std::size_t k = 0; k < c.cost.size(); ++k) {
-    const std::size_t lo = k >= half ? k - half : 0, hi = std::min(k + half, c.cost.size() - 1);
-    double sum = 0.0;
-    for (std::size_t j = lo; j <= hi; ++j) sum += c.cost[j];
-    out[k] = sum / static_cast<double>(hi - lo + 1);
-  }
-  return out;
-}
-
-// The shift: the middle of the shifts whose (smoothed) cost is within 1 of
-// the least; its sigma: half the range within 4 (two sigmas of one
-// parameter), over two, and at least a wall's sampling, spacing / sqrt 12.
-// A range that reaches the search's end leaves the shift unconstrained
-// (nothing outside the bead to register on: a bare bed).
-Registration FromCurve(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
-                       const CostCurve& coarse, double spacing, double tau, double noise, const AddedBeadOptions& o) {
-  const std::vector<double> cost = Smoothed(coarse, 2);
-  const double least = *std::min_element(cost.begin(), cost.end());
-  double lo1 = 1e300, hi1 = -1e300, lo4 = 1e300, hi4 = -1e300;
-  bool at_end = false;
-  for (std::size_t k = 0; k < cost.size(); ++k) {
-    if (cost[k] <= least + 1.0) lo1 = std::min(lo1, coarse.s[k]), hi1 = std::max(hi1, coarse.s[k]);
-    if (cost[k] <= least + 4.0) {
-      lo4 = std::min(lo4, coarse.s[k]), hi4 = std::max(hi4, coarse.s[k]);
-      at_end = at_end || k == 0 || k + 1 == cost.size();
-    }
-  }
-  Registration r;
-  r.shift = 0.5 * (lo1 + hi1);
-  r.at_end = at_end;
-  r.sigma = std::max(0.25 * (hi4 - lo4), spacing / std::sqrt(12.0));
-  double sum = 0.0;
-  int features = 0;
-  const double feature_slope = 3.0 * noise / spacing;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    const double d = z[i] - below.At(x[i] - r.shift);
-    if (!(std::abs(d) <= tau)) continue;
-    sum += d * d, ++r.points;
-    features += std::abs(below.SlopeAt(x[i] - r.shift)) > feature_slope;
-  }
-  r.rms = r.points ? std::sqrt(sum / r.points) : kNaN;
-  // Only where the layer below shows beside the new bead (a flank it does
-  // not cover) is there anything to register on: a cost that rises because
-  // a shifted old bead would stick out from under the new one says where
-  // the old bead could lie hidden, not where it lies.
-  r.constrained = !at_end && r.sigma <= o.max_shift_sigma_mm && features >= o.min_feature_points;
-  return r;
-}
-
-// A search from `start` (the shift of the profile before, in the same
-// pass) looks within warm_half_mm of it first, and over the whole range
-// when its band reaches that window's end.
-Registration Register(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, double tau,
-                      double noise, const AddedBeadOptions& o, const double* start) {
-  const double spacing = MedianSpacing(x);
-  const double step = std::max(0.25 * spacing, 1e-3);
-  if (start && std::abs(*start) + o.warm_half_mm < o.max_shift_mm) {
-    const CostCurve warm = Scan(x, z, below, *start, o.warm_half_mm, step, tau, noise);
-    Registration r = FromCurve(x, z, below, warm, spacing, tau, noise, o);
-    if (!r.at_end) return r;
-  }
-  return FromCurve(x, z, below, Scan(x, z, below, 0.0, o.max_shift_mm, step, tau, noise), spacing, tau, noise, o);
-}
-
 }  // namespace
 
 double ProfileNoiseMm(std::span<const float> z) { return NoiseOf(z); }
@@ -321,7 +202,7 @@ AddedBead MeasureAddedBead(std::span<const float> x, std::span<const float> z, c
       if (seen) Geometry(g, z, s, floor, out);
       break;
     }
-    if (round == 0) reg = Register(x, z, below, tau, out.noise_mm, o, start_shift);
+    if (round == 0) reg = Register(x, z, below, {tau, out.noise_mm, MedianSpacing(x)}, o, start_shift);
   }
   out.shift_mm = reg.shift;
   out.shift_sigma_mm = reg.sigma;

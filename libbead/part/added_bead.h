@@ -26,7 +26,10 @@
 //    costs the same at every shift), on a grid of a quarter point spacing
 //    over +-max_shift_mm, averaged over one spacing. s is the middle of the
 //    shifts within 1 of the least cost, its sigma a quarter of the range
-//    within 4, at least spacing / sqrt 12. Where the layer below shows
+//    within 4, at least spacing / sqrt 12. Given the pass's recent shift,
+//    the same least is first followed from it by Gauss-Newton, its sigma
+//    from the cost's curvature (part/registration.h); the grid is searched
+//    where that does not settle constrained. Where the layer below shows
 //    nowhere beside the new bead (fewer than min_feature_points sloped
 //    points agree), or the range reaches the search's end, or its sigma
 //    exceeds max_shift_sigma_mm, s is not constrained: the layer below may

@@ -1,6 +1,7 @@
 #include "libbead/part/measure_part.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <optional>
@@ -10,7 +11,7 @@
 #include "libbead/core/worker_pool.h"
 #include "libbead/io/part_scan_csv.h"
 #include "libbead/part/bed_arc.h"
-#include "libbead/part/hidden_groove.h"
+#include "libbead/part/layer_grooves.h"
 
 namespace bead::part {
 namespace {
@@ -88,7 +89,9 @@ class PartMeasurer {
   PartMeasurer(const Rig& rig, const MeasurePartOptions& o, std::size_t points)
       : rig_(rig), options_(o), processor_(rig.reference_left, rig.reference_right, o.bed, points), below_(o.below) {}
 
-  PartGeometryRow Measure(const ProfileView& v, std::size_t i, const PartPlaces& places) {
+  // Measures the profile; its row (and any that waited for the layer's
+  // pooled groove shape: part/layer_grooves.h) goes to `emit`.
+  void Measure(const ProfileView& v, std::size_t i, const PartPlaces& places, const LayerGrooves::Emit& emit) {
     PartGeometryRow row;
     row.profile = static_cast<int64_t>(i);
     row.t_s = v.t_s;
@@ -108,68 +111,46 @@ class PartMeasurer {
       row.bead.status = AddedStatus::kNoSurfaceBelow;  // on layer 0: no bed found either side of the bead
     } else {
       const bool shift = row.layer > 0 && options_.register_layers;
-      if (row.layer != warm_layer_) has_warm_ = false;
-      row.bead = MeasureAddedBead(mine.x_mm, mine.z_mm, *under, shift, options_.added, has_warm_ ? &warm_ : nullptr);
-      if (row.bead.shift_constrained) has_warm_ = true, warm_ = row.bead.shift_mm, warm_layer_ = row.layer;
+      if (row.layer != warm_layer_) recent_shifts_.clear(), warm_layer_ = row.layer;
+      const double warm = RecentShift();
+      row.bead =
+          MeasureAddedBead(mine.x_mm, mine.z_mm, *under, shift, options_.added, std::isfinite(warm) ? &warm : nullptr);
+      if (row.bead.shift_constrained) KeepShift(row.bead.shift_mm);
     }
-    if (under && row.bead.valid() && options_.correct_hidden) CorrectHidden(mine, *under, row);
     // Several beads over the surface below, at the shift the layer's
     // registration found (its truncated cost holds any number of beads).
     if (under && options_.several_beads) row.roads = RoadsOver(mine, *under, row.bead.shift_mm, options_.roads);
     mine.center_x_mm = row.bead.valid() ? row.bead.center_x_mm : std::nan("");
     if (row.layer > 0 && row.bead.valid() && (row.bead.shift_constrained || !options_.register_layers))
       row.offset_below_mm = row.bead.center_x_mm - (below_.CenterAt(row.path_mm) + row.bead.shift_mm);
+    const bool groove = under && row.bead.valid() && options_.correct_hidden;
+    grooves_.Add(std::move(row), groove ? &mine : nullptr, groove ? &*under : nullptr, emit);
     below_.Keep(std::move(mine));
-    return row;
   }
+  void Flush(const LayerGrooves::Emit& emit) { grooves_.Flush(emit); }
 
  private:
   const Rig& rig_;
   MeasurePartOptions options_;
   ProfileProcessor processor_;
   SurfaceBelow below_;
-  // The area less the groove the bead hides under its overhangs, with its
-  // sigma; the layer's first fits pool its aspect, held after them.
-  void CorrectHidden(const StoredProfile& mine, const SurfaceGrid& under, PartGeometryRow& row) {
-    const double shift_sigma = std::isfinite(row.bead.shift_sigma_mm) ? row.bead.shift_sigma_mm : 0.0;
-    if (row.layer != aspects_layer_) aspects_.clear(), pooled_.reset(), last_.reset(), aspects_layer_ = row.layer;
-    const HiddenGroove g = EstimateHiddenGroove(
-        mine.x_mm, mine.z_mm, under, row.bead.shift_mm, shift_sigma, row.bead.noise_mm, row.bead.center_x_mm,
-        row.bead.width_mm, row.bead.height_mm, pooled_ ? &*pooled_ : nullptr, last_ ? &*last_ : nullptr);
-    if (g.ok) last_ = g;
-    if (!pooled_ && g.ok) Pool(g.aspect);
-    // The visible area's own sampling beside the groove's: each of its
-    // four walls (two of the new surface, two of the old) placed within a
-    // point spacing, as high as the bead: (spacing h)^2 / 3.
-    const double sampled = 8.0 * GridStep(mine) * row.bead.height_mm;
-    const double corrected = row.bead.area_mm2 - g.hidden_mm2;
-    const double sigma = std::sqrt(g.sigma_mm2 * g.sigma_mm2 + sampled * sampled / 3.0);
-    // Written only where it means something: material left, and known to
-    // better than half of it (else the ellipse did not find the bead's
-    // sides: the row keeps the area seen, and no correction).
-    if (g.ok && corrected > 0.0 && sigma < 0.5 * corrected)
-      row.area_corrected_mm2 = corrected, row.area_corrected_sigma_mm2 = sigma;
+  LayerGrooves grooves_;
+  // The pass's last shifts found, to search from: their median (one
+  // profile's shift off by a wall's sampling does not move the next's start).
+  double RecentShift() const {
+    if (recent_shifts_.empty()) return std::nan("");
+    std::array<double, kRecentShifts> v{};
+    std::copy(recent_shifts_.begin(), recent_shifts_.end(), v.begin());
+    const auto end = v.begin() + static_cast<std::ptrdiff_t>(recent_shifts_.size());
+    std::nth_element(v.begin(), v.begin() + (end - v.begin()) / 2, end);
+    return v[static_cast<std::size_t>(end - v.begin()) / 2];
   }
-
-  // The layer's first free fits' aspects, then their pool, held.
-  void Pool(double aspect) {
-    aspects_.push_back(aspect);
-    if (aspects_.size() < kPoolProfiles) return;
-    std::vector<double> v = aspects_;
-    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-    const double median = v[v.size() / 2];
-    for (double& a : v) a = std::abs(a - median);
-    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-    // The median's standard error: sqrt(pi / 2) sigma / sqrt(n), sigma from the MAD.
-    pooled_ = PooledAspect{median, 1.2533 * 1.4826 * v[v.size() / 2] / std::sqrt(static_cast<double>(v.size()))};
+  void KeepShift(double shift) {
+    if (recent_shifts_.size() == kRecentShifts) recent_shifts_.erase(recent_shifts_.begin());
+    recent_shifts_.push_back(shift);
   }
-  static constexpr std::size_t kPoolProfiles = 25;
-  std::vector<double> aspects_;
-  std::optional<PooledAspect> pooled_;
-  std::optional<HiddenGroove> last_;  // the layer's last fit: where the next starts
-  int64_t aspects_layer_ = -1;
-  bool has_warm_ = false;  // the last found shift of this pass, to search from
-  double warm_ = 0.0;
+  static constexpr std::size_t kRecentShifts = 9;
+  std::vector<double> recent_shifts_;
   int64_t warm_layer_ = -1;
 };
 
@@ -217,18 +198,19 @@ std::vector<LayerSummary> MeasurePart(ProfileStream& stream, const PartPlaces& p
                         std::to_string(places.size()) + " places for " + std::to_string(stream.size()) + " profiles"));
   PartMeasurer measurer(rig, options, stream.points());
   std::vector<LayerSummary> layers;
+  const LayerGrooves::Emit emit = [&](const PartGeometryRow& row) {
+    Tally(layers, row);
+    sink(row);
+  };
   ProfileBlock block;
   const std::size_t window = stream.WindowRows();
   for (std::size_t begin = 0; begin < stream.size(); begin += window) {
     const std::size_t count = std::min(window, stream.size() - begin);
     stream.Read(begin, count, block);
-    for (std::size_t k = 0; k < count; ++k) {
-      const PartGeometryRow row = measurer.Measure(block.view(k), begin + k, places);
-      Tally(layers, row);
-      sink(row);
-    }
+    for (std::size_t k = 0; k < count; ++k) measurer.Measure(block.view(k), begin + k, places, emit);
     if (progress) progress(begin + count);
   }
+  measurer.Flush(emit);
   return layers;
 }
 

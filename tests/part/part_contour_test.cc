@@ -21,6 +21,7 @@ namespace {
 struct ContourFigures {
   double laid = 0.0, measured = 0.0;
   std::vector<double> area_rel, height_error;
+  std::vector<double> first_rel;  // of each layer's first 25 rows (those its groove shape is pooled on)
   std::vector<double> flow, true_flow;
   part::CornerBulge bulge;
 };
@@ -32,7 +33,9 @@ ContourFigures Figures(const sim::PartTwin& twin, bool naive) {
   const part::NozzleClock clock(*twin.scan.log, "twin");
   part::SpeedAndArea speeds;
   ContourFigures f;
+  std::vector<int> layer_rows(64, 0);
   part::MeasurePart(stream, *twin.scan.part, twin.rig, options, [&](const part::PartGeometryRow& g) {
+    const bool first = layer_rows[g.layer]++ < 25;
     const part::PartFlowRow r = part::FlowOf(g, clock);
     if (!r.valid) return;
     speeds.Add(r);
@@ -40,6 +43,7 @@ ContourFigures Figures(const sim::PartTwin& twin, bool naive) {
     const double area = std::isnan(r.area_corrected_mm2) ? r.area_mm2 : r.area_corrected_mm2;
     f.laid += t.area_mm2, f.measured += area;
     f.area_rel.push_back(area / t.area_mm2 - 1.0);
+    if (first && g.layer > 0) f.first_rel.push_back(f.area_rel.back());
     f.height_error.push_back(g.bead.height_mm - t.height_mm);
     f.flow.push_back(r.flow_mm3_s);
     f.true_flow.push_back(t.area_mm2 * r.head_speed_mm_s);  // the extruder's flow there
@@ -52,6 +56,15 @@ double MedianAbs(std::vector<double> v) {
   for (double& x : v) x = std::abs(x);
   std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
   return v.empty() ? NAN : v[v.size() / 2];
+}
+
+// The q-quantile of |v|.
+double QuantileAbs(std::vector<double> v, double q) {
+  for (double& x : v) x = std::abs(x);
+  if (v.empty()) return NAN;
+  const auto at = v.begin() + static_cast<std::ptrdiff_t>(q * static_cast<double>(v.size() - 1));
+  std::nth_element(v.begin(), at, v.end());
+  return *at;
 }
 
 // 100 (1 - |y - yhat| / |y - mean y|): the fit.
@@ -75,15 +88,19 @@ TEST(PartContour, TheMaterialTheHeightAndTheFlowAlongACornersPath) {
     std::printf(
         "contour seed %llu: area over the run %+.2f %% (naive %+.2f %%), per profile median |error| %.2f %% (naive "
         "%.2f %%), height median |error| %.4f mm (naive %.4f), flow fit %.1f %% (naive %.1f %%); slow %zu profiles: "
-        "area %+.1f %%, flow %+.1f %%\n",
+        "area %+.1f %%, flow %+.1f %%; each layer's first 25 rows' 90th percentile of |error| %.2f %%\n",
         static_cast<unsigned long long>(seed), 100 * (f.measured / f.laid - 1), 100 * (naive.measured / naive.laid - 1),
         100 * MedianAbs(f.area_rel), 100 * MedianAbs(naive.area_rel), MedianAbs(f.height_error),
         MedianAbs(naive.height_error), FitPercent(f.true_flow, f.flow), FitPercent(naive.true_flow, naive.flow),
-        f.bulge.slow, 100 * f.bulge.area_excess, 100 * f.bulge.flow_excess);
+        f.bulge.slow, 100 * f.bulge.area_excess, 100 * f.bulge.flow_excess, 100 * QuantileAbs(f.first_rel, 0.9));
     EXPECT_LT(std::abs(f.measured / f.laid - 1), 0.01) << seed;
     EXPECT_LT(MedianAbs(f.area_rel), 0.03) << seed;
     EXPECT_LT(MedianAbs(f.height_error), 0.05) << seed;
     EXPECT_GE(FitPercent(f.true_flow, f.flow), 85.0) << seed;
+    // Each layer's first rows, measured before its groove shape is pooled,
+    // are corrected with it once it is (part/layer_grooves.h): their own
+    // free fits put one in ten of them 4.5 % or more off on seed 12.
+    EXPECT_LT(QuantileAbs(f.first_rel, 0.9), 0.03) << seed;
     // What the sensor sees counts the grooves: the naive figure is far off.
     EXPECT_GT(naive.measured / naive.laid - 1, 0.05) << seed;
     // The corner bulge: where the head slowed, more area, the same flow

@@ -1,0 +1,92 @@
+#include "libbead/part/layer_grooves.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace bead::part {
+namespace {
+
+// The points' median spacing.
+double Spacing(const StoredProfile& p) {
+  if (p.x_mm.size() < 2) return 0.08;
+  std::vector<double> d;
+  for (std::size_t i = 1; i < p.x_mm.size(); ++i) d.push_back(p.x_mm[i] - p.x_mm[i - 1]);
+  std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
+  return std::max(d[d.size() / 2], 8e-4);
+}
+
+// The row's area less the groove, with its sigma: the groove's, and the
+// visible area's own sampling beside it (each of its four walls, two of
+// the new surface and two of the old, placed within a point spacing, as
+// high as the bead: (spacing h)^2 / 3). Written only where it
+// means something: material left, known to better than half of it (else
+// the ellipse did not find the bead's sides: the row keeps the area seen,
+// and no correction).
+void Apply(const HiddenGroove& g, double spacing, PartGeometryRow& row) {
+  row.area_corrected_mm2 = row.area_corrected_sigma_mm2 = PartGeometryRow::kNaN;
+  const double sampled = spacing * row.bead.height_mm;
+  const double corrected = row.bead.area_mm2 - g.hidden_mm2;
+  const double sigma = std::sqrt(g.sigma_mm2 * g.sigma_mm2 + sampled * sampled / 3.0);
+  if (g.ok && corrected > 0.0 && sigma < 0.5 * corrected)
+    row.area_corrected_mm2 = corrected, row.area_corrected_sigma_mm2 = sigma;
+}
+
+}  // namespace
+
+HiddenGroove LayerGrooves::Estimate(const StoredProfile& p, const SurfaceGrid& under, const PartGeometryRow& row,
+                                    const HiddenGroove* previous) const {
+  const double shift_sigma = std::isfinite(row.bead.shift_sigma_mm) ? row.bead.shift_sigma_mm : 0.0;
+  return EstimateHiddenGroove(p.x_mm, p.z_mm, under, row.bead.shift_mm, shift_sigma, row.bead.noise_mm,
+                              row.bead.center_x_mm, row.bead.width_mm, row.bead.height_mm,
+                              pooled_ ? &*pooled_ : nullptr, previous);
+}
+
+void LayerGrooves::Add(PartGeometryRow row, const StoredProfile* points, const SurfaceGrid* under, const Emit& emit) {
+  if (row.layer != layer_) {
+    Flush(emit);
+    aspects_.clear(), pooled_.reset(), last_.reset(), layer_ = row.layer;
+  }
+  if (points && under) {
+    const HiddenGroove g = Estimate(*points, *under, row, last_ ? &*last_ : nullptr);
+    if (g.ok) last_ = g;
+    Apply(g, Spacing(*points), row);
+    if (!pooled_ && g.ok) Pool(g.aspect);
+  }
+  if (pooled_ && waiting_.empty()) return emit(row);
+  waiting_.push_back({std::move(row), points && under ? std::optional(*points) : std::nullopt,
+                      points && under ? std::optional(*under) : std::nullopt});
+  if (pooled_) {
+    // The pool is formed: the rows that waited for it, corrected with it.
+    std::optional<HiddenGroove> previous;
+    for (Waiting& w : waiting_) {
+      if (!w.points) continue;
+      const HiddenGroove g = Estimate(*w.points, *w.under, w.row, previous ? &*previous : nullptr);
+      if (g.ok) previous = g;
+      Apply(g, Spacing(*w.points), w.row);
+    }
+    if (previous) last_ = previous;
+    Flush(emit);
+  } else if (waiting_.size() >= kMaxWaiting) {
+    Flush(emit);
+  }
+}
+
+void LayerGrooves::Flush(const Emit& emit) {
+  for (const Waiting& w : waiting_) emit(w.row);
+  waiting_.clear();
+}
+
+// The layer's first free fits' aspects, then their pool, held.
+void LayerGrooves::Pool(double aspect) {
+  aspects_.push_back(aspect);
+  if (aspects_.size() < kPoolProfiles) return;
+  std::vector<double> v = aspects_;
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+  const double median = v[v.size() / 2];
+  for (double& a : v) a = std::abs(a - median);
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+  // The median's standard error: sqrt(pi / 2) sigma / sqrt(n), sigma from the MAD.
+  pooled_ = PooledAspect{median, 1.2533 * 1.4826 * v[v.size() / 2] / std::sqrt(static_cast<double>(v.size()))};
+}
+
+}  // namespace bead::part

@@ -1,0 +1,53 @@
+// The groove a layer's beads hide under their overhangs (part/hidden_groove.h),
+// taken off each row's area. One material, one process: the layer's first
+// free fits pool its beads' aspect b / a, and every row of the layer is
+// corrected with the aspect held, the first ones too. A free fit on a
+// single profile, where the bead's sides are seen poorly, misplaces its
+// widest point (on the twin's walls the first profiles of a layer were
+// 8-10 % over), so the rows measured before the pool is formed wait for
+// it: at most kMaxWaiting rows, a layer's end or the scan's end, after
+// which they go out with their own fits.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "libbead/part/hidden_groove.h"
+#include "libbead/part/measure_part.h"
+#include "libbead/part/surface_below.h"
+
+namespace bead::part {
+
+class LayerGrooves {
+ public:
+  using Emit = std::function<void(const PartGeometryRow&)>;
+  static constexpr std::size_t kPoolProfiles = 25;
+  static constexpr std::size_t kMaxWaiting = 4 * kPoolProfiles;
+
+  // A measured row, in the scan's order, with its points and the surface
+  // below them (nullptr: no groove to estimate: the bead not valid, no
+  // surface below); rows go to `emit` in the same order, once corrected.
+  void Add(PartGeometryRow row, const StoredProfile* points, const SurfaceGrid* under, const Emit& emit);
+  // The rows still waiting, with their own fits (the scan's end).
+  void Flush(const Emit& emit);
+
+ private:
+  struct Waiting {
+    PartGeometryRow row;
+    std::optional<StoredProfile> points;
+    std::optional<SurfaceGrid> under;
+  };
+  HiddenGroove Estimate(const StoredProfile& points, const SurfaceGrid& under, const PartGeometryRow& row,
+                        const HiddenGroove* previous) const;
+  void Pool(double aspect);
+
+  int64_t layer_ = -1;
+  std::vector<double> aspects_;
+  std::optional<PooledAspect> pooled_;
+  std::optional<HiddenGroove> last_;  // the layer's last fit: where the next starts
+  std::vector<Waiting> waiting_;
+};
+
+}  // namespace bead::part

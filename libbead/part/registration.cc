@@ -1,0 +1,192 @@
+#include "libbead/part/registration.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace bead::part {
+namespace {
+
+// The truncated squared gain over every point, in noise variances (the
+// new point's and the surface below's there): a point where the surfaces
+// agree counts its squared gain, one inside the new bead (or off the
+// surface below) the threshold's square, whatever the shift. Least where
+// the most points agree.
+double TruncatedCost(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, double s,
+                     const RegistrationScale& k, double margin) {
+  const double noise2 = k.noise * k.noise, cap = k.tau * k.tau / noise2;
+  const double lo = below.x0_mm + margin, hi = below.x0_mm + below.dx_mm * (below.z_mm.size() - 1) - margin;
+  double sum = 0.0;
+  // The surface below's variance is at most one point's (surface_below.h):
+  // a gain beyond cap at twice the noise variance is capped whatever it is.
+  const double capped_beyond = 2.0 * cap * noise2;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (x[i] < lo || x[i] > hi) continue;
+    const double d = z[i] - below.At(x[i] - s);
+    if (std::isnan(d) || d * d >= capped_beyond) {
+      sum += cap;
+      continue;
+    }
+    sum += std::min(d * d / (noise2 * (1.0 + below.VarianceAt(x[i] - s))), cap);
+  }
+  return sum;
+}
+
+// The cost on a grid of shifts at a quarter of the point spacing (a lone
+// wall of the layer below moves one point in or out of agreement per
+// spacing).
+struct CostCurve {
+  std::vector<double> s, cost;
+};
+
+CostCurve Scan(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, double centre, double half,
+               const RegistrationScale& k) {
+  const double step = std::max(0.25 * k.spacing, 1e-3);
+  CostCurve c;
+  for (double s = centre - half; s <= centre + half + 1e-12; s += step) {
+    c.s.push_back(s);
+    c.cost.push_back(TruncatedCost(x, z, below, s, k, half + std::abs(centre)));
+  }
+  return c;
+}
+
+// The cost averaged over one point spacing (`half` either side): a wall of
+// the layer below moves a point in or out of agreement per spacing of
+// shift, a step the average turns into a slope.
+std::vector<double> Smoothed(const CostCurve& c, std::size_t half) {
+  std::vector<double> out(c.cost.size());
+  for (std::size_t k = 0; k < c.cost.size(); ++k) {
+    const std::size_t lo = k >= half ? k - half : 0, hi = std::min(k + half, c.cost.size() - 1);
+    double sum = 0.0;
+    for (std::size_t j = lo; j <= hi; ++j) sum += c.cost[j];
+    out[k] = sum / static_cast<double>(hi - lo + 1);
+  }
+  return out;
+}
+
+// The gain's RMS where the surfaces agree at the shift found, how many
+// points agree, and whether the shift is constrained: only where the layer
+// below shows beside the new bead (a flank it does not cover: points that
+// agree where the surface below slopes) is there anything to register on;
+// a cost that rises because a shifted old bead would stick out from under
+// the new one says where the old bead could lie hidden, not where it lies.
+void Settle(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, const RegistrationScale& k,
+            const AddedBeadOptions& o, Registration& r) {
+  double sum = 0.0;
+  int features = 0;
+  const double feature_slope = 3.0 * k.noise / k.spacing;
+  r.points = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double d = z[i] - below.At(x[i] - r.shift);
+    if (!(std::abs(d) <= k.tau)) continue;
+    sum += d * d, ++r.points;
+    features += std::abs(below.SlopeAt(x[i] - r.shift)) > feature_slope;
+  }
+  r.rms = r.points ? std::sqrt(sum / r.points) : Registration::kNaN;
+  r.constrained = !r.at_end && r.sigma <= o.max_shift_sigma_mm && features >= o.min_feature_points;
+}
+
+// The shift: the middle of the shifts whose (smoothed) cost is within 1 of
+// the least; its sigma: half the range within 4 (two sigmas of one
+// parameter), over two, and at least a wall's sampling, spacing / sqrt 12.
+// A range that reaches the search's end leaves the shift unconstrained
+// (nothing outside the bead to register on: a bare bed).
+Registration FromCurve(const CostCurve& curve, const RegistrationScale& k) {
+  const std::vector<double> cost = Smoothed(curve, 2);
+  const double least = *std::min_element(cost.begin(), cost.end());
+  double lo1 = 1e300, hi1 = -1e300, lo4 = 1e300, hi4 = -1e300;
+  Registration r;
+  for (std::size_t i = 0; i < cost.size(); ++i) {
+    if (cost[i] <= least + 1.0) lo1 = std::min(lo1, curve.s[i]), hi1 = std::max(hi1, curve.s[i]);
+    if (cost[i] <= least + 4.0) {
+      lo4 = std::min(lo4, curve.s[i]), hi4 = std::max(hi4, curve.s[i]);
+      r.at_end = r.at_end || i == 0 || i + 1 == cost.size();
+    }
+  }
+  r.shift = 0.5 * (lo1 + hi1);
+  r.sigma = std::max(0.25 * (hi4 - lo4), k.spacing / std::sqrt(12.0));
+  return r;
+}
+
+// The truncated cost at s with its gradient and Gauss-Newton curvature in
+// s over the points whose gain is under the cap (d(gain)/ds is the slope
+// of the surface below there).
+struct Local {
+  double cost = 0.0, gradient = 0.0, curvature = 0.0;
+};
+
+Local LocalCost(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, double s,
+                const RegistrationScale& k) {
+  const double noise2 = k.noise * k.noise, cap = k.tau * k.tau / noise2;
+  Local l;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double at = x[i] - s, d = z[i] - below.At(at);
+    if (std::isnan(d)) {
+      l.cost += cap;
+      continue;
+    }
+    const double v = noise2 * (1.0 + below.VarianceAt(at)), chi2 = d * d / v;
+    if (chi2 >= cap) {
+      l.cost += cap;
+      continue;
+    }
+    const double g = below.SlopeAt(at);
+    l.cost += chi2;
+    l.gradient += 2.0 * d * g / v;
+    l.curvature += 2.0 * g * g / v;
+  }
+  return l;
+}
+
+// Gauss-Newton from `start`, each step halved until the cost falls; false
+// where it leaves the warm window, finds no slope to move on, or does not
+// settle in a few steps.
+bool Track(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, const RegistrationScale& k,
+           const AddedBeadOptions& o, double start, Registration& r) {
+  double s = start;
+  Local here = LocalCost(x, z, below, s, k);
+  for (int iteration = 0; iteration < 8; ++iteration) {
+    if (!(here.curvature > 0.0)) return false;
+    double step = -here.gradient / here.curvature;
+    Local there;
+    int halvings = 0;
+    for (; halvings < 6; ++halvings, step *= 0.5) {
+      there = LocalCost(x, z, below, s + step, k);
+      if (there.cost <= here.cost) break;
+    }
+    if (halvings == 6)
+      step = 0.0;
+    else
+      s += step, here = there;
+    if (std::abs(s - start) > o.warm_half_mm) return false;
+    if (std::abs(step) < 1e-3 * k.spacing) {
+      r.shift = s;
+      // cost ~ least + (s - s0)^2 / sigma^2 with curvature 2 / sigma^2.
+      r.sigma = std::max(std::sqrt(2.0 / here.curvature), k.spacing / std::sqrt(12.0));
+      r.tracked = true;
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+Registration Register(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
+                      const RegistrationScale& k, const AddedBeadOptions& o, const double* start) {
+  if (start && std::abs(*start) + o.warm_half_mm < o.max_shift_mm) {
+    Registration r;
+    if (Track(x, z, below, k, o, *start, r)) {
+      Settle(x, z, below, k, o, r);
+      if (r.constrained) return r;
+    }
+    r = FromCurve(Scan(x, z, below, *start, o.warm_half_mm, k), k);
+    Settle(x, z, below, k, o, r);
+    if (!r.at_end) return r;
+  }
+  Registration r = FromCurve(Scan(x, z, below, 0.0, o.max_shift_mm, k), k);
+  Settle(x, z, below, k, o, r);
+  return r;
+}
+
+}  // namespace bead::part

@@ -1,0 +1,48 @@
+// The lateral registration of a part's new profile on the surface below
+// (the definition: part/added_bead.h). Two ways to the same least:
+//  - tracked: Gauss-Newton on the truncated cost from the shift of the
+//    profile before in the same pass (the passes' shift changes slowly
+//    along the path), the points whose gain is under the cap weighed by
+//    their variance; its sigma from the cost's curvature there,
+//    1 / sqrt(sum g^2 / variance) with g the slope of the surface below,
+//    at least a wall's sampling, spacing / sqrt 12;
+//  - scanned: the cost on a grid of shifts over a window (or the whole
+//    range), its sigma from the range within 4 of the least.
+// A profile is tracked where a start is given and the track converges
+// inside the warm window with the shift constrained (the layer below
+// showing beside the new bead: part/added_bead.h); scanned otherwise (the
+// first profile of a pass, a track that wandered off, found no slope to
+// move on, or settled where too little of the layer below shows, as it
+// does in a wrong local least).
+#pragma once
+
+#include <limits>
+#include <span>
+
+#include "libbead/part/added_bead.h"
+#include "libbead/part/surface_below.h"
+
+namespace bead::part {
+
+struct Registration {
+  static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  double shift = 0.0, sigma = kNaN, rms = kNaN;
+  int points = 0;
+  bool constrained = false;
+  bool at_end = false;   // the scan's band within 4 of the least reached the search's end
+  bool tracked = false;  // found by the track, not the scan
+};
+
+// The noise and the point spacing the registration weighs gains by.
+struct RegistrationScale {
+  double tau = 0.0;      // the detection threshold (the cap: tau^2 in noise variances)
+  double noise = 0.0;    // one point's noise, mm
+  double spacing = 0.0;  // the points' median spacing, mm
+};
+
+// x, z: the new profile's points (bed frame, x increasing); start: the
+// shift found for the profile before in the same pass (nullptr: none).
+Registration Register(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
+                      const RegistrationScale& scale, const AddedBeadOptions& options, const double* start);
+
+}  // namespace bead::part

@@ -1,0 +1,78 @@
+// The lateral registration of a new layer on the one below
+// (part/registration.h): tracked from the pass's last shift where it can
+// be, scanned where it cannot, the same shift either way.
+#include "libbead/part/registration.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace bead::part {
+namespace {
+
+// An old bead (semi-axes 4 across, 1.5 up) on a flat bed, and a narrower
+// new bead laid on it off its centre, the old bead's flanks showing either
+// side; points 0.05 mm apart with 0.01 mm of noise.
+struct Scene {
+  SurfaceGrid below;
+  std::vector<float> x, z;
+};
+
+double OldBead(double x) { return std::abs(x) < 4.0 ? 1.5 * std::sqrt(1.0 - x * x / 16.0) : 0.0; }
+
+Scene MakeScene(double shift, bool bead_below = true) {
+  Scene s;
+  s.below.x0_mm = -12.0, s.below.dx_mm = 0.05 / 8;
+  for (double x = s.below.x0_mm; x <= 12.0; x += s.below.dx_mm)
+    s.below.z_mm.push_back(static_cast<float>(bead_below ? OldBead(x) : 0.0));
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0.0, 0.01);
+  for (double x = -10.0; x <= 10.0; x += 0.05) {
+    const double u = (x - shift - 0.3) / 3.0;
+    const double top = std::abs(u) < 1.0 ? 1.2 + 1.5 * std::sqrt(1.0 - u * u) : 0.0;
+    s.x.push_back(static_cast<float>(x));
+    s.z.push_back(static_cast<float>(std::max(bead_below ? OldBead(x - shift) : 0.0, top) + noise(rng)));
+  }
+  return s;
+}
+
+constexpr RegistrationScale kScale{0.06, 0.01, 0.05};
+
+TEST(Registration, TrackedFromTheLastShiftItIsTheScansShiftWithinItsSigma) {
+  const double truth = 0.137;
+  const Scene s = MakeScene(truth);
+  const double start = truth + 0.12;
+  const Registration tracked = Register(s.x, s.z, s.below, kScale, {}, &start);
+  const Registration scanned = Register(s.x, s.z, s.below, kScale, {}, nullptr);
+  EXPECT_TRUE(tracked.tracked);
+  EXPECT_FALSE(scanned.tracked);
+  ASSERT_TRUE(tracked.constrained && scanned.constrained);
+  EXPECT_NEAR(tracked.shift, truth, 2.0 * tracked.sigma);
+  EXPECT_NEAR(scanned.shift, truth, 2.0 * scanned.sigma);
+  EXPECT_NEAR(tracked.shift, scanned.shift, 2.0 * scanned.sigma);
+  // A wall's sampling bounds both (spacing / sqrt 12).
+  EXPECT_GE(tracked.sigma, 0.05 / std::sqrt(12.0) - 1e-12);
+}
+
+TEST(Registration, AStartOutsideTheWarmWindowIsScannedNotTracked) {
+  const double truth = -0.4;
+  const Scene s = MakeScene(truth);
+  const double start = truth + 0.5;  // beyond the warm window's 0.3 mm
+  const Registration r = Register(s.x, s.z, s.below, kScale, {}, &start);
+  EXPECT_FALSE(r.tracked);
+  ASSERT_TRUE(r.constrained);
+  EXPECT_NEAR(r.shift, truth, 2.0 * r.sigma);
+}
+
+TEST(Registration, OnABareBedNothingIsTrackedOrConstrained) {
+  const Scene s = MakeScene(0.2, false);
+  const double start = 0.0;
+  const Registration r = Register(s.x, s.z, s.below, kScale, {}, &start);
+  EXPECT_FALSE(r.tracked);
+  EXPECT_FALSE(r.constrained);
+}
+
+}  // namespace
+}  // namespace bead::part
