@@ -123,26 +123,46 @@ enum class Outcome { kFinished, kTimedOut, kBlocked };
 // this long.
 constexpr double kBlockedSeconds = 2.0;
 
+// A child whose CPU time still rises when its wall time is up is working,
+// only slowly: a loaded machine starves it (seen: a probe beside a build
+// on two cores, a valid file called corrupt). It is given up to
+// kStarvedTimes its wall time while it rises; its CPU limit still bounds
+// the work a damaged file can make it do. "Still rises": a tick within
+// kRisingSeconds.
+constexpr double kStarvedTimes = 6.0;
+constexpr double kRisingSeconds = 1.0;
+
 // Reads the child's report until it closes the pipe or the time is up;
-// `watch`: also until the child is found blocked (above).
-Outcome ReadReport(int fd, double seconds, pid_t child, bool watch, std::string& report) {
+// `watch`: also until the child is found blocked (above). `given`: the
+// wall time it was given when it timed out, seconds.
+Outcome ReadReport(int fd, double seconds, pid_t child, bool watch, std::string& report, double& given) {
   const auto start = std::chrono::steady_clock::now();
   const auto deadline = start + std::chrono::duration<double>(seconds);
+  const auto ceiling = start + std::chrono::duration<double>(kStarvedTimes * seconds);
+  // Not rising until a tick is seen.
   auto last_progress = start;
+  auto last_tick = start - std::chrono::seconds(2);  // kRisingSeconds ago and more
   unsigned long long last_ticks = 0;
   char buf[4096];
   for (;;) {
     const auto now = std::chrono::steady_clock::now();
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - now);
-    if (left.count() <= 0) return Outcome::kTimedOut;
     char state = '?';
     unsigned long long ticks = 0;
-    if (watch && ChildCpu(child, state, ticks)) {
+    if (ChildCpu(child, state, ticks)) {
+      if (ticks != last_ticks) last_tick = now;
       if (state != 'S' || ticks != last_ticks) last_progress = now, last_ticks = ticks;
-      if (std::chrono::duration<double>(now - last_progress).count() >= kBlockedSeconds) return Outcome::kBlocked;
+      if (watch && std::chrono::duration<double>(now - last_progress).count() >= kBlockedSeconds)
+        return Outcome::kBlocked;
+    }
+    const bool rising = std::chrono::duration<double>(now - last_tick).count() < kRisingSeconds;
+    auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - now);
+    if (left.count() <= 0 && rising) left = std::chrono::duration_cast<std::chrono::milliseconds>(ceiling - now);
+    if (left.count() <= 0) {
+      given = std::max(seconds, std::chrono::duration<double>(now - start).count());
+      return Outcome::kTimedOut;
     }
     pollfd p{fd, POLLIN, 0};
-    const int ready = poll(&p, 1, static_cast<int>(std::min<long long>(left.count(), watch ? 250 : left.count())));
+    const int ready = poll(&p, 1, static_cast<int>(std::min<long long>(left.count(), 250)));
     if (ready < 0 && errno == EINTR) continue;
     if (ready < 0) return Outcome::kTimedOut;
     if (ready == 0) continue;
@@ -158,6 +178,7 @@ Outcome ReadReport(int fd, double seconds, pid_t child, bool watch, std::string&
 struct Attempt {
   Outcome outcome = Outcome::kFinished;
   int status = 0;
+  double given = 0.0;  // wall time, seconds
   std::string report;
 };
 bool RunChildOnce(const std::function<std::string()>& work, const ContainLimits& limits, bool watch, Attempt& out) {
@@ -178,7 +199,7 @@ bool RunChildOnce(const std::function<std::string()>& work, const ContainLimits&
     RunChild(fds[1], work, cap, parent, limits.cpu_seconds);
   }
   close(fds[1]);
-  out.outcome = ReadReport(fds[0], limits.seconds, pid, watch, out.report);
+  out.outcome = ReadReport(fds[0], limits.seconds, pid, watch, out.report, out.given);
   close(fds[0]);
   if (out.outcome != Outcome::kFinished) kill(pid, SIGKILL);
   while (waitpid(pid, &out.status, 0) < 0 && errno == EINTR) {
@@ -225,7 +246,7 @@ std::string RunContained(const std::string& path, const std::string& library, co
   const std::string corrupt = "corrupt (the " + library + " library failed reading it: ";
   if (!finished) {
     char what[80];
-    std::snprintf(what, sizeof what, "it did not finish in %.0f s)", limits.seconds);
+    std::snprintf(what, sizeof what, "it did not finish in %.0f s)", a.given);
     throw Error(Located(path, "", corrupt + what));
   }
   if (WIFSIGNALED(status) && WTERMSIG(status) == SIGXCPU) {

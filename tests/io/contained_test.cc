@@ -108,6 +108,41 @@ TEST(Contained, ABlockedProbeIsForkedAgainAndAlwaysBlockedIsStillBounded) {
       << e;
 }
 
+// A probe that keeps working when its wall time is up, only slowly (a
+// loaded machine starves it of the CPU), is given more time while its CPU
+// time rises: here it works 5 ms in every 25 for 2.5 s against a 1-s
+// limit, and its answer comes back. One that works so forever is still
+// bounded, at six times its wall time.
+void WorkSlowly(double seconds) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  while (std::chrono::steady_clock::now() < end) {
+    const auto burst = std::chrono::steady_clock::now() + std::chrono::milliseconds(5);
+    volatile unsigned long spin = 0;
+    while (std::chrono::steady_clock::now() < burst) spin = spin + 1;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+}
+
+TEST(Contained, AProbeStarvedOfTheCpuIsGivenTimeWhileItWorks) {
+  ContainLimits limits;
+  limits.seconds = 1;
+  const std::string result = RunContained(
+      "starved.h5", "HDF5",
+      [] {
+        WorkSlowly(2.5);
+        return std::string("read");
+      },
+      limits);
+  EXPECT_EQ(result, "read");
+  const std::string e = ErrorOf([&] {
+    ProbeContained(
+        "forever.h5", "HDF5", [] { WorkSlowly(1e6); }, limits);
+  });
+  EXPECT_NE(e.find("forever.h5: corrupt (the HDF5 library failed reading it: it did not finish in 6 s)"),
+            std::string::npos)
+      << e;
+}
+
 // A probe kept busy (a damaged file can loop libhdf5) is stopped by its
 // CPU-time limit well before the wall-time one.
 TEST(Contained, CpuTimeIsBounded) {
