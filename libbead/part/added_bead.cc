@@ -29,24 +29,22 @@ Gains GainsAt(std::span<const float> x, std::span<const float> z, const SurfaceG
   return g;
 }
 
-double Median(std::vector<double> v) {
+double Median3(double a, double b, double c) { return std::max(std::min(a, b), std::min(std::max(a, b), c)); }
+
+// The median of v (reordered).
+double MedianOf(std::vector<float>& v) {
   if (v.empty()) return kNaN;
   auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
   std::nth_element(v.begin(), mid, v.end());
   return *mid;
 }
 
-// The points' median spacing in x (a stray point far off does not move it).
-double MedianSpacing(std::span<const float> x) {
-  std::vector<double> d;
-  for (std::size_t i = 1; i < x.size(); ++i) d.push_back(static_cast<double>(x[i]) - x[i - 1]);
-  return d.empty() ? 0.05 : std::max(Median(std::move(d)), 1e-4);
-}
-
 double NoiseOf(std::span<const float> z) {
-  std::vector<double> second;
-  for (std::size_t i = 0; i + 2 < z.size(); ++i) second.push_back(std::abs(z[i] - 2.0 * z[i + 1] + z[i + 2]));
-  return std::max(0.002, 1.4826 * Median(std::move(second)) / std::sqrt(6.0));
+  thread_local std::vector<float> second;
+  second.clear();
+  for (std::size_t i = 0; i + 2 < z.size(); ++i)
+    second.push_back(static_cast<float>(std::abs(z[i] - 2.0 * z[i + 1] + z[i + 2])));
+  return std::max(0.002, 1.4826 * MedianOf(second) / std::sqrt(6.0));
 }
 
 // The bead in a gain sequence: positions (into Gains) of its feet and of
@@ -152,17 +150,24 @@ void Geometry(const Gains& g, std::span<const float> z, const Span& s, double fl
   double top = -1e300;
   for (std::size_t k = s.foot_left; k <= s.foot_right; ++k) {
     const std::size_t lo = k > s.foot_left ? k - 1 : k, hi = std::min(k + 1, s.foot_right);
-    const double m = Median({z[g.index[lo]], z[g.index[k]], z[g.index[hi]]});
+    const double m = Median3(z[g.index[lo]], z[g.index[k]], z[g.index[hi]]);
     if (m > top) top = m, crest = k;
   }
   const std::size_t lo = crest > s.foot_left ? crest - 1 : crest, hi = std::min(crest + 1, s.foot_right);
-  out.height_mm = Median({g.d[lo], g.d[crest], g.d[hi]});
+  out.height_mm = Median3(g.d[lo], g.d[crest], g.d[hi]);
   out.center_x_mm = CrestVertex(g, z, s, crest, 0.2 * out.width_mm);
 }
 
 }  // namespace
 
 double ProfileNoiseMm(std::span<const float> z) { return NoiseOf(z); }
+
+double PointSpacingMm(std::span<const float> x) {
+  thread_local std::vector<float> d;
+  d.clear();
+  for (std::size_t i = 1; i < x.size(); ++i) d.push_back(x[i] - x[i - 1]);
+  return d.empty() ? 0.05 : std::max(MedianOf(d), 1e-4);
+}
 
 const char* AddedStatusName(AddedStatus s) {
   switch (s) {
@@ -181,7 +186,8 @@ const char* AddedStatusName(AddedStatus s) {
 }
 
 AddedBead MeasureAddedBead(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
-                           bool register_shift, const AddedBeadOptions& o, const double* start_shift) {
+                           bool register_shift, const AddedBeadOptions& o, const double* start_shift,
+                           double spacing_mm) {
   AddedBead out;
   out.noise_mm = NoiseOf(z);
   const double tau = std::max(o.min_threshold_mm, o.threshold_sigmas * out.noise_mm);
@@ -202,7 +208,10 @@ AddedBead MeasureAddedBead(std::span<const float> x, std::span<const float> z, c
       if (seen) Geometry(g, z, s, floor, out);
       break;
     }
-    if (round == 0) reg = Register(x, z, below, {tau, out.noise_mm, MedianSpacing(x)}, o, start_shift);
+    if (round == 0) {
+      const double spacing = std::isfinite(spacing_mm) ? spacing_mm : PointSpacingMm(x);
+      reg = Register(x, z, below, {tau, out.noise_mm, spacing}, o, start_shift);
+    }
   }
   out.shift_mm = reg.shift;
   out.shift_sigma_mm = reg.sigma;

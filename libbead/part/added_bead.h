@@ -98,12 +98,16 @@ struct AddedBead {
 
 // A profile's noise from its second differences (the definition above).
 double ProfileNoiseMm(std::span<const float> z);
+// The median spacing of increasing x (one stray point far off does not
+// move it), at least 1e-4 mm; 0.05 mm where there are fewer than two.
+double PointSpacingMm(std::span<const float> x);
 
 // x, z: the new profile's valid points in the bed frame, x increasing.
 // register_shift = false: s = 0 (the bed's line, fitted on this profile).
-// start_shift: the shift found for the profile before in the same pass.
+// start_shift: where the pass's shift was last found (nullptr: nowhere
+// yet); spacing_mm: PointSpacingMm(x) where known (NaN: found here).
 AddedBead MeasureAddedBead(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
                            bool register_shift, const AddedBeadOptions& options = {},
-                           const double* start_shift = nullptr);
+                           const double* start_shift = nullptr, double spacing_mm = AddedBead::kNaN);
 
 }  // namespace bead::part

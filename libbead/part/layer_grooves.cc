@@ -6,15 +6,6 @@
 namespace bead::part {
 namespace {
 
-// The points' median spacing.
-double Spacing(const StoredProfile& p) {
-  if (p.x_mm.size() < 2) return 0.08;
-  std::vector<double> d;
-  for (std::size_t i = 1; i < p.x_mm.size(); ++i) d.push_back(p.x_mm[i] - p.x_mm[i - 1]);
-  std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
-  return std::max(d[d.size() / 2], 8e-4);
-}
-
 // The row's area less the groove, with its sigma: the groove's, and the
 // visible area's own sampling beside it (each of its four walls, two of
 // the new surface and two of the old, placed within a point spacing, as
@@ -49,7 +40,7 @@ void LayerGrooves::Add(PartGeometryRow row, const StoredProfile* points, const S
   if (points && under) {
     const HiddenGroove g = Estimate(*points, *under, row, last_ ? &*last_ : nullptr);
     if (g.ok) last_ = g;
-    Apply(g, Spacing(*points), row);
+    Apply(g, points->spacing_mm, row);
     if (!pooled_ && g.ok) Pool(g.aspect);
   }
   if (pooled_ && waiting_.empty()) return emit(row);
@@ -62,7 +53,7 @@ void LayerGrooves::Add(PartGeometryRow row, const StoredProfile* points, const S
       if (!w.points) continue;
       const HiddenGroove g = Estimate(*w.points, *w.under, w.row, previous ? &*previous : nullptr);
       if (g.ok) previous = g;
-      Apply(g, Spacing(*w.points), w.row);
+      Apply(g, w.points->spacing_mm, w.row);
     }
     if (previous) last_ = previous;
     Flush(emit);

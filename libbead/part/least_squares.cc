@@ -44,7 +44,7 @@ LeastSquaresFit Minimise(const LeastSquares& problem, Eigen::VectorXd start, int
       problem.residuals(trial, trial_r);
       const double rss = trial_r.squaredNorm();
       if (std::isfinite(rss) && rss < fit.rss) {
-        converged = fit.rss - rss < 1e-10 * fit.rss;
+        converged = fit.rss - rss < 1e-7 * fit.rss;
         fit.p = std::move(trial), r = trial_r, fit.rss = rss;
         lambda = std::max(lambda * 0.3, 1e-9), better = true;
       } else {

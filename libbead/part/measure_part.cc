@@ -16,32 +16,34 @@
 namespace bead::part {
 namespace {
 
-// A profile's valid points moved into the bed frame, increasing in x.
+// A profile's valid points moved into the bed frame, increasing in x (a
+// sensor's usually are: sorted only where they are not).
 StoredProfile InBedFrame(const ProfileView& v, double path, double frame_x, double frame_z) {
   StoredProfile p;
   p.path_mm = path;
-  std::vector<std::pair<float, float>> points;
+  p.x_mm.reserve(v.x_mm.size()), p.z_mm.reserve(v.x_mm.size());
+  bool increasing = true;
   for (std::size_t j = 0; j < v.x_mm.size(); ++j)
-    if (std::isfinite(v.x_mm[j]) && std::isfinite(v.z_mm[j]))
-      points.emplace_back(static_cast<float>(v.x_mm[j] + frame_x), static_cast<float>(v.z_mm[j] + frame_z));
-  std::sort(points.begin(), points.end());
-  for (const auto& [x, z] : points) {
-    p.x_mm.push_back(x);
-    p.z_mm.push_back(z);
+    if (std::isfinite(v.x_mm[j]) && std::isfinite(v.z_mm[j])) {
+      const auto x = static_cast<float>(v.x_mm[j] + frame_x);
+      increasing = increasing && (p.x_mm.empty() || p.x_mm.back() < x);
+      p.x_mm.push_back(x);
+      p.z_mm.push_back(static_cast<float>(v.z_mm[j] + frame_z));
+    }
+  if (!increasing) {
+    std::vector<std::pair<float, float>> points;
+    for (std::size_t j = 0; j < p.x_mm.size(); ++j) points.emplace_back(p.x_mm[j], p.z_mm[j]);
+    std::sort(points.begin(), points.end());
+    for (std::size_t j = 0; j < points.size(); ++j) p.x_mm[j] = points[j].first, p.z_mm[j] = points[j].second;
   }
+  p.spacing_mm = PointSpacingMm(p.x_mm);
   return p;
 }
 
 // An eighth of the points' median spacing: the grid's own interpolation
 // then adds little to the points' (the median: one stray point far off
 // does not coarsen it).
-double GridStep(const StoredProfile& p) {
-  if (p.x_mm.size() < 2) return 0.01;
-  std::vector<double> d;
-  for (std::size_t i = 1; i < p.x_mm.size(); ++i) d.push_back(p.x_mm[i] - p.x_mm[i - 1]);
-  std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
-  return std::max(0.125 * d[d.size() / 2], 1e-4);
-}
+double GridStep(const StoredProfile& p) { return p.x_mm.size() < 2 ? 0.01 : std::max(0.125 * p.spacing_mm, 1e-4); }
 
 // A bed known as a height at every x of the profile's frame, sampled on
 // the profile's grid in the bed frame.
@@ -113,8 +115,8 @@ class PartMeasurer {
       const bool shift = row.layer > 0 && options_.register_layers;
       if (row.layer != warm_layer_) recent_shifts_.clear(), warm_layer_ = row.layer;
       const double warm = RecentShift();
-      row.bead =
-          MeasureAddedBead(mine.x_mm, mine.z_mm, *under, shift, options_.added, std::isfinite(warm) ? &warm : nullptr);
+      row.bead = MeasureAddedBead(mine.x_mm, mine.z_mm, *under, shift, options_.added,
+                                  std::isfinite(warm) ? &warm : nullptr, mine.spacing_mm);
       if (row.bead.shift_constrained) KeepShift(row.bead.shift_mm);
     }
     // Several beads over the surface below, at the shift the layer's

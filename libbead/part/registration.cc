@@ -22,12 +22,13 @@ double TruncatedCost(std::span<const float> x, std::span<const float> z, const S
   const double capped_beyond = 2.0 * cap * noise2;
   for (std::size_t i = 0; i < x.size(); ++i) {
     if (x[i] < lo || x[i] > hi) continue;
-    const double d = z[i] - below.At(x[i] - s);
+    const SurfaceGrid::Sample b = below.SampleAt(x[i] - s);
+    const double d = z[i] - b.z;
     if (std::isnan(d) || d * d >= capped_beyond) {
       sum += cap;
       continue;
     }
-    sum += std::min(d * d / (noise2 * (1.0 + below.VarianceAt(x[i] - s))), cap);
+    sum += std::min(d * d / (noise2 * (1.0 + b.variance)), cap);
   }
   return sum;
 }
@@ -77,10 +78,11 @@ void Settle(std::span<const float> x, std::span<const float> z, const SurfaceGri
   const double feature_slope = 3.0 * k.noise / k.spacing;
   r.points = 0;
   for (std::size_t i = 0; i < x.size(); ++i) {
-    const double d = z[i] - below.At(x[i] - r.shift);
+    const SurfaceGrid::Sample b = below.SampleAt(x[i] - r.shift);
+    const double d = z[i] - b.z;
     if (!(std::abs(d) <= k.tau)) continue;
     sum += d * d, ++r.points;
-    features += std::abs(below.SlopeAt(x[i] - r.shift)) > feature_slope;
+    features += std::abs(b.slope) > feature_slope;
   }
   r.rms = r.points ? std::sqrt(sum / r.points) : Registration::kNaN;
   r.constrained = !r.at_end && r.sigma <= o.max_shift_sigma_mm && features >= o.min_feature_points;
@@ -120,17 +122,18 @@ Local LocalCost(std::span<const float> x, std::span<const float> z, const Surfac
   const double noise2 = k.noise * k.noise, cap = k.tau * k.tau / noise2;
   Local l;
   for (std::size_t i = 0; i < x.size(); ++i) {
-    const double at = x[i] - s, d = z[i] - below.At(at);
+    const SurfaceGrid::Sample b = below.SampleAt(x[i] - s);
+    const double d = z[i] - b.z;
     if (std::isnan(d)) {
       l.cost += cap;
       continue;
     }
-    const double v = noise2 * (1.0 + below.VarianceAt(at)), chi2 = d * d / v;
+    const double v = noise2 * (1.0 + b.variance), chi2 = d * d / v;
     if (chi2 >= cap) {
       l.cost += cap;
       continue;
     }
-    const double g = below.SlopeAt(at);
+    const double g = b.slope;
     l.cost += chi2;
     l.gradient += 2.0 * d * g / v;
     l.curvature += 2.0 * g * g / v;

@@ -8,24 +8,39 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// z of a stored profile at x: linear between its valid points, NaN beyond
-// its ends or across a gap longer than max_gap; `variance` its noise
-// variance over one point's, (1 - t)^2 + t^2. `at`: where the last call
-// with a smaller x found its point (the grid's x rise: a walk from there
-// finds what std::lower_bound would).
-double ProfileAt(const StoredProfile& p, double x, double max_gap, double& variance, std::size_t& at) {
-  const auto xf = static_cast<float>(x);
-  while (at < p.x_mm.size() && p.x_mm[at] < xf) ++at;
-  if (at == p.x_mm.size()) return kNaN;
-  const std::size_t k = at;
-  variance = 1.0;
-  if (p.x_mm[k] == x) return p.z_mm[k];
-  if (k == 0) return kNaN;
-  const double x0 = p.x_mm[k - 1], x1 = p.x_mm[k];
-  if (x1 - x0 > max_gap) return kNaN;
-  const double t = (x - x0) / (x1 - x0);
-  variance = (1 - t) * (1 - t) + t * t;
-  return p.z_mm[k - 1] + t * (p.z_mm[k] - p.z_mm[k - 1]);
+// A stored profile on the grid x0 + k dx, k < n: linear between its valid
+// points, NaN beyond its ends or across a gap longer than max_gap; its
+// variance over one point's, (1 - t)^2 + t^2 (1 on a point). Filled
+// segment by segment: each segment's grid points, from the first at or
+// after its left point to the last before its right one.
+void Resample(const StoredProfile& p, double x0, double dx, std::size_t n, double max_gap, std::vector<float>& z,
+              std::vector<float>& variance) {
+  z.assign(n, static_cast<float>(kNaN));
+  variance.assign(n, 1.0f);
+  const std::size_t points = p.x_mm.size();
+  if (points == 0) return;
+  // The first grid point at or after x (a hair's tolerance: a grid point on x belongs to it).
+  auto first_at = [&](double x) {
+    const double u = std::ceil((x - x0) / dx - 1e-9);
+    return u <= 0.0 ? std::size_t{0} : std::min(n, static_cast<std::size_t>(u));
+  };
+  std::size_t k = first_at(p.x_mm[0]);
+  for (std::size_t i = 0; i + 1 < points && k < n; ++i) {
+    const double xa = p.x_mm[i], xb = p.x_mm[i + 1];
+    const std::size_t end = std::max(k, first_at(xb));
+    if (xb - xa <= max_gap && xb > xa) {
+      const double za = p.z_mm[i], rise = static_cast<double>(p.z_mm[i + 1]) - za, inv = 1.0 / (xb - xa);
+      for (std::size_t j = k; j < end; ++j) {
+        const double t = (x0 + static_cast<double>(j) * dx - xa) * inv;
+        z[j] = static_cast<float>(za + t * rise);
+        variance[j] = static_cast<float>((1 - t) * (1 - t) + t * t);
+      }
+    }
+    k = end;
+  }
+  // The last point's own grid point.
+  if (k < n && std::abs(x0 + static_cast<double>(k) * dx - p.x_mm.back()) <= 1e-9 * std::max(1.0, std::abs(dx)))
+    z[k] = p.z_mm.back();
 }
 
 }  // namespace
@@ -88,19 +103,19 @@ std::optional<SurfaceGrid> SurfaceBelow::At(double path, double dx, std::string*
     if (why) *why = "the layer below spans too wide an x range for its point spacing";
     return std::nullopt;
   }
-  g.z_mm.resize(n);
-  g.variance.resize(n);
   const double gap = options_.max_x_gap_mm;
-  std::size_t at_a = 0, at_b = 0;
+  Resample(a, g.x0_mm, dx, n, gap, g.z_mm, g.variance);
+  Resample(b, g.x0_mm, dx, n, gap, za_, va_);  // the second profile's
+  // Where only one of the two saw the surface, it stands for both.
   for (std::size_t k = 0; k < n; ++k) {
-    const double x = g.x0_mm + static_cast<double>(k) * dx;
-    double va = 1.0, vb = 1.0;
-    const double za = ProfileAt(a, x, gap, va, at_a), zb = ProfileAt(b, x, gap, vb, at_b);
-    // Where only one of the two saw the surface, it stands for both.
-    const double z = std::isnan(za) ? zb : std::isnan(zb) ? za : (1 - w) * za + w * zb;
-    const double v = std::isnan(za) ? vb : std::isnan(zb) ? va : (1 - w) * (1 - w) * va + w * w * vb;
-    g.z_mm[k] = static_cast<float>(z);
-    g.variance[k] = static_cast<float>(v);
+    const float z1 = g.z_mm[k], z2 = za_[k];
+    if (std::isnan(z2)) continue;
+    if (std::isnan(z1)) {
+      g.z_mm[k] = z2, g.variance[k] = va_[k];
+      continue;
+    }
+    g.z_mm[k] = static_cast<float>((1 - w) * z1 + w * z2);
+    g.variance[k] = static_cast<float>((1 - w) * (1 - w) * g.variance[k] + w * w * va_[k]);
   }
   return g;
 }

@@ -42,6 +42,19 @@ struct SurfaceGrid {
   }
   // dz/dx at x from the two grid points around it (NaN as At).
   double SlopeAt(double x_mm) const;
+  // At, VarianceAt and SlopeAt in one lookup (z NaN as At; the variance
+  // 0 where the grid carries none).
+  struct Sample {
+    double z, variance, slope;
+  };
+  Sample SampleAt(double x_mm) const {
+    const double u = (x_mm - x0_mm) / dx_mm;
+    if (!(u >= 0.0) || !(u <= static_cast<double>(z_mm.size()) - 1.0) || z_mm.size() < 2) return {NaN(), 0.0, NaN()};
+    const std::size_t k = std::min(static_cast<std::size_t>(u), z_mm.size() - 2);
+    const double t = u - static_cast<double>(k), rise = static_cast<double>(z_mm[k + 1]) - z_mm[k];
+    const double v = variance.size() == z_mm.size() ? variance[k] + t * (variance[k + 1] - variance[k]) : 0.0;
+    return {z_mm[k] + t * rise, v, rise / dx_mm};
+  }
 };
 
 // The points of a grid from x0 to x1 at dx; 0 when it would hold more than
@@ -58,6 +71,7 @@ inline std::size_t GridPoints(double x0, double x1, double dx) {
 struct StoredProfile {
   double path_mm = 0.0;
   double center_x_mm = std::numeric_limits<double>::quiet_NaN();
+  double spacing_mm = 0.05;  // the points' median spacing (part/added_bead.h PointSpacingMm)
   std::vector<float> x_mm, z_mm;
 };
 
@@ -98,6 +112,8 @@ class SurfaceBelow {
   int64_t layer_ = -1;
   bool below_known_ = false;
   std::vector<StoredProfile> below_, current_;
+  // At's scratch: the second profile on the grid (a SurfaceBelow serves one thread).
+  mutable std::vector<float> za_, va_;
 };
 
 }  // namespace bead::part
