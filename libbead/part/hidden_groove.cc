@@ -6,8 +6,6 @@
 #include <cmath>
 #include <vector>
 
-#include "libbead/part/least_squares.h"
-
 namespace bead::part {
 namespace {
 
@@ -55,30 +53,79 @@ struct Shape {
   }
 };
 
-// Levenberg-Marquardt from `e`; the Jacobian at the end in J.
-double Fit(const Window& w, Ellipse& e, const Shape& shape, Eigen::MatrixXd& J) {
-  auto to_ellipse = [&](const Eigen::VectorXd& v) {
-    Ellipse m = e;
-    for (std::size_t i = 0; i < shape.Params(); ++i) m[i] = v[static_cast<Eigen::Index>(i)];
-    shape.Keep(m);
-    return m;
-  };
-  LeastSquares problem;
-  problem.residuals = [&](const Eigen::VectorXd& v, Eigen::VectorXd& r) {
-    const Ellipse m = to_ellipse(v);
-    r.resize(static_cast<Eigen::Index>(w.x.size()));
-    for (std::size_t j = 0; j < w.x.size(); ++j) r[static_cast<Eigen::Index>(j)] = Seen(m, w.x[j], w.old[j]) - w.z[j];
-  };
-  problem.keep = [&](Eigen::VectorXd& v) {
-    const Ellipse m = to_ellipse(v);
-    for (std::size_t i = 0; i < shape.Params(); ++i) v[static_cast<Eigen::Index>(i)] = m[i];
-  };
-  Eigen::VectorXd start(static_cast<Eigen::Index>(shape.Params()));
-  for (std::size_t i = 0; i < shape.Params(); ++i) start[static_cast<Eigen::Index>(i)] = e[i];
-  LeastSquaresFit fit = Minimise(problem, start);
-  e = to_ellipse(fit.p);
-  J = std::move(fit.J);
-  return fit.rss;
+// The residuals' sum of squares at e, and (with_normal) the normal
+// equations J^T J and J^T r of the fitted parameters. The derivatives are
+// the ellipse's top's, where it is what the sensor sees: with u = (x - x0) / a
+// and s = sqrt(1 - u^2), d/dx0 = b u / (a s), d/dz0 = 1, d/da = b u^2 / (a s)
+// (plus the aspect times s where b = aspect a is held), d/db = s; zero
+// where the surface below is seen (a kink: the side it is on). s is held
+// at 0.02 or more: at the ellipse's end its slope is unbounded, and a
+// point there says where the end is only to within a point spacing.
+struct Normal {
+  double rss = 0.0;
+  Eigen::Matrix4d JtJ = Eigen::Matrix4d::Zero();
+  Eigen::Vector4d Jtr = Eigen::Vector4d::Zero();
+};
+
+Normal Residuals(const Window& w, const Ellipse& e, const Shape& shape, bool with_normal) {
+  Normal n;
+  const bool held = std::isfinite(shape.aspect);
+  for (std::size_t j = 0; j < w.x.size(); ++j) {
+    const double u = (w.x[j] - e.x0) / e.a;
+    const double s = std::abs(u) < 1.0 ? std::sqrt(1.0 - u * u) : 0.0;
+    const double top = e.z0 + e.b * s;
+    const bool seen = s > 0.0 && top > w.old[j];
+    const double r = (seen ? top : w.old[j]) - w.z[j];
+    n.rss += r * r;
+    if (!with_normal || !seen) continue;
+    const double sd = std::max(s, 0.02);
+    Eigen::Vector4d g(e.b * u / (e.a * sd), 1.0, e.b * u * u / (e.a * sd) + (held ? shape.aspect * s : 0.0), s);
+    if (held) g[3] = 0.0;
+    n.JtJ.noalias() += g * g.transpose();
+    n.Jtr += g * r;
+  }
+  return n;
+}
+
+// Levenberg-Marquardt from `e` (as part/least_squares.h: the damping
+// raised tenfold on a step that does not lower the residual, to 0.3 of
+// itself on one that does; done below 1e-7 of the residual, or when no
+// parameter moves by kSettledMm: a hundredth of a profiler's noise, where
+// the kinks otherwise make the steps creep); J^T J of the fitted
+// parameters at the end in JtJ.
+constexpr double kSettledMm = 1e-4;
+double Fit(const Window& w, Ellipse& e, const Shape& shape, Eigen::MatrixXd& JtJ) {
+  // At most 4 x 4: on the stack.
+  using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 4, 4>;
+  using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 4, 1>;
+  const auto k = static_cast<Eigen::Index>(shape.Params());
+  shape.Keep(e);
+  Normal at = Residuals(w, e, shape, true);
+  double lambda = 1e-3;
+  for (int it = 0; it < 80; ++it) {
+    const Small A0 = at.JtJ.topLeftCorner(k, k);
+    const SmallVector g = at.Jtr.head(k);
+    bool better = false, converged = false;
+    for (int tries = 0; tries < 8 && !better; ++tries) {
+      Small A = A0;
+      A.diagonal() += lambda * (A0.diagonal().array() + 1e-12).matrix();
+      const SmallVector step = A.ldlt().solve(-g);
+      Ellipse trial = e;
+      for (Eigen::Index i = 0; i < k; ++i) trial[static_cast<std::size_t>(i)] += step[i];
+      shape.Keep(trial);
+      const Normal there = Residuals(w, trial, shape, true);
+      if (std::isfinite(there.rss) && there.rss < at.rss) {
+        converged = at.rss - there.rss < 1e-7 * at.rss || step.cwiseAbs().maxCoeff() < kSettledMm;
+        e = trial, at = there;
+        lambda = std::max(lambda * 0.3, 1e-9), better = true;
+      } else {
+        lambda *= 10.0;
+      }
+    }
+    if (!better || converged) break;
+  }
+  JtJ = at.JtJ.topLeftCorner(k, k);
+  return at.rss;
 }
 
 // What the groove's sigma is made of beyond the fit's own covariance.
@@ -95,9 +142,9 @@ struct Around {
 // shift's sigma; a held aspect to its pooled sigma: each moves the groove
 // as the fit's own error does. NaN where the fit cannot place the bead's
 // sides (J^T J singular).
-double GrooveSigma(const Ellipse& e, const Shape& shape, const Eigen::MatrixXd& J, double s2, double groove,
+double GrooveSigma(const Ellipse& e, const Shape& shape, const Eigen::MatrixXd& JtJ, double s2, double groove,
                    const Around& o) {
-  Eigen::FullPivLU<Eigen::MatrixXd> lu(Eigen::MatrixXd(J.transpose() * J));
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(JtJ);
   if (!lu.isInvertible()) return NAN;
   const Eigen::MatrixXd cov = s2 * lu.inverse();
   auto moved_by = [&](std::size_t i, double by) {
