@@ -33,7 +33,10 @@ double Seen(const Ellipse& e, double x, double old) {
 
 // The groove: the ellipse's lower outline above the surface below.
 double Groove(const Ellipse& e, const SurfaceGrid& below, double shift) {
-  const double step = std::max(below.dx_mm, e.a / 400.0);
+  // A hundred steps across each half of the ellipse, or the grid's: the
+  // midpoint rule is off by the square of a step where the outline
+  // crosses the surface below (a kink), well under a point's noise.
+  const double step = std::max(below.dx_mm, e.a / 100.0);
   double sum = 0.0;
   for (double x = e.x0 - e.a + 0.5 * step; x < e.x0 + e.a; x += step) {
     const double old = below.At(x - shift);
