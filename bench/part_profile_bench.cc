@@ -4,10 +4,12 @@
 // profiles (a bead on the reference line): the bar is a part
 // profile at no less than half the wheel's rate for the same number of
 // points. The profiles are the twin's straight wall (sim/part_twin.h):
-// 800 points over 40 mm, 10 um noise, three layers of 100 profiles.
+// 800 points over 40 mm, 10 um noise, three layers of 100 profiles (and,
+// for the rate once each layer's groove shape is pooled, of 800).
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
+#include <map>
 
 #include "libbead/io/profile_stream.h"
 #include "libbead/part/measure_part.h"
@@ -16,28 +18,33 @@
 
 namespace {
 
-const bead::sim::PartTwin& Wall() {
-  static const bead::sim::PartTwin twin = [] {
+// The wall of `length_mm` (50: 100 profiles a layer, a quarter of them
+// those a layer's groove shape is pooled on; 400: 800 a layer).
+const bead::sim::PartTwin& Wall(int length_mm = 50) {
+  static std::map<int, bead::sim::PartTwin> twins;
+  auto it = twins.find(length_mm);
+  if (it == twins.end()) {
     bead::sim::PartTwinConfig c;
     c.layers = 3;
-    c.length_mm = 50.0;
-    return bead::sim::SimulatePartWall(c);
-  }();
-  return twin;
+    c.length_mm = length_mm;
+    it = twins.emplace(length_mm, bead::sim::SimulatePartWall(c)).first;
+  }
+  return it->second;
 }
 
-void Rate(benchmark::State& state, std::size_t profiles) {
+void Rate(benchmark::State& state, std::size_t profiles, int length_mm = 50) {
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * profiles));
   state.counters["profiles_per_s"] =
       benchmark::Counter(static_cast<double>(state.iterations() * profiles), benchmark::Counter::kIsRate);
-  state.counters["points"] = static_cast<double>(Wall().scan.profiles.points);
+  state.counters["points"] = static_cast<double>(Wall(length_mm).scan.profiles.points);
 }
 
 // Every profile of the wall, each layer against the one below; with the
-// groove hidden under the overhangs estimated (range 1: the default) or
-// not (0: the area seen only).
+// groove hidden under the overhangs estimated (range 0 = 1: the default)
+// or not (0: the area seen only); range 1: the wall's length, mm.
 void BM_PartProfile(benchmark::State& state) {
-  const bead::sim::PartTwin& twin = Wall();
+  const int length_mm = static_cast<int>(state.range(1));
+  const bead::sim::PartTwin& twin = Wall(length_mm);
   bead::part::MeasurePartOptions options;
   options.correct_hidden = state.range(0) != 0;
   std::size_t valid = 0;
@@ -49,7 +56,7 @@ void BM_PartProfile(benchmark::State& state) {
                             [&](const bead::part::PartGeometryRow& r) { valid += r.bead.valid(); });
   }
   benchmark::DoNotOptimize(valid);
-  Rate(state, twin.scan.profiles.size());
+  Rate(state, twin.scan.profiles.size(), length_mm);
 }
 
 // The baseline: the wheel's geometry (a bead on the reference line) on the
@@ -65,7 +72,13 @@ void BM_WheelProfileOnThePart(benchmark::State& state) {
   Rate(state, b.size());
 }
 
-BENCHMARK(BM_PartProfile)->Arg(1)->Arg(0)->Repetitions(5)->MinTime(0.5)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PartProfile)
+    ->Args({1, 50})
+    ->Args({0, 50})
+    ->Args({1, 400})
+    ->Repetitions(5)
+    ->MinTime(0.5)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelProfileOnThePart)->Repetitions(5)->MinTime(0.5)->Unit(benchmark::kMillisecond);
 
 }  // namespace
