@@ -23,13 +23,15 @@ struct Ellipse {
 
 // The points around the bead with the surface below under each.
 struct Window {
-  std::vector<double> x, z, old;
+  std::vector<double> x, z, old;  // x increasing
+  // bare[j]: the sum of (old - z)^2 over the points before j, the residual
+  // each has where the ellipse does not reach it.
+  std::vector<double> bare;
+  void Close() {
+    bare.assign(x.size() + 1, 0.0);
+    for (std::size_t j = 0; j < x.size(); ++j) bare[j + 1] = bare[j] + (old[j] - z[j]) * (old[j] - z[j]);
+  }
 };
-
-double Seen(const Ellipse& e, double x, double old) {
-  const double h = e.Half(x);
-  return h > 0.0 ? std::max(old, e.z0 + h) : old;
-}
 
 // The groove: the ellipse's lower outline above the surface below.
 double Groove(const Ellipse& e, const SurfaceGrid& below, double shift) {
@@ -73,7 +75,12 @@ struct Normal {
 Normal Residuals(const Window& w, const Ellipse& e, const Shape& shape, bool with_normal) {
   Normal n;
   const bool held = std::isfinite(shape.aspect);
-  for (std::size_t j = 0; j < w.x.size(); ++j) {
+  // Only the points under the ellipse depend on it; the others' residuals
+  // are summed once (Window::bare).
+  const auto lo = static_cast<std::size_t>(std::lower_bound(w.x.begin(), w.x.end(), e.x0 - e.a) - w.x.begin());
+  const auto hi = static_cast<std::size_t>(std::upper_bound(w.x.begin(), w.x.end(), e.x0 + e.a) - w.x.begin());
+  n.rss = w.bare[lo] + (w.bare.back() - w.bare[std::max(lo, hi)]);
+  for (std::size_t j = lo; j < hi; ++j) {
     const double u = (w.x[j] - e.x0) / e.a;
     const double s = std::abs(u) < 1.0 ? std::sqrt(1.0 - u * u) : 0.0;
     const double top = e.z0 + e.b * s;
@@ -192,6 +199,7 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
       w.x.push_back(x[j]), w.z.push_back(z[j]), w.old.push_back(old);
   }
   if (w.x.size() < 12) return out;
+  w.Close();
   const double spacing = (w.x.back() - w.x.front()) / static_cast<double>(w.x.size() - 1);
   const double base = below.At(center - shift);
   Shape shape{2.0 * spacing, pooled ? pooled->aspect : NAN};
