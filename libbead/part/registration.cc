@@ -141,9 +141,12 @@ Local LocalCost(std::span<const float> x, std::span<const float> z, const Surfac
   return l;
 }
 
-// Gauss-Newton from `start`, each step halved until the cost falls; false
-// where it leaves the warm window, finds no slope to move on, or does not
-// settle in a few steps.
+// Gauss-Newton from `start`, each step halved until the cost falls (at
+// most kHalvings times: where none falls the least is within that of s, a
+// kink of the truncated cost); false where it leaves the warm window,
+// finds no slope to move on, or does not settle in a few steps.
+constexpr int kHalvings = 3;
+
 bool Track(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, const RegistrationScale& k,
            const AddedBeadOptions& o, double start, Registration& r) {
   double s = start;
@@ -151,18 +154,19 @@ bool Track(std::span<const float> x, std::span<const float> z, const SurfaceGrid
   for (int iteration = 0; iteration < 8; ++iteration) {
     if (!(here.curvature > 0.0)) return false;
     double step = -here.gradient / here.curvature;
-    Local there;
-    int halvings = 0;
-    for (; halvings < 6; ++halvings, step *= 0.5) {
-      there = LocalCost(x, z, below, s + step, k);
-      if (there.cost <= here.cost) break;
-    }
-    if (halvings == 6)
-      step = 0.0;
-    else
+    bool settled = std::abs(step) < 1e-3 * k.spacing;
+    for (int halving = 0; !settled; ++halving, step *= 0.5) {
+      if (halving > kHalvings) {
+        settled = true;
+        break;
+      }
+      const Local there = LocalCost(x, z, below, s + step, k);
+      if (there.cost > here.cost) continue;
       s += step, here = there;
-    if (std::abs(s - start) > o.warm_half_mm) return false;
-    if (std::abs(step) < 1e-3 * k.spacing) {
+      if (std::abs(s - start) > o.warm_half_mm) return false;
+      break;
+    }
+    if (settled) {
       r.shift = s;
       // cost ~ least + (s - s0)^2 / sigma^2 with curvature 2 / sigma^2.
       r.sigma = std::max(std::sqrt(2.0 / here.curvature), k.spacing / std::sqrt(12.0));
