@@ -123,12 +123,13 @@ enum class Outcome { kFinished, kTimedOut, kBlocked };
 // this long.
 constexpr double kBlockedSeconds = 2.0;
 
-// A child whose CPU time still rises when its wall time is up is working,
-// only slowly: a loaded machine starves it (seen: a probe beside a build
-// on two cores, a valid file called corrupt). It is given up to
-// kStarvedTimes its wall time while it rises; its CPU limit still bounds
-// the work a damaged file can make it do. "Still rises": a tick within
-// kRisingSeconds.
+// A child still working when its wall time is up - runnable (state R) or
+// its CPU time still rising - is slow, not stuck: a loaded machine starves
+// it (seen: a probe run under nice beside a build on two cores got a tick
+// of CPU every two seconds, and a valid file was called corrupt). It is
+// given up to kStarvedTimes its wall time while it works; its CPU limit
+// still bounds the work a damaged file can make it do. "Rising": a tick
+// within kRisingSeconds.
 constexpr double kStarvedTimes = 6.0;
 constexpr double kRisingSeconds = 1.0;
 
@@ -154,9 +155,9 @@ Outcome ReadReport(int fd, double seconds, pid_t child, bool watch, std::string&
       if (watch && std::chrono::duration<double>(now - last_progress).count() >= kBlockedSeconds)
         return Outcome::kBlocked;
     }
-    const bool rising = std::chrono::duration<double>(now - last_tick).count() < kRisingSeconds;
+    const bool working = state == 'R' || std::chrono::duration<double>(now - last_tick).count() < kRisingSeconds;
     auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - now);
-    if (left.count() <= 0 && rising) left = std::chrono::duration_cast<std::chrono::milliseconds>(ceiling - now);
+    if (left.count() <= 0 && working) left = std::chrono::duration_cast<std::chrono::milliseconds>(ceiling - now);
     if (left.count() <= 0) {
       given = std::max(seconds, std::chrono::duration<double>(now - start).count());
       return Outcome::kTimedOut;

@@ -14,9 +14,9 @@
 // libhdf5's global lock, held by another of the caller's threads at that
 // instant), and such a child waits forever. That is no fault of the file:
 // the child is forked once more and given the whole time. A child still
-// using the CPU when its wall time is up is starved by a loaded machine,
-// not stuck: it is given up to six times the wall time while its CPU time
-// rises (its CPU limit bounds the work). Only when that probe finishes does the caller read
+// working when its wall time is up (runnable, or its CPU time rising) is
+// starved by a loaded machine, not stuck: it is given up to six times the
+// wall time while it works (its CPU limit bounds the work). Only when that probe finishes does the caller read
 // the file itself; a probe that crashes, runs out of its budget or time is
 // the file's fault, said with the file's name, and the caller never
 // touches it.
