@@ -58,8 +58,8 @@ struct Shape {
   }
 };
 
-// The residuals' sum of squares at e, and (with_normal) the normal
-// equations J^T J and J^T r of the fitted parameters. The derivatives are
+// The residuals' sum of squares at e, and the normal equations J^T J and
+// J^T r of the fitted parameters. The derivatives are
 // the ellipse's top's, where it is what the sensor sees: with u = (x - x0) / a
 // and s = sqrt(1 - u^2), d/dx0 = b u / (a s), d/dz0 = 1, d/da = b u^2 / (a s)
 // (plus the aspect times s where b = aspect a is held), d/db = s; zero
@@ -72,7 +72,7 @@ struct Normal {
   Eigen::Vector4d Jtr = Eigen::Vector4d::Zero();
 };
 
-Normal Residuals(const Window& w, const Ellipse& e, const Shape& shape, bool with_normal) {
+Normal Residuals(const Window& w, const Ellipse& e, const Shape& shape) {
   Normal n;
   const bool held = std::isfinite(shape.aspect);
   // Only the points under the ellipse depend on it; the others' residuals
@@ -87,7 +87,7 @@ Normal Residuals(const Window& w, const Ellipse& e, const Shape& shape, bool wit
     const bool seen = s > 0.0 && top > w.old[j];
     const double r = (seen ? top : w.old[j]) - w.z[j];
     n.rss += r * r;
-    if (!with_normal || !seen) continue;
+    if (!seen) continue;
     const double sd = std::max(s, 0.02);
     Eigen::Vector4d g(e.b * u / (e.a * sd), 1.0, e.b * u * u / (e.a * sd) + (held ? shape.aspect * s : 0.0), s);
     if (held) g[3] = 0.0;
@@ -110,7 +110,7 @@ double Fit(const Window& w, Ellipse& e, const Shape& shape, Eigen::MatrixXd& JtJ
   using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 4, 1>;
   const auto k = static_cast<Eigen::Index>(shape.Params());
   shape.Keep(e);
-  Normal at = Residuals(w, e, shape, true);
+  Normal at = Residuals(w, e, shape);
   double lambda = 1e-3;
   for (int it = 0; it < 80; ++it) {
     const Small A0 = at.JtJ.topLeftCorner(k, k);
@@ -123,7 +123,7 @@ double Fit(const Window& w, Ellipse& e, const Shape& shape, Eigen::MatrixXd& JtJ
       Ellipse trial = e;
       for (Eigen::Index i = 0; i < k; ++i) trial[static_cast<std::size_t>(i)] += step[i];
       shape.Keep(trial);
-      const Normal there = Residuals(w, trial, shape, true);
+      const Normal there = Residuals(w, trial, shape);
       if (std::isfinite(there.rss) && there.rss < at.rss) {
         converged = at.rss - there.rss < 1e-7 * at.rss || step.cwiseAbs().maxCoeff() < kSettledMm;
         e = trial, at = there;
