@@ -1,10 +1,10 @@
 #include "libbead/part/added_bead.h"
 
-#include "libbead/part/registration.h"
-
 #include <algorithm>
 #include <cmath>
 #include <vector>
+
+#include "libbead/part/registration.h"
 
 namespace bead::part {
 namespace {
