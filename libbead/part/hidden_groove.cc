@@ -207,22 +207,22 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   // quarter, half and three quarters of its height above) and two widths:
   // the least residual kept.
   Ellipse best;
-  Eigen::MatrixXd J, best_J;
+  Eigen::MatrixXd JtJ, best_JtJ;  // the fits' J^T J
   double best_rss = INFINITY;
   // With the shape held, the neighbour's ellipse first: kept where it
   // fits as well as the neighbour's did.
   bool warm = false;
   if (pooled && previous && previous->ok && std::isfinite(previous->fit_rms_mm)) {
     Ellipse e{center + previous->dx0, base + previous->dz0, previous->a, previous->b};
-    best_rss = Fit(w, e, shape, best_J), best = e;
+    best_rss = Fit(w, e, shape, best_JtJ), best = e;
     warm = std::sqrt(best_rss / static_cast<double>(w.x.size())) <= 1.2 * previous->fit_rms_mm;
   }
   for (double lift : {0.0, 0.25, 0.5, 0.75})
     for (double across : {0.5, 0.6}) {
       if (warm) break;
       Ellipse e{center, base + lift * height, across * width, height * (1.0 - lift)};
-      const double rss = Fit(w, e, shape, J);
-      if (rss < best_rss) best_rss = rss, best = e, best_J = J;
+      const double rss = Fit(w, e, shape, JtJ);
+      if (rss < best_rss) best_rss = rss, best = e, best_JtJ = JtJ;
     }
   out.fit_rms_mm = std::sqrt(best_rss / static_cast<double>(w.x.size()));
   out.aspect = best.b / best.a;
@@ -230,7 +230,7 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   out.hidden_mm2 = Groove(best, below, shift);
   const double dof = static_cast<double>(w.x.size()) - static_cast<double>(shape.Params());
   const Around around{below, shift, shift_sigma, spacing, pooled ? pooled->sigma : 0.0, noise_mm};
-  out.sigma_mm2 = GrooveSigma(best, shape, best_J, best_rss / dof, out.hidden_mm2, around);
+  out.sigma_mm2 = GrooveSigma(best, shape, best_JtJ, best_rss / dof, out.hidden_mm2, around);
   out.ok = std::isfinite(out.hidden_mm2) && std::isfinite(out.sigma_mm2);
   return out;
 }

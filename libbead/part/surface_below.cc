@@ -45,14 +45,6 @@ void Resample(const StoredProfile& p, double x0, double dx, std::size_t n, doubl
 
 }  // namespace
 
-double SurfaceGrid::SlopeAt(double x) const {
-  if (z_mm.size() < 2 || !(dx_mm > 0)) return kNaN;
-  const double u = (x - x0_mm) / dx_mm;
-  if (!(u >= 0.0) || u > static_cast<double>(z_mm.size() - 1)) return kNaN;
-  const std::size_t k = std::min(static_cast<std::size_t>(u), z_mm.size() - 2);
-  return (z_mm[k + 1] - z_mm[k]) / dx_mm;
-}
-
 void SurfaceBelow::BeginLayer(int64_t layer) {
   if (layer == layer_) return;
   below_known_ = layer == layer_ + 1 && !current_.empty();

@@ -40,10 +40,9 @@ struct SurfaceGrid {
     const double t = u - static_cast<double>(k);
     return z_mm[k] + t * (z_mm[k + 1] - z_mm[k]);
   }
-  // dz/dx at x from the two grid points around it (NaN as At).
-  double SlopeAt(double x_mm) const;
-  // At, VarianceAt and SlopeAt in one lookup (z NaN as At; the variance
-  // 0 where the grid carries none).
+  // At and VarianceAt in one lookup, with dz/dx from the two grid points
+  // around x (z and slope NaN as At; the variance 0 where the grid
+  // carries none).
   struct Sample {
     double z, variance, slope;
   };
