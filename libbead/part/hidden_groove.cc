@@ -35,10 +35,10 @@ struct Window {
 
 // The groove: the ellipse's lower outline above the surface below.
 double Groove(const Ellipse& e, const SurfaceGrid& below, double shift) {
-  // A hundred steps across each half of the ellipse, or the grid's: the
-  // midpoint rule is off by the square of a step where the outline
-  // crosses the surface below (a kink), well under a point's noise.
-  const double step = std::max(below.dx_mm, e.a / 100.0);
+  // A hundred steps across each half of the ellipse: the midpoint rule is
+  // off by the square of a step where the outline crosses the surface
+  // below (a kink), well under a point's noise.
+  const double step = e.a / 100.0;
   double sum = 0.0;
   for (double x = e.x0 - e.a + 0.5 * step; x < e.x0 + e.a; x += step) {
     const double old = below.At(x - shift);
@@ -169,7 +169,7 @@ double GrooveSigma(const Ellipse& e, const Shape& shape, const Eigen::MatrixXd& 
     grad[static_cast<Eigen::Index>(i)] = (moved_by(i, step) - groove) / step;
   }
   double below_var = 0.0;
-  const double step = std::max(o.below.dx_mm, o.spacing);
+  const double step = o.spacing;
   for (double at = e.x0 - e.a + 0.5 * step; at < e.x0 + e.a; at += step)
     if (e.z0 - e.Half(at) > o.below.At(at - o.shift))
       below_var += o.noise_mm * o.noise_mm * o.below.VarianceAt(at - o.shift) * step * step;

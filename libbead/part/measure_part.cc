@@ -45,29 +45,33 @@ StoredProfile InBedFrame(const ProfileView& v, double path, double frame_x, doub
 // does not coarsen it).
 double GridStep(const StoredProfile& p) { return p.x_mm.size() < 2 ? 0.01 : std::max(0.125 * p.spacing_mm, 1e-4); }
 
-// A bed known as a height at every x of the profile's frame, sampled on
-// the profile's grid in the bed frame.
+// A bed known as a height at every x of the profile's frame, sampled on a
+// grid of `step` over the profile's span in the bed frame.
 template <class HeightAt>
-std::optional<SurfaceGrid> SampledBed(const StoredProfile& p, double frame_x, double frame_z, HeightAt height_at) {
+std::optional<SurfaceGrid> SampledBed(const StoredProfile& p, double step, double frame_x, double frame_z,
+                                      HeightAt height_at) {
   if (p.x_mm.size() < 2) return std::nullopt;
-  SurfaceGrid grid;
-  grid.dx_mm = GridStep(p);
-  grid.x0_mm = p.x_mm.front();
-  const std::size_t n = GridPoints(p.x_mm.front(), p.x_mm.back(), grid.dx_mm);
+  SurfaceRow row;
+  row.dx_mm = step;
+  row.x0_mm = p.x_mm.front();
+  const std::size_t n = GridPoints(p.x_mm.front(), p.x_mm.back(), row.dx_mm);
   if (n < 2) return std::nullopt;
+  row.z_mm.resize(n);
   for (std::size_t k = 0; k < n; ++k)
-    grid.z_mm.push_back(
-        static_cast<float>(height_at(grid.x0_mm + static_cast<double>(k) * grid.dx_mm - frame_x) + frame_z));
-  return grid;
+    row.z_mm[k] = static_cast<float>(height_at(row.x0_mm + static_cast<double>(k) * row.dx_mm - frame_x) + frame_z);
+  return SurfaceGrid(std::move(row));
 }
 
-// The bed under layer 0 on a flat bed: the profile's reference line.
+// The bed under layer 0 on a flat bed: the profile's reference line (a
+// line: exact between any two of its values, so sampled at the points'
+// own spacing).
 std::optional<SurfaceGrid> BedLine(ProfileProcessor& processor, const ProfileView& v, const StoredProfile& p,
                                    double frame_x, double frame_z) {
   const BeadGeometry& g = processor.Process(v);
   if (!g.reference.ok) return std::nullopt;
   const ReferenceLine line = g.reference;
-  return SampledBed(p, frame_x, frame_z, [&line](double x) { return line.intercept_mm + line.slope * x; });
+  return SampledBed(p, std::max(p.spacing_mm, 1e-4), frame_x, frame_z,
+                    [&line](double x) { return line.intercept_mm + line.slope * x; });
 }
 
 // The bed under layer 0 on a pipe (part: {bed: cylinder}): the arc through
@@ -76,7 +80,7 @@ std::optional<SurfaceGrid> BedArcGrid(const Rig& rig, const ProfileView& v, cons
                                       double frame_z) {
   const BedArc arc = FitBedArc(v.x_mm, v.z_mm, rig.reference_left, rig.reference_right, rig.part->radius_mm);
   if (!arc.ok) return std::nullopt;
-  return SampledBed(p, frame_x, frame_z, [&arc](double x) { return arc.At(x); });
+  return SampledBed(p, GridStep(p), frame_x, frame_z, [&arc](double x) { return arc.At(x); });
 }
 
 // Each bead of the profile over the surface below, moved by `shift`.
@@ -108,7 +112,7 @@ class PartMeasurer {
     else if (row.layer == 0)
       under = BedLine(processor_, v, mine, places.frame_x_mm[i], places.frame_z_mm[i]);
     else
-      under = below_.At(row.path_mm, GridStep(mine), nullptr);
+      under = below_.At(row.path_mm, nullptr);
     if (!under) {
       row.bead.status = AddedStatus::kNoSurfaceBelow;  // on layer 0: no bed found either side of the bead
     } else {

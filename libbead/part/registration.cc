@@ -4,6 +4,8 @@
 #include <cmath>
 #include <vector>
 
+#include "libbead/part/grid_costs.h"
+
 namespace bead::part {
 namespace {
 
@@ -13,9 +15,10 @@ namespace {
 // surface below) the threshold's square, whatever the shift. Least where
 // the most points agree.
 double TruncatedCost(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, double s,
-                     const RegistrationScale& k, double margin) {
+                     const RegistrationScale& k, double margin, const PointsOnRow* grid) {
   const double noise2 = k.noise * k.noise, cap = k.tau * k.tau / noise2;
-  const double lo = below.x0_mm + margin, hi = below.x0_mm + below.dx_mm * (below.z_mm.size() - 1) - margin;
+  const double lo = below.first_mm() + margin, hi = below.last_mm() - margin;
+  if (grid) return grid->TruncatedCost(s, noise2, cap, lo, hi);
   double sum = 0.0;
   // The surface below's variance is at most one point's (surface_below.h):
   // a gain beyond cap at twice the noise variance is capped whatever it is.
@@ -41,12 +44,12 @@ struct CostCurve {
 };
 
 CostCurve Scan(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, double centre, double half,
-               const RegistrationScale& k) {
+               const RegistrationScale& k, const PointsOnRow* grid) {
   const double step = std::max(0.25 * k.spacing, 1e-3);
   CostCurve c;
   for (double s = centre - half; s <= centre + half + 1e-12; s += step) {
     c.s.push_back(s);
-    c.cost.push_back(TruncatedCost(x, z, below, s, k, half + std::abs(centre)));
+    c.cost.push_back(TruncatedCost(x, z, below, s, k, half + std::abs(centre), grid));
   }
   return c;
 }
@@ -118,8 +121,12 @@ struct Local {
 };
 
 Local LocalCost(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, double s,
-                const RegistrationScale& k) {
+                const RegistrationScale& k, const PointsOnRow* grid) {
   const double noise2 = k.noise * k.noise, cap = k.tau * k.tau / noise2;
+  if (grid) {
+    const PointsOnRow::Local g = grid->LocalCost(s, noise2, cap);
+    return {g.cost, g.gradient, g.curvature};
+  }
   Local l;
   for (std::size_t i = 0; i < x.size(); ++i) {
     const SurfaceGrid::Sample b = below.SampleAt(x[i] - s);
@@ -148,9 +155,9 @@ Local LocalCost(std::span<const float> x, std::span<const float> z, const Surfac
 constexpr int kHalvings = 3;
 
 bool Track(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, const RegistrationScale& k,
-           const AddedBeadOptions& o, double start, Registration& r) {
+           const AddedBeadOptions& o, double start, const PointsOnRow* grid, Registration& r) {
   double s = start;
-  Local here = LocalCost(x, z, below, s, k);
+  Local here = LocalCost(x, z, below, s, k, grid);
   for (int iteration = 0; iteration < 8; ++iteration) {
     if (!(here.curvature > 0.0)) return false;
     double step = -here.gradient / here.curvature;
@@ -160,7 +167,7 @@ bool Track(std::span<const float> x, std::span<const float> z, const SurfaceGrid
         settled = true;
         break;
       }
-      const Local there = LocalCost(x, z, below, s + step, k);
+      const Local there = LocalCost(x, z, below, s + step, k, grid);
       if (there.cost > here.cost) continue;
       s += step, here = there;
       if (std::abs(s - start) > o.warm_half_mm) return false;
@@ -181,17 +188,21 @@ bool Track(std::span<const float> x, std::span<const float> z, const SurfaceGrid
 
 Registration Register(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
                       const RegistrationScale& k, const AddedBeadOptions& o, const double* start) {
+  // The new points on the surface below's grid, where they lie on it: the
+  // costs eight points at a time (part/grid_costs.h).
+  thread_local PointsOnRow on_row;
+  const PointsOnRow* grid = on_row.Make(x, z, below) ? &on_row : nullptr;
   if (start && std::abs(*start) + o.warm_half_mm < o.max_shift_mm) {
     Registration r;
-    if (Track(x, z, below, k, o, *start, r)) {
+    if (Track(x, z, below, k, o, *start, grid, r)) {
       Settle(x, z, below, k, o, r);
       if (r.constrained) return r;
     }
-    r = FromCurve(Scan(x, z, below, *start, o.warm_half_mm, k), k);
+    r = FromCurve(Scan(x, z, below, *start, o.warm_half_mm, k, grid), k);
     Settle(x, z, below, k, o, r);
     if (!r.at_end) return r;
   }
-  Registration r = FromCurve(Scan(x, z, below, 0.0, o.max_shift_mm, k), k);
+  Registration r = FromCurve(Scan(x, z, below, 0.0, o.max_shift_mm, k, grid), k);
   Settle(x, z, below, k, o, r);
   return r;
 }

@@ -43,15 +43,111 @@ void Resample(const StoredProfile& p, double x0, double dx, std::size_t n, doubl
     z[k] = p.z_mm.back();
 }
 
+// The points' own grid (x0 the first, dx from the first to the last over
+// the last's index): how many values it holds, 0 where a point lies off
+// it by more than a hundredth of dx (or after the one before on it).
+std::size_t OwnGridPoints(const StoredProfile& p, double& dx) {
+  const std::size_t m = p.x_mm.size();
+  if (m < 2) return 0;
+  const double x0 = p.x_mm.front(), span = static_cast<double>(p.x_mm.back()) - x0;
+  const double last = std::round(span / p.spacing_mm);
+  if (!(last >= 1.0) || last + 1.0 >= static_cast<double>(kMaxGridPoints)) return 0;
+  dx = span / last;
+  double before = -1.0;
+  for (std::size_t j = 0; j < m; ++j) {
+    const double u = (p.x_mm[j] - x0) / dx, k = std::round(u);
+    if (std::abs(u - k) > 0.01 || k <= before) return 0;
+    before = k;
+  }
+  return static_cast<std::size_t>(last) + 1;
+}
+
+// The points on their own grid of n values, each gap of missing points no
+// longer than max_gap bridged linearly (variance (1 - t)^2 + t^2).
+void OnOwnGrid(const StoredProfile& p, double dx, std::size_t n, double max_gap, SurfaceRow& row) {
+  row.x0_mm = p.x_mm.front(), row.dx_mm = dx, row.at_points = true;
+  row.z_mm.assign(n, static_cast<float>(kNaN));
+  row.variance.assign(n, 1.0f);
+  auto index = [&](std::size_t j) { return static_cast<std::size_t>(std::lround((p.x_mm[j] - row.x0_mm) / dx)); };
+  std::size_t ka = index(0);
+  row.z_mm[ka] = p.z_mm[0];
+  for (std::size_t j = 1; j < p.x_mm.size(); ++j) {
+    const std::size_t kb = index(j);
+    row.z_mm[kb] = p.z_mm[j];
+    if (kb > ka + 1 && p.x_mm[j] - p.x_mm[j - 1] <= max_gap)
+      for (std::size_t k = ka + 1; k < kb; ++k) {
+        const double t = static_cast<double>(k - ka) / static_cast<double>(kb - ka);
+        row.z_mm[k] = static_cast<float>((1 - t) * p.z_mm[j - 1] + t * p.z_mm[j]);
+        row.variance[k] = static_cast<float>((1 - t) * (1 - t) + t * t);
+      }
+    ka = kb;
+  }
+}
+
+// Two rows of points on one grid (the same spacing, the second's start a
+// whole number of spacings from the first's: a sensor's uniform points in
+// passes whose frames differ by as much) blended value by value as
+// SurfaceGrid blends them: the same surface, sampled with one lookup.
+// nullopt where the two grids differ.
+std::optional<SurfaceRow> Blend(const SurfaceRow& a, const SurfaceRow& b, double w) {
+  if (!a.at_points || !b.at_points || std::abs(a.dx_mm - b.dx_mm) > 1e-6 * a.dx_mm) return std::nullopt;
+  const double offset = (b.x0_mm - a.x0_mm) / a.dx_mm, whole = std::round(offset);
+  if (std::abs(offset - whole) > 1e-3) return std::nullopt;
+  const auto shift = static_cast<std::ptrdiff_t>(whole);  // b's value k is a's k + shift
+  const std::ptrdiff_t first = std::min<std::ptrdiff_t>(0, shift);
+  const std::ptrdiff_t end = std::max<std::ptrdiff_t>(std::ssize(a.z_mm), shift + std::ssize(b.z_mm));  // in a's index
+  SurfaceRow r;
+  r.dx_mm = a.dx_mm, r.x0_mm = a.x0_mm + static_cast<double>(first) * a.dx_mm, r.at_points = true;
+  r.z_mm.resize(static_cast<std::size_t>(end - first));
+  r.variance.resize(r.z_mm.size());
+  const float wa = static_cast<float>(1 - w), wb = static_cast<float>(w);
+  for (std::ptrdiff_t k = first; k < end; ++k) {
+    const std::ptrdiff_t kb = k - shift;
+    const bool in_a = k >= 0 && k < std::ssize(a.z_mm), in_b = kb >= 0 && kb < std::ssize(b.z_mm);
+    const float za = in_a ? a.z_mm[static_cast<std::size_t>(k)] : NAN;
+    const float zb = in_b ? b.z_mm[static_cast<std::size_t>(kb)] : NAN;
+    const float va = in_a ? a.variance[static_cast<std::size_t>(k)] : 1.0f;
+    const float vb = in_b ? b.variance[static_cast<std::size_t>(kb)] : 1.0f;
+    float& z = r.z_mm[static_cast<std::size_t>(k - first)];
+    float& v = r.variance[static_cast<std::size_t>(k - first)];
+    if (std::isnan(zb))
+      z = za, v = va;
+    else if (std::isnan(za))
+      z = zb, v = vb;
+    else
+      z = wa * za + wb * zb, v = wa * wa * va + wb * wb * vb;
+  }
+  return r;
+}
+
 }  // namespace
+
+SurfaceRow RowOf(const StoredProfile& p, double max_gap) {
+  SurfaceRow row;
+  double dx = 0.0;
+  if (const std::size_t n = OwnGridPoints(p, dx)) {
+    OnOwnGrid(p, dx, n, max_gap, row);
+    return row;
+  }
+  if (p.x_mm.size() < 2) return row;
+  row.dx_mm = std::max(0.125 * p.spacing_mm, 1e-4);
+  row.x0_mm = p.x_mm.front();
+  const std::size_t n = GridPoints(p.x_mm.front(), p.x_mm.back(), row.dx_mm);
+  if (n >= 2) Resample(p, row.x0_mm, row.dx_mm, n, max_gap, row.z_mm, row.variance);
+  return row;
+}
 
 void SurfaceBelow::BeginLayer(int64_t layer) {
   if (layer == layer_) return;
   below_known_ = layer == layer_ + 1 && !current_.empty();
-  below_ = below_known_ ? std::move(current_) : std::vector<StoredProfile>{};
+  below_.clear();
+  if (below_known_) {
+    std::sort(current_.begin(), current_.end(),
+              [](const StoredProfile& a, const StoredProfile& b) { return a.path_mm < b.path_mm; });
+    for (const StoredProfile& p : current_)
+      below_.push_back({p.path_mm, p.center_x_mm, std::make_shared<const SurfaceRow>(RowOf(p, options_.max_x_gap_mm))});
+  }
   current_.clear();
-  std::sort(below_.begin(), below_.end(),
-            [](const StoredProfile& a, const StoredProfile& b) { return a.path_mm < b.path_mm; });
   layer_ = layer;
 }
 
@@ -60,8 +156,8 @@ bool SurfaceBelow::Neighbours(double path, std::size_t& i, std::size_t& j, doubl
     if (why) *why = "layer " + std::to_string(layer_ - 1) + " is not in the scan";
     return false;
   }
-  const auto it = std::lower_bound(below_.begin(), below_.end(), path,
-                                   [](const StoredProfile& p, double v) { return p.path_mm < v; });
+  const auto it =
+      std::lower_bound(below_.begin(), below_.end(), path, [](const Below& p, double v) { return p.path_mm < v; });
   j = static_cast<std::size_t>(it - below_.begin());
   if (j == below_.size()) j = below_.size() - 1;
   i = j > 0 && below_[j].path_mm > path ? j - 1 : j;
@@ -77,39 +173,18 @@ bool SurfaceBelow::Neighbours(double path, std::size_t& i, std::size_t& j, doubl
   return true;
 }
 
-std::optional<SurfaceGrid> SurfaceBelow::At(double path, double dx, std::string* why) const {
+std::optional<SurfaceGrid> SurfaceBelow::At(double path, std::string* why) const {
   std::size_t i = 0, j = 0;
   double w = 0;
   if (!Neighbours(path, i, j, w, why)) return std::nullopt;
-  const StoredProfile &a = below_[i], &b = below_[j];
-  if (a.x_mm.size() < 2 || b.x_mm.size() < 2) {
-    if (why) *why = "the layer below holds too few points here";
+  const Below &a = below_[i], &b = below_[j];
+  if (a.row->z_mm.size() < 2 || b.row->z_mm.size() < 2) {
+    if (why) *why = "the layer below holds too few points here, or spans too wide an x range for its point spacing";
     return std::nullopt;
   }
-  SurfaceGrid g;
-  g.dx_mm = dx;
-  g.x0_mm = std::min(a.x_mm.front(), b.x_mm.front());
-  const double x1 = std::max(a.x_mm.back(), b.x_mm.back());
-  const std::size_t n = GridPoints(g.x0_mm, x1, dx);
-  if (n < 2) {
-    if (why) *why = "the layer below spans too wide an x range for its point spacing";
-    return std::nullopt;
-  }
-  const double gap = options_.max_x_gap_mm;
-  Resample(a, g.x0_mm, dx, n, gap, g.z_mm, g.variance);
-  Resample(b, g.x0_mm, dx, n, gap, za_, va_);  // the second profile's
-  // Where only one of the two saw the surface, it stands for both.
-  for (std::size_t k = 0; k < n; ++k) {
-    const float z1 = g.z_mm[k], z2 = za_[k];
-    if (std::isnan(z2)) continue;
-    if (std::isnan(z1)) {
-      g.z_mm[k] = z2, g.variance[k] = va_[k];
-      continue;
-    }
-    g.z_mm[k] = static_cast<float>((1 - w) * z1 + w * z2);
-    g.variance[k] = static_cast<float>((1 - w) * (1 - w) * g.variance[k] + w * w * va_[k]);
-  }
-  return g;
+  if (i == j) return SurfaceGrid(a.row, nullptr, 0.0);
+  if (std::optional<SurfaceRow> blend = Blend(*a.row, *b.row, w)) return SurfaceGrid(std::move(*blend));
+  return SurfaceGrid(a.row, b.row, w);
 }
 
 double SurfaceBelow::CenterAt(double path) const {

@@ -8,7 +8,9 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cmath>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -16,44 +18,72 @@
 
 namespace bead::part {
 
-// A surface sampled on a uniform x grid (bed frame), NaN where unknown.
-// `variance`: each grid value's noise variance over one measured point's
-// (1 at a measured point, 1/2 midway between two, less again between two
-// profiles), for weighing a difference against it; empty: 0 (a fitted line).
-struct SurfaceGrid {
+// A surface on a uniform x grid (bed frame): z_k at x0 + k dx, NaN where
+// unknown. `variance`: each value's noise variance over one measured
+// point's (1 at a measured point, (1 - t)^2 + t^2 a fraction t of the way
+// between two); empty: 0 (a fitted line). `at_points`: the grid's values
+// are the measured points themselves (a sensor's uniform points): between
+// two the variance is (1 - t)^2 v_k + t^2 v_k+1, not linear.
+struct SurfaceRow {
   double x0_mm = 0.0, dx_mm = 0.0;
-  std::vector<float> z_mm;
-  std::vector<float> variance;
-  double VarianceAt(double x_mm) const {
-    if (variance.size() != z_mm.size() || z_mm.size() < 2) return 0.0;
-    const double u = std::clamp((x_mm - x0_mm) / dx_mm, 0.0, static_cast<double>(z_mm.size() - 1));
-    const std::size_t k = std::min(static_cast<std::size_t>(u), z_mm.size() - 2);
-    const double t = u - static_cast<double>(k);
-    return variance[k] + t * (variance[k + 1] - variance[k]);
-  }
-  static double NaN() { return std::numeric_limits<double>::quiet_NaN(); }
-  // Linear between grid points; NaN outside the grid or next to a NaN.
-  double At(double x_mm) const {
-    const double u = (x_mm - x0_mm) / dx_mm;
-    if (!(u >= 0.0) || !(u <= static_cast<double>(z_mm.size()) - 1.0) || z_mm.size() < 2) return NaN();
-    const std::size_t k = std::min(static_cast<std::size_t>(u), z_mm.size() - 2);
-    const double t = u - static_cast<double>(k);
-    return z_mm[k] + t * (z_mm[k + 1] - z_mm[k]);
-  }
-  // At and VarianceAt in one lookup, with dz/dx from the two grid points
-  // around x (z and slope NaN as At; the variance 0 where the grid
-  // carries none).
+  std::vector<float> z_mm, variance;
+  bool at_points = false;
   struct Sample {
     double z, variance, slope;
   };
+  static double NaN() { return std::numeric_limits<double>::quiet_NaN(); }
+  // Linear between grid values, with dz/dx between the two around x; z and
+  // slope NaN outside the grid or next to a NaN.
   Sample SampleAt(double x_mm) const {
     const double u = (x_mm - x0_mm) / dx_mm;
     if (!(u >= 0.0) || !(u <= static_cast<double>(z_mm.size()) - 1.0) || z_mm.size() < 2) return {NaN(), 0.0, NaN()};
     const std::size_t k = std::min(static_cast<std::size_t>(u), z_mm.size() - 2);
     const double t = u - static_cast<double>(k), rise = static_cast<double>(z_mm[k + 1]) - z_mm[k];
-    const double v = variance.size() == z_mm.size() ? variance[k] + t * (variance[k + 1] - variance[k]) : 0.0;
+    double v = 0.0;
+    if (variance.size() == z_mm.size())
+      v = at_points ? (1 - t) * (1 - t) * variance[k] + t * t * variance[k + 1]
+                    : variance[k] + t * (variance[k + 1] - variance[k]);
     return {z_mm[k] + t * rise, v, rise / dx_mm};
   }
+  double first_mm() const { return x0_mm; }
+  double last_mm() const { return x0_mm + dx_mm * static_cast<double>(z_mm.size() - 1); }
+};
+
+// The surface under one profile: one row (the bed), or the two profiles of
+// the layer below around it along the path, the second weighed w: where
+// both are known (1 - w) a + w b, its variance (1 - w)^2 va + w^2 vb;
+// where only one is, that one stands for both. The rows are shared, not
+// copied: a grid costs nothing to make or keep.
+class SurfaceGrid {
+ public:
+  using Sample = SurfaceRow::Sample;
+  SurfaceGrid() = default;
+  explicit SurfaceGrid(SurfaceRow row) : a_(std::make_shared<const SurfaceRow>(std::move(row))) {}
+  SurfaceGrid(std::shared_ptr<const SurfaceRow> a, std::shared_ptr<const SurfaceRow> b, double w)
+      : a_(std::move(a)), b_(std::move(b)), w_(w) {}
+
+  Sample SampleAt(double x_mm) const {
+    if (!a_) return {SurfaceRow::NaN(), 0.0, SurfaceRow::NaN()};
+    const Sample sa = a_->SampleAt(x_mm);
+    if (!b_) return sa;
+    const Sample sb = b_->SampleAt(x_mm);
+    if (std::isnan(sb.z)) return sa;
+    if (std::isnan(sa.z)) return sb;
+    return {(1 - w_) * sa.z + w_ * sb.z, (1 - w_) * (1 - w_) * sa.variance + w_ * w_ * sb.variance,
+            (1 - w_) * sa.slope + w_ * sb.slope};
+  }
+  // z (NaN where unknown) and its variance.
+  double At(double x_mm) const { return SampleAt(x_mm).z; }
+  double VarianceAt(double x_mm) const { return SampleAt(x_mm).variance; }
+  // The one row this surface is (nullptr where it blends two).
+  const SurfaceRow* single_row() const { return b_ ? nullptr : a_.get(); }
+  // Where some row is known.
+  double first_mm() const { return b_ ? std::min(a_->first_mm(), b_->first_mm()) : a_->first_mm(); }
+  double last_mm() const { return b_ ? std::max(a_->last_mm(), b_->last_mm()) : a_->last_mm(); }
+
+ private:
+  std::shared_ptr<const SurfaceRow> a_, b_;
+  double w_ = 0.0;
 };
 
 // The points of a grid from x0 to x1 at dx; 0 when it would hold more than
@@ -95,11 +125,9 @@ class SurfaceBelow {
   void Keep(StoredProfile profile) { current_.push_back(std::move(profile)); }
 
   // The layer below at `path_mm`, interpolated between its two nearest
-  // profiles, on a grid of spacing dx_mm (fine against the points'
-  // spacing: an interpolation of the grid is then that of the points),
-  // with its variance; nullopt, with `why`, where the
-  // layer below is unknown.
-  std::optional<SurfaceGrid> At(double path_mm, double dx_mm, std::string* why) const;
+  // profiles, with its variance; nullopt, with `why`, where the layer
+  // below is unknown.
+  std::optional<SurfaceGrid> At(double path_mm, std::string* why) const;
   // The bead centre of the layer below at `path_mm` (its own frame).
   double CenterAt(double path_mm) const;
 
@@ -107,12 +135,23 @@ class SurfaceBelow {
   // The two stored profiles around `path_mm` and the weight of the second.
   bool Neighbours(double path_mm, std::size_t& i, std::size_t& j, double& w, std::string* why) const;
 
+  // A profile of the layer below, on its grid.
+  struct Below {
+    double path_mm = 0.0, center_x_mm = 0.0;
+    std::shared_ptr<const SurfaceRow> row;
+  };
   SurfaceBelowOptions options_;
   int64_t layer_ = -1;
   bool below_known_ = false;
-  std::vector<StoredProfile> below_, current_;
-  // At's scratch: the second profile on the grid (a SurfaceBelow serves one thread).
-  mutable std::vector<float> za_, va_;
+  std::vector<Below> below_;
+  std::vector<StoredProfile> current_;
 };
+
+// A stored profile as a surface row: its own points where they lie on a
+// uniform grid (a sensor's usually do: nothing is interpolated), each
+// missing point bridged linearly where the gap is no longer than max_gap;
+// otherwise the points resampled on a grid of an eighth of their spacing
+// (an interpolation of that grid is then that of the points).
+SurfaceRow RowOf(const StoredProfile& p, double max_gap_mm);
 
 }  // namespace bead::part

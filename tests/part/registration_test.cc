@@ -24,9 +24,11 @@ double OldBead(double x) { return std::abs(x) < 4.0 ? 1.5 * std::sqrt(1.0 - x * 
 
 Scene MakeScene(double shift, bool bead_below = true) {
   Scene s;
-  s.below.x0_mm = -12.0, s.below.dx_mm = 0.05 / 8;
-  for (double x = s.below.x0_mm; x <= 12.0; x += s.below.dx_mm)
-    s.below.z_mm.push_back(static_cast<float>(bead_below ? OldBead(x) : 0.0));
+  SurfaceRow row;
+  row.x0_mm = -12.0, row.dx_mm = 0.05 / 8;
+  for (double x = row.x0_mm; x <= 12.0; x += row.dx_mm)
+    row.z_mm.push_back(static_cast<float>(bead_below ? OldBead(x) : 0.0));
+  s.below = SurfaceGrid(std::move(row));
   std::mt19937 rng(7);
   std::normal_distribution<double> noise(0.0, 0.01);
   for (double x = -10.0; x <= 10.0; x += 0.05) {

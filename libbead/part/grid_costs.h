@@ -1,0 +1,53 @@
+// The registration's two costs (part/registration.cc: the truncated cost,
+// and the same with its gradient and curvature in the shift) where the new
+// profile's points lie on the surface below's own grid: a sensor's uniform
+// points over a layer below scanned by the same sensor. At a shift s every
+// point then falls the same fraction t of the way between two values of
+// the grid, so the surface below at the points is two unaligned loads and
+// a blend, eight points a register, and no point looks anything up. The
+// definitions are registration.cc's, to a float's rounding.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "libbead/part/surface_below.h"
+
+namespace bead::part {
+
+// The new points on the grid of the surface below.
+class PointsOnRow {
+ public:
+  // False (and nothing to use) where the surface below is not one row of
+  // points or the new points do not lie on its grid.
+  bool Make(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below);
+
+  // The truncated squared gain over the points with x in [lo, hi], in
+  // noise variances (noise2: one point's), each capped at `cap`.
+  double TruncatedCost(double s, double noise2, double cap, double lo, double hi) const;
+  struct Local {
+    double cost = 0.0, gradient = 0.0, curvature = 0.0;
+  };
+  // The truncated cost over every point, with its gradient and
+  // Gauss-Newton curvature in s over the points under the cap.
+  Local LocalCost(double s, double noise2, double cap) const;
+
+ private:
+  // The lattice indices [begin, end) of the new points whose sample at
+  // shift s falls inside the row, k0 the row's index for index 0, t the
+  // fraction.
+  struct Span {
+    std::ptrdiff_t begin, end, k0;
+    float t;
+  };
+  Span Inside(double s) const;
+  // The points (not NaN) in lattice indices [begin, end).
+  std::size_t PointsIn(std::ptrdiff_t begin, std::ptrdiff_t end) const;
+
+  const SurfaceRow* row_ = nullptr;
+  double x0_mm_ = 0.0;        // x of z_[0]
+  std::vector<float> z_;      // the new points on the grid, NaN where none
+  std::vector<int> counted_;  // counted_[i]: points before index i
+};
+
+}  // namespace bead::part

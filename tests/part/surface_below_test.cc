@@ -1,0 +1,111 @@
+// The layer below as a surface (part/surface_below.h): a stored profile's
+// own points kept as its grid where they lie on one, blended between two
+// profiles along the path, and the same surface where they do not.
+#include "libbead/part/surface_below.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace bead::part {
+namespace {
+
+constexpr double kDx = 0.05;
+
+// A profile at `path` of the surface z = f(x) on points x0 + j dx, j < n,
+// those in `missing` left out.
+template <class F>
+StoredProfile Profile(double path, double x0, int n, F f, std::initializer_list<int> missing = {}) {
+  StoredProfile p;
+  p.path_mm = path, p.spacing_mm = kDx;
+  for (int j = 0; j < n; ++j) {
+    if (std::find(missing.begin(), missing.end(), j) != missing.end()) continue;
+    const double x = x0 + j * kDx;
+    p.x_mm.push_back(static_cast<float>(x));
+    p.z_mm.push_back(static_cast<float>(f(x)));
+  }
+  return p;
+}
+
+double Wave(double x) { return 0.3 * std::sin(2.0 * x) + 0.05 * x; }
+
+// The points' own linear interpolation at x, with its variance over one
+// point's, (1 - t)^2 + t^2 (NaN where unknown).
+SurfaceRow::Sample Between(const StoredProfile& p, double x) {
+  for (std::size_t j = 0; j + 1 < p.x_mm.size(); ++j)
+    if (p.x_mm[j] <= x && x <= p.x_mm[j + 1]) {
+      const double t = (x - p.x_mm[j]) / (p.x_mm[j + 1] - p.x_mm[j]);
+      return {(1 - t) * p.z_mm[j] + t * p.z_mm[j + 1], (1 - t) * (1 - t) + t * t, NAN};
+    }
+  return {NAN, 0.0, NAN};
+}
+
+TEST(SurfaceBelow, UniformPointsAreTheirOwnGridAndShortDropoutsAreBridged) {
+  // Two points missing (a 0.15 mm gap, bridged) and 30 (1.55 mm: not).
+  std::initializer_list<int> missing = {40, 41};
+  StoredProfile p = Profile(0.0, -10.0, 401, Wave, missing);
+  for (int j = 0; j < 30; ++j) {
+    const auto at =
+        std::find_if(p.x_mm.begin(), p.x_mm.end(), [&](float x) { return x > -10.0 + (200 + j) * kDx - 1e-4; });
+    const auto k = at - p.x_mm.begin();
+    p.x_mm.erase(at), p.z_mm.erase(p.z_mm.begin() + k);
+  }
+  const SurfaceRow row = RowOf(p, 1.0);
+  ASSERT_TRUE(row.at_points);
+  EXPECT_NEAR(row.dx_mm, kDx, 1e-6);
+  for (double x = -9.99; x < 9.99; x += 0.0137) {
+    const SurfaceRow::Sample want = Between(p, x), got = row.SampleAt(x);
+    if (std::isnan(want.z) || (x > -10.0 + 199 * kDx && x < -10.0 + 230 * kDx)) {
+      EXPECT_TRUE(std::isnan(got.z)) << x;  // the long gap: unknown
+      continue;
+    }
+    // Linear between the points, to a float's rounding of z.
+    EXPECT_NEAR(got.z, want.z, 1e-6) << x;
+    if (x > -10.0 + 39 * kDx && x < -10.0 + 42 * kDx) continue;  // the bridge's own variance
+    // The fraction t between two points: the grid's against the float
+    // points' own, up to half a float's step at 10 mm over a spacing
+    // (1e-5) apart; the variance's slope in t is at most 2.
+    EXPECT_NEAR(got.variance, want.variance, 4e-5) << x;
+  }
+}
+
+TEST(SurfaceBelow, PointsOffAGridAreResampledFinelyAndKeepTheirInterpolation) {
+  StoredProfile p = Profile(0.0, -10.0, 401, Wave);
+  for (std::size_t j = 0; j < p.x_mm.size(); j += 3) p.x_mm[j] += static_cast<float>(0.2 * kDx);
+  for (std::size_t j = 0; j < p.x_mm.size(); ++j) p.z_mm[j] = static_cast<float>(Wave(p.x_mm[j]));
+  const SurfaceRow row = RowOf(p, 1.0);
+  EXPECT_FALSE(row.at_points);
+  EXPECT_NEAR(row.dx_mm, kDx / 8, 1e-9);
+  // On an eighth of a spacing, the grid's interpolation of the points'
+  // interpolation is off only in a grid step holding a point (a kink), by
+  // at most the slope change there over 4 times the step: |z''| <= 1.2
+  // over two segments of at most 1.2 spacings, 0.072, so 1.1e-4 mm.
+  for (double x = -9.9; x < 9.9; x += 0.0137) EXPECT_NEAR(row.SampleAt(x).z, Between(p, x).z, 1.2e-4) << x;
+}
+
+TEST(SurfaceBelow, TwoProfilesAreBlendedAlongThePathOnOneGridOrTwo) {
+  auto flat = [](double z) { return [z](double) { return z; }; };
+  for (double second_x0 : {-9.9, -9.9 + 0.5 * kDx}) {  // the same grid, then half a spacing off it
+    SurfaceBelow below;
+    below.BeginLayer(0);
+    below.Keep(Profile(10.0, -10.0, 401, flat(1.0)));
+    below.Keep(Profile(12.0, second_x0, 401, flat(2.0)));
+    below.BeginLayer(1);
+    const std::optional<SurfaceGrid> g = below.At(10.5, nullptr);
+    ASSERT_TRUE(g);
+    EXPECT_EQ(g->single_row() != nullptr, second_x0 == -9.9) << second_x0;
+    // A quarter of the way: 1.25, its variance (3/4)^2 + (1/4)^2 on points.
+    const SurfaceGrid::Sample mid = g->SampleAt(0.0 + 0.0 * kDx);
+    EXPECT_NEAR(mid.z, 1.25, 1e-6);
+    if (second_x0 == -9.9) {
+      EXPECT_NEAR(mid.variance, 0.625, 1e-6);
+    }
+    // Where only the first was scanned (left of the second's start), it
+    // stands for both.
+    EXPECT_NEAR(g->At(-9.95), 1.0, 1e-6);
+    EXPECT_NEAR(g->At(10.05), 2.0, 1e-6);  // and only the second
+  }
+}
+
+}  // namespace
+}  // namespace bead::part
