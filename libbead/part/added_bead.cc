@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "libbead/part/grid_costs.h"
 #include "libbead/part/registration.h"
 
 namespace bead::part {
@@ -17,10 +18,14 @@ struct Gains {
   std::vector<double> x, d;
 };
 
-Gains GainsAt(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, double s) {
+// grid: the new points on the surface below's grid (nullptr: not on it).
+Gains GainsAt(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, double s,
+              const PointsOnRow* grid) {
+  thread_local std::vector<float> under;
+  if (grid) grid->BelowAt(s, under);
   Gains g;
   for (std::size_t i = 0; i < x.size(); ++i) {
-    const double b = below.At(x[i] - s);
+    const double b = grid ? under[i] : below.At(x[i] - s);
     if (std::isnan(b)) continue;
     g.index.push_back(i);
     g.x.push_back(x[i]);
@@ -39,12 +44,36 @@ double MedianOf(std::vector<float>& v) {
   return *mid;
 }
 
+// The same median, first looked for among the values near `guess` (the
+// profile before's: a sensor's noise changes little from one profile to
+// the next): where as many values lie below that band as put the median
+// inside it, only the band is ordered.
+double MedianNear(std::vector<float>& v, float guess) {
+  thread_local std::vector<float> band;
+  const float lo = 0.85f * guess, hi = 1.18f * guess;
+  band.resize(v.size());
+  std::size_t below = 0, in = 0;
+  for (const float value : v) {
+    band[in] = value;
+    in += value >= lo && value < hi;
+    below += value < lo;
+  }
+  const std::size_t k = v.size() / 2;
+  if (!(guess > 0.0f) || k < below || k >= below + in) return MedianOf(v);
+  const auto at = band.begin() + static_cast<std::ptrdiff_t>(k - below);
+  std::nth_element(band.begin(), at, band.begin() + static_cast<std::ptrdiff_t>(in));
+  return *at;
+}
+
 double NoiseOf(std::span<const float> z) {
   thread_local std::vector<float> second;
-  second.clear();
-  for (std::size_t i = 0; i + 2 < z.size(); ++i)
-    second.push_back(static_cast<float>(std::abs(z[i] - 2.0 * z[i + 1] + z[i + 2])));
-  return std::max(0.002, 1.4826 * MedianOf(second) / std::sqrt(6.0));
+  thread_local float last_median = 0.0f;
+  second.resize(z.size() > 2 ? z.size() - 2 : 0);
+  for (std::size_t i = 0; i < second.size(); ++i)
+    second[i] = static_cast<float>(std::abs(z[i] - 2.0 * z[i + 1] + z[i + 2]));
+  const double median = MedianNear(second, last_median);
+  if (std::isfinite(median)) last_median = static_cast<float>(median);
+  return std::max(0.002, 1.4826 * median / std::sqrt(6.0));
 }
 
 // The bead in a gain sequence: positions (into Gains) of its feet and of
@@ -158,11 +187,33 @@ void Geometry(const Gains& g, std::span<const float> z, const Span& s, double fl
   out.center_x_mm = CrestVertex(g, z, s, crest, 0.2 * out.width_mm);
 }
 
+// Where more than half the steps lie within a thousandth of one step's
+// length (a sensor's uniform points, a few missing), the median is among
+// them: their mean, in one pass (tried from the first step and the middle
+// one; NaN where neither is so common).
+double CommonStep(std::span<const float> x) {
+  const std::size_t steps = x.size() - 1;
+  for (std::size_t at : {std::size_t{0}, steps / 2}) {
+    const float step = x[at + 1] - x[at], band = 1e-3f * step;
+    double sum = 0.0;
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < steps; ++i) {
+      const float d = x[i + 1] - x[i];
+      const bool in = std::abs(d - step) <= band;
+      sum += in ? d : 0.0f, count += in;
+    }
+    if (2 * count > steps && step > 0.0f) return sum / static_cast<double>(count);
+  }
+  return kNaN;
+}
+
 }  // namespace
 
 double ProfileNoiseMm(std::span<const float> z) { return NoiseOf(z); }
 
 double PointSpacingMm(std::span<const float> x) {
+  if (x.size() < 2) return 0.05;
+  if (const double common = CommonStep(x); std::isfinite(common)) return std::max(common, 1e-4);
   thread_local std::vector<float> d;
   d.clear();
   for (std::size_t i = 1; i < x.size(); ++i) d.push_back(x[i] - x[i - 1]);
@@ -193,8 +244,13 @@ AddedBead MeasureAddedBead(std::span<const float> x, std::span<const float> z, c
   const double tau = std::max(o.min_threshold_mm, o.threshold_sigmas * out.noise_mm);
   const double floor = std::max(o.min_edge_floor_mm, o.edge_floor_sigmas * out.noise_mm);
   Registration reg;
+  // The new points on the surface below's grid, where they lie on it
+  // (part/grid_costs.h): the gains and the registration's costs eight
+  // points at a time.
+  thread_local PointsOnRow on_row;
+  const PointsOnRow* grid = on_row.Make(x, z, below) ? &on_row : nullptr;
   for (int round = 0; round < (register_shift ? 2 : 1); ++round) {
-    const Gains g = GainsAt(x, z, below, reg.shift);
+    const Gains g = GainsAt(x, z, below, reg.shift, grid);
     if (g.d.size() < 10) return out;  // kTooFewPoints
     Span s;
     if (!BestRun(g, tau, o.max_gap_mm, o.min_bead_points, s)) {
@@ -210,7 +266,7 @@ AddedBead MeasureAddedBead(std::span<const float> x, std::span<const float> z, c
     }
     if (round == 0) {
       const double spacing = std::isfinite(spacing_mm) ? spacing_mm : PointSpacingMm(x);
-      reg = Register(x, z, below, {tau, out.noise_mm, spacing}, o, start_shift);
+      reg = Register(x, z, below, {tau, out.noise_mm, spacing}, o, start_shift, grid);
     }
   }
   out.shift_mm = reg.shift;

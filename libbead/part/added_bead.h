@@ -100,6 +100,9 @@ struct AddedBead {
 double ProfileNoiseMm(std::span<const float> z);
 // The median spacing of increasing x (one stray point far off does not
 // move it), at least 1e-4 mm; 0.05 mm where there are fewer than two.
+// Where more than half the steps agree within a thousandth of a step (a
+// sensor's uniform points), the median lies among them and their mean is
+// given: the same to that thousandth, without sorting.
 double PointSpacingMm(std::span<const float> x);
 
 // x, z: the new profile's valid points in the bed frame, x increasing.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "libbead/profile/vec8.h"
 
@@ -50,6 +51,20 @@ inline void Add(T zn, T a0, T a1, T v0, T v1, const Shared& c, Sums<T>& s) {
   }
 }
 
+// One point's (or eight points') part in where the surfaces agree: its
+// squared gain where |gain| <= limit, and whether the surface below rises
+// more than `steep` over the grid step there (sums: cost, gradient and
+// curvature hold the squares, the points and the steep ones).
+template <class T>
+inline void AddAgreement(T zn, T a0, T a1, float t, float limit, float steep, Sums<T>& s) {
+  const T d = zn - (a0 + Broadcast<T>(t) * (a1 - a0)), zero = Broadcast<T>(0.0f), one = Broadcast<T>(1.0f);
+  const T ad = d < zero ? -d : d, rise = a1 < a0 ? a0 - a1 : a1 - a0;
+  const auto agree = ad <= Broadcast<T>(limit);  // false where either is NaN
+  s.cost += agree ? d * d : zero;
+  s.gradient += agree ? one : zero;
+  s.curvature += (agree & (rise > Broadcast<T>(steep))) ? one : zero;
+}
+
 // The terms of indices [begin, end): zn the new points, a and v the row's
 // values and variances moved so that index i falls between a[i] and a[i + 1].
 template <bool kLocal>
@@ -82,9 +97,14 @@ bool PointsOnRow::Make(std::span<const float> x, std::span<const float> z, const
   if (!(last >= 1.0) || last + 1.0 >= static_cast<double>(kMaxGridPoints)) return row_ = nullptr, false;
   x0_mm_ = x.front();
   z_.assign(static_cast<std::size_t>(last) + 1, NAN);
+  const double per_mm = 1.0 / dx;
   for (std::size_t j = 0; j < x.size(); ++j) {
-    const double u = (x[j] - x0_mm_) / dx, m = std::round(u);
-    if (std::abs(u - m) > 0.01 || m < 0.0 || m > last) return row_ = nullptr, false;
+    // x increases from x0: u >= 0 but for rounding, and the nearest whole
+    // number is the truncation of u + 1/2.
+    const double u = (x[j] - x0_mm_) * per_mm;
+    const auto m = static_cast<int64_t>(u + 0.5);
+    if (std::abs(u - static_cast<double>(m)) > 0.01 || m < 0 || static_cast<double>(m) > last)
+      return row_ = nullptr, false;
     z_[static_cast<std::size_t>(m)] = z[j];
   }
   counted_.assign(z_.size() + 1, 0);
@@ -140,6 +160,36 @@ PointsOnRow::Local PointsOnRow::LocalCost(double s, double noise2, double cap) c
   const Sums<double> sums =
       Pass<true>(z_.data(), row_->z_mm.data() + in.k0, row_->variance.data() + in.k0, in.begin, in.end, c);
   return {sums.cost + outside * cap, sums.gradient, sums.curvature};
+}
+
+PointsOnRow::Agreement PointsOnRow::Agree(double s, double tau, double feature_slope) const {
+  const Span in = Inside(s);
+  const float* a = row_->z_mm.data() + in.k0;
+  const float limit = static_cast<float>(tau);
+  const float steep = static_cast<float>(feature_slope * row_->dx_mm);  // the rise over one grid step
+  Sums<V8> wide;  // cost: the squared gains; gradient: the points; curvature: those where the surface slopes
+  Sums<float> narrow;
+  std::ptrdiff_t i = in.begin;
+  for (; i + 8 <= in.end; i += 8)
+    AddAgreement(vec::Load(z_.data() + i), vec::Load(a + i), vec::Load(a + i + 1), in.t, limit, steep, wide);
+  for (; i < in.end; ++i) AddAgreement(z_[static_cast<std::size_t>(i)], a[i], a[i + 1], in.t, limit, steep, narrow);
+  Agreement out;
+  out.sum_d2 = static_cast<double>(vec::Sum(wide.cost)) + narrow.cost;
+  out.points = static_cast<int>(vec::Sum(wide.gradient) + narrow.gradient);
+  out.features = static_cast<int>(vec::Sum(wide.curvature) + narrow.curvature);
+  return out;
+}
+
+void PointsOnRow::BelowAt(double s, std::vector<float>& z_below) const {
+  const Span in = Inside(s);
+  const float* a = row_->z_mm.data() + in.k0;
+  const float t = in.t;
+  on_grid_.assign(z_.size(), NAN);
+  for (std::ptrdiff_t i = in.begin; i < in.end; ++i)
+    on_grid_[static_cast<std::size_t>(i)] = a[i] + t * (a[i + 1] - a[i]);
+  z_below.resize(static_cast<std::size_t>(counted_.back()));
+  for (std::size_t i = 0; i < z_.size(); ++i)
+    if (!std::isnan(z_[i])) z_below[static_cast<std::size_t>(counted_[i])] = on_grid_[i];
 }
 
 }  // namespace bead::part

@@ -31,6 +31,17 @@ class PointsOnRow {
   // The truncated cost over every point, with its gradient and
   // Gauss-Newton curvature in s over the points under the cap.
   Local LocalCost(double s, double noise2, double cap) const;
+  // Where the surfaces agree at s (|gain| <= tau): the sum of the squared
+  // gains, how many points, and how many of them where the surface below
+  // slopes more than feature_slope (registration.cc's Settle).
+  struct Agreement {
+    double sum_d2 = 0.0;
+    int points = 0, features = 0;
+  };
+  Agreement Agree(double s, double tau, double feature_slope) const;
+  // The surface below at each new point (in the points' order), moved by
+  // s: NaN where it is not known.
+  void BelowAt(double s, std::vector<float>& z_below) const;
 
  private:
   // The lattice indices [begin, end) of the new points whose sample at
@@ -45,9 +56,10 @@ class PointsOnRow {
   std::size_t PointsIn(std::ptrdiff_t begin, std::ptrdiff_t end) const;
 
   const SurfaceRow* row_ = nullptr;
-  double x0_mm_ = 0.0;        // x of z_[0]
-  std::vector<float> z_;      // the new points on the grid, NaN where none
-  std::vector<int> counted_;  // counted_[i]: points before index i
+  double x0_mm_ = 0.0;                  // x of z_[0]
+  std::vector<float> z_;                // the new points on the grid, NaN where none
+  std::vector<int> counted_;            // counted_[i]: points before index i
+  mutable std::vector<float> on_grid_;  // BelowAt's scratch
 };
 
 }  // namespace bead::part

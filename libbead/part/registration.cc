@@ -75,17 +75,22 @@ std::vector<double> Smoothed(const CostCurve& c, std::size_t half) {
 // a cost that rises because a shifted old bead would stick out from under
 // the new one says where the old bead could lie hidden, not where it lies.
 void Settle(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, const RegistrationScale& k,
-            const AddedBeadOptions& o, Registration& r) {
+            const AddedBeadOptions& o, const PointsOnRow* grid, Registration& r) {
   double sum = 0.0;
   int features = 0;
   const double feature_slope = 3.0 * k.noise / k.spacing;
   r.points = 0;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    const SurfaceGrid::Sample b = below.SampleAt(x[i] - r.shift);
-    const double d = z[i] - b.z;
-    if (!(std::abs(d) <= k.tau)) continue;
-    sum += d * d, ++r.points;
-    features += std::abs(b.slope) > feature_slope;
+  if (grid) {
+    const PointsOnRow::Agreement a = grid->Agree(r.shift, k.tau, feature_slope);
+    sum = a.sum_d2, r.points = a.points, features = a.features;
+  } else {
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      const SurfaceGrid::Sample b = below.SampleAt(x[i] - r.shift);
+      const double d = z[i] - b.z;
+      if (!(std::abs(d) <= k.tau)) continue;
+      sum += d * d, ++r.points;
+      features += std::abs(b.slope) > feature_slope;
+    }
   }
   r.rms = r.points ? std::sqrt(sum / r.points) : Registration::kNaN;
   r.constrained = !r.at_end && r.sigma <= o.max_shift_sigma_mm && features >= o.min_feature_points;
@@ -187,23 +192,24 @@ bool Track(std::span<const float> x, std::span<const float> z, const SurfaceGrid
 }  // namespace
 
 Registration Register(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
-                      const RegistrationScale& k, const AddedBeadOptions& o, const double* start) {
+                      const RegistrationScale& k, const AddedBeadOptions& o, const double* start,
+                      const PointsOnRow* grid) {
   // The new points on the surface below's grid, where they lie on it: the
   // costs eight points at a time (part/grid_costs.h).
   thread_local PointsOnRow on_row;
-  const PointsOnRow* grid = on_row.Make(x, z, below) ? &on_row : nullptr;
+  if (!grid && on_row.Make(x, z, below)) grid = &on_row;
   if (start && std::abs(*start) + o.warm_half_mm < o.max_shift_mm) {
     Registration r;
     if (Track(x, z, below, k, o, *start, grid, r)) {
-      Settle(x, z, below, k, o, r);
+      Settle(x, z, below, k, o, grid, r);
       if (r.constrained) return r;
     }
     r = FromCurve(Scan(x, z, below, *start, o.warm_half_mm, k, grid), k);
-    Settle(x, z, below, k, o, r);
+    Settle(x, z, below, k, o, grid, r);
     if (!r.at_end) return r;
   }
   Registration r = FromCurve(Scan(x, z, below, 0.0, o.max_shift_mm, k, grid), k);
-  Settle(x, z, below, k, o, r);
+  Settle(x, z, below, k, o, grid, r);
   return r;
 }
 

@@ -40,9 +40,14 @@ struct RegistrationScale {
   double spacing = 0.0;  // the points' median spacing, mm
 };
 
+class PointsOnRow;
+
 // x, z: the new profile's points (bed frame, x increasing); start: the
-// shift found for the profile before in the same pass (nullptr: none).
+// shift found for the profile before in the same pass (nullptr: none);
+// grid: the points on the surface below's grid (part/grid_costs.h), where
+// the caller made it (nullptr: made here where they lie on it).
 Registration Register(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
-                      const RegistrationScale& scale, const AddedBeadOptions& options, const double* start);
+                      const RegistrationScale& scale, const AddedBeadOptions& options, const double* start,
+                      const PointsOnRow* grid = nullptr);
 
 }  // namespace bead::part

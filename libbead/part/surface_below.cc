@@ -54,8 +54,10 @@ std::size_t OwnGridPoints(const StoredProfile& p, double& dx) {
   if (!(last >= 1.0) || last + 1.0 >= static_cast<double>(kMaxGridPoints)) return 0;
   dx = span / last;
   double before = -1.0;
+  const double per_mm = 1.0 / dx;
   for (std::size_t j = 0; j < m; ++j) {
-    const double u = (p.x_mm[j] - x0) / dx, k = std::round(u);
+    // u >= 0 but for rounding: its nearest whole number, u + 1/2 truncated.
+    const double u = (p.x_mm[j] - x0) * per_mm, k = static_cast<double>(static_cast<int64_t>(u + 0.5));
     if (std::abs(u - k) > 0.01 || k <= before) return 0;
     before = k;
   }
@@ -68,7 +70,8 @@ void OnOwnGrid(const StoredProfile& p, double dx, std::size_t n, double max_gap,
   row.x0_mm = p.x_mm.front(), row.dx_mm = dx, row.at_points = true;
   row.z_mm.assign(n, static_cast<float>(kNaN));
   row.variance.assign(n, 1.0f);
-  auto index = [&](std::size_t j) { return static_cast<std::size_t>(std::lround((p.x_mm[j] - row.x0_mm) / dx)); };
+  const double per_mm = 1.0 / dx;  // the points lie on the grid (OwnGridPoints): the nearest index
+  auto index = [&](std::size_t j) { return static_cast<std::size_t>((p.x_mm[j] - row.x0_mm) * per_mm + 0.5); };
   std::size_t ka = index(0);
   row.z_mm[ka] = p.z_mm[0];
   for (std::size_t j = 1; j < p.x_mm.size(); ++j) {

@@ -122,6 +122,50 @@ TEST(GridCosts, EightAtATimeTheyAreTheDefinitionsToAFloatsRounding) {
   }
 }
 
+TEST(GridCosts, WhereTheSurfacesAgreeIsCountedAsPointByPoint) {
+  const SurfaceGrid below = Below();
+  const Points p = NewPoints(0.137);
+  PointsOnRow grid;
+  ASSERT_TRUE(grid.Make(p.x, p.z, below));
+  const double feature_slope = 3.0 * kNoise / kDx;
+  for (double s : {-0.31, 0.0, 0.137, 0.25}) {
+    double sum = 0.0;
+    int points = 0, features = 0;
+    for (std::size_t i = 0; i < p.x.size(); ++i) {
+      const SurfaceGrid::Sample b = below.SampleAt(p.x[i] - s);
+      const double d = p.z[i] - b.z;
+      if (!(std::abs(d) <= kTau)) continue;
+      sum += d * d, ++points, features += std::abs(b.slope) > feature_slope;
+    }
+    const PointsOnRow::Agreement a = grid.Agree(s, kTau, feature_slope);
+    // A point within a float's rounding of tau or of the feature slope
+    // may count on one side or the other: none here is.
+    EXPECT_EQ(a.points, points) << s;
+    EXPECT_EQ(a.features, features) << s;
+    EXPECT_NEAR(a.sum_d2, sum, 1e-5 * sum) << s;
+  }
+}
+
+TEST(GridCosts, TheSurfaceBelowAtEachPointIsItsSample) {
+  const SurfaceGrid below = Below();
+  const Points p = NewPoints(0.137);
+  PointsOnRow grid;
+  ASSERT_TRUE(grid.Make(p.x, p.z, below));
+  std::vector<float> under;
+  for (double s : {-2.9, 0.0, 0.137}) {
+    grid.BelowAt(s, under);
+    ASSERT_EQ(under.size(), p.x.size());
+    for (std::size_t i = 0; i < p.x.size(); ++i) {
+      const SurfaceGrid::Sample b = below.SampleAt(p.x[i] - s);
+      EXPECT_EQ(std::isnan(under[i]), std::isnan(b.z)) << s << " " << i;
+      if (std::isnan(b.z)) continue;
+      // A float's rounding of z, and of x moved along the slope (as above).
+      const double off = std::abs(p.x[i] - (p.x[0] + (p.exact[i] - p.exact[0])));
+      EXPECT_NEAR(under[i], b.z, 1e-6 + std::abs(b.slope) * off) << s << " " << i;
+    }
+  }
+}
+
 TEST(GridCosts, PointsOffTheGridOrTwoBlendedRowsAreLeftToThePointByPointPath) {
   const SurfaceGrid below = Below();
   Points p = NewPoints(0.0);

@@ -1,0 +1,53 @@
+// The scales a part profile is measured in (part/added_bead.h): its noise
+// from second differences and its points' spacing, each found without
+// sorting where it can be, and the same as the sorted definition.
+#include "libbead/part/added_bead.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace bead::part {
+namespace {
+
+// The definition: 1.4826 median |z_i - 2 z_i+1 + z_i+2| / sqrt 6, at least 0.002.
+double SortedNoise(const std::vector<float>& z) {
+  std::vector<float> second;
+  for (std::size_t i = 0; i + 2 < z.size(); ++i)
+    second.push_back(static_cast<float>(std::abs(z[i] - 2.0 * z[i + 1] + z[i + 2])));
+  std::nth_element(second.begin(), second.begin() + static_cast<std::ptrdiff_t>(second.size() / 2), second.end());
+  return std::max(0.002, 1.4826 * second[second.size() / 2] / std::sqrt(6.0));
+}
+
+TEST(AddedBead, TheNoiseIsTheSortedMediansWhateverTheProfileBefore) {
+  std::mt19937 rng(5);
+  // Runs of profiles at one noise (the median found near the one
+  // before's), then a jump (found by sorting them all), over a bead.
+  for (double sigma : {0.01, 0.01, 0.011, 0.03, 0.03, 0.004, 0.02, 0.02, 0.02}) {
+    std::normal_distribution<double> noise(0.0, sigma);
+    std::vector<float> z;
+    for (int j = 0; j < 801; ++j) {
+      const double x = -20.0 + 0.05 * j;
+      z.push_back(static_cast<float>((std::abs(x) < 3.0 ? std::sqrt(9.0 - x * x) : 0.0) + noise(rng)));
+    }
+    EXPECT_EQ(ProfileNoiseMm(z), SortedNoise(z)) << sigma;
+  }
+}
+
+TEST(AddedBead, TheSpacingIsTheMedianStepWithOrWithoutSorting) {
+  std::vector<float> x;
+  for (int j = 0; j < 401; ++j)
+    if (j % 9 != 4) x.push_back(static_cast<float>(-10.0 + 0.05 * j));  // one in nine missing
+  // Most steps one spacing: found without sorting, within a thousandth.
+  EXPECT_NEAR(PointSpacingMm(x), 0.05, 5e-5);
+  // Steps of three lengths in turn, none more than a third: the sorted median.
+  std::vector<float> uneven{0.0f};
+  for (int j = 0; j < 99; ++j) uneven.push_back(uneven.back() + static_cast<float>(0.1 + 0.05 * (j % 3)));
+  EXPECT_NEAR(PointSpacingMm(uneven), 0.15, 1e-6);
+}
+
+}  // namespace
+}  // namespace bead::part
