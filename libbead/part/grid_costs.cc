@@ -4,84 +4,34 @@
 #include <cmath>
 #include <cstdint>
 
-#include "libbead/profile/vec8.h"
+#include "libbead/part/grid_kernel.h"
 
 namespace bead::part {
+
+#ifdef BEAD_AVX2_KERNEL
+namespace avx2 {
+const GridKernel& GridKernelBuild();
+}  // namespace avx2
+#endif
+namespace baseline {
+const GridKernel& GridKernelBuild();
+}  // namespace baseline
+
+const GridKernel& BaselineGridKernel() { return baseline::GridKernelBuild(); }
+
+const GridKernel& ActiveGridKernel() {
+#ifdef BEAD_AVX2_KERNEL
+  static const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  if (avx2) return avx2::GridKernelBuild();
+#endif
+  return BaselineGridKernel();
+}
+
 namespace {
 
-using vec::V8;
-
-template <class T>
-T Broadcast(float v) {
-  if constexpr (std::is_same_v<T, float>)
-    return v;
-  else
-    return vec::Splat(v);
-}
-
-// What every point's term shares at one shift.
-struct Shared {
-  float t, t0sq, tsq;  // the fraction between two grid values, (1 - t)^2 and t^2
-  float noise2, cap, inv_dx;
-};
-
-template <class T>
-struct Sums {
-  T cost{}, gradient{}, curvature{};
-};
-
-// One point's (or eight points') terms: the surface below a fraction t
-// from a0 to a1 (variances v0, v1; SurfaceRow::SampleAt for points on
-// the grid), the gain d = zn - z_below in its variance; a missing new
-// point (NaN) counts nothing, a missing surface below the cap.
-template <bool kLocal, class T>
-inline void Add(T zn, T a0, T a1, T v0, T v1, const Shared& c, Sums<T>& s) {
-  const T zb = a0 + Broadcast<T>(c.t) * (a1 - a0);
-  const T var = Broadcast<T>(c.t0sq) * v0 + Broadcast<T>(c.tsq) * v1;
-  const T d = zn - zb;
-  const T vv = Broadcast<T>(c.noise2) * (Broadcast<T>(1.0f) + var);
-  const T chi = d * d / vv, cap = Broadcast<T>(c.cap), zero = Broadcast<T>(0.0f);
-  const auto present = zn == zn, under = chi < cap;
-  s.cost += present ? (under ? chi : cap) : zero;
-  if constexpr (kLocal) {
-    const T g = (a1 - a0) * Broadcast<T>(c.inv_dx);
-    const auto fits = present & under;
-    s.gradient += fits ? Broadcast<T>(2.0f) * d * g / vv : zero;
-    s.curvature += fits ? Broadcast<T>(2.0f) * g * g / vv : zero;
-  }
-}
-
-// One point's (or eight points') part in where the surfaces agree: its
-// squared gain where |gain| <= limit, and whether the surface below rises
-// more than `steep` over the grid step there (sums: cost, gradient and
-// curvature hold the squares, the points and the steep ones).
-template <class T>
-inline void AddAgreement(T zn, T a0, T a1, float t, float limit, float steep, Sums<T>& s) {
-  const T d = zn - (a0 + Broadcast<T>(t) * (a1 - a0)), zero = Broadcast<T>(0.0f), one = Broadcast<T>(1.0f);
-  const T ad = d < zero ? -d : d, rise = a1 < a0 ? a0 - a1 : a1 - a0;
-  const auto agree = ad <= Broadcast<T>(limit);  // false where either is NaN
-  s.cost += agree ? d * d : zero;
-  s.gradient += agree ? one : zero;
-  s.curvature += (agree & (rise > Broadcast<T>(steep))) ? one : zero;
-}
-
-// The terms of indices [begin, end): zn the new points, a and v the row's
-// values and variances moved so that index i falls between a[i] and a[i + 1].
-template <bool kLocal>
-Sums<double> Pass(const float* zn, const float* a, const float* v, std::ptrdiff_t begin, std::ptrdiff_t end,
-                  const Shared& c) {
-  Sums<V8> wide;
-  std::ptrdiff_t i = begin;
-  for (; i + 8 <= end; i += 8)
-    Add<kLocal>(vec::Load(zn + i), vec::Load(a + i), vec::Load(a + i + 1), vec::Load(v + i), vec::Load(v + i + 1), c,
-                wide);
-  Sums<float> narrow;
-  for (; i < end; ++i) Add<kLocal>(zn[i], a[i], a[i + 1], v[i], v[i + 1], c, narrow);
-  Sums<double> out;
-  out.cost = static_cast<double>(vec::Sum(wide.cost)) + narrow.cost;
-  out.gradient = static_cast<double>(vec::Sum(wide.gradient)) + narrow.gradient;
-  out.curvature = static_cast<double>(vec::Sum(wide.curvature)) + narrow.curvature;
-  return out;
+GridShared SharedAt(float t, double noise2, double cap, double dx) {
+  return {
+      t, (1 - t) * (1 - t), t * t, static_cast<float>(noise2), static_cast<float>(cap), static_cast<float>(1.0 / dx)};
 }
 
 }  // namespace
@@ -138,28 +88,17 @@ double PointsOnRow::TruncatedCost(double s, double noise2, double cap, double lo
   const Span in = Inside(s);
   const std::ptrdiff_t b = std::clamp(in.begin, first, end), e = std::clamp(in.end, b, end);
   const double outside = static_cast<double>(PointsIn(first, end) - PointsIn(b, e));
-  const Shared c{in.t,
-                 (1 - in.t) * (1 - in.t),
-                 in.t * in.t,
-                 static_cast<float>(noise2),
-                 static_cast<float>(cap),
-                 static_cast<float>(1.0 / dx)};
-  const Sums<double> sums = Pass<false>(z_.data(), row_->z_mm.data() + in.k0, row_->variance.data() + in.k0, b, e, c);
-  return sums.cost + outside * cap;
+  const GridSums sums = kernel_->truncated(z_.data(), row_->z_mm.data() + in.k0, row_->variance.data() + in.k0, b, e,
+                                           SharedAt(in.t, noise2, cap, dx));
+  return sums.first + outside * cap;
 }
 
 PointsOnRow::Local PointsOnRow::LocalCost(double s, double noise2, double cap) const {
   const Span in = Inside(s);
   const double outside = static_cast<double>(PointsIn(0, std::ssize(z_)) - PointsIn(in.begin, in.end));
-  const Shared c{in.t,
-                 (1 - in.t) * (1 - in.t),
-                 in.t * in.t,
-                 static_cast<float>(noise2),
-                 static_cast<float>(cap),
-                 static_cast<float>(1.0 / row_->dx_mm)};
-  const Sums<double> sums =
-      Pass<true>(z_.data(), row_->z_mm.data() + in.k0, row_->variance.data() + in.k0, in.begin, in.end, c);
-  return {sums.cost + outside * cap, sums.gradient, sums.curvature};
+  const GridSums sums = kernel_->local(z_.data(), row_->z_mm.data() + in.k0, row_->variance.data() + in.k0, in.begin,
+                                       in.end, SharedAt(in.t, noise2, cap, row_->dx_mm));
+  return {sums.first + outside * cap, sums.second, sums.third};
 }
 
 PointsOnRow::Agreement PointsOnRow::Agree(double s, double tau, double feature_slope) const {
@@ -167,16 +106,11 @@ PointsOnRow::Agreement PointsOnRow::Agree(double s, double tau, double feature_s
   const float* a = row_->z_mm.data() + in.k0;
   const float limit = static_cast<float>(tau);
   const float steep = static_cast<float>(feature_slope * row_->dx_mm);  // the rise over one grid step
-  Sums<V8> wide;  // cost: the squared gains; gradient: the points; curvature: those where the surface slopes
-  Sums<float> narrow;
-  std::ptrdiff_t i = in.begin;
-  for (; i + 8 <= in.end; i += 8)
-    AddAgreement(vec::Load(z_.data() + i), vec::Load(a + i), vec::Load(a + i + 1), in.t, limit, steep, wide);
-  for (; i < in.end; ++i) AddAgreement(z_[static_cast<std::size_t>(i)], a[i], a[i + 1], in.t, limit, steep, narrow);
+  const GridSums sums = kernel_->agree(z_.data(), a, in.begin, in.end, in.t, limit, steep);
   Agreement out;
-  out.sum_d2 = static_cast<double>(vec::Sum(wide.cost)) + narrow.cost;
-  out.points = static_cast<int>(vec::Sum(wide.gradient) + narrow.gradient);
-  out.features = static_cast<int>(vec::Sum(wide.curvature) + narrow.curvature);
+  out.sum_d2 = sums.first;
+  out.points = static_cast<int>(sums.second);
+  out.features = static_cast<int>(sums.third);
   return out;
 }
 

@@ -102,47 +102,59 @@ PointsOnRow::Local Local(const Points& p, const SurfaceGrid& below, double s, Bo
 // terms' sizes bounds it.
 constexpr double kSumRounding = 0.1, kAddedRounding = 1e-5;
 
+// Both builds of the loops (grid_kernel.h): the baseline, and the one this
+// processor runs (AVX2 where it can).
+const std::vector<const GridKernel*> kKernels{&BaselineGridKernel(), &ActiveGridKernel()};
+
 TEST(GridCosts, EightAtATimeTheyAreTheDefinitionsToAFloatsRounding) {
   const SurfaceGrid below = Below();
   const double truth = 0.137;
   const Points p = NewPoints(truth);
-  PointsOnRow grid;
-  ASSERT_TRUE(grid.Make(p.x, p.z, below));
-  const double noise2 = kNoise * kNoise, cap = kTau * kTau / noise2;
-  for (double s : {-2.9, -0.31, 0.0, 0.0123, truth, 0.25, 1.77}) {
-    for (double margin : {0.0, 3.0}) {
-      const double lo = -12.0 + margin, hi = 12.0 - margin;
-      EXPECT_NEAR(grid.TruncatedCost(s, noise2, cap, lo, hi), Truncated(p, below, s, lo, hi), kSumRounding) << s;
+  for (const GridKernel* kernel : kKernels) {
+    SCOPED_TRACE(kernel->name);
+    PointsOnRow grid;
+    grid.UseKernel(*kernel);
+    ASSERT_TRUE(grid.Make(p.x, p.z, below));
+    const double noise2 = kNoise * kNoise, cap = kTau * kTau / noise2;
+    for (double s : {-2.9, -0.31, 0.0, 0.0123, truth, 0.25, 1.77}) {
+      for (double margin : {0.0, 3.0}) {
+        const double lo = -12.0 + margin, hi = 12.0 - margin;
+        EXPECT_NEAR(grid.TruncatedCost(s, noise2, cap, lo, hi), Truncated(p, below, s, lo, hi), kSumRounding) << s;
+      }
+      Bounds b;
+      const PointsOnRow::Local want = Local(p, below, s, b), got = grid.LocalCost(s, noise2, cap);
+      EXPECT_NEAR(got.cost, want.cost, kSumRounding + b.cost) << s;
+      EXPECT_NEAR(got.gradient, want.gradient, kAddedRounding * b.gradient_size + b.gradient) << s;
+      EXPECT_NEAR(got.curvature, want.curvature, kAddedRounding * want.curvature) << s;
     }
-    Bounds b;
-    const PointsOnRow::Local want = Local(p, below, s, b), got = grid.LocalCost(s, noise2, cap);
-    EXPECT_NEAR(got.cost, want.cost, kSumRounding + b.cost) << s;
-    EXPECT_NEAR(got.gradient, want.gradient, kAddedRounding * b.gradient_size + b.gradient) << s;
-    EXPECT_NEAR(got.curvature, want.curvature, kAddedRounding * want.curvature) << s;
   }
 }
 
 TEST(GridCosts, WhereTheSurfacesAgreeIsCountedAsPointByPoint) {
   const SurfaceGrid below = Below();
   const Points p = NewPoints(0.137);
-  PointsOnRow grid;
-  ASSERT_TRUE(grid.Make(p.x, p.z, below));
-  const double feature_slope = 3.0 * kNoise / kDx;
-  for (double s : {-0.31, 0.0, 0.137, 0.25}) {
-    double sum = 0.0;
-    int points = 0, features = 0;
-    for (std::size_t i = 0; i < p.x.size(); ++i) {
-      const SurfaceGrid::Sample b = below.SampleAt(p.x[i] - s);
-      const double d = p.z[i] - b.z;
-      if (!(std::abs(d) <= kTau)) continue;
-      sum += d * d, ++points, features += std::abs(b.slope) > feature_slope;
+  for (const GridKernel* kernel : kKernels) {
+    SCOPED_TRACE(kernel->name);
+    PointsOnRow grid;
+    grid.UseKernel(*kernel);
+    ASSERT_TRUE(grid.Make(p.x, p.z, below));
+    const double feature_slope = 3.0 * kNoise / kDx;
+    for (double s : {-0.31, 0.0, 0.137, 0.25}) {
+      double sum = 0.0;
+      int points = 0, features = 0;
+      for (std::size_t i = 0; i < p.x.size(); ++i) {
+        const SurfaceGrid::Sample b = below.SampleAt(p.x[i] - s);
+        const double d = p.z[i] - b.z;
+        if (!(std::abs(d) <= kTau)) continue;
+        sum += d * d, ++points, features += std::abs(b.slope) > feature_slope;
+      }
+      const PointsOnRow::Agreement a = grid.Agree(s, kTau, feature_slope);
+      // A point within a float's rounding of tau or of the feature slope
+      // may count on one side or the other: none here is.
+      EXPECT_EQ(a.points, points) << s;
+      EXPECT_EQ(a.features, features) << s;
+      EXPECT_NEAR(a.sum_d2, sum, 1e-5 * sum) << s;
     }
-    const PointsOnRow::Agreement a = grid.Agree(s, kTau, feature_slope);
-    // A point within a float's rounding of tau or of the feature slope
-    // may count on one side or the other: none here is.
-    EXPECT_EQ(a.points, points) << s;
-    EXPECT_EQ(a.features, features) << s;
-    EXPECT_NEAR(a.sum_d2, sum, 1e-5 * sum) << s;
   }
 }
 

@@ -1,0 +1,110 @@
+// The grid path's loops, built once per instruction set (grid_kernel.h).
+#include "libbead/part/grid_kernel.h"
+
+#include <type_traits>
+
+#include "libbead/profile/vec8.h"
+
+namespace bead::part::BEAD_KERNEL {
+namespace {
+
+using vec::V8;
+
+template <class T>
+T Broadcast(float v) {
+  if constexpr (std::is_same_v<T, float>)
+    return v;
+  else
+    return vec::Splat(v);
+}
+
+template <class T>
+struct Sums {
+  T first{}, second{}, third{};
+};
+
+// One point's (or eight points') terms: the surface below a fraction t
+// from a0 to a1 (variances v0, v1; SurfaceRow::SampleAt for points on the
+// grid), the gain d = zn - z_below in its variance; a missing new point
+// (NaN) counts nothing, a missing surface below the cap. first: the cost;
+// with kLocal, second and third: the gradient and curvature in s over the
+// points under the cap (d(gain)/ds is the slope of the surface below).
+template <bool kLocal, class T>
+inline void Add(T zn, T a0, T a1, T v0, T v1, const GridShared& c, Sums<T>& s) {
+  const T zb = a0 + Broadcast<T>(c.t) * (a1 - a0);
+  const T var = Broadcast<T>(c.t0sq) * v0 + Broadcast<T>(c.tsq) * v1;
+  const T d = zn - zb;
+  const T vv = Broadcast<T>(c.noise2) * (Broadcast<T>(1.0f) + var);
+  const T chi = d * d / vv, cap = Broadcast<T>(c.cap), zero = Broadcast<T>(0.0f);
+  const auto present = zn == zn, under = chi < cap;
+  s.first += present ? (under ? chi : cap) : zero;
+  if constexpr (kLocal) {
+    const T g = (a1 - a0) * Broadcast<T>(c.inv_dx);
+    const auto fits = present & under;
+    s.second += fits ? Broadcast<T>(2.0f) * d * g / vv : zero;
+    s.third += fits ? Broadcast<T>(2.0f) * g * g / vv : zero;
+  }
+}
+
+// One point's (or eight points') part in where the surfaces agree: its
+// squared gain where |gain| <= limit (first), one (second), and one where
+// the surface below rises more than `steep` over the grid step (third).
+template <class T>
+inline void AddAgreement(T zn, T a0, T a1, float t, float limit, float steep, Sums<T>& s) {
+  const T d = zn - (a0 + Broadcast<T>(t) * (a1 - a0)), zero = Broadcast<T>(0.0f), one = Broadcast<T>(1.0f);
+  const T ad = d < zero ? -d : d, rise = a1 < a0 ? a0 - a1 : a1 - a0;
+  const auto agree = ad <= Broadcast<T>(limit);  // false where either is NaN
+  s.first += agree ? d * d : zero;
+  s.second += agree ? one : zero;
+  s.third += (agree & (rise > Broadcast<T>(steep))) ? one : zero;
+}
+
+GridSums Total(const Sums<V8>& wide, const Sums<float>& narrow) {
+  return {static_cast<double>(vec::Sum(wide.first)) + narrow.first,
+          static_cast<double>(vec::Sum(wide.second)) + narrow.second,
+          static_cast<double>(vec::Sum(wide.third)) + narrow.third};
+}
+
+template <bool kLocal>
+GridSums Pass(const float* zn, const float* a, const float* v, std::ptrdiff_t begin, std::ptrdiff_t end,
+              const GridShared& c) {
+  Sums<V8> wide;
+  std::ptrdiff_t i = begin;
+  for (; i + 8 <= end; i += 8)
+    Add<kLocal>(vec::Load(zn + i), vec::Load(a + i), vec::Load(a + i + 1), vec::Load(v + i), vec::Load(v + i + 1), c,
+                wide);
+  Sums<float> narrow;
+  for (; i < end; ++i) Add<kLocal>(zn[i], a[i], a[i + 1], v[i], v[i + 1], c, narrow);
+  return Total(wide, narrow);
+}
+
+GridSums Truncated(const float* zn, const float* a, const float* v, std::ptrdiff_t begin, std::ptrdiff_t end,
+                   const GridShared& c) {
+  return Pass<false>(zn, a, v, begin, end, c);
+}
+
+GridSums Local(const float* zn, const float* a, const float* v, std::ptrdiff_t begin, std::ptrdiff_t end,
+               const GridShared& c) {
+  return Pass<true>(zn, a, v, begin, end, c);
+}
+
+GridSums Agree(const float* zn, const float* a, std::ptrdiff_t begin, std::ptrdiff_t end, float t, float limit,
+               float steep) {
+  Sums<V8> wide;
+  std::ptrdiff_t i = begin;
+  for (; i + 8 <= end; i += 8)
+    AddAgreement(vec::Load(zn + i), vec::Load(a + i), vec::Load(a + i + 1), t, limit, steep, wide);
+  Sums<float> narrow;
+  for (; i < end; ++i) AddAgreement(zn[i], a[i], a[i + 1], t, limit, steep, narrow);
+  return Total(wide, narrow);
+}
+
+#define BEAD_STRINGIFY_(x) #x
+#define BEAD_STRINGIFY(x) BEAD_STRINGIFY_(x)
+constexpr GridKernel kGridKernel{BEAD_STRINGIFY(BEAD_KERNEL), Truncated, Local, Agree};
+
+}  // namespace
+
+const GridKernel& GridKernelBuild() { return kGridKernel; }
+
+}  // namespace bead::part::BEAD_KERNEL

@@ -1,0 +1,50 @@
+// The grid path's loops (part/grid_costs.h), built as the per-profile
+// kernel is (profile/kernel.h): once for AVX2 with FMA in namespace
+// bead::part::avx2, once for the x86-64 baseline in bead::part::baseline,
+// the one this processor can run chosen once. Each sums over lattice
+// indices [begin, end): zn the new points (NaN where none), a and v the
+// surface below's values and variances moved so that index i falls a
+// fraction t of the way from a[i] to a[i + 1].
+#pragma once
+
+#include <cstddef>
+
+namespace bead::part {
+
+// What every point's term shares at one shift.
+struct GridShared {
+  float t, t0sq, tsq;  // the fraction between two grid values, (1 - t)^2 and t^2
+  float noise2, cap, inv_dx;
+};
+
+// Three sums, named by the loop that fills them.
+struct GridSums {
+  double first = 0.0, second = 0.0, third = 0.0;
+};
+
+struct GridKernel {
+  const char* name;
+  // The truncated cost (first).
+  GridSums (*truncated)(const float* zn, const float* a, const float* v, std::ptrdiff_t begin, std::ptrdiff_t end,
+                        const GridShared& c);
+  // The truncated cost, its gradient and its Gauss-Newton curvature in s.
+  GridSums (*local)(const float* zn, const float* a, const float* v, std::ptrdiff_t begin, std::ptrdiff_t end,
+                    const GridShared& c);
+  // Where |gain| <= limit: the squared gains, the points, those where the
+  // surface below rises more than `steep` over the grid step.
+  GridSums (*agree)(const float* zn, const float* a, std::ptrdiff_t begin, std::ptrdiff_t end, float t, float limit,
+                    float steep);
+};
+
+// The build this processor runs.
+const GridKernel& ActiveGridKernel();
+// The baseline build (always there), for tests to compare against.
+const GridKernel& BaselineGridKernel();
+
+#ifdef BEAD_KERNEL
+namespace BEAD_KERNEL {
+const GridKernel& GridKernelBuild();
+}  // namespace BEAD_KERNEL
+#endif
+
+}  // namespace bead::part
