@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "libbead/part/grid_costs.h"
+#include "libbead/part/part_kernel.h"
 #include "libbead/part/registration.h"
 
 namespace bead::part {
@@ -19,18 +20,20 @@ struct Gains {
 };
 
 // grid: the new points on the surface below's grid (nullptr: not on it).
-Gains GainsAt(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, double s,
-              const PointsOnRow* grid) {
+// The gains go to this thread's scratch (reused profile after profile).
+const Gains& GainsAt(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, double s,
+                     const PointsOnRow* grid) {
   thread_local std::vector<float> under;
+  thread_local Gains g;
   if (grid) grid->BelowAt(s, under);
-  Gains g;
+  g.index.resize(x.size()), g.x.resize(x.size()), g.d.resize(x.size());
+  std::size_t n = 0;
   for (std::size_t i = 0; i < x.size(); ++i) {
     const double b = grid ? under[i] : below.At(x[i] - s);
-    if (std::isnan(b)) continue;
-    g.index.push_back(i);
-    g.x.push_back(x[i]);
-    g.d.push_back(z[i] - b);
+    g.index[n] = i, g.x[n] = x[i], g.d[n] = z[i] - b;
+    n += !std::isnan(b);
   }
+  g.index.resize(n), g.x.resize(n), g.d.resize(n);
   return g;
 }
 
@@ -50,14 +53,9 @@ double MedianOf(std::vector<float>& v) {
 // inside it, only the band is ordered.
 double MedianNear(std::vector<float>& v, float guess) {
   thread_local std::vector<float> band;
-  const float lo = 0.85f * guess, hi = 1.18f * guess;
-  band.resize(v.size());
-  std::size_t below = 0, in = 0;
-  for (const float value : v) {
-    band[in] = value;
-    in += value >= lo && value < hi;
-    below += value < lo;
-  }
+  band.resize(v.size() + 8);
+  std::size_t below = 0;
+  const std::size_t in = ActivePartKernel().band(v.data(), v.size(), 0.85f * guess, 1.18f * guess, band.data(), below);
   const std::size_t k = v.size() / 2;
   if (!(guess > 0.0f) || k < below || k >= below + in) return MedianOf(v);
   const auto at = band.begin() + static_cast<std::ptrdiff_t>(k - below);
@@ -69,8 +67,7 @@ double NoiseOf(std::span<const float> z) {
   thread_local std::vector<float> second;
   thread_local float last_median = 0.0f;
   second.resize(z.size() > 2 ? z.size() - 2 : 0);
-  for (std::size_t i = 0; i < second.size(); ++i)
-    second[i] = static_cast<float>(std::abs(z[i] - 2.0 * z[i + 1] + z[i + 2]));
+  if (!second.empty()) ActivePartKernel().second_differences(z.data(), z.size(), second.data());
   const double median = MedianNear(second, last_median);
   if (std::isfinite(median)) last_median = static_cast<float>(median);
   return std::max(0.002, 1.4826 * median / std::sqrt(6.0));
@@ -250,7 +247,7 @@ AddedBead MeasureAddedBead(std::span<const float> x, std::span<const float> z, c
   thread_local PointsOnRow on_row;
   const PointsOnRow* grid = on_row.Make(x, z, below) ? &on_row : nullptr;
   for (int round = 0; round < (register_shift ? 2 : 1); ++round) {
-    const Gains g = GainsAt(x, z, below, reg.shift, grid);
+    const Gains& g = GainsAt(x, z, below, reg.shift, grid);
     if (g.d.size() < 10) return out;  // kTooFewPoints
     Span s;
     if (!BestRun(g, tau, o.max_gap_mm, o.min_bead_points, s)) {

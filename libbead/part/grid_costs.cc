@@ -4,27 +4,27 @@
 #include <cmath>
 #include <cstdint>
 
-#include "libbead/part/grid_kernel.h"
+#include "libbead/part/part_kernel.h"
 
 namespace bead::part {
 
 #ifdef BEAD_AVX2_KERNEL
 namespace avx2 {
-const GridKernel& GridKernelBuild();
+const PartKernel& PartKernelBuild();
 }  // namespace avx2
 #endif
 namespace baseline {
-const GridKernel& GridKernelBuild();
+const PartKernel& PartKernelBuild();
 }  // namespace baseline
 
-const GridKernel& BaselineGridKernel() { return baseline::GridKernelBuild(); }
+const PartKernel& BaselinePartKernel() { return baseline::PartKernelBuild(); }
 
-const GridKernel& ActiveGridKernel() {
+const PartKernel& ActivePartKernel() {
 #ifdef BEAD_AVX2_KERNEL
   static const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-  if (avx2) return avx2::GridKernelBuild();
+  if (avx2) return avx2::PartKernelBuild();
 #endif
-  return BaselineGridKernel();
+  return BaselinePartKernel();
 }
 
 namespace {

@@ -11,7 +11,7 @@
 #include <span>
 #include <vector>
 
-#include "libbead/part/grid_kernel.h"
+#include "libbead/part/part_kernel.h"
 #include "libbead/part/surface_below.h"
 
 namespace bead::part {
@@ -22,8 +22,8 @@ class PointsOnRow {
   // False (and nothing to use) where the surface below is not one row of
   // points or the new points do not lie on its grid.
   bool Make(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below);
-  // The loops' build (grid_kernel.h): the one this processor runs unless set.
-  void UseKernel(const GridKernel& kernel) { kernel_ = &kernel; }
+  // The loops' build (part_kernel.h): the one this processor runs unless set.
+  void UseKernel(const PartKernel& kernel) { kernel_ = &kernel; }
 
   // The truncated squared gain over the points with x in [lo, hi], in
   // noise variances (noise2: one point's), each capped at `cap`.
@@ -58,7 +58,7 @@ class PointsOnRow {
   // The points (not NaN) in lattice indices [begin, end).
   std::size_t PointsIn(std::ptrdiff_t begin, std::ptrdiff_t end) const;
 
-  const GridKernel* kernel_ = &ActiveGridKernel();
+  const PartKernel* kernel_ = &ActivePartKernel();
   const SurfaceRow* row_ = nullptr;
   double x0_mm_ = 0.0;                  // x of z_[0]
   std::vector<float> z_;                // the new points on the grid, NaN where none

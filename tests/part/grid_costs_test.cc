@@ -102,15 +102,15 @@ PointsOnRow::Local Local(const Points& p, const SurfaceGrid& below, double s, Bo
 // terms' sizes bounds it.
 constexpr double kSumRounding = 0.1, kAddedRounding = 1e-5;
 
-// Both builds of the loops (grid_kernel.h): the baseline, and the one this
+// Both builds of the loops (part_kernel.h): the baseline, and the one this
 // processor runs (AVX2 where it can).
-const std::vector<const GridKernel*> kKernels{&BaselineGridKernel(), &ActiveGridKernel()};
+const std::vector<const PartKernel*> kKernels{&BaselinePartKernel(), &ActivePartKernel()};
 
 TEST(GridCosts, EightAtATimeTheyAreTheDefinitionsToAFloatsRounding) {
   const SurfaceGrid below = Below();
   const double truth = 0.137;
   const Points p = NewPoints(truth);
-  for (const GridKernel* kernel : kKernels) {
+  for (const PartKernel* kernel : kKernels) {
     SCOPED_TRACE(kernel->name);
     PointsOnRow grid;
     grid.UseKernel(*kernel);
@@ -133,7 +133,7 @@ TEST(GridCosts, EightAtATimeTheyAreTheDefinitionsToAFloatsRounding) {
 TEST(GridCosts, WhereTheSurfacesAgreeIsCountedAsPointByPoint) {
   const SurfaceGrid below = Below();
   const Points p = NewPoints(0.137);
-  for (const GridKernel* kernel : kKernels) {
+  for (const PartKernel* kernel : kKernels) {
     SCOPED_TRACE(kernel->name);
     PointsOnRow grid;
     grid.UseKernel(*kernel);

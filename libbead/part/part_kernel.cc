@@ -1,6 +1,7 @@
-// The grid path's loops, built once per instruction set (grid_kernel.h).
-#include "libbead/part/grid_kernel.h"
+// The grid path's loops, built once per instruction set (part_kernel.h).
+#include "libbead/part/part_kernel.h"
 
+#include <cmath>
 #include <type_traits>
 
 #include "libbead/profile/vec8.h"
@@ -99,12 +100,41 @@ GridSums Agree(const float* zn, const float* a, std::ptrdiff_t begin, std::ptrdi
   return Total(wide, narrow);
 }
 
+void SecondDifferences(const float* z, std::size_t n, float* out) {
+  std::size_t i = 0;
+  for (; i + 10 <= n; i += 8) {
+    const V8 a = vec::Load(z + i), b = vec::Load(z + i + 1), c = vec::Load(z + i + 2);
+    vec::Store(out + i, vec::Abs((a - b) + (c - b)));
+  }
+  for (; i + 2 < n; ++i) out[i] = std::abs((z[i] - z[i + 1]) + (z[i + 2] - z[i + 1]));
+}
+
+std::size_t Band(const float* v, std::size_t n, float lo, float hi, float* band, std::size_t& below) {
+  const V8 low = vec::Splat(lo), high = vec::Splat(hi);
+  vec::M8 under{};
+  std::size_t in = 0, i = 0;
+  for (; i + 8 <= n; i += 8) {
+    const V8 x = vec::Load(v + i);
+    const int bits = vec::Bits((x >= low) & (x < high));
+    vec::Store(band + in, vec::Pack(x, vec::PackIndex(bits)));
+    in += static_cast<std::size_t>(__builtin_popcount(static_cast<unsigned>(bits)));
+    under -= x < low;  // true lanes are -1
+  }
+  below = static_cast<std::size_t>(vec::SumInt(under));
+  for (; i < n; ++i) {
+    band[in] = v[i];
+    in += v[i] >= lo && v[i] < hi;
+    below += v[i] < lo;
+  }
+  return in;
+}
+
 #define BEAD_STRINGIFY_(x) #x
 #define BEAD_STRINGIFY(x) BEAD_STRINGIFY_(x)
-constexpr GridKernel kGridKernel{BEAD_STRINGIFY(BEAD_KERNEL), Truncated, Local, Agree};
+constexpr PartKernel kPartKernel{BEAD_STRINGIFY(BEAD_KERNEL), Truncated, Local, Agree, SecondDifferences, Band};
 
 }  // namespace
 
-const GridKernel& GridKernelBuild() { return kGridKernel; }
+const PartKernel& PartKernelBuild() { return kPartKernel; }
 
 }  // namespace bead::part::BEAD_KERNEL

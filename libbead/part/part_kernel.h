@@ -1,10 +1,13 @@
-// The grid path's loops (part/grid_costs.h), built as the per-profile
-// kernel is (profile/kernel.h): once for AVX2 with FMA in namespace
-// bead::part::avx2, once for the x86-64 baseline in bead::part::baseline,
-// the one this processor can run chosen once. Each sums over lattice
-// indices [begin, end): zn the new points (NaN where none), a and v the
-// surface below's values and variances moved so that index i falls a
-// fraction t of the way from a[i] to a[i + 1].
+// A part profile's loops, built as the per-profile kernel is
+// (profile/kernel.h): once for AVX2 with FMA in namespace bead::part::avx2,
+// once for the x86-64 baseline in bead::part::baseline, the one this
+// processor can run chosen once.
+//  - The grid path's sums (part/grid_costs.h), over lattice indices
+//    [begin, end): zn the new points (NaN where none), a and v the surface
+//    below's values and variances moved so that index i falls a fraction t
+//    of the way from a[i] to a[i + 1].
+//  - The noise's second differences and the band its median is looked for
+//    in (part/added_bead.cc).
 #pragma once
 
 #include <cstddef>
@@ -22,7 +25,7 @@ struct GridSums {
   double first = 0.0, second = 0.0, third = 0.0;
 };
 
-struct GridKernel {
+struct PartKernel {
   const char* name;
   // The truncated cost (first).
   GridSums (*truncated)(const float* zn, const float* a, const float* v, std::ptrdiff_t begin, std::ptrdiff_t end,
@@ -34,16 +37,23 @@ struct GridKernel {
   // surface below rises more than `steep` over the grid step.
   GridSums (*agree)(const float* zn, const float* a, std::ptrdiff_t begin, std::ptrdiff_t end, float t, float limit,
                     float steep);
+  // out[i] = |z[i] - 2 z[i + 1] + z[i + 2]| for i < n - 2 (n >= 3), each
+  // difference of neighbours taken first (exact in floats for heights
+  // within a factor of two of each other).
+  void (*second_differences)(const float* z, std::size_t n, float* out);
+  // The values of v[0, n) in [lo, hi) to band (in v's order; band holds n
+  // + 8), how many there are; `below`: how many are under lo.
+  std::size_t (*band)(const float* v, std::size_t n, float lo, float hi, float* band, std::size_t& below);
 };
 
 // The build this processor runs.
-const GridKernel& ActiveGridKernel();
+const PartKernel& ActivePartKernel();
 // The baseline build (always there), for tests to compare against.
-const GridKernel& BaselineGridKernel();
+const PartKernel& BaselinePartKernel();
 
 #ifdef BEAD_KERNEL
 namespace BEAD_KERNEL {
-const GridKernel& GridKernelBuild();
+const PartKernel& PartKernelBuild();
 }  // namespace BEAD_KERNEL
 #endif
 
