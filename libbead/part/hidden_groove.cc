@@ -6,6 +6,8 @@
 #include <cmath>
 #include <vector>
 
+#include "libbead/part/part_kernel.h"
+
 namespace bead::part {
 namespace {
 
@@ -74,25 +76,17 @@ struct Normal {
 
 Normal Residuals(const Window& w, const Ellipse& e, const Shape& shape) {
   Normal n;
-  const bool held = std::isfinite(shape.aspect);
   // Only the points under the ellipse depend on it; the others' residuals
-  // are summed once (Window::bare).
+  // are summed once (Window::bare). Those under it: four a register
+  // (part/part_kernel.h).
   const auto lo = static_cast<std::size_t>(std::lower_bound(w.x.begin(), w.x.end(), e.x0 - e.a) - w.x.begin());
   const auto hi = static_cast<std::size_t>(std::upper_bound(w.x.begin(), w.x.end(), e.x0 + e.a) - w.x.begin());
-  n.rss = w.bare[lo] + (w.bare.back() - w.bare[std::max(lo, hi)]);
-  for (std::size_t j = lo; j < hi; ++j) {
-    const double u = (w.x[j] - e.x0) / e.a;
-    const double s = std::abs(u) < 1.0 ? std::sqrt(1.0 - u * u) : 0.0;
-    const double top = e.z0 + e.b * s;
-    const bool seen = s > 0.0 && top > w.old[j];
-    const double r = (seen ? top : w.old[j]) - w.z[j];
-    n.rss += r * r;
-    if (!seen) continue;
-    const double sd = std::max(s, 0.02);
-    Eigen::Vector4d g(e.b * u / (e.a * sd), 1.0, e.b * u * u / (e.a * sd) + (held ? shape.aspect * s : 0.0), s);
-    if (held) g[3] = 0.0;
-    n.JtJ.noalias() += g * g.transpose();
-    n.Jtr += g * r;
+  const EllipseSums sums = ActivePartKernel().ellipse(w.x.data(), w.z.data(), w.old.data(), lo, std::max(lo, hi),
+                                                      {e.x0, e.z0, e.a, e.b, shape.aspect});
+  n.rss = w.bare[lo] + (w.bare.back() - w.bare[std::max(lo, hi)]) + sums.rss;
+  for (int i = 0, k = 0; i < 4; ++i) {
+    for (int j = i; j < 4; ++j, ++k) n.JtJ(i, j) = n.JtJ(j, i) = sums.jtj[k];
+    n.Jtr[i] = sums.jtr[i];
   }
   return n;
 }

@@ -8,6 +8,8 @@
 //    of the way from a[i] to a[i + 1].
 //  - The noise's second differences and the band its median is looked for
 //    in (part/added_bead.cc).
+//  - The hidden groove's ellipse: its residuals' sums over the points under
+//    it (part/hidden_groove.cc), in doubles, four a register.
 #pragma once
 
 #include <cstddef>
@@ -18,6 +20,21 @@ namespace bead::part {
 struct GridShared {
   float t, t0sq, tsq;  // the fraction between two grid values, (1 - t)^2 and t^2
   float noise2, cap, inv_dx;
+};
+
+// The ellipse (centre x0, z0; semi-axes a across, b up) and the aspect b /
+// a where it is held (NaN: b fitted).
+struct EllipseAt {
+  double x0, z0, a, b, aspect;
+};
+
+// Its residuals' sum of squares over the points, and the normal equations
+// J^T J (upper triangle, row by row: 00 01 02 03 11 12 13 22 23 33) and
+// J^T r of x0, z0, a, b (b's column 0 where the aspect is held).
+struct EllipseSums {
+  double rss = 0.0;
+  double jtj[10] = {};
+  double jtr[4] = {};
 };
 
 // Three sums, named by the loop that fills them.
@@ -44,6 +61,10 @@ struct PartKernel {
   // The values of v[0, n) in [lo, hi) to band (in v's order; band holds n
   // + 8), how many there are; `below`: how many are under lo.
   std::size_t (*band)(const float* v, std::size_t n, float lo, float hi, float* band, std::size_t& below);
+  // The ellipse's sums over points [lo, hi) of x, z (the new surface) and
+  // old (the surface below there), as hidden_groove.cc defines them.
+  EllipseSums (*ellipse)(const double* x, const double* z, const double* old, std::size_t lo, std::size_t hi,
+                         const EllipseAt& e);
 };
 
 // The build this processor runs.

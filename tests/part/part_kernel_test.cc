@@ -1,0 +1,74 @@
+// The hidden groove's ellipse sums four points a register
+// (part/part_kernel.h) against their definition written point by point
+// (part/hidden_groove.cc), in both builds, with the aspect fitted and held.
+#include "libbead/part/part_kernel.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace bead::part {
+namespace {
+
+// The definition: the sensor sees the ellipse's top where it stands above
+// the surface below; d/dx0 = b u / (a s), d/dz0 = 1, d/da = b u^2 / (a s)
+// (+ aspect s held), d/db = s (0 held), s held at 0.02 or more; zero where
+// the surface below is seen.
+// `size`: each sum's terms' sizes, what its rounding scales with.
+EllipseSums PointByPoint(const std::vector<double>& x, const std::vector<double>& z, const std::vector<double>& old,
+                         const EllipseAt& e, EllipseSums& size) {
+  const bool held = std::isfinite(e.aspect);
+  EllipseSums out;
+  size = {};
+  for (std::size_t j = 0; j < x.size(); ++j) {
+    const double u = (x[j] - e.x0) / e.a, s = std::abs(u) < 1.0 ? std::sqrt(1.0 - u * u) : 0.0;
+    const double top = e.z0 + e.b * s;
+    const bool seen = s > 0.0 && top > old[j];
+    const double r = (seen ? top : old[j]) - z[j];
+    out.rss += r * r, size.rss += r * r;
+    if (!seen) continue;
+    const double sd = std::max(s, 0.02);
+    const double g[4] = {e.b * u / (e.a * sd), 1.0, e.b * u * u / (e.a * sd) + (held ? e.aspect * s : 0.0),
+                         held ? 0.0 : s};
+    for (int i = 0, k = 0; i < 4; ++i) {
+      for (int m = i; m < 4; ++m, ++k) out.jtj[k] += g[i] * g[m], size.jtj[k] += std::abs(g[i] * g[m]);
+      out.jtr[i] += g[i] * r, size.jtr[i] += std::abs(g[i] * r);
+    }
+  }
+  return out;
+}
+
+TEST(PartKernel, TheEllipsesSumsAreTheDefinitionsInBothBuilds) {
+  // An old bead's flank under a new bead's points, 0.05 mm apart, noisy:
+  // some under the ellipse's top, some where the surface below shows,
+  // some off the ellipse; 151 points (a partial last register).
+  std::mt19937 rng(4);
+  std::normal_distribution<double> noise(0.0, 0.01);
+  std::vector<double> x, z, old;
+  for (int j = 0; j < 151; ++j) {
+    x.push_back(-3.8 + 0.05 * j);
+    old.push_back(0.4 * std::cos(0.3 * x.back()));
+    const double u = (x.back() - 0.1) / 2.9;
+    z.push_back(std::max(old.back(), std::abs(u) < 1 ? 0.2 + 1.4 * std::sqrt(1 - u * u) : -1.0) + noise(rng));
+  }
+  for (const PartKernel* kernel : {&BaselinePartKernel(), &ActivePartKernel()})
+    for (const EllipseAt e : {EllipseAt{0.12, 0.21, 2.85, 1.38, NAN}, EllipseAt{0.05, 0.3, 3.0, 1.5, 0.5}}) {
+      SCOPED_TRACE(kernel->name);
+      EllipseSums size;
+      const EllipseSums want = PointByPoint(x, z, old, e, size);
+      const EllipseSums got = kernel->ellipse(x.data(), z.data(), old.data(), 0, x.size(), e);
+      // The same terms, each rounded a few times (fused or not), added in
+      // another order (four lanes, then across): within 151 additions' and
+      // a term's roundings, (151 + 8) 2.2e-16 of the terms' sizes.
+      const double eps = 159 * 2.2e-16;
+      EXPECT_NEAR(got.rss, want.rss, eps * size.rss);
+      for (int k = 0; k < 10; ++k) EXPECT_NEAR(got.jtj[k], want.jtj[k], eps * size.jtj[k]) << k;
+      for (int k = 0; k < 4; ++k) EXPECT_NEAR(got.jtr[k], want.jtr[k], eps * size.jtr[k]) << k;
+      EXPECT_GT(want.jtj[4], 10.0);  // points under the top counted
+    }
+}
+
+}  // namespace
+}  // namespace bead::part
