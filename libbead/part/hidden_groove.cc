@@ -165,8 +165,8 @@ double GrooveSigma(const Ellipse& e, const Shape& shape, const Eigen::MatrixXd& 
   double below_var = 0.0;
   const double step = o.spacing;
   for (double at = e.x0 - e.a + 0.5 * step; at < e.x0 + e.a; at += step)
-    if (e.z0 - e.Half(at) > o.below.At(at - o.shift))
-      below_var += o.noise_mm * o.noise_mm * o.below.VarianceAt(at - o.shift) * step * step;
+    if (const SurfaceGrid::Sample b = o.below.SampleAt(at - o.shift); e.z0 - e.Half(at) > b.z)
+      below_var += o.noise_mm * o.noise_mm * b.variance * step * step;
   const double ds = std::max(1e-3, o.shift_sigma);
   const double by_shift =
       (Groove(e, o.below, o.shift + ds) - Groove(e, o.below, o.shift - ds)) / (2.0 * ds) * o.shift_sigma;
@@ -186,8 +186,11 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
                                   double height, const PooledAspect* pooled, const HiddenGroove* previous) {
   HiddenGroove out;
   if (!(width > 0.0) || !(height > 0.0)) return out;
-  Window w;
-  for (std::size_t j = 0; j < x.size(); ++j) {
+  // The points within a width of the centre (x increasing: a range).
+  thread_local Window w;
+  w.x.clear(), w.z.clear(), w.old.clear();
+  const auto first = std::upper_bound(x.begin(), x.end(), center - width) - x.begin();
+  for (auto j = static_cast<std::size_t>(first); j < x.size() && x[j] < center + width; ++j) {
     const double old = below.At(x[j] - shift);
     if (std::abs(x[j] - center) < width && std::isfinite(old) && std::isfinite(z[j]))
       w.x.push_back(x[j]), w.z.push_back(z[j]), w.old.push_back(old);

@@ -45,6 +45,14 @@ struct SurfaceRow {
                     : variance[k] + t * (variance[k + 1] - variance[k]);
     return {z_mm[k] + t * rise, v, rise / dx_mm};
   }
+  // SampleAt's z alone.
+  double At(double x_mm) const {
+    const double u = (x_mm - x0_mm) / dx_mm;
+    if (!(u >= 0.0) || !(u <= static_cast<double>(z_mm.size()) - 1.0) || z_mm.size() < 2) return NaN();
+    const std::size_t k = std::min(static_cast<std::size_t>(u), z_mm.size() - 2);
+    const double t = u - static_cast<double>(k);
+    return z_mm[k] + t * (static_cast<double>(z_mm[k + 1]) - z_mm[k]);
+  }
   double first_mm() const { return x0_mm; }
   double last_mm() const { return x0_mm + dx_mm * static_cast<double>(z_mm.size() - 1); }
 };
@@ -73,7 +81,15 @@ class SurfaceGrid {
             (1 - w_) * sa.slope + w_ * sb.slope};
   }
   // z (NaN where unknown) and its variance.
-  double At(double x_mm) const { return SampleAt(x_mm).z; }
+  double At(double x_mm) const {
+    if (!a_) return SurfaceRow::NaN();
+    const double za = a_->At(x_mm);
+    if (!b_) return za;
+    const double zb = b_->At(x_mm);
+    if (std::isnan(zb)) return za;
+    if (std::isnan(za)) return zb;
+    return (1 - w_) * za + w_ * zb;
+  }
   double VarianceAt(double x_mm) const { return SampleAt(x_mm).variance; }
   // The one row this surface is (nullptr where it blends two).
   const SurfaceRow* single_row() const { return b_ ? nullptr : a_.get(); }

@@ -114,12 +114,14 @@ PartTwin SimulatePartWall(const PartTwinConfig& c) {
       const std::vector<Surface> stack = printer.Stack(n, p);
       b.t_s.push_back(n * layer_s + head.TimeAt(p + c.trail_mm));
       b.encoder.push_back(0);
+      const double frame_x = c.frame_x_wave_mm * std::sin(2.0 * std::numbers::pi * p / 23.0);
       for (std::size_t j = 0; j < b.points; ++j)
-        b.z_mm.push_back(static_cast<float>(stack.back().At(b.x_mm[j] + printer.Shift(n)) - frame_z + printer.Noise()));
+        b.z_mm.push_back(static_cast<float>(stack.back().At(b.x_mm[j] + frame_x + printer.Shift(n)) - frame_z +
+                                            printer.Noise()));
       scan.part->layer.push_back(n);
       scan.part->path_mm.push_back(p);
       scan.part->frame_z_mm.push_back(frame_z);
-      scan.part->frame_x_mm.push_back(0.0);
+      scan.part->frame_x_mm.push_back(frame_x);
       twin.truth.push_back(Truth(printer, stack, n, p));
     }
   }

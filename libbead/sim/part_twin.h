@@ -44,6 +44,11 @@ struct PartTwinConfig {
   double wave_period_mm = 40.0;      // ... and period
   double wander_sigma_mm = 0.3;      // the bead's centre off the head's line, per layer
   double pass_shift_sigma_mm = 0.2;  // the head's lateral error, per pass
+  // > 0: the profiler's frame moves sideways along the path by a known
+  // amount (recorded as frame_x_mm), a sine of this amplitude and a period
+  // of 23 mm: its points then lie on another grid in the bed frame at
+  // each profile, mm.
+  double frame_x_wave_mm = 0.0;
   double standoff_mm = 60.0;         // the profile frame's z = 0 this far above the layer's base
   double noise_mm = 0.01;
   double point_spacing_mm = 0.05;

@@ -108,6 +108,33 @@ TEST(PartWall, EachLayerIsMeasuredAgainstTheOneBelowWhereTheNaiveSubtractionIsNo
   EXPECT_GE(registered.shift_covered, static_cast<int>(0.9 * registered.shift_found));
 }
 
+// A profiler whose frame moves sideways along the path by a known amount:
+// each profile's points lie on another grid in the bed frame, so the layer
+// below is blended point by point from two grids and the registration
+// sums point by point (part/surface_below.h, part/registration.cc), not on
+// one grid eight at a time. The same bounds hold.
+TEST(PartWall, AProfilerFrameMovingSidewaysOffTheGridMeasuresAsWell) {
+  Errors e;
+  for (uint64_t seed : {1u, 2u}) {
+    sim::PartTwinConfig config;
+    config.seed = seed;
+    config.frame_x_wave_mm = 0.37;
+    const sim::PartTwin twin = sim::SimulatePartWall(config);
+    Collect(twin, Measure(twin.scan, twin.rig, true), e);
+  }
+  const std::size_t n = e.area.size();
+  std::printf("frame moving: area %+.4f rms %.4f mm^2, width rms %.4f, height rms %.4f, offset rms %.4f mm in %d\n",
+              Mean(e.area), Rms(e.area), Rms(e.width), Rms(e.height), Rms(e.offset), e.shift_found);
+  EXPECT_EQ(n, 2u * 1200u) << "every profile of the wall is measured";
+  EXPECT_LT(std::abs(Mean(e.area)), 4.0 * kAreaBound / std::sqrt(static_cast<double>(n)) + 0.02);
+  EXPECT_LT(Rms(e.area), kAreaBound);
+  EXPECT_LT(Rms(e.width), kWidthBound);
+  EXPECT_LT(Rms(e.height), 2.0 * kHeightNoise);
+  EXPECT_GT(e.shift_found, static_cast<int>(0.8 * 2 * 1000));
+  EXPECT_LT(Rms(e.offset), 2.0 * 0.05 / std::sqrt(12.0) * std::sqrt(2.0) + 0.01);
+  EXPECT_GE(e.shift_covered, static_cast<int>(0.9 * e.shift_found));
+}
+
 TEST(PartWall, AStreamedArchiveMeasuresAsTheScanInMemory) {
   test::TempDir dir;
   sim::PartTwinConfig config;
