@@ -116,8 +116,8 @@ PartTwin SimulatePartWall(const PartTwinConfig& c) {
       b.encoder.push_back(0);
       const double frame_x = c.frame_x_wave_mm * std::sin(2.0 * std::numbers::pi * p / 23.0);
       for (std::size_t j = 0; j < b.points; ++j)
-        b.z_mm.push_back(static_cast<float>(stack.back().At(b.x_mm[j] + frame_x + printer.Shift(n)) - frame_z +
-                                            printer.Noise()));
+        b.z_mm.push_back(
+            static_cast<float>(stack.back().At(b.x_mm[j] + frame_x + printer.Shift(n)) - frame_z + printer.Noise()));
       scan.part->layer.push_back(n);
       scan.part->path_mm.push_back(p);
       scan.part->frame_z_mm.push_back(frame_z);
