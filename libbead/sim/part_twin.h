@@ -49,7 +49,7 @@ struct PartTwinConfig {
   // of 23 mm: its points then lie on another grid in the bed frame at
   // each profile, mm.
   double frame_x_wave_mm = 0.0;
-  double standoff_mm = 60.0;         // the profile frame's z = 0 this far above the layer's base
+  double standoff_mm = 60.0;  // the profile frame's z = 0 this far above the layer's base
   double noise_mm = 0.01;
   double point_spacing_mm = 0.05;
   double field_half_mm = 20.0;  // the profile spans +-this in x
