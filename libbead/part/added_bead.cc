@@ -22,7 +22,7 @@ struct Gains {
 // grid: the new points on the surface below's grid (nullptr: not on it).
 // The gains go to this thread's scratch (reused profile after profile).
 const Gains& GainsAt(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, double s,
-                     const PointsOnRow* grid) {
+                     const PointsOnGrid* grid) {
   thread_local std::vector<float> under;
   thread_local Gains g;
   if (grid) grid->BelowAt(s, under);
@@ -244,8 +244,8 @@ AddedBead MeasureAddedBead(std::span<const float> x, std::span<const float> z, c
   // The new points on the surface below's grid, where they lie on it
   // (part/grid_costs.h): the gains and the registration's costs eight
   // points at a time.
-  thread_local PointsOnRow on_row;
-  const PointsOnRow* grid = on_row.Make(x, z, below) ? &on_row : nullptr;
+  thread_local PointsOnGrid on_grid;
+  const PointsOnGrid* grid = on_grid.Make(x, z, below) ? &on_grid : nullptr;
   for (int round = 0; round < (register_shift ? 2 : 1); ++round) {
     const Gains& g = GainsAt(x, z, below, reg.shift, grid);
     if (g.d.size() < 10) return out;  // kTooFewPoints

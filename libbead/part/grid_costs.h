@@ -1,11 +1,14 @@
-// The registration's two costs (part/registration.cc: the truncated cost,
-// and the same with its gradient and curvature in the shift) where the new
-// profile's points lie on the surface below's own grid: a sensor's uniform
-// points over a layer below scanned by the same sensor. At a shift s every
-// point then falls the same fraction t of the way between two values of
-// the grid, so the surface below at the points is two unaligned loads and
-// a blend, eight points a register, and no point looks anything up. The
-// definitions are registration.cc's, to a float's rounding.
+// The registration's costs (part/registration.cc: the truncated cost, the
+// same with its gradient and curvature in the shift, where the surfaces
+// agree) and the gains' surface below, where the new profile's points lie
+// on the grid of the surface below's rows: a sensor's uniform points over
+// a layer below scanned by the same sensor. At a shift s every point then
+// falls the same fraction of the way between two values of each row, so
+// the surface below at the points is two unaligned loads and a blend a
+// row, eight points a register (part/part_kernel.h), and no point looks
+// anything up. The definitions are registration.cc's, to a float's
+// rounding; the few points where one row is known and the other is not
+// are sampled one by one (SurfaceGrid::SampleAt).
 #pragma once
 
 #include <span>
@@ -17,10 +20,10 @@
 namespace bead::part {
 
 // The new points on the grid of the surface below.
-class PointsOnRow {
+class PointsOnGrid {
  public:
-  // False (and nothing to use) where the surface below is not one row of
-  // points or the new points do not lie on its grid.
+  // False (and nothing to use) where the surface below's rows are not
+  // points on one grid, or the new points do not lie on it.
   bool Make(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below);
   // The loops' build (part_kernel.h): the one this processor runs unless set.
   void UseKernel(const PartKernel& kernel) { kernel_ = &kernel; }
@@ -47,19 +50,25 @@ class PointsOnRow {
   void BelowAt(double s, std::vector<float>& z_below) const;
 
  private:
-  // The lattice indices [begin, end) of the new points whose sample at
-  // shift s falls inside the row, k0 the row's index for index 0, t the
-  // fraction.
+  // At shift s: the rows as the kernel reads them, the lattice indices
+  // [begin, end) inside every row, and [any_begin, any_end) inside some.
   struct Span {
-    std::ptrdiff_t begin, end, k0;
-    float t;
+    GridRows rows;
+    std::ptrdiff_t begin, end, any_begin, any_end;
   };
   Span Inside(double s) const;
   // The points (not NaN) in lattice indices [begin, end).
   std::size_t PointsIn(std::ptrdiff_t begin, std::ptrdiff_t end) const;
+  // Calls f(i, sample) for the points in [begin, end) outside [inner_begin,
+  // inner_end) where some row is known, each sampled one by one.
+  template <class F>
+  void EachEdgePoint(double s, std::ptrdiff_t begin, std::ptrdiff_t end, const Span& in, F f) const;
 
   const PartKernel* kernel_ = &ActivePartKernel();
-  const SurfaceRow* row_ = nullptr;
+  const SurfaceGrid* grid_ = nullptr;
+  const SurfaceRow* rows_[2] = {};
+  int count_ = 0;
+  double dx_mm_ = 0.0;
   double x0_mm_ = 0.0;                  // x of z_[0]
   std::vector<float> z_;                // the new points on the grid, NaN where none
   std::vector<int> counted_;            // counted_[i]: points before index i

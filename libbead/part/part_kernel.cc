@@ -25,23 +25,60 @@ struct Sums {
   T first{}, second{}, third{};
 };
 
-// One point's (or eight points') terms: the surface below a fraction t
-// from a0 to a1 (variances v0, v1; SurfaceRow::SampleAt for points on the
-// grid), the gain d = zn - z_below in its variance; a missing new point
-// (NaN) counts nothing, a missing surface below the cap. first: the cost;
-// with kLocal, second and third: the gradient and curvature in s over the
-// points under the cap (d(gain)/ds is the slope of the surface below).
+// The surface below at one index (or eight): z, its variance, and its
+// rise over the grid step there (the slope times dx).
+template <class T>
+struct Below {
+  T z, var, rise;
+};
+
+template <class T>
+inline T At(const float* p, std::ptrdiff_t i) {
+  if constexpr (std::is_same_v<T, float>)
+    return p[i];
+  else
+    return vec::Load(p + i);
+}
+
+// One row's sample a fraction t of the way from value i to value i + 1.
+template <class T>
+inline Below<T> OneRow(const float* z, const float* v, float t, std::ptrdiff_t i) {
+  const T a0 = At<T>(z, i), a1 = At<T>(z, i + 1), tt = Broadcast<T>(t);
+  const T var = Broadcast<T>((1 - t) * (1 - t)) * At<T>(v, i) + Broadcast<T>(t * t) * At<T>(v, i + 1);
+  return {a0 + tt * (a1 - a0), var, a1 - a0};
+}
+
+// The rows' sample at index i: one row, or two blended as SurfaceGrid
+// blends them (where one is not known, the other stands for both).
+template <bool kTwo, class T>
+inline Below<T> Sample(const GridRows& r, std::ptrdiff_t i) {
+  const Below<T> a = OneRow<T>(r.z[0], r.v[0], r.t[0], i);
+  if constexpr (!kTwo) {
+    return a;
+  } else {
+    const Below<T> b = OneRow<T>(r.z[1], r.v[1], r.t[1], i);
+    const T w = Broadcast<T>(r.w), w0 = Broadcast<T>(1.0f - r.w);
+    const auto a_known = a.z == a.z, b_known = b.z == b.z, both = a_known & b_known;
+    return {both ? w0 * a.z + w * b.z : (b_known ? b.z : a.z),
+            both ? w0 * w0 * a.var + w * w * b.var : (b_known ? b.var : a.var),
+            both ? w0 * a.rise + w * b.rise : (b_known ? b.rise : a.rise)};
+  }
+}
+
+// One point's (or eight points') terms over the surface below there: the
+// gain d = zn - z_below in its variance; a missing new point (NaN) counts
+// nothing, a missing surface below the cap. first: the cost; with kLocal,
+// second and third: the gradient and curvature in s over the points under
+// the cap (d(gain)/ds is the slope of the surface below).
 template <bool kLocal, class T>
-inline void Add(T zn, T a0, T a1, T v0, T v1, const GridShared& c, Sums<T>& s) {
-  const T zb = a0 + Broadcast<T>(c.t) * (a1 - a0);
-  const T var = Broadcast<T>(c.t0sq) * v0 + Broadcast<T>(c.tsq) * v1;
-  const T d = zn - zb;
-  const T vv = Broadcast<T>(c.noise2) * (Broadcast<T>(1.0f) + var);
+inline void Add(T zn, const Below<T>& b, const GridShared& c, Sums<T>& s) {
+  const T d = zn - b.z;
+  const T vv = Broadcast<T>(c.noise2) * (Broadcast<T>(1.0f) + b.var);
   const T chi = d * d / vv, cap = Broadcast<T>(c.cap), zero = Broadcast<T>(0.0f);
   const auto present = zn == zn, under = chi < cap;
   s.first += present ? (under ? chi : cap) : zero;
   if constexpr (kLocal) {
-    const T g = (a1 - a0) * Broadcast<T>(c.inv_dx);
+    const T g = b.rise * Broadcast<T>(c.inv_dx);
     const auto fits = present & under;
     s.second += fits ? Broadcast<T>(2.0f) * d * g / vv : zero;
     s.third += fits ? Broadcast<T>(2.0f) * g * g / vv : zero;
@@ -52,9 +89,9 @@ inline void Add(T zn, T a0, T a1, T v0, T v1, const GridShared& c, Sums<T>& s) {
 // squared gain where |gain| <= limit (first), one (second), and one where
 // the surface below rises more than `steep` over the grid step (third).
 template <class T>
-inline void AddAgreement(T zn, T a0, T a1, float t, float limit, float steep, Sums<T>& s) {
-  const T d = zn - (a0 + Broadcast<T>(t) * (a1 - a0)), zero = Broadcast<T>(0.0f), one = Broadcast<T>(1.0f);
-  const T ad = d < zero ? -d : d, rise = a1 < a0 ? a0 - a1 : a1 - a0;
+inline void AddAgreement(T zn, const Below<T>& b, float limit, float steep, Sums<T>& s) {
+  const T d = zn - b.z, zero = Broadcast<T>(0.0f), one = Broadcast<T>(1.0f);
+  const T ad = d < zero ? -d : d, rise = b.rise < zero ? -b.rise : b.rise;
   const auto agree = ad <= Broadcast<T>(limit);  // false where either is NaN
   s.first += agree ? d * d : zero;
   s.second += agree ? one : zero;
@@ -67,38 +104,52 @@ GridSums Total(const Sums<V8>& wide, const Sums<float>& narrow) {
           static_cast<double>(vec::Sum(wide.third)) + narrow.third};
 }
 
-template <bool kLocal>
-GridSums Pass(const float* zn, const float* a, const float* v, std::ptrdiff_t begin, std::ptrdiff_t end,
-              const GridShared& c) {
+template <bool kLocal, bool kTwo>
+GridSums Pass(const float* zn, const GridRows& r, std::ptrdiff_t begin, std::ptrdiff_t end, const GridShared& c) {
   Sums<V8> wide;
   std::ptrdiff_t i = begin;
-  for (; i + 8 <= end; i += 8)
-    Add<kLocal>(vec::Load(zn + i), vec::Load(a + i), vec::Load(a + i + 1), vec::Load(v + i), vec::Load(v + i + 1), c,
-                wide);
+  for (; i + 8 <= end; i += 8) Add<kLocal>(vec::Load(zn + i), Sample<kTwo, V8>(r, i), c, wide);
   Sums<float> narrow;
-  for (; i < end; ++i) Add<kLocal>(zn[i], a[i], a[i + 1], v[i], v[i + 1], c, narrow);
+  for (; i < end; ++i) Add<kLocal>(zn[i], Sample<kTwo, float>(r, i), c, narrow);
   return Total(wide, narrow);
 }
 
-GridSums Truncated(const float* zn, const float* a, const float* v, std::ptrdiff_t begin, std::ptrdiff_t end,
-                   const GridShared& c) {
-  return Pass<false>(zn, a, v, begin, end, c);
+GridSums Truncated(const float* zn, const GridRows& r, std::ptrdiff_t begin, std::ptrdiff_t end, const GridShared& c) {
+  return r.count == 2 ? Pass<false, true>(zn, r, begin, end, c) : Pass<false, false>(zn, r, begin, end, c);
 }
 
-GridSums Local(const float* zn, const float* a, const float* v, std::ptrdiff_t begin, std::ptrdiff_t end,
-               const GridShared& c) {
-  return Pass<true>(zn, a, v, begin, end, c);
+GridSums Local(const float* zn, const GridRows& r, std::ptrdiff_t begin, std::ptrdiff_t end, const GridShared& c) {
+  return r.count == 2 ? Pass<true, true>(zn, r, begin, end, c) : Pass<true, false>(zn, r, begin, end, c);
 }
 
-GridSums Agree(const float* zn, const float* a, std::ptrdiff_t begin, std::ptrdiff_t end, float t, float limit,
-               float steep) {
+template <bool kTwo>
+GridSums AgreePass(const float* zn, const GridRows& r, std::ptrdiff_t begin, std::ptrdiff_t end, float limit,
+                   float steep) {
   Sums<V8> wide;
   std::ptrdiff_t i = begin;
-  for (; i + 8 <= end; i += 8)
-    AddAgreement(vec::Load(zn + i), vec::Load(a + i), vec::Load(a + i + 1), t, limit, steep, wide);
+  for (; i + 8 <= end; i += 8) AddAgreement(vec::Load(zn + i), Sample<kTwo, V8>(r, i), limit, steep, wide);
   Sums<float> narrow;
-  for (; i < end; ++i) AddAgreement(zn[i], a[i], a[i + 1], t, limit, steep, narrow);
+  for (; i < end; ++i) AddAgreement(zn[i], Sample<kTwo, float>(r, i), limit, steep, narrow);
   return Total(wide, narrow);
+}
+
+GridSums Agree(const float* zn, const GridRows& r, std::ptrdiff_t begin, std::ptrdiff_t end, float limit, float steep) {
+  return r.count == 2 ? AgreePass<true>(zn, r, begin, end, limit, steep)
+                      : AgreePass<false>(zn, r, begin, end, limit, steep);
+}
+
+template <bool kTwo>
+void BelowPass(const GridRows& r, std::ptrdiff_t begin, std::ptrdiff_t end, float* out) {
+  std::ptrdiff_t i = begin;
+  for (; i + 8 <= end; i += 8) vec::Store(out + i, Sample<kTwo, V8>(r, i).z);
+  for (; i < end; ++i) out[i] = Sample<kTwo, float>(r, i).z;
+}
+
+void BelowAt(const GridRows& r, std::ptrdiff_t begin, std::ptrdiff_t end, float* out) {
+  if (r.count == 2)
+    BelowPass<true>(r, begin, end, out);
+  else
+    BelowPass<false>(r, begin, end, out);
 }
 
 void SecondDifferences(const float* z, std::size_t n, float* out) {
@@ -208,7 +259,7 @@ EllipseSums Ellipse(const double* x, const double* z, const double* old, std::si
 
 #define BEAD_STRINGIFY_(x) #x
 #define BEAD_STRINGIFY(x) BEAD_STRINGIFY_(x)
-constexpr PartKernel kPartKernel{BEAD_STRINGIFY(BEAD_KERNEL), Truncated, Local,  Agree,
+constexpr PartKernel kPartKernel{BEAD_STRINGIFY(BEAD_KERNEL), Truncated, Local,  Agree, BelowAt,
                                  SecondDifferences,           Band,      Ellipse};
 
 }  // namespace

@@ -3,9 +3,8 @@
 // once for the x86-64 baseline in bead::part::baseline, the one this
 // processor can run chosen once.
 //  - The grid path's sums (part/grid_costs.h), over lattice indices
-//    [begin, end): zn the new points (NaN where none), a and v the surface
-//    below's values and variances moved so that index i falls a fraction t
-//    of the way from a[i] to a[i + 1].
+//    [begin, end) (inside every row): zn the new points (NaN where none)
+//    over the surface below's rows (GridRows).
 //  - The noise's second differences and the band its median is looked for
 //    in (part/added_bead.cc).
 //  - The hidden groove's ellipse: its residuals' sums over the points under
@@ -16,9 +15,22 @@
 
 namespace bead::part {
 
-// What every point's term shares at one shift.
+// The surface below at the lattice's indices: one row, or two blended as
+// SurfaceGrid blends them (the second weighed w; where one is not known,
+// the other stands for both). Row r's value at index i lies a fraction
+// t[r] of the way from z[r][i] to z[r][i + 1] (the pointers moved so),
+// its variance (1 - t)^2 v[r][i] + t^2 v[r][i + 1].
+struct GridRows {
+  const float* z[2] = {};
+  const float* v[2] = {};
+  float t[2] = {};
+  float w = 0.0f;
+  int count = 1;
+};
+
+// What every point's term shares at one shift: one point's noise variance,
+// the cap, and 1 / dx.
 struct GridShared {
-  float t, t0sq, tsq;  // the fraction between two grid values, (1 - t)^2 and t^2
   float noise2, cap, inv_dx;
 };
 
@@ -45,15 +57,17 @@ struct GridSums {
 struct PartKernel {
   const char* name;
   // The truncated cost (first).
-  GridSums (*truncated)(const float* zn, const float* a, const float* v, std::ptrdiff_t begin, std::ptrdiff_t end,
+  GridSums (*truncated)(const float* zn, const GridRows& rows, std::ptrdiff_t begin, std::ptrdiff_t end,
                         const GridShared& c);
   // The truncated cost, its gradient and its Gauss-Newton curvature in s.
-  GridSums (*local)(const float* zn, const float* a, const float* v, std::ptrdiff_t begin, std::ptrdiff_t end,
+  GridSums (*local)(const float* zn, const GridRows& rows, std::ptrdiff_t begin, std::ptrdiff_t end,
                     const GridShared& c);
   // Where |gain| <= limit: the squared gains, the points, those where the
   // surface below rises more than `steep` over the grid step.
-  GridSums (*agree)(const float* zn, const float* a, std::ptrdiff_t begin, std::ptrdiff_t end, float t, float limit,
+  GridSums (*agree)(const float* zn, const GridRows& rows, std::ptrdiff_t begin, std::ptrdiff_t end, float limit,
                     float steep);
+  // The surface below at indices [begin, end) to out[begin, end).
+  void (*below_at)(const GridRows& rows, std::ptrdiff_t begin, std::ptrdiff_t end, float* out);
   // out[i] = |z[i] - 2 z[i + 1] + z[i + 2]| for i < n - 2 (n >= 3), each
   // difference of neighbours taken first (exact in floats for heights
   // within a factor of two of each other).

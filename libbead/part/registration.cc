@@ -15,7 +15,7 @@ namespace {
 // surface below) the threshold's square, whatever the shift. Least where
 // the most points agree.
 double TruncatedCost(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, double s,
-                     const RegistrationScale& k, double margin, const PointsOnRow* grid) {
+                     const RegistrationScale& k, double margin, const PointsOnGrid* grid) {
   const double noise2 = k.noise * k.noise, cap = k.tau * k.tau / noise2;
   const double lo = below.first_mm() + margin, hi = below.last_mm() - margin;
   if (grid) return grid->TruncatedCost(s, noise2, cap, lo, hi);
@@ -44,7 +44,7 @@ struct CostCurve {
 };
 
 CostCurve Scan(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, double centre, double half,
-               const RegistrationScale& k, const PointsOnRow* grid) {
+               const RegistrationScale& k, const PointsOnGrid* grid) {
   const double step = std::max(0.25 * k.spacing, 1e-3);
   CostCurve c;
   for (double s = centre - half; s <= centre + half + 1e-12; s += step) {
@@ -75,13 +75,13 @@ std::vector<double> Smoothed(const CostCurve& c, std::size_t half) {
 // a cost that rises because a shifted old bead would stick out from under
 // the new one says where the old bead could lie hidden, not where it lies.
 void Settle(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, const RegistrationScale& k,
-            const AddedBeadOptions& o, const PointsOnRow* grid, Registration& r) {
+            const AddedBeadOptions& o, const PointsOnGrid* grid, Registration& r) {
   double sum = 0.0;
   int features = 0;
   const double feature_slope = 3.0 * k.noise / k.spacing;
   r.points = 0;
   if (grid) {
-    const PointsOnRow::Agreement a = grid->Agree(r.shift, k.tau, feature_slope);
+    const PointsOnGrid::Agreement a = grid->Agree(r.shift, k.tau, feature_slope);
     sum = a.sum_d2, r.points = a.points, features = a.features;
   } else {
     for (std::size_t i = 0; i < x.size(); ++i) {
@@ -126,10 +126,10 @@ struct Local {
 };
 
 Local LocalCost(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, double s,
-                const RegistrationScale& k, const PointsOnRow* grid) {
+                const RegistrationScale& k, const PointsOnGrid* grid) {
   const double noise2 = k.noise * k.noise, cap = k.tau * k.tau / noise2;
   if (grid) {
-    const PointsOnRow::Local g = grid->LocalCost(s, noise2, cap);
+    const PointsOnGrid::Local g = grid->LocalCost(s, noise2, cap);
     return {g.cost, g.gradient, g.curvature};
   }
   Local l;
@@ -160,7 +160,7 @@ Local LocalCost(std::span<const float> x, std::span<const float> z, const Surfac
 constexpr int kHalvings = 3;
 
 bool Track(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, const RegistrationScale& k,
-           const AddedBeadOptions& o, double start, const PointsOnRow* grid, Registration& r) {
+           const AddedBeadOptions& o, double start, const PointsOnGrid* grid, Registration& r) {
   double s = start;
   Local here = LocalCost(x, z, below, s, k, grid);
   for (int iteration = 0; iteration < 8; ++iteration) {
@@ -193,11 +193,11 @@ bool Track(std::span<const float> x, std::span<const float> z, const SurfaceGrid
 
 Registration Register(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
                       const RegistrationScale& k, const AddedBeadOptions& o, const double* start,
-                      const PointsOnRow* grid) {
+                      const PointsOnGrid* grid) {
   // The new points on the surface below's grid, where they lie on it: the
   // costs eight points at a time (part/grid_costs.h).
-  thread_local PointsOnRow on_row;
-  if (!grid && on_row.Make(x, z, below)) grid = &on_row;
+  thread_local PointsOnGrid on_grid;
+  if (!grid && on_grid.Make(x, z, below)) grid = &on_grid;
   if (start && std::abs(*start) + o.warm_half_mm < o.max_shift_mm) {
     Registration r;
     if (Track(x, z, below, k, o, *start, grid, r)) {

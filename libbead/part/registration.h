@@ -40,7 +40,7 @@ struct RegistrationScale {
   double spacing = 0.0;  // the points' median spacing, mm
 };
 
-class PointsOnRow;
+class PointsOnGrid;
 
 // x, z: the new profile's points (bed frame, x increasing); start: the
 // shift found for the profile before in the same pass (nullptr: none);
@@ -48,6 +48,6 @@ class PointsOnRow;
 // the caller made it (nullptr: made here where they lie on it).
 Registration Register(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
                       const RegistrationScale& scale, const AddedBeadOptions& options, const double* start,
-                      const PointsOnRow* grid = nullptr);
+                      const PointsOnGrid* grid = nullptr);
 
 }  // namespace bead::part

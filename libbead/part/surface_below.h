@@ -93,6 +93,9 @@ class SurfaceGrid {
   double VarianceAt(double x_mm) const { return SampleAt(x_mm).variance; }
   // The one row this surface is (nullptr where it blends two).
   const SurfaceRow* single_row() const { return b_ ? nullptr : a_.get(); }
+  // Its rows (the second nullptr where there is one) and the second's weight.
+  const SurfaceRow* row(int r) const { return r == 0 ? a_.get() : b_.get(); }
+  double weight() const { return w_; }
   // Where some row is known.
   double first_mm() const { return b_ ? std::min(a_->first_mm(), b_->first_mm()) : a_->first_mm(); }
   double last_mm() const { return b_ ? std::max(a_->last_mm(), b_->last_mm()) : a_->last_mm(); }

@@ -19,17 +19,27 @@ constexpr double kDx = 0.05, kNoise = 0.01, kTau = 0.06;
 double OldBead(double x) { return std::abs(x) < 4.0 ? 1.5 * std::sqrt(1.0 - x * x / 16.0) : 0.0; }
 
 // The layer below on its points' grid: a gap of 0.3 mm not seen, a
-// stretch bridged (variance under one point's).
-SurfaceGrid Below() {
+// stretch bridged (variance under one point's); from x0 on n values.
+SurfaceRow BelowRow(double x0, int n, int gap) {
   SurfaceRow row;
-  row.x0_mm = -12.0, row.dx_mm = kDx, row.at_points = true;
-  for (int k = 0; k <= 480; ++k) {
+  row.x0_mm = x0, row.dx_mm = kDx, row.at_points = true;
+  for (int k = 0; k < n; ++k) {
     const double x = row.x0_mm + k * kDx;
-    row.z_mm.push_back(k >= 100 && k < 106 ? NAN : static_cast<float>(OldBead(x)));
+    row.z_mm.push_back(k >= gap && k < gap + 6 ? NAN : static_cast<float>(OldBead(x)));
     row.variance.push_back(k >= 200 && k < 204 ? 0.5f : 1.0f);
   }
-  return SurfaceGrid(std::move(row));
+  return row;
 }
+
+// One row; and two, the second 0.37 of a spacing off the first's grid (a
+// profiler frame moved sideways between them), shorter, its gap elsewhere,
+// weighed 0.3: where one is not known the other stands for both.
+std::vector<SurfaceGrid> Surfaces() {
+  auto first = std::make_shared<const SurfaceRow>(BelowRow(-12.0, 481, 100));
+  auto second = std::make_shared<const SurfaceRow>(BelowRow(-11.5 + 0.37 * kDx, 450, 150));
+  return {SurfaceGrid(first, nullptr, 0.0), SurfaceGrid(first, second, 0.3)};
+}
+SurfaceGrid Below() { return Surfaces()[0]; }
 
 // A new bead over it, its points a third of a spacing off the grid's
 // phase, every 37th missing.
@@ -74,9 +84,9 @@ double Truncated(const Points& p, const SurfaceGrid& below, double s, double lo,
 struct Bounds {
   double cost = 0.0, gradient = 0.0, gradient_size = 0.0;
 };
-PointsOnRow::Local Local(const Points& p, const SurfaceGrid& below, double s, Bounds& bounds) {
+PointsOnGrid::Local Local(const Points& p, const SurfaceGrid& below, double s, Bounds& bounds) {
   const double noise2 = kNoise * kNoise, cap = kTau * kTau / noise2;
-  PointsOnRow::Local l;
+  PointsOnGrid::Local l;
   bounds = {};
   for (std::size_t i = 0; i < p.x.size(); ++i) {
     const SurfaceGrid::Sample b = below.SampleAt(p.x[i] - s);
@@ -107,87 +117,94 @@ constexpr double kSumRounding = 0.1, kAddedRounding = 1e-5;
 const std::vector<const PartKernel*> kKernels{&BaselinePartKernel(), &ActivePartKernel()};
 
 TEST(GridCosts, EightAtATimeTheyAreTheDefinitionsToAFloatsRounding) {
-  const SurfaceGrid below = Below();
-  const double truth = 0.137;
-  const Points p = NewPoints(truth);
-  for (const PartKernel* kernel : kKernels) {
-    SCOPED_TRACE(kernel->name);
-    PointsOnRow grid;
-    grid.UseKernel(*kernel);
-    ASSERT_TRUE(grid.Make(p.x, p.z, below));
-    const double noise2 = kNoise * kNoise, cap = kTau * kTau / noise2;
-    for (double s : {-2.9, -0.31, 0.0, 0.0123, truth, 0.25, 1.77}) {
-      for (double margin : {0.0, 3.0}) {
-        const double lo = -12.0 + margin, hi = 12.0 - margin;
-        EXPECT_NEAR(grid.TruncatedCost(s, noise2, cap, lo, hi), Truncated(p, below, s, lo, hi), kSumRounding) << s;
+  for (const SurfaceGrid& below : Surfaces()) {
+    SCOPED_TRACE(below.row(1) ? "two rows" : "one row");
+    const double truth = 0.137;
+    const Points p = NewPoints(truth);
+    for (const PartKernel* kernel : kKernels) {
+      SCOPED_TRACE(kernel->name);
+      PointsOnGrid grid;
+      grid.UseKernel(*kernel);
+      ASSERT_TRUE(grid.Make(p.x, p.z, below));
+      const double noise2 = kNoise * kNoise, cap = kTau * kTau / noise2;
+      for (double s : {-2.9, -0.31, 0.0, 0.0123, truth, 0.25, 1.77}) {
+        for (double margin : {0.0, 3.0}) {
+          const double lo = -12.0 + margin, hi = 12.0 - margin;
+          EXPECT_NEAR(grid.TruncatedCost(s, noise2, cap, lo, hi), Truncated(p, below, s, lo, hi), kSumRounding) << s;
+        }
+        Bounds b;
+        const PointsOnGrid::Local want = Local(p, below, s, b), got = grid.LocalCost(s, noise2, cap);
+        EXPECT_NEAR(got.cost, want.cost, kSumRounding + b.cost) << s;
+        EXPECT_NEAR(got.gradient, want.gradient, kAddedRounding * b.gradient_size + b.gradient) << s;
+        EXPECT_NEAR(got.curvature, want.curvature, kAddedRounding * want.curvature) << s;
       }
-      Bounds b;
-      const PointsOnRow::Local want = Local(p, below, s, b), got = grid.LocalCost(s, noise2, cap);
-      EXPECT_NEAR(got.cost, want.cost, kSumRounding + b.cost) << s;
-      EXPECT_NEAR(got.gradient, want.gradient, kAddedRounding * b.gradient_size + b.gradient) << s;
-      EXPECT_NEAR(got.curvature, want.curvature, kAddedRounding * want.curvature) << s;
     }
   }
 }
 
 TEST(GridCosts, WhereTheSurfacesAgreeIsCountedAsPointByPoint) {
-  const SurfaceGrid below = Below();
-  const Points p = NewPoints(0.137);
-  for (const PartKernel* kernel : kKernels) {
-    SCOPED_TRACE(kernel->name);
-    PointsOnRow grid;
-    grid.UseKernel(*kernel);
-    ASSERT_TRUE(grid.Make(p.x, p.z, below));
-    const double feature_slope = 3.0 * kNoise / kDx;
-    for (double s : {-0.31, 0.0, 0.137, 0.25}) {
-      double sum = 0.0;
-      int points = 0, features = 0;
-      for (std::size_t i = 0; i < p.x.size(); ++i) {
-        const SurfaceGrid::Sample b = below.SampleAt(p.x[i] - s);
-        const double d = p.z[i] - b.z;
-        if (!(std::abs(d) <= kTau)) continue;
-        sum += d * d, ++points, features += std::abs(b.slope) > feature_slope;
+  for (const SurfaceGrid& below : Surfaces()) {
+    SCOPED_TRACE(below.row(1) ? "two rows" : "one row");
+    const Points p = NewPoints(0.137);
+    for (const PartKernel* kernel : kKernels) {
+      SCOPED_TRACE(kernel->name);
+      PointsOnGrid grid;
+      grid.UseKernel(*kernel);
+      ASSERT_TRUE(grid.Make(p.x, p.z, below));
+      const double feature_slope = 3.0 * kNoise / kDx;
+      for (double s : {-0.31, 0.0, 0.137, 0.25}) {
+        double sum = 0.0;
+        int points = 0, features = 0;
+        for (std::size_t i = 0; i < p.x.size(); ++i) {
+          const SurfaceGrid::Sample b = below.SampleAt(p.x[i] - s);
+          const double d = p.z[i] - b.z;
+          if (!(std::abs(d) <= kTau)) continue;
+          sum += d * d, ++points, features += std::abs(b.slope) > feature_slope;
+        }
+        const PointsOnGrid::Agreement a = grid.Agree(s, kTau, feature_slope);
+        // A point within a float's rounding of tau or of the feature slope
+        // may count on one side or the other: none here is.
+        EXPECT_EQ(a.points, points) << s;
+        EXPECT_EQ(a.features, features) << s;
+        EXPECT_NEAR(a.sum_d2, sum, 1e-5 * sum) << s;
       }
-      const PointsOnRow::Agreement a = grid.Agree(s, kTau, feature_slope);
-      // A point within a float's rounding of tau or of the feature slope
-      // may count on one side or the other: none here is.
-      EXPECT_EQ(a.points, points) << s;
-      EXPECT_EQ(a.features, features) << s;
-      EXPECT_NEAR(a.sum_d2, sum, 1e-5 * sum) << s;
     }
   }
 }
 
 TEST(GridCosts, TheSurfaceBelowAtEachPointIsItsSample) {
-  const SurfaceGrid below = Below();
-  const Points p = NewPoints(0.137);
-  PointsOnRow grid;
-  ASSERT_TRUE(grid.Make(p.x, p.z, below));
-  std::vector<float> under;
-  for (double s : {-2.9, 0.0, 0.137}) {
-    grid.BelowAt(s, under);
-    ASSERT_EQ(under.size(), p.x.size());
-    for (std::size_t i = 0; i < p.x.size(); ++i) {
-      const SurfaceGrid::Sample b = below.SampleAt(p.x[i] - s);
-      EXPECT_EQ(std::isnan(under[i]), std::isnan(b.z)) << s << " " << i;
-      if (std::isnan(b.z)) continue;
-      // A float's rounding of z, and of x moved along the slope (as above).
-      const double off = std::abs(p.x[i] - (p.x[0] + (p.exact[i] - p.exact[0])));
-      EXPECT_NEAR(under[i], b.z, 1e-6 + std::abs(b.slope) * off) << s << " " << i;
+  for (const SurfaceGrid& below : Surfaces()) {
+    SCOPED_TRACE(below.row(1) ? "two rows" : "one row");
+    const Points p = NewPoints(0.137);
+    PointsOnGrid grid;
+    ASSERT_TRUE(grid.Make(p.x, p.z, below));
+    std::vector<float> under;
+    for (double s : {-2.9, 0.0, 0.137}) {
+      grid.BelowAt(s, under);
+      ASSERT_EQ(under.size(), p.x.size());
+      for (std::size_t i = 0; i < p.x.size(); ++i) {
+        const SurfaceGrid::Sample b = below.SampleAt(p.x[i] - s);
+        EXPECT_EQ(std::isnan(under[i]), std::isnan(b.z)) << s << " " << i;
+        if (std::isnan(b.z)) continue;
+        // A float's rounding of z, and of x moved along the slope (as above).
+        const double off = std::abs(p.x[i] - (p.x[0] + (p.exact[i] - p.exact[0])));
+        EXPECT_NEAR(under[i], b.z, 1e-6 + std::abs(b.slope) * off) << s << " " << i;
+      }
     }
   }
 }
 
-TEST(GridCosts, PointsOffTheGridOrTwoBlendedRowsAreLeftToThePointByPointPath) {
+TEST(GridCosts, PointsOffTheGridOrRowsOfOtherSpacingsAreLeftToThePointByPointPath) {
   const SurfaceGrid below = Below();
   Points p = NewPoints(0.0);
-  PointsOnRow grid;
+  PointsOnGrid grid;
   EXPECT_TRUE(grid.Make(p.x, p.z, below));
   p.x[17] += static_cast<float>(0.2 * kDx);  // one point off the spacing's grid
   EXPECT_FALSE(grid.Make(p.x, p.z, below));
   const Points q = NewPoints(0.0);
-  SurfaceRow row = *below.single_row();
-  const SurfaceGrid two(std::make_shared<const SurfaceRow>(row), std::make_shared<const SurfaceRow>(row), 0.5);
+  SurfaceRow row = *below.single_row(), coarser = row;
+  coarser.dx_mm *= 1.5;  // a layer below scanned at another spacing
+  const SurfaceGrid two(std::make_shared<const SurfaceRow>(row), std::make_shared<const SurfaceRow>(coarser), 0.5);
   EXPECT_FALSE(grid.Make(q.x, q.z, two));
   row.at_points = false;  // a fine resampling of points, not the points
   EXPECT_FALSE(grid.Make(q.x, q.z, SurfaceGrid(row)));
