@@ -20,31 +20,35 @@ namespace {
 
 // The wall of `length_mm` (50: 100 profiles a layer, a quarter of them
 // those a layer's groove shape is pooled on; 400: 800 a layer).
-const bead::sim::PartTwin& Wall(int length_mm = 50) {
-  static std::map<int, bead::sim::PartTwin> twins;
-  auto it = twins.find(length_mm);
+// frame_moving: the profiler's frame moves sideways along the path by a
+// known amount (PartTwinConfig::frame_x_wave_mm 0.37 mm), each profile's
+// points then on another grid in the bed frame.
+const bead::sim::PartTwin& Wall(int length_mm = 50, bool frame_moving = false) {
+  static std::map<std::pair<int, bool>, bead::sim::PartTwin> twins;
+  auto it = twins.find({length_mm, frame_moving});
   if (it == twins.end()) {
     bead::sim::PartTwinConfig c;
     c.layers = 3;
     c.length_mm = length_mm;
-    it = twins.emplace(length_mm, bead::sim::SimulatePartWall(c)).first;
+    c.frame_x_wave_mm = frame_moving ? 0.37 : 0.0;
+    it = twins.emplace(std::pair{length_mm, frame_moving}, bead::sim::SimulatePartWall(c)).first;
   }
   return it->second;
 }
 
-void Rate(benchmark::State& state, std::size_t profiles, int length_mm = 50) {
-  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * profiles));
-  state.counters["profiles_per_s"] =
-      benchmark::Counter(static_cast<double>(state.iterations() * profiles), benchmark::Counter::kIsRate);
-  state.counters["points"] = static_cast<double>(Wall(length_mm).scan.profiles.points);
+void Rate(benchmark::State& state, const bead::sim::PartTwin& twin) {
+  const auto profiles = static_cast<double>(state.iterations() * twin.scan.profiles.size());
+  state.SetItemsProcessed(static_cast<int64_t>(profiles));
+  state.counters["profiles_per_s"] = benchmark::Counter(profiles, benchmark::Counter::kIsRate);
+  state.counters["points"] = static_cast<double>(twin.scan.profiles.points);
 }
-
 // Every profile of the wall, each layer against the one below; with the
 // groove hidden under the overhangs estimated (range 0 = 1: the default)
-// or not (0: the area seen only); range 1: the wall's length, mm.
+// or not (0: the area seen only); range 1: the wall's length, mm; range 2
+// (1): the profiler's frame moving sideways.
 void BM_PartProfile(benchmark::State& state) {
   const int length_mm = static_cast<int>(state.range(1));
-  const bead::sim::PartTwin& twin = Wall(length_mm);
+  const bead::sim::PartTwin& twin = Wall(length_mm, state.range(2) != 0);
   bead::part::MeasurePartOptions options;
   options.correct_hidden = state.range(0) != 0;
   std::size_t valid = 0;
@@ -56,7 +60,7 @@ void BM_PartProfile(benchmark::State& state) {
                             [&](const bead::part::PartGeometryRow& r) { valid += r.bead.valid(); });
   }
   benchmark::DoNotOptimize(valid);
-  Rate(state, twin.scan.profiles.size(), length_mm);
+  Rate(state, twin);
 }
 
 // The baseline: the wheel's geometry (a bead on the reference line) on the
@@ -69,13 +73,14 @@ void BM_WheelProfileOnThePart(benchmark::State& state) {
   for (auto _ : state)
     for (std::size_t k = 0; k < b.size(); ++k) sum += processor.Process(b.view(k)).area_mm2;
   benchmark::DoNotOptimize(sum);
-  Rate(state, b.size());
+  Rate(state, twin);
 }
 
 BENCHMARK(BM_PartProfile)
-    ->Args({1, 50})
-    ->Args({0, 50})
-    ->Args({1, 400})
+    ->Args({1, 50, 0})
+    ->Args({0, 50, 0})
+    ->Args({1, 400, 0})
+    ->Args({0, 50, 1})
     ->Repetitions(5)
     ->MinTime(0.5)
     ->Unit(benchmark::kMillisecond);
