@@ -226,12 +226,22 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   Eigen::MatrixXd JtJ, best_JtJ;  // the fits' J^T J
   double best_rss = INFINITY;
   // With the shape held, the neighbour's ellipse first: kept where it
-  // fits as well as the neighbour's did.
+  // fits as well as the neighbour's did; or where it does not, but the
+  // start sunk half its height, 0.6 of the width across, fits no tenth
+  // better: the profile itself fits worse than its neighbour (on the twin's
+  // wall, 18 % of its rows; in 82 % of those all eight starts found no
+  // tenth better either).
   bool warm = false;
   if (pooled && previous && previous->ok && std::isfinite(previous->fit_rms_mm)) {
     Ellipse e{center + previous->dx0, base + previous->dz0, previous->a, previous->b};
     best_rss = Fit(w, e, shape, best_JtJ), best = e;
     warm = std::sqrt(best_rss / static_cast<double>(w.x.size())) <= 1.2 * previous->fit_rms_mm;
+    if (!warm) {
+      Ellipse probe{center, base + 0.5 * height, 0.6 * width, 0.5 * height};
+      const double rss = Fit(w, probe, shape, JtJ);
+      warm = !(rss < 0.9 * best_rss);
+      if (rss < best_rss) best_rss = rss, best = probe, best_JtJ = JtJ;
+    }
   }
   for (double lift : {0.0, 0.25, 0.5, 0.75})
     for (double across : {0.5, 0.6}) {
