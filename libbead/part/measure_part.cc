@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <numeric>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -21,15 +22,22 @@ namespace {
 StoredProfile InBedFrame(const ProfileView& v, double path, double frame_x, double frame_z) {
   StoredProfile p;
   p.path_mm = path;
-  p.x_mm.reserve(v.x_mm.size()), p.z_mm.reserve(v.x_mm.size());
+  const std::size_t points = v.x_mm.size();
+  p.x_mm.resize(points), p.z_mm.resize(points);
+  // Each point written, kept where finite (the next overwrites one that
+  // is not).
+  std::size_t n = 0;
   bool increasing = true;
-  for (std::size_t j = 0; j < v.x_mm.size(); ++j)
-    if (std::isfinite(v.x_mm[j]) && std::isfinite(v.z_mm[j])) {
-      const auto x = static_cast<float>(v.x_mm[j] + frame_x);
-      increasing = increasing && (p.x_mm.empty() || p.x_mm.back() < x);
-      p.x_mm.push_back(x);
-      p.z_mm.push_back(static_cast<float>(v.z_mm[j] + frame_z));
-    }
+  float before = -std::numeric_limits<float>::infinity();
+  for (std::size_t j = 0; j < points; ++j) {
+    const auto x = static_cast<float>(v.x_mm[j] + frame_x), z = static_cast<float>(v.z_mm[j] + frame_z);
+    const bool keep = std::isfinite(x) && std::isfinite(z);
+    p.x_mm[n] = x, p.z_mm[n] = z;
+    increasing = increasing && (!keep || before < x);
+    before = keep ? x : before;
+    n += keep;
+  }
+  p.x_mm.resize(n), p.z_mm.resize(n);
   if (!increasing) {
     std::vector<std::pair<float, float>> points;
     for (std::size_t j = 0; j < p.x_mm.size(); ++j) points.emplace_back(p.x_mm[j], p.z_mm[j]);
