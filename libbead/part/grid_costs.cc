@@ -8,25 +8,6 @@
 
 namespace bead::part {
 
-#ifdef BEAD_AVX2_KERNEL
-namespace avx2 {
-const PartKernel& PartKernelBuild();
-}  // namespace avx2
-#endif
-namespace baseline {
-const PartKernel& PartKernelBuild();
-}  // namespace baseline
-
-const PartKernel& BaselinePartKernel() { return baseline::PartKernelBuild(); }
-
-const PartKernel& ActivePartKernel() {
-#ifdef BEAD_AVX2_KERNEL
-  static const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-  if (avx2) return avx2::PartKernelBuild();
-#endif
-  return BaselinePartKernel();
-}
-
 namespace {
 
 GridShared SharedAt(double noise2, double cap, double dx) {
@@ -72,8 +53,9 @@ PointsOnGrid::Span PointsOnGrid::Inside(double s) const {
   Span span;
   span.rows.count = count_;
   span.rows.w = static_cast<float>(grid_->weight());
-  span.begin = span.any_begin = std::ssize(z_), span.end = span.any_end = 0;
+  // The intersection shrinks from every index, the union grows from none.
   span.begin = 0, span.end = std::ssize(z_);
+  span.any_begin = std::ssize(z_), span.any_end = 0;
   for (int r = 0; r < count_; ++r) {
     const SurfaceRow& row = *rows_[r];
     const double c = (x0_mm_ - s - row.x0_mm) / dx_mm_, whole = std::floor(c);

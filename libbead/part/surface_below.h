@@ -2,13 +2,13 @@
 // below at the same place along the toolpath, in the bed frame (x_bed =
 // x + frame_x_mm, z_bed = z + frame_z_mm). A layer's profiles are kept as
 // they are measured; when the next layer begins they become the surface
-// below and the layer before is let go: memory bounded by one layer, not
-// by the part.
+// below (each a row on its points' grid: RowOf) and the layer before is
+// let go: memory bounded by one layer, not by the part.
 #pragma once
 
 #include <algorithm>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -80,7 +80,7 @@ class SurfaceGrid {
     return {(1 - w_) * sa.z + w_ * sb.z, (1 - w_) * (1 - w_) * sa.variance + w_ * w_ * sb.variance,
             (1 - w_) * sa.slope + w_ * sb.slope};
   }
-  // z (NaN where unknown) and its variance.
+  // SampleAt's z alone (NaN where unknown), and its variance alone.
   double At(double x_mm) const {
     if (!a_) return SurfaceRow::NaN();
     const double za = a_->At(x_mm);
