@@ -19,12 +19,12 @@ install(TARGETS ${bead_core_targets} EXPORT beadCoreTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS ${bead_full_targets} EXPORT beadTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 # Every header but the internals no installed header includes: the
-# per-profile kernel's vector code (built once per instruction set), the
-# identification's search, the stripe finder's estimators and the twin's
-# YAML reader.
+# per-profile kernel's vector code and the part's (each built once per
+# instruction set, and the part's grid path over it), the identification's
+# search, the stripe finder's estimators and the twin's YAML reader.
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/libbead/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/libbead
   FILES_MATCHING PATTERN "*.h"
-  PATTERN "vec8.h" EXCLUDE PATTERN "vec_sort.h" EXCLUDE PATTERN "kernel.h" EXCLUDE PATTERN "bead_heights.h" EXCLUDE PATTERN "sim_yaml_reader.h" EXCLUDE PATTERN "sim_timeline.h" EXCLUDE
+  PATTERN "vec8.h" EXCLUDE PATTERN "vec_sort.h" EXCLUDE PATTERN "kernel.h" EXCLUDE PATTERN "part_kernel.h" EXCLUDE PATTERN "grid_costs.h" EXCLUDE PATTERN "bead_heights.h" EXCLUDE PATTERN "sim_yaml_reader.h" EXCLUDE PATTERN "sim_timeline.h" EXCLUDE
   PATTERN "output_error.h" EXCLUDE PATTERN "stripe_steger.h" EXCLUDE PATTERN "stripe_line.h" EXCLUDE)
 install(FILES ${PROJECT_SOURCE_DIR}/include/bead/bead.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/bead)
 install(TARGETS bead bead-measure bead-flow bead-batch bead-calibrate bead-simulate bead-import bead-export bead-frames

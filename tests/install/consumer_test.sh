@@ -13,7 +13,7 @@ cmake --install "$build" --prefix "$prefix" >/dev/null
 for h in profile/profile_processor.h model/model_file.h io/contained.h; do
   [ -f "$prefix/include/libbead/$h" ] || { echo "public header $h not installed" >&2; exit 1; }
 done
-for h in profile/vec8.h profile/kernel.h profile/bead_heights.h sim/sim_yaml_reader.h sim/sim_timeline.h model/output_error.h vision/stripe_line.h; do
+for h in profile/vec8.h profile/kernel.h part/part_kernel.h part/grid_costs.h profile/bead_heights.h sim/sim_yaml_reader.h sim/sim_timeline.h model/output_error.h vision/stripe_line.h; do
   [ ! -e "$prefix/include/libbead/$h" ] || { echo "internal header $h installed" >&2; exit 1; }
 done
 cmake -S "$src/tests/install/consumer" -B "$work/consumer" -G Ninja -DCMAKE_BUILD_TYPE=Release \
