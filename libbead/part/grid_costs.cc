@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numeric>
 
 #include "libbead/part/part_kernel.h"
 
@@ -34,6 +35,13 @@ bool PointsOnGrid::Make(std::span<const float> x, std::span<const float> z, cons
   const double last = std::round((x.back() - x.front()) / dx_mm_);
   if (!(last >= 1.0) || last + 1.0 >= static_cast<double>(kMaxGridPoints)) return count_ = 0, false;
   x0_mm_ = x.front();
+  counted_.resize(static_cast<std::size_t>(last) + 2);
+  if (last + 1.0 == static_cast<double>(x.size()) && OnEveryGridPoint(x, dx_mm_)) {
+    // Every grid point measured: the points themselves.
+    z_.assign(z.begin(), z.end());
+    std::iota(counted_.begin(), counted_.end(), 0);
+    return true;
+  }
   z_.assign(static_cast<std::size_t>(last) + 1, NAN);
   const double per_mm = 1.0 / dx_mm_;
   for (std::size_t j = 0; j < x.size(); ++j) {

@@ -53,6 +53,7 @@ std::size_t OwnGridPoints(const StoredProfile& p, double& dx) {
   const double last = std::round(span / p.spacing_mm);
   if (!(last >= 1.0) || last + 1.0 >= static_cast<double>(kMaxGridPoints)) return 0;
   dx = span / last;
+  if (last + 1.0 == static_cast<double>(m) && OnEveryGridPoint(p.x_mm, dx)) return m;
   double before = -1.0;
   const double per_mm = 1.0 / dx;
   for (std::size_t j = 0; j < m; ++j) {
@@ -68,8 +69,12 @@ std::size_t OwnGridPoints(const StoredProfile& p, double& dx) {
 // longer than max_gap bridged linearly (variance (1 - t)^2 + t^2).
 void OnOwnGrid(const StoredProfile& p, double dx, std::size_t n, double max_gap, SurfaceRow& row) {
   row.x0_mm = p.x_mm.front(), row.dx_mm = dx, row.at_points = true;
-  row.z_mm.assign(n, static_cast<float>(kNaN));
   row.variance.assign(n, 1.0f);
+  if (n == p.z_mm.size()) {  // every grid point measured: the points themselves
+    row.z_mm = p.z_mm;
+    return;
+  }
+  row.z_mm.assign(n, static_cast<float>(kNaN));
   const double per_mm = 1.0 / dx;  // the points lie on the grid (OwnGridPoints): the nearest index
   auto index = [&](std::size_t j) { return static_cast<std::size_t>((p.x_mm[j] - row.x0_mm) * per_mm + 0.5); };
   std::size_t ka = index(0);

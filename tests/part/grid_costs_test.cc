@@ -47,12 +47,12 @@ struct Points {
   std::vector<float> x, z;
   std::vector<double> exact;  // the x each float x stands for
 };
-Points NewPoints(double shift) {
+Points NewPoints(double shift, bool dropouts = true) {
   std::mt19937 rng(3);
   std::normal_distribution<double> noise(0.0, kNoise);
   Points p;
   for (int j = 0; j < 401; ++j) {
-    if (j % 37 == 5) continue;
+    if (dropouts && j % 37 == 5) continue;
     const double x = -10.0 + kDx / 3.0 + j * kDx, u = (x - shift - 0.3) / 3.0;
     const double top = std::abs(u) < 1.0 ? 1.2 + 1.5 * std::sqrt(1.0 - u * u) : 0.0;
     p.x.push_back(static_cast<float>(x));
@@ -173,25 +173,29 @@ TEST(GridCosts, WhereTheSurfacesAgreeIsCountedAsPointByPoint) {
 }
 
 TEST(GridCosts, TheSurfaceBelowAtEachPointIsItsSample) {
-  for (const SurfaceGrid& below : Surfaces()) {
-    SCOPED_TRACE(below.row(1) ? "two rows" : "one row");
-    const Points p = NewPoints(0.137);
-    PointsOnGrid grid;
-    ASSERT_TRUE(grid.Make(p.x, p.z, below));
-    std::vector<float> under;
-    for (double s : {-2.9, 0.0, 0.137}) {
-      grid.BelowAt(s, under);
-      ASSERT_EQ(under.size(), p.x.size());
-      for (std::size_t i = 0; i < p.x.size(); ++i) {
-        const SurfaceGrid::Sample b = below.SampleAt(p.x[i] - s);
-        EXPECT_EQ(std::isnan(under[i]), std::isnan(b.z)) << s << " " << i;
-        if (std::isnan(b.z)) continue;
-        // A float's rounding of z, and of x moved along the slope (as above).
-        const double off = std::abs(p.x[i] - (p.x[0] + (p.exact[i] - p.exact[0])));
-        EXPECT_NEAR(under[i], b.z, 1e-6 + std::abs(b.slope) * off) << s << " " << i;
+  // With points missing, and with every grid point measured (the points
+  // taken as they are).
+  for (bool dropouts : {true, false})
+    for (const SurfaceGrid& below : Surfaces()) {
+      SCOPED_TRACE(below.row(1) ? "two rows" : "one row");
+      SCOPED_TRACE(dropouts ? "points missing" : "every point");
+      const Points p = NewPoints(0.137, dropouts);
+      PointsOnGrid grid;
+      ASSERT_TRUE(grid.Make(p.x, p.z, below));
+      std::vector<float> under;
+      for (double s : {-2.9, 0.0, 0.137}) {
+        grid.BelowAt(s, under);
+        ASSERT_EQ(under.size(), p.x.size());
+        for (std::size_t i = 0; i < p.x.size(); ++i) {
+          const SurfaceGrid::Sample b = below.SampleAt(p.x[i] - s);
+          EXPECT_EQ(std::isnan(under[i]), std::isnan(b.z)) << s << " " << i;
+          if (std::isnan(b.z)) continue;
+          // A float's rounding of z, and of x moved along the slope (as above).
+          const double off = std::abs(p.x[i] - (p.x[0] + (p.exact[i] - p.exact[0])));
+          EXPECT_NEAR(under[i], b.z, 1e-6 + std::abs(b.slope) * off) << s << " " << i;
+        }
       }
     }
-  }
 }
 
 TEST(GridCosts, PointsOffTheGridOrRowsOfOtherSpacingsAreLeftToThePointByPointPath) {

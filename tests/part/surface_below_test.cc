@@ -69,6 +69,17 @@ TEST(SurfaceBelow, UniformPointsAreTheirOwnGridAndShortDropoutsAreBridged) {
   }
 }
 
+TEST(SurfaceBelow, EveryGridPointMeasuredIsTheRowAsItIs) {
+  const StoredProfile p = Profile(0.0, -10.0, 401, Wave);
+  const SurfaceRow row = RowOf(p, 1.0);
+  ASSERT_TRUE(row.at_points);
+  ASSERT_EQ(row.z_mm.size(), p.z_mm.size());
+  EXPECT_TRUE(std::equal(row.z_mm.begin(), row.z_mm.end(), p.z_mm.begin()));
+  EXPECT_NEAR(row.x0_mm, -10.0, 1e-6);
+  EXPECT_NEAR(row.dx_mm, kDx, 1e-6);
+  EXPECT_TRUE(std::all_of(row.variance.begin(), row.variance.end(), [](float v) { return v == 1.0f; }));
+}
+
 TEST(SurfaceBelow, PointsOffAGridAreResampledFinelyAndKeepTheirInterpolation) {
   StoredProfile p = Profile(0.0, -10.0, 401, Wave);
   for (std::size_t j = 0; j < p.x_mm.size(); j += 3) p.x_mm[j] += static_cast<float>(0.2 * kDx);
