@@ -48,14 +48,24 @@ struct GrooveSum {
   double gradient[4] = {};  // x0, z0, a, b
 };
 
+// The nodes u_k across the ellipse and sqrt(1 - u_k^2) there (the same for
+// every ellipse).
+constexpr int kNodes = 200;
+struct Nodes {
+  std::array<double, kNodes> u, s;
+  Nodes() {
+    for (int k = 0; k < kNodes; ++k) u[k] = -1.0 + (k + 0.5) * (2.0 / kNodes), s[k] = std::sqrt(1.0 - u[k] * u[k]);
+  }
+};
+
 GrooveSum GrooveWithGradient(const Ellipse& e, const SurfaceGrid& below, double shift) {
-  constexpr int kNodes = 200;
+  static const Nodes nodes;
   constexpr double kDu = 2.0 / kNodes;
   double sum = 0.0, on = 0.0, s_on = 0.0, slope_on = 0.0, slope_u_on = 0.0;
   for (int k = 0; k < kNodes; ++k) {
-    const double u = -1.0 + (k + 0.5) * kDu, x = e.x0 + e.a * u;
-    const SurfaceGrid::Sample old = below.SampleAt(x - shift);
-    const double s = std::sqrt(1.0 - u * u), f = e.z0 - e.b * s - old.z;
+    const double u = nodes.u[k], s = nodes.s[k];
+    const SurfaceGrid::Rise old = below.RiseAt(e.x0 + e.a * u - shift);
+    const double f = e.z0 - e.b * s - old.z;
     if (!(f > 0.0)) continue;  // the surface below above the outline, or not known
     sum += f, on += 1.0, s_on += s, slope_on += old.slope, slope_u_on += old.slope * u;
   }
@@ -170,14 +180,13 @@ struct Around {
 // shift's sigma; a held aspect to its pooled sigma: each moves the groove
 // as the fit's own error does. NaN where the fit cannot place the bead's
 // sides (J^T J singular).
-double GrooveSigma(const Ellipse& e, const Shape& shape, const Eigen::MatrixXd& JtJ, double s2, double groove,
+double GrooveSigma(const Ellipse& e, const Shape& shape, const Eigen::MatrixXd& JtJ, double s2, const GrooveSum& sum,
                    const Around& o) {
   Eigen::FullPivLU<Eigen::MatrixXd> lu(JtJ);
   if (!lu.isInvertible()) return NAN;
   const Eigen::MatrixXd cov = s2 * lu.inverse();
   // The groove's gradient in the fitted parameters (b following a where
   // the aspect is held).
-  const GrooveSum sum = GrooveWithGradient(e, o.below, o.shift);
   Eigen::VectorXd grad(static_cast<Eigen::Index>(shape.Params()));
   for (std::size_t i = 0; i < shape.Params(); ++i) grad[static_cast<Eigen::Index>(i)] = sum.gradient[i];
   if (std::isfinite(shape.aspect)) grad[2] += shape.aspect * sum.gradient[3];
@@ -193,7 +202,7 @@ double GrooveSigma(const Ellipse& e, const Shape& shape, const Eigen::MatrixXd& 
   if (std::isfinite(shape.aspect) && o.aspect_sigma > 0.0) {
     Ellipse m = e;
     m.b = (shape.aspect + o.aspect_sigma) * m.a;
-    by_aspect = Groove(m, o.below, o.shift) - groove;
+    by_aspect = Groove(m, o.below, o.shift) - sum.groove;
   }
   return std::sqrt(std::max(0.0, grad.dot(cov * grad)) + below_var + by_shift * by_shift + by_aspect * by_aspect);
 }
@@ -253,10 +262,11 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   out.fit_rms_mm = std::sqrt(best_rss / static_cast<double>(w.x.size()));
   out.aspect = best.b / best.a;
   out.dx0 = best.x0 - center, out.dz0 = best.z0 - base, out.a = best.a, out.b = best.b;
-  out.hidden_mm2 = Groove(best, below, shift);
+  const GrooveSum groove = GrooveWithGradient(best, below, shift);
+  out.hidden_mm2 = groove.groove;
   const double dof = static_cast<double>(w.x.size()) - static_cast<double>(shape.Params());
   const Around around{below, shift, shift_sigma, spacing, pooled ? pooled->sigma : 0.0, noise_mm};
-  out.sigma_mm2 = GrooveSigma(best, shape, best_JtJ, best_rss / dof, out.hidden_mm2, around);
+  out.sigma_mm2 = GrooveSigma(best, shape, best_JtJ, best_rss / dof, groove, around);
   out.ok = std::isfinite(out.hidden_mm2) && std::isfinite(out.sigma_mm2);
   return out;
 }

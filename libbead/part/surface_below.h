@@ -45,6 +45,17 @@ struct SurfaceRow {
                     : variance[k] + t * (variance[k + 1] - variance[k]);
     return {z_mm[k] + t * rise, v, rise / dx_mm};
   }
+  // SampleAt's z and slope, without the variance.
+  struct Rise {
+    double z, slope;
+  };
+  Rise RiseAt(double x_mm) const {
+    const double u = (x_mm - x0_mm) / dx_mm;
+    if (!(u >= 0.0) || !(u <= static_cast<double>(z_mm.size()) - 1.0) || z_mm.size() < 2) return {NaN(), NaN()};
+    const std::size_t k = std::min(static_cast<std::size_t>(u), z_mm.size() - 2);
+    const double t = u - static_cast<double>(k), rise = static_cast<double>(z_mm[k + 1]) - z_mm[k];
+    return {z_mm[k] + t * rise, rise / dx_mm};
+  }
   // SampleAt's z alone.
   double At(double x_mm) const {
     const double u = (x_mm - x0_mm) / dx_mm;
@@ -91,6 +102,17 @@ class SurfaceGrid {
     return (1 - w_) * za + w_ * zb;
   }
   double VarianceAt(double x_mm) const { return SampleAt(x_mm).variance; }
+  // SampleAt's z and slope alone.
+  using Rise = SurfaceRow::Rise;
+  Rise RiseAt(double x_mm) const {
+    if (!a_) return {SurfaceRow::NaN(), SurfaceRow::NaN()};
+    const Rise ra = a_->RiseAt(x_mm);
+    if (!b_) return ra;
+    const Rise rb = b_->RiseAt(x_mm);
+    if (std::isnan(rb.z)) return ra;
+    if (std::isnan(ra.z)) return rb;
+    return {(1 - w_) * ra.z + w_ * rb.z, (1 - w_) * ra.slope + w_ * rb.slope};
+  }
   // The one row this surface is (nullptr where it blends two).
   const SurfaceRow* single_row() const { return b_ ? nullptr : a_.get(); }
   // Its rows (the second nullptr where there is one) and the second's weight.
