@@ -58,9 +58,7 @@ double MedianNear(std::vector<float>& v, float guess) {
   const std::size_t in = ActivePartKernel().band(v.data(), v.size(), 0.85f * guess, 1.18f * guess, band.data(), below);
   const std::size_t k = v.size() / 2;
   if (!(guess > 0.0f) || k < below || k >= below + in) return MedianOf(v);
-  const auto at = band.begin() + static_cast<std::ptrdiff_t>(k - below);
-  std::nth_element(band.begin(), at, band.begin() + static_cast<std::ptrdiff_t>(in));
-  return *at;
+  return ActivePartKernel().kth(band.data(), in, k - below);
 }
 
 double NoiseOf(std::span<const float> z) {

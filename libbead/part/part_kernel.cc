@@ -1,11 +1,13 @@
 // The grid path's loops, built once per instruction set (part_kernel.h).
 #include "libbead/part/part_kernel.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <type_traits>
 
 #include "libbead/profile/vec8.h"
+#include "libbead/profile/vec_sort.h"
 
 namespace bead::part::BEAD_KERNEL {
 namespace {
@@ -181,6 +183,25 @@ std::size_t Band(const float* v, std::size_t n, float lo, float hi, float* band,
   return in;
 }
 
+// The k-th smallest of n values (k < n <= 8 R), by sorting them in R
+// registers (the rest +infinity) with the bitonic network.
+template <int R>
+float SortedKth(const float* v, std::size_t n, std::size_t k) {
+  alignas(32) float padded[8 * R];
+  for (std::size_t i = 0; i < 8 * R; ++i) padded[i] = i < n ? v[i] : __builtin_inff();
+  V8 r[R];
+  for (int i = 0; i < R; ++i) r[i] = vec::Load(padded + 8 * i);
+  vec::BitonicSort<R>(r);
+  return r[k / 8][k % 8];
+}
+
+float Kth(float* v, std::size_t n, std::size_t k) {
+  if (n <= 64) return SortedKth<8>(v, n, k);
+  if (n <= 128) return SortedKth<16>(v, n, k);
+  std::nth_element(v, v + k, v + n);
+  return v[k];
+}
+
 // Four doubles a register (AVX2: one; the baseline: two).
 typedef double V4D __attribute__((vector_size(32)));
 V4D LoadD(const double* p) {
@@ -259,8 +280,8 @@ EllipseSums Ellipse(const double* x, const double* z, const double* old, std::si
 
 #define BEAD_STRINGIFY_(x) #x
 #define BEAD_STRINGIFY(x) BEAD_STRINGIFY_(x)
-constexpr PartKernel kPartKernel{BEAD_STRINGIFY(BEAD_KERNEL), Truncated, Local,  Agree, BelowAt,
-                                 SecondDifferences,           Band,      Ellipse};
+constexpr PartKernel kPartKernel{BEAD_STRINGIFY(BEAD_KERNEL), Truncated, Local, Agree,  BelowAt,
+                                 SecondDifferences,           Band,      Kth,   Ellipse};
 
 }  // namespace
 

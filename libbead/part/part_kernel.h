@@ -75,6 +75,9 @@ struct PartKernel {
   // The values of v[0, n) in [lo, hi) to band (in v's order; band holds n
   // + 8), how many there are; `below`: how many are under lo.
   std::size_t (*band)(const float* v, std::size_t n, float lo, float hi, float* band, std::size_t& below);
+  // The k-th smallest of v[0, n) (k < n; no NaN; v reordered): sorted in
+  // registers up to 128 values, selected beyond.
+  float (*kth)(float* v, std::size_t n, std::size_t k);
   // The ellipse's sums over points [lo, hi) of x, z (the new surface) and
   // old (the surface below there), as hidden_groove.cc defines them.
   EllipseSums (*ellipse)(const double* x, const double* z, const double* old, std::size_t lo, std::size_t hi,

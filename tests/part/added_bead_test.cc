@@ -62,6 +62,23 @@ TEST(AddedBead, BothBuildsBandTheValuesAsCountedOneByOne) {
     }
 }
 
+TEST(AddedBead, BothBuildsFindTheKthSmallestAsSortingDoes) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (const PartKernel* kernel : {&BaselinePartKernel(), &ActivePartKernel()})
+    for (std::size_t n : {1u, 7u, 64u, 65u, 128u, 129u, 300u}) {
+      std::vector<float> v(n);
+      for (float& x : v) x = u(rng);
+      v[n / 2] = v[0];  // a tie
+      std::vector<float> sorted = v;
+      std::sort(sorted.begin(), sorted.end());
+      for (std::size_t k : {std::size_t{0}, n / 2, n - 1}) {
+        std::vector<float> w = v;
+        EXPECT_EQ(kernel->kth(w.data(), n, k), sorted[k]) << kernel->name << " n " << n << " k " << k;
+      }
+    }
+}
+
 TEST(AddedBead, TheSpacingIsTheMedianStepWithOrWithoutSorting) {
   std::vector<float> x;
   for (int j = 0; j < 401; ++j)
