@@ -128,10 +128,13 @@ Normal Residuals(const Window& w, const Ellipse& e, const Shape& shape) {
 // Levenberg-Marquardt from `e` (as part/least_squares.h: the damping
 // raised tenfold on a step that does not lower the residual, to 0.3 of
 // itself on one that does; done below 1e-7 of the residual, or when no
-// parameter moves by kSettledMm: a hundredth of a profiler's noise, where
-// the kinks otherwise make the steps creep); J^T J of the fitted
-// parameters at the end in JtJ.
-constexpr double kSettledMm = 1e-4;
+// parameter moves by kSettledMm, where the kinks otherwise make the steps
+// creep); J^T J of the fitted parameters at the end in JtJ. kSettledMm: a
+// tenth of a profiler's noise; a step under it moves the groove by less
+// than its width (at most the bead's, 6 mm on the twin) times 1e-3 mm, a
+// tenth of its sigma's smallest part (the walls' sampling, ~0.07 mm^2).
+// (1e-4 fitted twice as many residuals for the same figures.)
+constexpr double kSettledMm = 1e-3;
 double Fit(const Window& w, Ellipse& e, const Shape& shape, Eigen::MatrixXd& JtJ) {
   // At most 4 x 4: on the stack.
   using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 4, 4>;
