@@ -39,10 +39,10 @@ struct Window {
 // midpoint rule, a hundred steps across each half of the ellipse (off by
 // the square of a step where the outline crosses the surface below, a
 // kink: well under a point's noise); with its gradient in x0, z0, a and b,
-// the sum's own (its nodes x = x0 + a u_k move with the ellipse): where
-// the outline stands above the surface below, d/dz0 = 1, d/db = -s,
-// d/dx0 = -old'(x), and the sum over a times a step, d/da = groove / a -
-// sum of old'(x) u times a step.
+// the sum's own (its nodes x = x0 + a u_k move with the ellipse, s =
+// sqrt(1 - u^2)): over the nodes where the outline stands above the
+// surface below, a step times 1 for z0, -s for b, -old'(x) for x0; and
+// groove / a less a step times old'(x) u for a.
 struct GrooveSum {
   double groove = 0.0;
   double gradient[4] = {};  // x0, z0, a, b

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numeric>
 #include <limits>
+#include <numeric>
 #include <optional>
 #include <string>
 
