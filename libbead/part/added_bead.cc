@@ -169,6 +169,7 @@ void Geometry(const Gains& g, std::span<const float> z, const Span& s, double fl
   }
   out.area_mm2 = area;
   out.width_mm = Crossing(g, s.foot_right, s.bare_right, floor) - Crossing(g, s.bare_left, s.foot_left, floor);
+  out.edge_left_mm = g.d[s.foot_left], out.edge_right_mm = g.d[s.foot_right];
   // The crest: the highest median of three new heights; the gain there.
   std::size_t crest = s.foot_left;
   double top = -1e300;

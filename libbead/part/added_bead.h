@@ -91,6 +91,9 @@ struct AddedBead {
   double shift_sigma_mm = kNaN;
   bool shift_constrained = false;
   double registration_rms_mm = kNaN;  // the gain's RMS outside the bead (0 expected)
+  // The gain at each foot (the outermost bead point, left and right): the
+  // height of the wall the area's trapezoid places within a point spacing.
+  double edge_left_mm = kNaN, edge_right_mm = kNaN;
   double noise_mm = kNaN;
   int outside_points = 0;  // points where the two surfaces agree (|gain| under the threshold)
   bool valid() const { return status == AddedStatus::kValid; }

@@ -7,17 +7,23 @@ namespace bead::part {
 namespace {
 
 // The row's area less the groove, with its sigma: the groove's, and the
-// visible area's own sampling beside it (each of its four walls, two of
-// the new surface and two of the old, placed within a point spacing, as
-// high as the bead: (spacing h)^2 / 3). Written only where it
-// means something: material left, known to better than half of it (else
-// the ellipse did not find the bead's sides: the row keeps the area seen,
-// and no correction).
+// visible area's own sampling beside it: each of the bead's two edges a
+// wall as high as the gain at its foot, placed anywhere within a point
+// spacing, (spacing h_edge)^2 / 12 each. The layer below's walls under
+// the bead are not counted: the area and the groove both stand on the
+// same surface below there, and its error cancels in their difference.
+// (Counting four walls as high as the bead, the 95 % interval covered
+// 99.4 % of the material laid on the test walls, RMS of z 0.51; now 98.5 %,
+// 0.63.) Written only where it means something: material left, known to
+// better than half of it (else the ellipse did not find the bead's sides:
+// the row keeps the area seen, and no correction).
 void Apply(const HiddenGroove& g, double spacing, PartGeometryRow& row) {
   row.area_corrected_mm2 = row.area_corrected_sigma_mm2 = PartGeometryRow::kNaN;
-  const double sampled = spacing * row.bead.height_mm;
+  const double edges =
+      spacing * spacing *
+      (row.bead.edge_left_mm * row.bead.edge_left_mm + row.bead.edge_right_mm * row.bead.edge_right_mm);
   const double corrected = row.bead.area_mm2 - g.hidden_mm2;
-  const double sigma = std::sqrt(g.sigma_mm2 * g.sigma_mm2 + sampled * sampled / 3.0);
+  const double sigma = std::sqrt(g.sigma_mm2 * g.sigma_mm2 + edges / 12.0);
   if (g.ok && corrected > 0.0 && sigma < 0.5 * corrected)
     row.area_corrected_mm2 = corrected, row.area_corrected_sigma_mm2 = sigma;
 }

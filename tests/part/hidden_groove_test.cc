@@ -75,16 +75,14 @@ TEST(HiddenGroove, TheCorrectedAreaIsTheMaterialLaidWhereTheSeenAreaIsNot) {
   std::printf("95 %% intervals covering the material laid: %d of %d\n", covered, rows);
 
   // Never over-confident (at least 90 %); and not so wide that it never
-  // misses (at most 99.7 %). On these walls it covers 99.5 %, the RMS of
-  // the errors over their sigmas 0.50: twice wide, said in the note.
-  // (It covered 98.8 % at an RMS of 0.83 while each layer's first rows kept
-  // their own free fits, whose large errors the intervals caught; corrected
-  // with the layer's pooled shape, part/layer_grooves.h, they no longer
-  // miss, and what is left shows the sigma's terms - the fit's covariance,
-  // the shift's floor of a wall's sampling, the walls' own sampling - to
-  // overlap.)
+  // misses (at most 99.2 %). On these walls it covers 98.5 %, the RMS of
+  // the errors over their sigmas 0.63: still wide, said in the issue's
+  // note. (Counting four walls of the area's sampling as high as the bead,
+  // where the layer below's two cancel between the area and the groove, it
+  // covered 99.4 %, RMS 0.51; with each layer's first rows on their own
+  // free fits, 98.8 % at an RMS of 0.83, their large misses caught.)
   EXPECT_GE(covered, 0.90 * rows);
-  EXPECT_LE(covered, 0.997 * rows);
+  EXPECT_LE(covered, 0.992 * rows);
 }
 
 }  // namespace
