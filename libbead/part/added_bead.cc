@@ -27,6 +27,12 @@ const Gains& GainsAt(std::span<const float> x, std::span<const float> z, const S
   thread_local Gains g;
   if (grid) grid->BelowAt(s, under);
   g.index.resize(x.size()), g.x.resize(x.size()), g.d.resize(x.size());
+  if (grid && std::none_of(under.begin(), under.end(), [](float b) { return std::isnan(b); })) {
+    // The surface below known at every point: each point its own gain.
+    for (std::size_t i = 0; i < x.size(); ++i)
+      g.index[i] = i, g.x[i] = x[i], g.d[i] = z[i] - static_cast<double>(under[i]);
+    return g;
+  }
   std::size_t n = 0;
   for (std::size_t i = 0; i < x.size(); ++i) {
     const double b = grid ? under[i] : below.At(x[i] - s);
