@@ -1,4 +1,4 @@
-// The grid path's loops, built once per instruction set (part_kernel.h).
+// A part profile's loops, built once per instruction set (part_kernel.h).
 #include "libbead/part/part_kernel.h"
 
 #include <algorithm>
