@@ -60,7 +60,11 @@ inline Below<T> Sample(const GridRows& r, std::ptrdiff_t i) {
   } else {
     const Below<T> b = OneRow<T>(r.z[1], r.v[1], r.t[1], i);
     const T w = Broadcast<T>(r.w), w0 = Broadcast<T>(1.0f - r.w);
-    const auto a_known = a.z == a.z, b_known = b.z == b.z, both = a_known & b_known;
+    // Each declared alone: for one float, a comparison is a bool and two
+    // combined an int; for eight, both are the lanes' mask.
+    const auto a_known = a.z == a.z;
+    const auto b_known = b.z == b.z;
+    const auto both = a_known & b_known;
     return {both ? w0 * a.z + w * b.z : (b_known ? b.z : a.z),
             both ? w0 * w0 * a.var + w * w * b.var : (b_known ? b.var : a.var),
             both ? w0 * a.rise + w * b.rise : (b_known ? b.rise : a.rise)};
