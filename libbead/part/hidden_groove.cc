@@ -198,9 +198,9 @@ double GrooveSigma(const Ellipse& e, const Shape& shape, const Eigen::MatrixXd& 
   for (double at = e.x0 - e.a + 0.5 * step; at < e.x0 + e.a; at += step)
     if (const SurfaceGrid::Sample b = o.below.SampleAt(at - o.shift); e.z0 - e.Half(at) > b.z)
       below_var += o.noise_mm * o.noise_mm * b.variance * step * step;
-  const double ds = std::max(1e-3, o.shift_sigma);
-  const double by_shift =
-      (Groove(e, o.below, o.shift + ds) - Groove(e, o.below, o.shift - ds)) / (2.0 * ds) * o.shift_sigma;
+  // The surface below moved by the shift is the ellipse moved the other
+  // way: the groove's derivative in the shift is minus its x0's.
+  const double by_shift = -sum.gradient[0] * o.shift_sigma;
   double by_aspect = 0.0;
   if (std::isfinite(shape.aspect) && o.aspect_sigma > 0.0) {
     Ellipse m = e;
