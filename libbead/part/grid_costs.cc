@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <numeric>
 
 #include "libbead/part/part_kernel.h"
@@ -35,24 +34,13 @@ bool PointsOnGrid::Make(std::span<const float> x, std::span<const float> z, cons
   const double last = std::round((x.back() - x.front()) / dx_mm_);
   if (!(last >= 1.0) || last + 1.0 >= static_cast<double>(kMaxGridPoints)) return count_ = 0, false;
   x0_mm_ = x.front();
-  counted_.resize(static_cast<std::size_t>(last) + 2);
-  if (last + 1.0 == static_cast<double>(x.size()) && OnEveryGridPoint(x, dx_mm_)) {
-    // Every grid point measured: the points themselves.
-    z_.assign(z.begin(), z.end());
+  if (!PlaceOnGrid(x, z, dx_mm_, static_cast<std::size_t>(last) + 1, z_)) return count_ = 0, false;
+  counted_.resize(z_.size() + 1);
+  if (z_.size() == x.size()) {  // every grid point measured
     std::iota(counted_.begin(), counted_.end(), 0);
     return true;
   }
-  z_.assign(static_cast<std::size_t>(last) + 1, NAN);
-  const double per_mm = 1.0 / dx_mm_;
-  for (std::size_t j = 0; j < x.size(); ++j) {
-    // x increases from x0: u >= 0 but for rounding, and the nearest whole
-    // number is the truncation of u + 1/2.
-    const double u = (x[j] - x0_mm_) * per_mm;
-    const auto m = static_cast<int64_t>(u + 0.5);
-    if (std::abs(u - static_cast<double>(m)) > 0.01 || m < 0 || static_cast<double>(m) > last) return count_ = 0, false;
-    z_[static_cast<std::size_t>(m)] = z[j];
-  }
-  counted_.assign(z_.size() + 1, 0);
+  counted_[0] = 0;
   for (std::size_t i = 0; i < z_.size(); ++i) counted_[i + 1] = counted_[i] + !std::isnan(z_[i]);
   return true;
 }

@@ -59,8 +59,9 @@ class PointsOnGrid {
   Span Inside(double s) const;
   // The points (not NaN) in lattice indices [begin, end).
   std::size_t PointsIn(std::ptrdiff_t begin, std::ptrdiff_t end) const;
-  // Calls f(i, sample) for the points in [begin, end) outside [inner_begin,
-  // inner_end) where some row is known, each sampled one by one.
+  // Calls f(i, sample) for the points in [begin, end) where some row is
+  // known but not every one (in [any_begin, any_end), outside [in.begin,
+  // in.end)), each sampled one by one.
   template <class F>
   void EachEdgePoint(double s, std::ptrdiff_t begin, std::ptrdiff_t end, const Span& in, F f) const;
 

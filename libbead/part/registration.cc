@@ -121,17 +121,12 @@ Registration FromCurve(const CostCurve& curve, const RegistrationScale& k) {
 // The truncated cost at s with its gradient and Gauss-Newton curvature in
 // s over the points whose gain is under the cap (d(gain)/ds is the slope
 // of the surface below there).
-struct Local {
-  double cost = 0.0, gradient = 0.0, curvature = 0.0;
-};
+using Local = PointsOnGrid::Local;
 
 Local LocalCost(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, double s,
                 const RegistrationScale& k, const PointsOnGrid* grid) {
   const double noise2 = k.noise * k.noise, cap = k.tau * k.tau / noise2;
-  if (grid) {
-    const PointsOnGrid::Local g = grid->LocalCost(s, noise2, cap);
-    return {g.cost, g.gradient, g.curvature};
-  }
+  if (grid) return grid->LocalCost(s, noise2, cap);
   Local l;
   for (std::size_t i = 0; i < x.size(); ++i) {
     const SurfaceGrid::Sample b = below.SampleAt(x[i] - s);

@@ -43,49 +43,28 @@ void Resample(const StoredProfile& p, double x0, double dx, std::size_t n, doubl
     z[k] = p.z_mm.back();
 }
 
-// The points' own grid (x0 the first, dx from the first to the last over
-// the last's index): how many values it holds, 0 where a point lies off
-// it by more than a hundredth of dx (or after the one before on it).
-std::size_t OwnGridPoints(const StoredProfile& p, double& dx) {
-  const std::size_t m = p.x_mm.size();
-  if (m < 2) return 0;
-  const double x0 = p.x_mm.front(), span = static_cast<double>(p.x_mm.back()) - x0;
-  const double last = std::round(span / p.spacing_mm);
-  if (!(last >= 1.0) || last + 1.0 >= static_cast<double>(kMaxGridPoints)) return 0;
-  dx = span / last;
-  if (last + 1.0 == static_cast<double>(m) && OnEveryGridPoint(p.x_mm, dx)) return m;
-  double before = -1.0;
-  const double per_mm = 1.0 / dx;
-  for (std::size_t j = 0; j < m; ++j) {
-    // u >= 0 but for rounding: its nearest whole number, u + 1/2 truncated.
-    const double u = (p.x_mm[j] - x0) * per_mm, k = static_cast<double>(static_cast<int64_t>(u + 0.5));
-    if (std::abs(u - k) > 0.01 || k <= before) return 0;
-    before = k;
-  }
-  return static_cast<std::size_t>(last) + 1;
+// Whether x[j] lies within a hundredth of dx of x[0] + j dx for every j
+// (a sensor's points on its grid, none missing): one pass, no branch.
+bool OnEveryGridPoint(std::span<const float> x, double dx) {
+  const float x0 = x[0], step = static_cast<float>(dx), tolerance = static_cast<float>(0.01 * dx);
+  int off = 0;
+  for (std::size_t j = 0; j < x.size(); ++j) off |= std::abs(x[j] - (x0 + static_cast<float>(j) * step)) > tolerance;
+  return off == 0;
 }
 
-// The points on their own grid of n values, each gap of missing points no
-// longer than max_gap bridged linearly (variance (1 - t)^2 + t^2).
-void OnOwnGrid(const StoredProfile& p, double dx, std::size_t n, double max_gap, SurfaceRow& row) {
-  row.x0_mm = p.x_mm.front(), row.dx_mm = dx, row.at_points = true;
-  row.variance.assign(n, 1.0f);
-  if (n == p.z_mm.size()) {  // every grid point measured: the points themselves
-    row.z_mm = p.z_mm;
-    return;
-  }
-  row.z_mm.assign(n, static_cast<float>(kNaN));
-  const double per_mm = 1.0 / dx;  // the points lie on the grid (OwnGridPoints): the nearest index
-  auto index = [&](std::size_t j) { return static_cast<std::size_t>((p.x_mm[j] - row.x0_mm) * per_mm + 0.5); };
-  std::size_t ka = index(0);
-  row.z_mm[ka] = p.z_mm[0];
-  for (std::size_t j = 1; j < p.x_mm.size(); ++j) {
-    const std::size_t kb = index(j);
-    row.z_mm[kb] = p.z_mm[j];
-    if (kb > ka + 1 && p.x_mm[j] - p.x_mm[j - 1] <= max_gap)
+// Each run of missing values between two known ones bridged linearly
+// where the run's two ends lie no farther apart than max_gap (variance
+// (1 - t)^2 + t^2).
+void Bridge(double max_gap, SurfaceRow& row) {
+  const std::size_t n = row.z_mm.size();
+  std::size_t ka = 0;
+  while (ka < n && std::isnan(row.z_mm[ka])) ++ka;
+  for (std::size_t kb = ka + 1; kb < n; ++kb) {
+    if (std::isnan(row.z_mm[kb])) continue;
+    if (kb > ka + 1 && static_cast<double>(kb - ka) * row.dx_mm <= max_gap)
       for (std::size_t k = ka + 1; k < kb; ++k) {
         const double t = static_cast<double>(k - ka) / static_cast<double>(kb - ka);
-        row.z_mm[k] = static_cast<float>((1 - t) * p.z_mm[j - 1] + t * p.z_mm[j]);
+        row.z_mm[k] = static_cast<float>((1 - t) * row.z_mm[ka] + t * row.z_mm[kb]);
         row.variance[k] = static_cast<float>((1 - t) * (1 - t) + t * t);
       }
     ka = kb;
@@ -132,17 +111,45 @@ std::optional<SurfaceRow> Blend(const SurfaceRow& a, const SurfaceRow& b, double
 
 SurfaceRow RowOf(const StoredProfile& p, double max_gap) {
   SurfaceRow row;
-  double dx = 0.0;
-  if (const std::size_t n = OwnGridPoints(p, dx)) {
-    OnOwnGrid(p, dx, n, max_gap, row);
+  if (p.x_mm.size() < 2) return row;
+  // The points' own grid: x0 the first, dx from the first to the last over
+  // the last's index.
+  const double span = static_cast<double>(p.x_mm.back()) - p.x_mm.front(), last = std::round(span / p.spacing_mm);
+  if (last >= 1.0 && last + 1.0 < static_cast<double>(kMaxGridPoints) &&
+      PlaceOnGrid(p.x_mm, p.z_mm, span / last, static_cast<std::size_t>(last) + 1, row.z_mm)) {
+    row.x0_mm = p.x_mm.front(), row.dx_mm = span / last, row.at_points = true;
+    row.variance.assign(row.z_mm.size(), 1.0f);
+    if (row.z_mm.size() > p.z_mm.size()) Bridge(max_gap, row);
     return row;
   }
-  if (p.x_mm.size() < 2) return row;
+  row.z_mm.clear();  // what a placement that failed left
   row.dx_mm = std::max(0.125 * p.spacing_mm, 1e-4);
   row.x0_mm = p.x_mm.front();
   const std::size_t n = GridPoints(p.x_mm.front(), p.x_mm.back(), row.dx_mm);
   if (n >= 2) Resample(p, row.x0_mm, row.dx_mm, n, max_gap, row.z_mm, row.variance);
   return row;
+}
+
+bool PlaceOnGrid(std::span<const float> x, std::span<const float> z, double dx, std::size_t n,
+                 std::vector<float>& out) {
+  if (x.empty() || !(dx > 0.0)) return false;
+  if (n == x.size() && OnEveryGridPoint(x, dx)) {
+    out.assign(z.begin(), z.end());
+    return true;
+  }
+  out.assign(n, static_cast<float>(kNaN));
+  const double x0 = x[0], per_mm = 1.0 / dx;
+  std::ptrdiff_t before = -1;
+  for (std::size_t j = 0; j < x.size(); ++j) {
+    // x increases from x0: u >= 0 but for rounding, and the nearest whole
+    // number is the truncation of u + 1/2.
+    const double u = (x[j] - x0) * per_mm;
+    const auto k = static_cast<std::ptrdiff_t>(u + 0.5);
+    if (std::abs(u - static_cast<double>(k)) > 0.01 || k <= before || k >= std::ssize(out)) return false;
+    out[static_cast<std::size_t>(k)] = z[j];
+    before = k;
+  }
+  return true;
 }
 
 void SurfaceBelow::BeginLayer(int64_t layer) {

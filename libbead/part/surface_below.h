@@ -188,15 +188,12 @@ class SurfaceBelow {
   std::vector<StoredProfile> current_;
 };
 
-// Whether x[j] lies within a hundredth of dx of x[0] + j dx for every j
-// (a sensor's points on its grid, none missing): one pass, no branch.
-inline bool OnEveryGridPoint(std::span<const float> x, double dx) {
-  if (x.empty()) return false;
-  const float x0 = x[0], step = static_cast<float>(dx), tolerance = static_cast<float>(0.01 * dx);
-  int off = 0;
-  for (std::size_t j = 0; j < x.size(); ++j) off |= std::abs(x[j] - (x0 + static_cast<float>(j) * step)) > tolerance;
-  return off == 0;
-}
+// The values z at increasing points x placed on the grid x[0] + k dx of n
+// values, NaN where no point lies (out, resized to n): false where a point
+// lies off the grid by more than a hundredth of dx, on the grid point of
+// the one before, or beyond the grid's end. A sensor's points with none
+// missing are checked in one pass without branches and copied.
+bool PlaceOnGrid(std::span<const float> x, std::span<const float> z, double dx, std::size_t n, std::vector<float>& out);
 
 // A stored profile as a surface row: its own points where they lie on a
 // uniform grid (a sensor's usually do: nothing is interpolated), each
