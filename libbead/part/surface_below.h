@@ -35,10 +35,10 @@ struct SurfaceRow {
   // Linear between grid values, with dz/dx between the two around x; z and
   // slope NaN outside the grid or next to a NaN.
   Sample SampleAt(double x_mm) const {
-    const double u = (x_mm - x0_mm) / dx_mm;
-    if (!(u >= 0.0) || !(u <= static_cast<double>(z_mm.size()) - 1.0) || z_mm.size() < 2) return {NaN(), 0.0, NaN()};
-    const std::size_t k = std::min(static_cast<std::size_t>(u), z_mm.size() - 2);
-    const double t = u - static_cast<double>(k), rise = static_cast<double>(z_mm[k + 1]) - z_mm[k];
+    std::size_t k = 0;
+    double t = 0.0;
+    if (!Locate(x_mm, k, t)) return {NaN(), 0.0, NaN()};
+    const double rise = static_cast<double>(z_mm[k + 1]) - z_mm[k];
     double v = 0.0;
     if (variance.size() == z_mm.size())
       v = at_points ? (1 - t) * (1 - t) * variance[k] + t * t * variance[k + 1]
@@ -50,19 +50,27 @@ struct SurfaceRow {
     double z, slope;
   };
   Rise RiseAt(double x_mm) const {
-    const double u = (x_mm - x0_mm) / dx_mm;
-    if (!(u >= 0.0) || !(u <= static_cast<double>(z_mm.size()) - 1.0) || z_mm.size() < 2) return {NaN(), NaN()};
-    const std::size_t k = std::min(static_cast<std::size_t>(u), z_mm.size() - 2);
-    const double t = u - static_cast<double>(k), rise = static_cast<double>(z_mm[k + 1]) - z_mm[k];
+    std::size_t k = 0;
+    double t = 0.0;
+    if (!Locate(x_mm, k, t)) return {NaN(), NaN()};
+    const double rise = static_cast<double>(z_mm[k + 1]) - z_mm[k];
     return {z_mm[k] + t * rise, rise / dx_mm};
   }
   // SampleAt's z alone.
   double At(double x_mm) const {
-    const double u = (x_mm - x0_mm) / dx_mm;
-    if (!(u >= 0.0) || !(u <= static_cast<double>(z_mm.size()) - 1.0) || z_mm.size() < 2) return NaN();
-    const std::size_t k = std::min(static_cast<std::size_t>(u), z_mm.size() - 2);
-    const double t = u - static_cast<double>(k);
+    std::size_t k = 0;
+    double t = 0.0;
+    if (!Locate(x_mm, k, t)) return NaN();
     return z_mm[k] + t * (static_cast<double>(z_mm[k + 1]) - z_mm[k]);
+  }
+  // Where x falls: a fraction t of the way from value k to value k + 1;
+  // false outside the grid.
+  bool Locate(double x_mm, std::size_t& k, double& t) const {
+    const double u = (x_mm - x0_mm) / dx_mm;
+    if (!(u >= 0.0) || !(u <= static_cast<double>(z_mm.size()) - 1.0) || z_mm.size() < 2) return false;
+    k = std::min(static_cast<std::size_t>(u), z_mm.size() - 2);
+    t = u - static_cast<double>(k);
+    return true;
   }
   double first_mm() const { return x0_mm; }
   double last_mm() const { return x0_mm + dx_mm * static_cast<double>(z_mm.size() - 1); }
