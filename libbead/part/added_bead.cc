@@ -251,26 +251,24 @@ AddedBead MeasureAddedBead(std::span<const float> x, std::span<const float> z, c
   // points at a time.
   thread_local PointsOnGrid on_grid;
   const PointsOnGrid* grid = on_grid.Make(x, z, below) ? &on_grid : nullptr;
-  for (int round = 0; round < (register_shift ? 2 : 1); ++round) {
-    const Gains& g = GainsAt(x, z, below, reg.shift, grid);
-    if (g.d.size() < 10) return out;  // kTooFewPoints
-    Span s;
-    if (!BestRun(g, tau, o.max_gap_mm, o.min_bead_points, s)) {
-      out.status = AddedStatus::kNoBead;
-      return out;
-    }
-    const bool seen = Feet(g, floor, o.max_gap_mm, s);
-    const bool last = round + 1 == (register_shift ? 2 : 1);
-    if (last || !seen) {
-      out.status = seen ? AddedStatus::kValid : AddedStatus::kBeadEdgeNotSeen;
-      if (seen) Geometry(g, z, s, floor, out);
-      break;
-    }
-    if (round == 0) {
-      const double spacing = std::isfinite(spacing_mm) ? spacing_mm : PointSpacingMm(x);
-      reg = Register(x, z, below, {tau, out.noise_mm, spacing}, o, start_shift, grid);
-    }
+  // Registered first, the gains taken once at the shift found (a profile
+  // whose bead does not show is registered for nothing; checking it at
+  // shift 0 first cost every profile a second pass over its gains).
+  if (x.size() < 10) return out;  // kTooFewPoints: fewer gains still
+  if (register_shift) {
+    const double spacing = std::isfinite(spacing_mm) ? spacing_mm : PointSpacingMm(x);
+    reg = Register(x, z, below, {tau, out.noise_mm, spacing}, o, start_shift, grid);
   }
+  const Gains& g = GainsAt(x, z, below, reg.shift, grid);
+  if (g.d.size() < 10) return out;  // kTooFewPoints
+  Span s;
+  if (!BestRun(g, tau, o.max_gap_mm, o.min_bead_points, s)) {
+    out.status = AddedStatus::kNoBead;
+    return out;
+  }
+  const bool seen = Feet(g, floor, o.max_gap_mm, s);
+  out.status = seen ? AddedStatus::kValid : AddedStatus::kBeadEdgeNotSeen;
+  if (seen) Geometry(g, z, s, floor, out);
   out.shift_mm = reg.shift;
   out.shift_sigma_mm = reg.sigma;
   out.shift_constrained = reg.constrained;
