@@ -125,40 +125,45 @@ Normal Residuals(const Window& w, const Ellipse& e, const Shape& shape) {
   return n;
 }
 
+// The damped Gauss-Newton step of the first K parameters (K: 3 with the
+// aspect held, else 4): fixed-size matrices, solved in registers.
+template <int K>
+Eigen::Vector4d DampedStep(const Normal& at, double lambda) {
+  Eigen::Matrix<double, K, K> A = at.JtJ.topLeftCorner<K, K>();
+  A.diagonal() += lambda * (A.diagonal().array() + 1e-12).matrix();
+  Eigen::Vector4d step = Eigen::Vector4d::Zero();
+  step.head<K>() = A.ldlt().solve(-at.Jtr.head<K>());
+  return step;
+}
+
 // Levenberg-Marquardt from `e` (as part/least_squares.h: the damping
 // raised tenfold on a step that does not lower the residual, to 0.3 of
 // itself on one that does; done below 1e-7 of the residual, or when the
 // step to try moves no parameter by kSettledMm (not tried: the kinks
 // otherwise make the steps creep, and a higher damping only shortens
 // them; stopping there, not after the tries that fail, takes the fit's
-// residuals from 29.2 to 27.3 a profile on the bench's wall); J^T J of the fitted parameters at the end in JtJ. kSettledMm: a
+// residuals from 29.2 to 27.3 a profile on the bench's wall); J^T J of
+// the fitted parameters at the end in JtJ (its top left). kSettledMm: a
 // tenth of a profiler's noise; a step under it moves the groove by less
 // than its width (at most the bead's, 6 mm on the twin) times 1e-3 mm, a
 // tenth of its sigma's smallest part (the walls' sampling, ~0.07 mm^2).
 // (1e-4 fitted twice as many residuals for the same figures.)
 constexpr double kSettledMm = 1e-3;
-double Fit(const Window& w, Ellipse& e, const Shape& shape, Eigen::MatrixXd& JtJ) {
-  // At most 4 x 4: on the stack.
-  using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 4, 4>;
-  using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 4, 1>;
-  const auto k = static_cast<Eigen::Index>(shape.Params());
+double Fit(const Window& w, Ellipse& e, const Shape& shape, Eigen::Matrix4d& JtJ) {
+  const std::size_t k = shape.Params();
   shape.Keep(e);
   Normal at = Residuals(w, e, shape);
   double lambda = 1e-3;
   for (int it = 0; it < 80; ++it) {
-    const Small A0 = at.JtJ.topLeftCorner(k, k);
-    const SmallVector g = at.Jtr.head(k);
     bool better = false, converged = false;
     for (int tries = 0; tries < 8 && !better; ++tries) {
-      Small A = A0;
-      A.diagonal() += lambda * (A0.diagonal().array() + 1e-12).matrix();
-      const SmallVector step = A.ldlt().solve(-g);
+      const Eigen::Vector4d step = k == 3 ? DampedStep<3>(at, lambda) : DampedStep<4>(at, lambda);
       if (step.cwiseAbs().maxCoeff() < kSettledMm) {
         converged = true;
         break;
       }
       Ellipse trial = e;
-      for (Eigen::Index i = 0; i < k; ++i) trial[static_cast<std::size_t>(i)] += step[i];
+      for (std::size_t i = 0; i < k; ++i) trial[i] += step[static_cast<Eigen::Index>(i)];
       shape.Keep(trial);
       const Normal there = Residuals(w, trial, shape);
       if (std::isfinite(there.rss) && there.rss < at.rss) {
@@ -171,7 +176,7 @@ double Fit(const Window& w, Ellipse& e, const Shape& shape, Eigen::MatrixXd& JtJ
     }
     if (!better || converged) break;
   }
-  JtJ = at.JtJ.topLeftCorner(k, k);
+  JtJ = at.JtJ;
   return at.rss;
 }
 
@@ -189,9 +194,10 @@ struct Around {
 // shift's sigma; a held aspect to its pooled sigma: each moves the groove
 // as the fit's own error does. NaN where the fit cannot place the bead's
 // sides (J^T J singular).
-double GrooveSigma(const Ellipse& e, const Shape& shape, const Eigen::MatrixXd& JtJ, double s2, const GrooveSum& sum,
+double GrooveSigma(const Ellipse& e, const Shape& shape, const Eigen::Matrix4d& JtJ, double s2, const GrooveSum& sum,
                    const Around& o) {
-  Eigen::FullPivLU<Eigen::MatrixXd> lu(JtJ);
+  const auto k = static_cast<Eigen::Index>(shape.Params());
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(JtJ.topLeftCorner(k, k));
   if (!lu.isInvertible()) return NAN;
   const Eigen::MatrixXd cov = s2 * lu.inverse();
   // The groove's gradient in the fitted parameters (b following a where
@@ -241,7 +247,7 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   // quarter, half and three quarters of its height above) and two widths:
   // the least residual kept.
   Ellipse best;
-  Eigen::MatrixXd JtJ, best_JtJ;  // the fits' J^T J
+  Eigen::Matrix4d JtJ, best_JtJ;  // the fits' J^T J (the fitted parameters' top left)
   double best_rss = INFINITY;
   // With the shape held, the neighbour's ellipse first: kept where it
   // fits as well as the neighbour's did; or where it does not, but the
