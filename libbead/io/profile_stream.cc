@@ -101,6 +101,13 @@ void ProfileStream::Read(std::size_t begin, std::size_t count, ProfileBlock& b) 
   if (count) last_t_ = b.t_s.back();
 }
 
+const ProfileBlock* ProfileStream::InMemory() {
+  if (!memory_) return nullptr;
+  if (!memory_checked_) ValidateProfileRows(*memory_, 0, std::nan(""), name_, "/profiles");
+  memory_checked_ = true;
+  return &*memory_;
+}
+
 void ProfileStream::ReadRows(const std::vector<std::size_t>& rows, ProfileBlock& b) {
   for (std::size_t r : rows)
     if (r >= size_)

@@ -42,6 +42,10 @@ class ProfileStream {
   // Profiles [begin, begin + count) into `block` (its buffers reused: no
   // allocation once they are large enough, and none zero-filled).
   void Read(std::size_t begin, std::size_t count, ProfileBlock& block);
+  // Profiles already in memory: all of them, checked once as Read checks a
+  // window (no copy: a pass reads their views in place); nullptr for an
+  // archive, which is read window by window.
+  const ProfileBlock* InMemory();
   // The profiles `rows` (increasing) into `block`, in that order: each
   // stored chunk decompressed once (the pooled occlusion's few dozen
   // profiles). Not checked again: they are rows a pass of Read has seen.
@@ -56,6 +60,7 @@ class ProfileStream {
   std::unique_ptr<h5::RowReader> t_, encoder_, x_, z_;
   WorkerPool* pool_ = nullptr;
   std::optional<ProfileBlock> memory_;
+  bool memory_checked_ = false;
   std::size_t next_ = 0;  // the row after the last window read ...
   double last_t_ = 0;     // ... and its time, for the check across windows
 };

@@ -216,12 +216,18 @@ std::vector<LayerSummary> MeasurePart(ProfileStream& stream, const PartPlaces& p
     Tally(layers, row);
     sink(row);
   };
+  // Profiles in memory are read in place; an archive's window by window.
+  const ProfileBlock* whole = stream.InMemory();
   ProfileBlock block;
   const std::size_t window = stream.WindowRows();
   for (std::size_t begin = 0; begin < stream.size(); begin += window) {
     const std::size_t count = std::min(window, stream.size() - begin);
-    stream.Read(begin, count, block);
-    for (std::size_t k = 0; k < count; ++k) measurer.Measure(block.view(k), begin + k, places, emit);
+    if (whole) {
+      for (std::size_t k = begin; k < begin + count; ++k) measurer.Measure(whole->view(k), k, places, emit);
+    } else {
+      stream.Read(begin, count, block);
+      for (std::size_t k = 0; k < count; ++k) measurer.Measure(block.view(k), begin + k, places, emit);
+    }
     if (progress) progress(begin + count);
   }
   measurer.Flush(emit);

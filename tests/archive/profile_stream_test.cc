@@ -187,5 +187,33 @@ TEST(ProfileStream, TimeThatStepsBackAcrossWindowsIsNamedWithItsRow) {
   }
 }
 
+TEST(ProfileStream, ProfilesInMemoryAreReadInPlaceAndCheckedAsAWindowIs) {
+  const ProfileBlock block = MakeBlock(300, 16, 5);
+  ProfileStream stream("scan.csv", block);
+  const ProfileBlock* whole = stream.InMemory();
+  ASSERT_NE(whole, nullptr);
+  ProfileBlock window;
+  stream.Read(0, 300, window);
+  EXPECT_EQ(whole->t_s, window.t_s);
+  EXPECT_EQ(std::memcmp(whole->z_mm.data(), window.z_mm.data(), window.z_mm.size() * sizeof(float)), 0);
+  EXPECT_EQ(std::memcmp(whole->x_mm.data(), window.x_mm.data(), window.x_mm.size() * sizeof(float)), 0);
+  // An archive is read window by window.
+  test::TempDir dir;
+  WorkerPool pool(1);
+  ProfileStream archive(WriteArchive(dir, block), pool);
+  EXPECT_EQ(archive.InMemory(), nullptr);
+  // Time that steps back is refused, named with its row.
+  ProfileBlock bad = block;
+  bad.t_s[200] = bad.t_s[199];
+  ProfileStream refused("scan.csv", bad);
+  try {
+    refused.InMemory();
+    FAIL() << "time that does not increase was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("scan.csv: /profiles/t_s[200]: time does not increase"), std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace bead
