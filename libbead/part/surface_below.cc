@@ -74,37 +74,40 @@ void Bridge(double max_gap, SurfaceRow& row) {
 // Two rows of points on one grid (the same spacing, the second's start a
 // whole number of spacings from the first's: a sensor's uniform points in
 // passes whose frames differ by as much) blended value by value as
-// SurfaceGrid blends them: the same surface, sampled with one lookup.
-// nullopt where the two grids differ.
-std::optional<SurfaceRow> Blend(const SurfaceRow& a, const SurfaceRow& b, double w) {
-  if (!a.at_points || !b.at_points || std::abs(a.dx_mm - b.dx_mm) > 1e-6 * a.dx_mm) return std::nullopt;
+// SurfaceGrid blends them, into r (its buffers reused): the same surface,
+// sampled with one lookup. False where the two grids differ.
+bool Blend(const SurfaceRow& a, const SurfaceRow& b, double w, SurfaceRow& r) {
+  if (!a.at_points || !b.at_points || std::abs(a.dx_mm - b.dx_mm) > 1e-6 * a.dx_mm) return false;
   const double offset = (b.x0_mm - a.x0_mm) / a.dx_mm, whole = std::round(offset);
-  if (std::abs(offset - whole) > 1e-3) return std::nullopt;
+  if (std::abs(offset - whole) > 1e-3) return false;
   const auto shift = static_cast<std::ptrdiff_t>(whole);  // b's value k is a's k + shift
-  const std::ptrdiff_t first = std::min<std::ptrdiff_t>(0, shift);
-  const std::ptrdiff_t end = std::max<std::ptrdiff_t>(std::ssize(a.z_mm), shift + std::ssize(b.z_mm));  // in a's index
-  SurfaceRow r;
+  const std::ptrdiff_t na = std::ssize(a.z_mm), nb = std::ssize(b.z_mm);
+  const std::ptrdiff_t first = std::min<std::ptrdiff_t>(0, shift), end = std::max(na, shift + nb);  // in a's index
   r.dx_mm = a.dx_mm, r.x0_mm = a.x0_mm + static_cast<double>(first) * a.dx_mm, r.at_points = true;
-  r.z_mm.resize(static_cast<std::size_t>(end - first));
-  r.variance.resize(r.z_mm.size());
+  r.z_mm.assign(static_cast<std::size_t>(end - first), NAN);
+  r.variance.assign(r.z_mm.size(), 1.0f);
+  // Index k of a is r's k - first, b's k - shift. Each row where it alone
+  // reaches, then the two blended where both do (one NaN: the other
+  // stands for both).
+  const auto at = [](auto& v, std::ptrdiff_t i) -> auto& { return v[static_cast<std::size_t>(i)]; };
+  std::copy(a.z_mm.begin(), a.z_mm.end(), r.z_mm.begin() - first);
+  std::copy(a.variance.begin(), a.variance.end(), r.variance.begin() - first);
+  const std::ptrdiff_t lo = std::max<std::ptrdiff_t>(0, shift), hi = std::min(na, shift + nb);
+  const auto b_alone = [&](std::ptrdiff_t from, std::ptrdiff_t to) {
+    for (std::ptrdiff_t k = from; k < to; ++k)
+      at(r.z_mm, k - first) = at(b.z_mm, k - shift), at(r.variance, k - first) = at(b.variance, k - shift);
+  };
+  b_alone(shift, std::min(lo, shift + nb));
+  b_alone(std::max(hi, shift), shift + nb);
   const float wa = static_cast<float>(1 - w), wb = static_cast<float>(w);
-  for (std::ptrdiff_t k = first; k < end; ++k) {
-    const std::ptrdiff_t kb = k - shift;
-    const bool in_a = k >= 0 && k < std::ssize(a.z_mm), in_b = kb >= 0 && kb < std::ssize(b.z_mm);
-    const float za = in_a ? a.z_mm[static_cast<std::size_t>(k)] : NAN;
-    const float zb = in_b ? b.z_mm[static_cast<std::size_t>(kb)] : NAN;
-    const float va = in_a ? a.variance[static_cast<std::size_t>(k)] : 1.0f;
-    const float vb = in_b ? b.variance[static_cast<std::size_t>(kb)] : 1.0f;
-    float& z = r.z_mm[static_cast<std::size_t>(k - first)];
-    float& v = r.variance[static_cast<std::size_t>(k - first)];
-    if (std::isnan(zb))
-      z = za, v = va;
-    else if (std::isnan(za))
-      z = zb, v = vb;
-    else
-      z = wa * za + wb * zb, v = wa * wa * va + wb * wb * vb;
+  for (std::ptrdiff_t k = lo; k < hi; ++k) {
+    float &z = at(r.z_mm, k - first), &v = at(r.variance, k - first);
+    const float zb = at(b.z_mm, k - shift), vb = at(b.variance, k - shift);
+    const bool a_nan = z != z, b_nan = zb != zb;
+    v = b_nan ? v : a_nan ? vb : wa * wa * v + wb * wb * vb;
+    z = b_nan ? z : a_nan ? zb : wa * z + wb * zb;
   }
-  return r;
+  return true;
 }
 
 }  // namespace
@@ -198,7 +201,9 @@ std::optional<SurfaceGrid> SurfaceBelow::At(double path, std::string* why) const
     return std::nullopt;
   }
   if (i == j) return SurfaceGrid(a.row, nullptr, 0.0);
-  if (std::optional<SurfaceRow> blend = Blend(*a.row, *b.row, w)) return SurfaceGrid(std::move(*blend));
+  // The blend's row reused where no grid handed out still holds it.
+  if (!blended_ || blended_.use_count() > 1) blended_ = std::make_shared<SurfaceRow>();
+  if (Blend(*a.row, *b.row, w, *blended_)) return SurfaceGrid(blended_, nullptr, 0.0);
   return SurfaceGrid(a.row, b.row, w);
 }
 

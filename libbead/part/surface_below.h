@@ -194,6 +194,7 @@ class SurfaceBelow {
   bool below_known_ = false;
   std::vector<Below> below_;
   std::vector<StoredProfile> current_;
+  mutable std::shared_ptr<SurfaceRow> blended_;  // At's last blend (one caller at a time)
 };
 
 // The values z at increasing points x placed on the grid x[0] + k dx of n
