@@ -27,11 +27,21 @@ const Gains& GainsAt(std::span<const float> x, std::span<const float> z, const S
   thread_local Gains g;
   if (grid) grid->BelowAt(s, under);
   g.index.resize(x.size()), g.x.resize(x.size()), g.d.resize(x.size());
-  if (grid && std::none_of(under.begin(), under.end(), [](float b) { return std::isnan(b); })) {
-    // The surface below known at every point: each point its own gain.
-    for (std::size_t i = 0; i < x.size(); ++i)
-      g.index[i] = i, g.x[i] = x[i], g.d[i] = z[i] - static_cast<double>(under[i]);
-    return g;
+  if (grid) {
+    // The surface below known at every point from the first where it is
+    // to the last (it ends beside the profile: the layer below is as
+    // wide): each of those points its own gain.
+    std::size_t a = 0, b = x.size();
+    while (a < b && std::isnan(under[a])) ++a;
+    while (b > a && std::isnan(under[b - 1])) --b;
+    int unknown = 0;
+    for (std::size_t i = a; i < b; ++i) unknown |= under[i] != under[i];
+    if (!unknown) {
+      g.index.resize(b - a), g.x.resize(b - a), g.d.resize(b - a);
+      for (std::size_t i = a; i < b; ++i)
+        g.index[i - a] = i, g.x[i - a] = x[i], g.d[i - a] = z[i] - static_cast<double>(under[i]);
+      return g;
+    }
   }
   std::size_t n = 0;
   for (std::size_t i = 0; i < x.size(); ++i) {
@@ -191,20 +201,21 @@ void Geometry(const Gains& g, std::span<const float> z, const Span& s, double fl
 
 // Where more than half the steps lie within a thousandth of one step's
 // length (a sensor's uniform points, a few missing), the median is among
-// them: their mean, in one pass (tried from the first step and the middle
-// one; NaN where neither is so common).
+// them: their mean (tried from the first step and the middle one; NaN
+// where neither is so common). Counted in one pass without branches;
+// where every step is among them, their sum is the span.
 double CommonStep(std::span<const float> x) {
   const std::size_t steps = x.size() - 1;
   for (std::size_t at : {std::size_t{0}, steps / 2}) {
     const float step = x[at + 1] - x[at], band = 1e-3f * step;
-    double sum = 0.0;
+    const auto in = [&](std::size_t i) { return std::abs((x[i + 1] - x[i]) - step) <= band; };
     std::size_t count = 0;
-    for (std::size_t i = 0; i < steps; ++i) {
-      const float d = x[i + 1] - x[i];
-      const bool in = std::abs(d - step) <= band;
-      sum += in ? d : 0.0f, count += in;
-    }
-    if (2 * count > steps && step > 0.0f) return sum / static_cast<double>(count);
+    for (std::size_t i = 0; i < steps; ++i) count += in(i);
+    if (!(2 * count > steps && step > 0.0f)) continue;
+    if (count == steps) return (static_cast<double>(x.back()) - x.front()) / static_cast<double>(steps);
+    double sum = 0.0;
+    for (std::size_t i = 0; i < steps; ++i) sum += in(i) ? x[i + 1] - x[i] : 0.0f;
+    return sum / static_cast<double>(count);
   }
   return kNaN;
 }

@@ -17,20 +17,14 @@
 namespace bead::part {
 namespace {
 
-// A profile's valid points moved into the bed frame, increasing in x (a
-// sensor's usually are: sorted only where they are not).
-StoredProfile InBedFrame(const ProfileView& v, double path, double frame_x, double frame_z) {
-  StoredProfile p;
-  p.path_mm = path;
-  const std::size_t points = v.x_mm.size();
-  p.x_mm.resize(points), p.z_mm.resize(points);
-  // Each point written, kept where finite (the next overwrites one that
-  // is not).
+// The finite points of p, increasing in x (kept in their order where they
+// increase, sorted where not).
+void KeepValid(StoredProfile& p) {
   std::size_t n = 0;
   bool increasing = true;
   float before = -std::numeric_limits<float>::infinity();
-  for (std::size_t j = 0; j < points; ++j) {
-    const auto x = static_cast<float>(v.x_mm[j] + frame_x), z = static_cast<float>(v.z_mm[j] + frame_z);
+  for (std::size_t j = 0; j < p.x_mm.size(); ++j) {
+    const float x = p.x_mm[j], z = p.z_mm[j];
     const bool keep = std::isfinite(x) && std::isfinite(z);
     p.x_mm[n] = x, p.z_mm[n] = z;
     increasing = increasing && (!keep || before < x);
@@ -38,12 +32,30 @@ StoredProfile InBedFrame(const ProfileView& v, double path, double frame_x, doub
     n += keep;
   }
   p.x_mm.resize(n), p.z_mm.resize(n);
-  if (!increasing) {
-    std::vector<std::pair<float, float>> points;
-    for (std::size_t j = 0; j < p.x_mm.size(); ++j) points.emplace_back(p.x_mm[j], p.z_mm[j]);
-    std::sort(points.begin(), points.end());
-    for (std::size_t j = 0; j < points.size(); ++j) p.x_mm[j] = points[j].first, p.z_mm[j] = points[j].second;
+  if (increasing) return;
+  std::vector<std::pair<float, float>> points;
+  for (std::size_t j = 0; j < n; ++j) points.emplace_back(p.x_mm[j], p.z_mm[j]);
+  std::sort(points.begin(), points.end());
+  for (std::size_t j = 0; j < n; ++j) p.x_mm[j] = points[j].first, p.z_mm[j] = points[j].second;
+}
+
+// A profile's valid points moved into the bed frame, increasing in x (a
+// sensor's usually are: sorted only where they are not).
+StoredProfile InBedFrame(const ProfileView& v, double path, double frame_x, double frame_z) {
+  StoredProfile p;
+  p.path_mm = path;
+  const std::size_t points = v.x_mm.size();
+  p.x_mm.resize(points), p.z_mm.resize(points);
+  // Every point moved; a sensor's complete profile (every point finite, x
+  // increasing) is then taken as it is, checked without branches.
+  int off = 0;
+  for (std::size_t j = 0; j < points; ++j) {
+    const auto x = static_cast<float>(v.x_mm[j] + frame_x), z = static_cast<float>(v.z_mm[j] + frame_z);
+    p.x_mm[j] = x, p.z_mm[j] = z;
+    off |= !(x - x == 0.0f) | !(z - z == 0.0f);  // NaN and infinity
   }
+  for (std::size_t j = 1; j < points; ++j) off |= !(p.x_mm[j - 1] < p.x_mm[j]);
+  if (off) KeepValid(p);
   p.spacing_mm = PointSpacingMm(p.x_mm);
   return p;
 }

@@ -47,8 +47,10 @@ void Resample(const StoredProfile& p, double x0, double dx, std::size_t n, doubl
 // (a sensor's points on its grid, none missing): one pass, no branch.
 bool OnEveryGridPoint(std::span<const float> x, double dx) {
   const float x0 = x[0], step = static_cast<float>(dx), tolerance = static_cast<float>(0.01 * dx);
+  // (An int index: a 64-bit one turns into a float one point at a time.)
   int off = 0;
-  for (std::size_t j = 0; j < x.size(); ++j) off |= std::abs(x[j] - (x0 + static_cast<float>(j) * step)) > tolerance;
+  const auto n = static_cast<int>(x.size());
+  for (int j = 0; j < n; ++j) off |= std::abs(x[j] - (x0 + static_cast<float>(j) * step)) > tolerance;
   return off == 0;
 }
 
