@@ -66,10 +66,13 @@ StoredProfile InBedFrame(const ProfileView& v, double path, double frame_x, doub
 double GridStep(const StoredProfile& p) { return p.x_mm.size() < 2 ? 0.01 : std::max(0.125 * p.spacing_mm, 1e-4); }
 
 // A bed known as a height at every x of the profile's frame, sampled on a
-// grid of `step` over the profile's span in the bed frame.
+// grid of `step` over the profile's span in the bed frame. at_points: the
+// grid is the points' own (step: their spacing from the first), its
+// variance 0 (a fitted line): the new points' gains and costs are then
+// read on it as on a layer below (part/grid_costs.h).
 template <class HeightAt>
 std::optional<SurfaceGrid> SampledBed(const StoredProfile& p, double step, double frame_x, double frame_z,
-                                      HeightAt height_at) {
+                                      bool at_points, HeightAt height_at) {
   if (p.x_mm.size() < 2) return std::nullopt;
   SurfaceRow row;
   row.dx_mm = step;
@@ -79,6 +82,7 @@ std::optional<SurfaceGrid> SampledBed(const StoredProfile& p, double step, doubl
   row.z_mm.resize(n);
   for (std::size_t k = 0; k < n; ++k)
     row.z_mm[k] = static_cast<float>(height_at(row.x0_mm + static_cast<double>(k) * row.dx_mm - frame_x) + frame_z);
+  if (at_points) row.at_points = true, row.variance.assign(n, 0.0f);
   return SurfaceGrid(std::move(row));
 }
 
@@ -90,7 +94,7 @@ std::optional<SurfaceGrid> BedLine(ProfileProcessor& processor, const ProfileVie
   const BeadGeometry& g = processor.Process(v);
   if (!g.reference.ok) return std::nullopt;
   const ReferenceLine line = g.reference;
-  return SampledBed(p, std::max(p.spacing_mm, 1e-4), frame_x, frame_z,
+  return SampledBed(p, std::max(p.spacing_mm, 1e-4), frame_x, frame_z, true,
                     [&line](double x) { return line.intercept_mm + line.slope * x; });
 }
 
@@ -100,7 +104,7 @@ std::optional<SurfaceGrid> BedArcGrid(const Rig& rig, const ProfileView& v, cons
                                       double frame_z) {
   const BedArc arc = FitBedArc(v.x_mm, v.z_mm, rig.reference_left, rig.reference_right, rig.part->radius_mm);
   if (!arc.ok) return std::nullopt;
-  return SampledBed(p, GridStep(p), frame_x, frame_z, [&arc](double x) { return arc.At(x); });
+  return SampledBed(p, GridStep(p), frame_x, frame_z, false, [&arc](double x) { return arc.At(x); });
 }
 
 // Each bead of the profile over the surface below, moved by `shift`.
