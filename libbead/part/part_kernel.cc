@@ -246,8 +246,10 @@ struct EllipseLanes {
   T rss{}, jtj[10]{}, jtr[4]{};
 };
 
-template <class T>
-inline void AddEllipse(T x, T z, T old, const EllipseAt& e, bool held, EllipseLanes<T>& s) {
+// kHeld: the aspect held, b's column zero: its terms not summed (their
+// sums stay exactly 0).
+template <bool kHeld, class T>
+inline void AddEllipse(T x, T z, T old, const EllipseAt& e, EllipseLanes<T>& s) {
   const T zero = BroadcastD<T>(0.0), one = BroadcastD<T>(1.0);
   const T u = (x - BroadcastD<T>(e.x0)) / BroadcastD<T>(e.a);
   const T q = one - u * u;
@@ -258,28 +260,35 @@ inline void AddEllipse(T x, T z, T old, const EllipseAt& e, bool held, EllipseLa
   s.rss += r * r;
   const T sd = sv > BroadcastD<T>(0.02) ? sv : BroadcastD<T>(0.02);
   const T k = BroadcastD<T>(e.b) / (BroadcastD<T>(e.a) * sd);
-  const T by_a = held ? k * u * u + BroadcastD<T>(e.aspect) * sv : k * u * u;
-  const T g[4] = {seen ? k * u : zero, seen ? one : zero, seen ? by_a : zero, held ? zero : (seen ? sv : zero)};
+  const T by_a = kHeld ? k * u * u + BroadcastD<T>(e.aspect) * sv : k * u * u;
+  const T g[4] = {seen ? k * u : zero, seen ? one : zero, seen ? by_a : zero, kHeld ? zero : (seen ? sv : zero)};
+  constexpr int kParams = kHeld ? 3 : 4;
   int n = 0;
-  for (int i = 0; i < 4; ++i) {
-    for (int j = i; j < 4; ++j) s.jtj[n++] += g[i] * g[j];
+  for (int i = 0; i < kParams; ++i) {
+    for (int j = i; j < kParams; ++j) s.jtj[n + j - i] += g[i] * g[j];
+    n += 4 - i;
     s.jtr[i] += g[i] * r;
   }
 }
 
-EllipseSums Ellipse(const double* x, const double* z, const double* old, std::size_t lo, std::size_t hi,
-                    const EllipseAt& e) {
-  const bool held = e.aspect == e.aspect;
+template <bool kHeld>
+EllipseSums EllipseOver(const double* x, const double* z, const double* old, std::size_t lo, std::size_t hi,
+                        const EllipseAt& e) {
   EllipseLanes<V4D> wide;
   std::size_t i = lo;
-  for (; i + 4 <= hi; i += 4) AddEllipse(LoadD(x + i), LoadD(z + i), LoadD(old + i), e, held, wide);
+  for (; i + 4 <= hi; i += 4) AddEllipse<kHeld>(LoadD(x + i), LoadD(z + i), LoadD(old + i), e, wide);
   EllipseLanes<double> narrow;
-  for (; i < hi; ++i) AddEllipse(x[i], z[i], old[i], e, held, narrow);
+  for (; i < hi; ++i) AddEllipse<kHeld>(x[i], z[i], old[i], e, narrow);
   EllipseSums out;
   out.rss = SumD(wide.rss) + narrow.rss;
   for (int k = 0; k < 10; ++k) out.jtj[k] = SumD(wide.jtj[k]) + narrow.jtj[k];
   for (int k = 0; k < 4; ++k) out.jtr[k] = SumD(wide.jtr[k]) + narrow.jtr[k];
   return out;
+}
+
+EllipseSums Ellipse(const double* x, const double* z, const double* old, std::size_t lo, std::size_t hi,
+                    const EllipseAt& e) {
+  return e.aspect == e.aspect ? EllipseOver<true>(x, z, old, lo, hi, e) : EllipseOver<false>(x, z, old, lo, hi, e);
 }
 
 #define BEAD_STRINGIFY_(x) #x
