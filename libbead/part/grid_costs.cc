@@ -138,11 +138,18 @@ PointsOnGrid::Agreement PointsOnGrid::Agree(double s, double tau, double feature
 
 void PointsOnGrid::BelowAt(double s, std::vector<float>& z_below) const {
   const Span in = Inside(s);
-  on_grid_.assign(z_.size(), NAN);
-  kernel_->below_at(in.rows, in.begin, in.end, on_grid_.data());
-  EachEdgePoint(s, 0, std::ssize(z_), in, [&](std::ptrdiff_t i, const SurfaceGrid::Sample& at) {
-    on_grid_[static_cast<std::size_t>(i)] = static_cast<float>(at.z);
+  // Every grid point measured: the lattice is the points, written in place.
+  const bool complete = static_cast<std::size_t>(counted_.back()) == z_.size();
+  std::vector<float>& out = complete ? z_below : on_grid_;
+  const auto n = std::ssize(z_);
+  out.resize(z_.size());
+  std::fill(out.begin(), out.begin() + std::clamp<std::ptrdiff_t>(in.begin, 0, n), NAN);
+  std::fill(out.begin() + std::clamp<std::ptrdiff_t>(in.end, 0, n), out.end(), NAN);
+  kernel_->below_at(in.rows, in.begin, in.end, out.data());
+  EachEdgePoint(s, 0, n, in, [&](std::ptrdiff_t i, const SurfaceGrid::Sample& at) {
+    out[static_cast<std::size_t>(i)] = static_cast<float>(at.z);
   });
+  if (complete) return;
   z_below.resize(static_cast<std::size_t>(counted_.back()));
   for (std::size_t i = 0; i < z_.size(); ++i)
     if (!std::isnan(z_[i])) z_below[static_cast<std::size_t>(counted_[i])] = on_grid_[i];
