@@ -79,10 +79,6 @@ GrooveSum GrooveWithGradient(const Ellipse& e, const SurfaceGrid& below, double 
   return g;
 }
 
-double Groove(const Ellipse& e, const SurfaceGrid& below, double shift) {
-  return GrooveWithGradient(e, below, shift).groove;
-}
-
 // The parameters fitted: x0, z0, a, and b unless the aspect b / a is held
 // (the layer's pooled shape).
 struct Shape {
@@ -213,12 +209,12 @@ double GrooveSigma(const Ellipse& e, const Shape& shape, const Eigen::Matrix4d& 
   // The surface below moved by the shift is the ellipse moved the other
   // way: the groove's derivative in the shift is minus its x0's.
   const double by_shift = -sum.gradient[0] * o.shift_sigma;
-  double by_aspect = 0.0;
-  if (std::isfinite(shape.aspect) && o.aspect_sigma > 0.0) {
-    Ellipse m = e;
-    m.b = (shape.aspect + o.aspect_sigma) * m.a;
-    by_aspect = Groove(m, o.below, o.shift) - sum.groove;
-  }
+  // A held aspect a sigma off moves b by a times it: the groove's
+  // derivative in b (the groove is linear in b where the outline stays
+  // above the surface below: the nodes where it does not move little at
+  // a sigma of a few per cent).
+  const double by_aspect =
+      std::isfinite(shape.aspect) && o.aspect_sigma > 0.0 ? sum.gradient[3] * e.a * o.aspect_sigma : 0.0;
   return std::sqrt(std::max(0.0, grad.dot(cov * grad)) + below_var + by_shift * by_shift + by_aspect * by_aspect);
 }
 
