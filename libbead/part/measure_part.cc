@@ -41,9 +41,10 @@ void KeepValid(StoredProfile& p) {
 
 // A profile's valid points moved into the bed frame, increasing in x (a
 // sensor's usually are: sorted only where they are not).
-StoredProfile InBedFrame(const ProfileView& v, double path, double frame_x, double frame_z) {
+StoredProfile InBedFrame(const ProfileView& v, double path, double frame_x, double frame_z, SurfaceBelow& below) {
   StoredProfile p;
   p.path_mm = path;
+  p.x_mm = below.Spare(), p.z_mm = below.Spare();
   const std::size_t points = v.x_mm.size();
   p.x_mm.resize(points), p.z_mm.resize(points);
   // Every point moved; a sensor's complete profile (every point finite, x
@@ -128,7 +129,7 @@ class PartMeasurer {
     row.layer = places.layer[i];
     row.path_mm = places.path_mm[i];
     below_.BeginLayer(row.layer);
-    StoredProfile mine = InBedFrame(v, row.path_mm, places.frame_x_mm[i], places.frame_z_mm[i]);
+    StoredProfile mine = InBedFrame(v, row.path_mm, places.frame_x_mm[i], places.frame_z_mm[i], below_);
     std::optional<SurfaceGrid> under;
     const bool pipe = rig_.part && rig_.part->shape == PartBed::Shape::kCylinder;
     if (row.layer == 0 && pipe)

@@ -116,7 +116,14 @@ bool Blend(const SurfaceRow& a, const SurfaceRow& b, double w, SurfaceRow& r) {
 
 SurfaceRow RowOf(const StoredProfile& p, double max_gap) {
   SurfaceRow row;
-  if (p.x_mm.size() < 2) return row;
+  RowOf(p, max_gap, row);
+  return row;
+}
+
+void RowOf(const StoredProfile& p, double max_gap, SurfaceRow& row) {
+  row.x0_mm = row.dx_mm = 0.0, row.at_points = false;
+  row.z_mm.clear(), row.variance.clear();
+  if (p.x_mm.size() < 2) return;
   // The points' own grid: x0 the first, dx from the first to the last over
   // the last's index.
   const double span = static_cast<double>(p.x_mm.back()) - p.x_mm.front(), last = std::round(span / p.spacing_mm);
@@ -125,14 +132,13 @@ SurfaceRow RowOf(const StoredProfile& p, double max_gap) {
     row.x0_mm = p.x_mm.front(), row.dx_mm = span / last, row.at_points = true;
     row.variance.assign(row.z_mm.size(), 1.0f);
     if (row.z_mm.size() > p.z_mm.size()) Bridge(max_gap, row);
-    return row;
+    return;
   }
   row.z_mm.clear();  // what a placement that failed left
   row.dx_mm = std::max(0.125 * p.spacing_mm, 1e-4);
   row.x0_mm = p.x_mm.front();
   const std::size_t n = GridPoints(p.x_mm.front(), p.x_mm.back(), row.dx_mm);
   if (n >= 2) Resample(p, row.x0_mm, row.dx_mm, n, max_gap, row.z_mm, row.variance);
-  return row;
 }
 
 bool PlaceOnGrid(std::span<const float> x, std::span<const float> z, double dx, std::size_t n,
@@ -160,15 +166,33 @@ bool PlaceOnGrid(std::span<const float> x, std::span<const float> z, double dx, 
 void SurfaceBelow::BeginLayer(int64_t layer) {
   if (layer == layer_) return;
   below_known_ = layer == layer_ + 1 && !current_.empty();
+  // The rows let go that no grid handed out still holds, to be refilled.
+  std::vector<std::shared_ptr<SurfaceRow>> retired;
+  for (Below& b : below_)
+    if (b.row.use_count() == 1) retired.push_back(std::move(b.row));
   below_.clear();
   if (below_known_) {
     std::sort(current_.begin(), current_.end(),
               [](const StoredProfile& a, const StoredProfile& b) { return a.path_mm < b.path_mm; });
-    for (const StoredProfile& p : current_)
-      below_.push_back({p.path_mm, p.center_x_mm, std::make_shared<const SurfaceRow>(RowOf(p, options_.max_x_gap_mm))});
+    for (const StoredProfile& p : current_) {
+      std::shared_ptr<SurfaceRow> row = std::make_shared<SurfaceRow>();
+      if (!retired.empty()) row = std::move(retired.back()), retired.pop_back();
+      RowOf(p, options_.max_x_gap_mm, *row);
+      below_.push_back({p.path_mm, p.center_x_mm, std::move(row)});
+    }
   }
+  // The profiles' buffers, for the next layer's profiles.
+  spare_.clear();
+  for (StoredProfile& p : current_) spare_.push_back(std::move(p.x_mm)), spare_.push_back(std::move(p.z_mm));
   current_.clear();
   layer_ = layer;
+}
+
+std::vector<float> SurfaceBelow::Spare() {
+  if (spare_.empty()) return {};
+  std::vector<float> v = std::move(spare_.back());
+  spare_.pop_back();
+  return v;
 }
 
 bool SurfaceBelow::Neighbours(double path, std::size_t& i, std::size_t& j, double& w, std::string* why) const {

@@ -172,6 +172,10 @@ class SurfaceBelow {
   int64_t layer() const { return layer_; }
   // Adds a measured profile of the current layer (for the next one).
   void Keep(StoredProfile profile) { current_.push_back(std::move(profile)); }
+  // A buffer a profile of the layer before held (empty where none is
+  // left), for the next profile's points: a layer's profiles and rows
+  // reuse the memory of the ones they replace, not the heap's.
+  std::vector<float> Spare();
 
   // The layer below at `path_mm`, interpolated between its two nearest
   // profiles, with its variance; nullopt, with `why`, where the layer
@@ -187,13 +191,14 @@ class SurfaceBelow {
   // A profile of the layer below, on its grid.
   struct Below {
     double path_mm = 0.0, center_x_mm = 0.0;
-    std::shared_ptr<const SurfaceRow> row;
+    std::shared_ptr<SurfaceRow> row;
   };
   SurfaceBelowOptions options_;
   int64_t layer_ = -1;
   bool below_known_ = false;
   std::vector<Below> below_;
   std::vector<StoredProfile> current_;
+  std::vector<std::vector<float>> spare_;        // buffers of the layer before's profiles
   mutable std::shared_ptr<SurfaceRow> blended_;  // At's last blend (one caller at a time)
 };
 
@@ -210,5 +215,7 @@ bool PlaceOnGrid(std::span<const float> x, std::span<const float> z, double dx, 
 // otherwise the points resampled on a grid of an eighth of their spacing
 // (an interpolation of that grid is then that of the points).
 SurfaceRow RowOf(const StoredProfile& p, double max_gap_mm);
+// The same into `row`, its buffers reused.
+void RowOf(const StoredProfile& p, double max_gap_mm, SurfaceRow& row);
 
 }  // namespace bead::part

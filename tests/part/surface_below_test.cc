@@ -118,5 +118,35 @@ TEST(SurfaceBelow, TwoProfilesAreBlendedAlongThePathOnOneGridOrTwo) {
   }
 }
 
+TEST(SurfaceBelow, ASurfaceHandedOutOutlivesTheLayersThatReuseTheirMemory) {
+  // Layers 0, 1 and 2 flat at heights 1, 2, 3; each layer's rows and
+  // buffers reuse those of the one before (SurfaceBelow::Spare), but not a
+  // surface a caller still holds (a row waiting for its layer's groove).
+  auto flat = [](double z) { return [z](double) { return z; }; };
+  SurfaceBelow below;
+  std::optional<SurfaceGrid> held_single, held_blend;
+  for (int layer = 0; layer < 4; ++layer) {
+    below.BeginLayer(layer);
+    if (layer == 1) held_single = below.At(10.0, nullptr), held_blend = below.At(11.0, nullptr);
+    if (layer >= 1) {
+      const std::optional<SurfaceGrid> g = below.At(11.0, nullptr);
+      ASSERT_TRUE(g) << layer;
+      EXPECT_NEAR(g->At(0.0), layer, 1e-6) << layer;  // the layer below's height
+    }
+    for (double path : {10.0, 12.0}) {
+      StoredProfile p = Profile(path, -10.0, 401, flat(layer + 1.0));
+      // Its buffers from the layer before's profiles where there are any.
+      std::vector<float> x = below.Spare(), z = below.Spare();
+      EXPECT_EQ(x.empty(), layer == 0) << layer;  // from layer 1 on, the layer before let go
+      x.assign(p.x_mm.begin(), p.x_mm.end()), z.assign(p.z_mm.begin(), p.z_mm.end());
+      p.x_mm = std::move(x), p.z_mm = std::move(z);
+      below.Keep(std::move(p));
+    }
+  }
+  ASSERT_TRUE(held_single && held_blend);
+  EXPECT_NEAR(held_single->At(0.0), 1.0, 1e-6);
+  EXPECT_NEAR(held_blend->At(0.0), 1.0, 1e-6);
+}
+
 }  // namespace
 }  // namespace bead::part
