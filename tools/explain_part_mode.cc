@@ -31,9 +31,9 @@ void PartFlowCsv(const Rig& rig, const std::string& run, const fs::path& csv) {
                                                          [&](const part::PartFlowRow& row) { out.Append(row); });
   out.Commit();
   std::printf(
-      "%s: part scan, %zu profiles in %zu layers, %zu placed and valid: the flow along the path (bead flow's) "
+      "%s: part scan, %zu profiles in %zu layer%s, %zu placed and valid: the flow along the path (bead flow's) "
       "is the series, input screw_rpm, output flow_mm3_s, in the time the nozzle laid each place\n",
-      run.c_str(), scan.part->size(), f.layers.size(), f.flow_samples);
+      run.c_str(), scan.part->size(), f.layers.size(), f.layers.size() == 1 ? "" : "s", f.flow_samples);
 }
 
 }  // namespace

@@ -58,8 +58,8 @@ void SayMeasured(const std::string& run, const std::vector<part::LayerSummary>& 
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::size_t valid = 0;
   for (const auto& l : layers) valid += l.valid;
-  std::printf("%s: part scan, %zu profiles in %zu layers, %zu valid, measured in %.3f s\n", run.c_str(), total,
-              layers.size(), valid, seconds);
+  std::printf("%s: part scan, %zu profiles in %zu layer%s, %zu valid, measured in %.3f s\n", run.c_str(), total,
+              layers.size(), layers.size() == 1 ? "" : "s", valid, seconds);
   SayLayers(layers);
 }
 
