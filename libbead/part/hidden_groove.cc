@@ -227,13 +227,19 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   if (!(width > 0.0) || !(height > 0.0)) return out;
   // The points within a width of the centre (x increasing: a range).
   thread_local Window w;
-  w.x.clear(), w.z.clear(), w.old.clear();
-  const auto first = std::upper_bound(x.begin(), x.end(), center - width) - x.begin();
-  for (auto j = static_cast<std::size_t>(first); j < x.size() && x[j] < center + width; ++j) {
+  const auto first = static_cast<std::size_t>(std::upper_bound(x.begin(), x.end(), center - width) - x.begin());
+  const auto end = static_cast<std::size_t>(std::lower_bound(x.begin(), x.end(), center + width) - x.begin());
+  // Each written in place, kept where the surface below is known (the
+  // next overwrites one that is not).
+  const std::size_t span = std::max(first, end) - first;
+  w.x.resize(span), w.z.resize(span), w.old.resize(span);
+  std::size_t n = 0;
+  for (std::size_t j = first; j < first + span; ++j) {
     const double old = below.At(x[j] - shift);
-    if (std::abs(x[j] - center) < width && std::isfinite(old) && std::isfinite(z[j]))
-      w.x.push_back(x[j]), w.z.push_back(z[j]), w.old.push_back(old);
+    w.x[n] = x[j], w.z[n] = z[j], w.old[n] = old;
+    n += std::isfinite(old) && std::isfinite(z[j]);
   }
+  w.x.resize(n), w.z.resize(n), w.old.resize(n);
   if (w.x.size() < 12) return out;
   w.Close();
   const double spacing = (w.x.back() - w.x.front()) / static_cast<double>(w.x.size() - 1);
