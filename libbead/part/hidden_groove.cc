@@ -209,10 +209,11 @@ double GrooveSigma(const Ellipse& e, const Shape& shape, const Eigen::Matrix4d& 
   // The surface below moved by the shift is the ellipse moved the other
   // way: the groove's derivative in the shift is minus its x0's.
   const double by_shift = -sum.gradient[0] * o.shift_sigma;
-  // A held aspect a sigma off moves b by a times it: the groove's
-  // derivative in b (the groove is linear in b where the outline stays
-  // above the surface below: the nodes where it does not move little at
-  // a sigma of a few per cent).
+  // A held aspect a sigma off moves b by a times that sigma: the groove's
+  // derivative in b times it (the groove is linear in b over the nodes
+  // where the outline stands above the surface below, and a change of a
+  // few per cent moves few nodes in or out; the integral at the aspect
+  // plus a sigma gave the same coverage, 4726 of 4800).
   const double by_aspect =
       std::isfinite(shape.aspect) && o.aspect_sigma > 0.0 ? sum.gradient[3] * e.a * o.aspect_sigma : 0.0;
   return std::sqrt(std::max(0.0, grad.dot(cov * grad)) + below_var + by_shift * by_shift + by_aspect * by_aspect);
