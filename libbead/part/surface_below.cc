@@ -175,8 +175,11 @@ void SurfaceBelow::BeginLayer(int64_t layer) {
     std::sort(current_.begin(), current_.end(),
               [](const StoredProfile& a, const StoredProfile& b) { return a.path_mm < b.path_mm; });
     for (const StoredProfile& p : current_) {
-      std::shared_ptr<SurfaceRow> row = std::make_shared<SurfaceRow>();
-      if (!retired.empty()) row = std::move(retired.back()), retired.pop_back();
+      std::shared_ptr<SurfaceRow> row;
+      if (retired.empty())
+        row = std::make_shared<SurfaceRow>();
+      else
+        row = std::move(retired.back()), retired.pop_back();
       RowOf(p, options_.max_x_gap_mm, *row);
       below_.push_back({p.path_mm, p.center_x_mm, std::move(row)});
     }

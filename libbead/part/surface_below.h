@@ -3,7 +3,8 @@
 // x + frame_x_mm, z_bed = z + frame_z_mm). A layer's profiles are kept as
 // they are measured; when the next layer begins they become the surface
 // below (each a row on its points' grid: RowOf) and the layer before is
-// let go: memory bounded by one layer, not by the part.
+// let go, its rows and buffers refilled by the layers that follow: memory
+// bounded by a layer or two, not by the part.
 #pragma once
 
 #include <algorithm>
