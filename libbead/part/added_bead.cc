@@ -25,9 +25,8 @@ const Gains& GainsAt(std::span<const float> x, std::span<const float> z, const S
                      const PointsOnGrid* grid) {
   thread_local std::vector<float> under;
   thread_local Gains g;
-  if (grid) grid->BelowAt(s, under);
-  g.index.resize(x.size()), g.x.resize(x.size()), g.d.resize(x.size());
   if (grid) {
+    grid->BelowAt(s, under);
     // The surface below known at every point from the first where it is
     // to the last (it ends beside the profile: the layer below is as
     // wide): each of those points its own gain.
@@ -43,6 +42,7 @@ const Gains& GainsAt(std::span<const float> x, std::span<const float> z, const S
       return g;
     }
   }
+  g.index.resize(x.size()), g.x.resize(x.size()), g.d.resize(x.size());
   std::size_t n = 0;
   for (std::size_t i = 0; i < x.size(); ++i) {
     const double b = grid ? under[i] : below.At(x[i] - s);
