@@ -84,7 +84,8 @@ void WriteJson(const std::string& path, const nlohmann::json& j) {
 
 void PrintReport(const explain::ExplainReport& r, const std::string& unit) {
   std::printf(
-      "\nthe model as given: fit %.2f %%, RMS error %.4g %s; residual %s (chi2 %.1f, 99 %% limit %.1f), %s the input\n",
+      "\nthe model as given (each stretch's initial state fitted): fit %.2f %%, RMS error %.4g %s; residual %s (chi2 "
+      "%.1f, 99 %% limit %.1f), %s the input\n",
       r.before.fit_pct, r.before.rms, unit.c_str(), r.before.whiteness.white ? "white" : "not white",
       r.before.whiteness.chi2, r.before.whiteness.chi2_limit,
       r.before.input.independent ? "independent of" : "correlated with");

@@ -195,6 +195,19 @@ Rows SplitRows(const SeriesData& d, const ExplainOptions& o) {
 
 // The base model at its best: gain, operating point and delay refitted,
 // each started from the fit of the ones before it.
+// The model as given, each stretch's initial state fitted (as identify's
+// fit and compare take it: a stretch's free response is no part of a
+// model, and one from rest is not the model's error; a part's stretches
+// are its layers, seconds long, where a slow mode's free response is the
+// whole record).
+Set AsGiven(const SeriesData& d, const CatalogueOptions& catalogue, const std::vector<std::size_t>& all) {
+  Set set;
+  for (const Effect& e : BaseRefit(d, catalogue))
+    if (e.feature == "initial") set.push_back(Activate(e));
+  if (!set.empty()) Fit(d, set, all);
+  return set;
+}
+
 Set FittedBase(const SeriesData& d, const CatalogueOptions& catalogue, const std::vector<std::size_t>& all) {
   Set est;
   for (const Effect& e : BaseRefit(d, catalogue)) est.push_back(Activate(e));
@@ -340,7 +353,7 @@ ExplainReport Explain(const SeriesData& d, const ExplainOptions& o) {
   ExplainReport report;
   const Rows rows = SplitRows(d, o);
   const std::vector<Effect> catalogue = Catalogue(d, o.catalogue);
-  report.before = Diagnose(d, Set{}, o);
+  report.before = Diagnose(d, AsGiven(d, o.catalogue, rows.all), o);
   Set current = FittedBase(d, o.catalogue, rows.all);
   const std::size_t base_terms = current.size();
   const Effect dynamics = DynamicsCorrection(d);

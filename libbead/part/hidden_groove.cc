@@ -4,36 +4,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "libbead/part/part_kernel.h"
+#include "libbead/part/silhouette.h"
 
 namespace bead::part {
 namespace {
-
-// The ellipse: centre (x0, z0), semi-axes a across, b up.
-struct Ellipse {
-  double x0 = 0.0, z0 = 0.0, a = 1.0, b = 1.0;
-  // Half its height at x (0 off it).
-  double Half(double x) const {
-    const double u = (x - x0) / a;
-    return std::abs(u) < 1.0 ? b * std::sqrt(1.0 - u * u) : 0.0;
-  }
-  double& operator[](std::size_t i) { return i == 0 ? x0 : i == 1 ? z0 : i == 2 ? a : b; }
-  double operator[](std::size_t i) const { return i == 0 ? x0 : i == 1 ? z0 : i == 2 ? a : b; }
-};
-
-// The points around the bead with the surface below under each.
-struct Window {
-  std::vector<double> x, z, old;  // x increasing
-  // bare[j]: the sum of (old - z)^2 over the points before j, the residual
-  // each has where the ellipse does not reach it.
-  std::vector<double> bare;
-  void Close() {
-    bare.assign(x.size() + 1, 0.0);
-    for (std::size_t j = 0; j < x.size(); ++j) bare[j + 1] = bare[j] + (old[j] - z[j]) * (old[j] - z[j]);
-  }
-};
 
 // The groove: the ellipse's lower outline above the surface below, by the
 // midpoint rule, a hundred steps across each half of the ellipse (off by
@@ -183,13 +161,28 @@ struct Around {
   double noise_mm;  // one point's noise (the grid's variance is in its square)
 };
 
-// The groove's 1-sigma: the fit's covariance (s2 (J^T J)^-1) through the
-// groove's gradient; the surface below known to its own noise (its grid's
-// variance in one point's noise, one independent value per point spacing)
-// and its place to the
-// shift's sigma; a held aspect to its pooled sigma: each moves the groove
-// as the fit's own error does. NaN where the fit cannot place the bead's
-// sides (J^T J singular).
+// The groove's variance from what lies around the ellipse: the surface
+// below known to its own noise (its grid's variance in one point's noise,
+// one independent value per point spacing) and its place to the shift's
+// sigma. seen_by_shift: the area seen's own derivative in the shift, where
+// it is counted with the groove's (0: the groove's alone).
+double AroundVariance(const Ellipse& e, const GrooveSum& sum, const Around& o, double seen_by_shift = 0.0) {
+  double below_var = 0.0;
+  const double step = o.spacing;
+  for (double at = e.x0 - e.a + 0.5 * step; at < e.x0 + e.a; at += step)
+    if (const SurfaceGrid::Sample b = o.below.SampleAt(at - o.shift); e.z0 - e.Half(at) > b.z)
+      below_var += o.noise_mm * o.noise_mm * b.variance * step * step;
+  // The surface below moved by the shift is the ellipse moved the other
+  // way: the groove's derivative in the shift is minus its x0's.
+  const double by_shift = (seen_by_shift + sum.gradient[0]) * o.shift_sigma;
+  return below_var + by_shift * by_shift;
+}
+
+// The fitted groove's 1-sigma: the fit's covariance (s2 (J^T J)^-1)
+// through the groove's gradient; what lies around it (AroundVariance);
+// a held aspect to its pooled sigma: each moves the groove as the fit's
+// own error does. NaN where the fit cannot place the bead's sides (J^T J
+// singular).
 double GrooveSigma(const Ellipse& e, const Shape& shape, const Eigen::Matrix4d& JtJ, double s2, const GrooveSum& sum,
                    const Around& o) {
   const auto k = static_cast<Eigen::Index>(shape.Params());
@@ -201,14 +194,6 @@ double GrooveSigma(const Ellipse& e, const Shape& shape, const Eigen::Matrix4d& 
   Eigen::VectorXd grad(static_cast<Eigen::Index>(shape.Params()));
   for (std::size_t i = 0; i < shape.Params(); ++i) grad[static_cast<Eigen::Index>(i)] = sum.gradient[i];
   if (std::isfinite(shape.aspect)) grad[2] += shape.aspect * sum.gradient[3];
-  double below_var = 0.0;
-  const double step = o.spacing;
-  for (double at = e.x0 - e.a + 0.5 * step; at < e.x0 + e.a; at += step)
-    if (const SurfaceGrid::Sample b = o.below.SampleAt(at - o.shift); e.z0 - e.Half(at) > b.z)
-      below_var += o.noise_mm * o.noise_mm * b.variance * step * step;
-  // The surface below moved by the shift is the ellipse moved the other
-  // way: the groove's derivative in the shift is minus its x0's.
-  const double by_shift = -sum.gradient[0] * o.shift_sigma;
   // A held aspect a sigma off moves b by a times that sigma: the groove's
   // derivative in b times it (the groove is linear in b over the nodes
   // where the outline stands above the surface below, and a change of a
@@ -216,7 +201,27 @@ double GrooveSigma(const Ellipse& e, const Shape& shape, const Eigen::Matrix4d& 
   // plus a sigma gave the same coverage, 4726 of 4800).
   const double by_aspect =
       std::isfinite(shape.aspect) && o.aspect_sigma > 0.0 ? sum.gradient[3] * e.a * o.aspect_sigma : 0.0;
-  return std::sqrt(std::max(0.0, grad.dot(cov * grad)) + below_var + by_shift * by_shift + by_aspect * by_aspect);
+  return std::sqrt(std::max(0.0, grad.dot(cov * grad)) + AroundVariance(e, sum, o) + by_aspect * by_aspect);
+}
+
+// The groove of the ellipse placed at the bead's silhouette (no fit).
+HiddenGroove AtTheSilhouette(const Silhouette& s, const Window& w, const Around& o, double aspect, double center,
+                             double base) {
+  HiddenGroove out;
+  const GrooveSum groove = GrooveWithGradient(s.e, o.below, o.shift);
+  out.hidden_mm2 = groove.groove;
+  // The area seen stands on the same surface below, between the ends: moved
+  // by the shift, it changes by the surface below's rise from the left end
+  // to the right one (the ends stay at the walls the data show).
+  const double seen_by_shift = s.wall_left - s.wall_right;
+  const double var =
+      SilhouetteVariance(w, s, aspect, o.aspect_sigma, groove.gradient) + AroundVariance(s.e, groove, o, seen_by_shift);
+  out.sigma_mm2 = std::sqrt(var);
+  out.at_silhouette = true;
+  out.aspect = s.e.b / s.e.a;
+  out.dx0 = s.e.x0 - center, out.dz0 = s.e.z0 - base, out.a = s.e.a, out.b = s.e.b;
+  out.ok = std::isfinite(out.hidden_mm2) && std::isfinite(out.sigma_mm2);
+  return out;
 }
 
 }  // namespace
@@ -245,7 +250,17 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   w.Close();
   const double spacing = (w.x.back() - w.x.front()) / static_cast<double>(w.x.size() - 1);
   const double base = below.At(center - shift);
-  Shape shape{2.0 * spacing, pooled ? pooled->aspect : NAN};
+  const Around around{below, shift, shift_sigma, spacing, pooled ? pooled->sigma : 0.0, noise_mm};
+  // Placed at its silhouette where the bead shows one (part/silhouette.h):
+  // its run over 3 sigmas of a point's noise and 2 % of its height; each
+  // end's wall rising over 6 sigmas (a difference of two points' noise at
+  // over 4) and 15 % of its height.
+  const SilhouetteScale scale{std::max(3.0 * noise_mm, 0.02 * height), std::max(6.0 * noise_mm, 0.15 * height)};
+  const double held = pooled ? pooled->aspect : NAN;
+  if (const std::optional<Silhouette> s = AtSilhouette(w, center, scale, held))
+    return AtTheSilhouette(*s, w, around, held, center, base);
+  // Otherwise fitted.
+  Shape shape{2.0 * spacing, held};
   // Started sunk to four depths (its centre on the surface below, a
   // quarter, half and three quarters of its height above) and two widths:
   // the least residual kept.
@@ -283,7 +298,6 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   const GrooveSum groove = GrooveWithGradient(best, below, shift);
   out.hidden_mm2 = groove.groove;
   const double dof = static_cast<double>(w.x.size()) - static_cast<double>(shape.Params());
-  const Around around{below, shift, shift_sigma, spacing, pooled ? pooled->sigma : 0.0, noise_mm};
   out.sigma_mm2 = GrooveSigma(best, shape, best_JtJ, best_rss / dof, groove, around);
   out.ok = std::isfinite(out.hidden_mm2) && std::isfinite(out.sigma_mm2);
   return out;

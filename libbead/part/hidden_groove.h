@@ -7,15 +7,17 @@
 // Model: the new bead's cross-section is an ellipse (centre x0, z0;
 // semi-axes A across, B up; the wall's beads as the thesis' rounded beads
 // and the twin's), its material what lies inside it above the surface
-// before it. The sensor sees max(surface below, the ellipse's top); the
-// ellipse is fitted to the profile's points around the bead by
+// before it. The sensor sees max(surface below, the ellipse's top). Where
+// the bead overhangs, its ends show as walls in the seen profile and the
+// ellipse is placed there, its height solved (part/silhouette.h); where
+// they do not, it is fitted to the profile's points around the bead by
 // Levenberg-Marquardt (the surface below known, moved by the registration's
-// shift), and the groove is the part of the ellipse's outline's shadow
-// that lies above the surface below: the integral of
-// max(0, z0 - B sqrt(1 - u^2) - z_below(x)) over the ellipse's width. Its
-// sigma is the fit's covariance (residual variance times (J^T J)^-1)
-// carried through the groove's gradient. Where the bead's sides are not
-// seen steep enough to place its widest point, the sigma says so.
+// shift; its sigma the fit's covariance, residual variance times
+// (J^T J)^-1, carried through the groove's gradient). The groove is the
+// part of the ellipse's outline's shadow that lies above the surface
+// below: the integral of max(0, z0 - B sqrt(1 - u^2) - z_below(x)) over
+// the ellipse's width. Where the bead's sides are not seen steep enough to
+// place its widest point, the sigma says so.
 #pragma once
 
 #include <limits>
@@ -30,8 +32,11 @@ struct HiddenGroove {
   bool ok = false;
   double hidden_mm2 = kNaN;  // the groove under the overhangs
   double sigma_mm2 = kNaN;   // its 1-sigma from the fit
-  double fit_rms_mm = kNaN;
-  double aspect = kNaN;  // the ellipse's b / a
+  double fit_rms_mm = kNaN;  // the fit's (NaN: placed at the silhouette, not fitted)
+  double aspect = kNaN;      // the ellipse's b / a
+  // Placed at the silhouette: the sigma holds the area seen's edges too
+  // (they move with the ellipse's ends; part/silhouette.h).
+  bool at_silhouette = false;
   // The ellipse fitted, its centre from the bead's centre and the surface
   // below there: where the next profile's fit starts.
   double dx0 = kNaN, dz0 = kNaN, a = kNaN, b = kNaN;

@@ -1,0 +1,37 @@
+// What the hidden groove's estimates share (part/hidden_groove.h): the
+// ellipse a wall's bead is taken to be, and the points around the bead with
+// the surface below under each.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+namespace bead::part {
+
+// The ellipse: centre (x0, z0), semi-axes a across, b up.
+struct Ellipse {
+  double x0 = 0.0, z0 = 0.0, a = 1.0, b = 1.0;
+  // Half its height at x (0 off it).
+  double Half(double x) const {
+    const double u = (x - x0) / a;
+    return std::abs(u) < 1.0 ? b * std::sqrt(1.0 - u * u) : 0.0;
+  }
+  double& operator[](std::size_t i) { return i == 0 ? x0 : i == 1 ? z0 : i == 2 ? a : b; }
+  double operator[](std::size_t i) const { return i == 0 ? x0 : i == 1 ? z0 : i == 2 ? a : b; }
+};
+
+// The points around the bead with the surface below under each.
+struct Window {
+  std::vector<double> x, z, old;  // x increasing
+  // bare[j]: the sum of (old - z)^2 over the points before j, the residual
+  // each has where the ellipse does not reach it.
+  std::vector<double> bare;
+  void Close() {
+    bare.assign(x.size() + 1, 0.0);
+    for (std::size_t j = 0; j < x.size(); ++j) bare[j + 1] = bare[j] + (old[j] - z[j]) * (old[j] - z[j]);
+  }
+  double Gain(std::size_t j) const { return z[j] - old[j]; }
+};
+
+}  // namespace bead::part

@@ -1,0 +1,164 @@
+// A wall's bead placed at its silhouette (part/silhouette.h): the ends where
+// the seen profile's walls are, the height solved over the top.
+#include "libbead/part/silhouette.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+namespace bead::part {
+namespace {
+
+constexpr double kSpacing = 0.05;  // a profiler's point spacing, mm
+
+// What a sensor looking down sees of `e` over a surface below z = old(x):
+// the ellipse's top where it stands over the surface, the surface elsewhere,
+// at points kSpacing apart from x = -6 + offset, with Gaussian noise.
+template <class Old>
+Window Seen(const Ellipse& e, Old old, double offset, double noise = 0.0, unsigned seed = 1) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> n(0.0, noise);
+  Window w;
+  for (double x = -6.0 + offset; x <= 6.0; x += kSpacing) {
+    const double u = (x - e.x0) / e.a, below = old(x);
+    const double top = std::abs(u) < 1.0 ? e.z0 + e.b * std::sqrt(1.0 - u * u) : -INFINITY;
+    w.x.push_back(x), w.old.push_back(below), w.z.push_back(std::max(top, below) + (noise > 0.0 ? n(rng) : 0.0));
+  }
+  w.Close();
+  return w;
+}
+
+const SilhouetteScale kScale{0.03, 0.15};
+const auto kFlat = [](double) { return 0.0; };
+
+// Each end lies in the cell found for it, whatever the points' phase
+// against it (the width no whole number of cells: each end its own);
+// with the aspect held, the height is then the truth's to within what an
+// end half a cell off moves it.
+TEST(Silhouette, TheEndsLieInTheirCellsAndTheHeightFollows) {
+  const Ellipse truth{0.13, 0.4, 3.017, 1.5085};
+  for (double offset : {0.0, 0.011, 0.023, 0.037, 0.049}) {
+    const Window w = Seen(truth, kFlat, offset);
+    const auto s = AtSilhouette(w, truth.x0, kScale, 0.5);
+    ASSERT_TRUE(s) << offset;
+    EXPECT_LE(s->cell[0], truth.x0 - truth.a) << offset;
+    EXPECT_GE(s->cell[1], truth.x0 - truth.a) << offset;
+    EXPECT_LE(s->cell[2], truth.x0 + truth.a) << offset;
+    EXPECT_GE(s->cell[3], truth.x0 + truth.a) << offset;
+    // Each end within half a cell: a within half a cell, b = a / 2 within a
+    // quarter, and z0, the mean of the top less b s, within about as much.
+    EXPECT_NEAR(s->e.a, truth.a, 0.5 * kSpacing) << offset;
+    EXPECT_NEAR(s->e.z0, truth.z0, 0.25 * kSpacing) << offset;
+    // The seen walls: z0 over the flat surface.
+    EXPECT_NEAR(s->wall_left, s->e.z0, 1e-12);
+    EXPECT_NEAR(s->wall_right, s->e.z0, 1e-12);
+  }
+}
+
+// With b solved too, noise-free, the aspect is the truth's to the share an
+// end half a cell off can move it (its sampling, not its fit): a off by
+// half a cell over a, b by about as much the other way.
+TEST(Silhouette, TheAspectFreeIsTheTruthsToWithinItsEndsCells) {
+  const Ellipse truth{-0.2, 0.3, 3.017, 1.5085};
+  const double share = 0.5 * kSpacing / truth.a;
+  for (double offset : {0.0, 0.017, 0.033}) {
+    const auto s = AtSilhouette(Seen(truth, kFlat, offset), truth.x0, kScale, NAN);
+    ASSERT_TRUE(s) << offset;
+    EXPECT_NEAR(s->e.b / s->e.a, 0.5, 0.5 * 2.0 * share) << offset;
+    EXPECT_GT(s->residual_variance, 0.0);
+    EXPECT_LT(std::sqrt(s->residual_variance), 0.02);  // the top from ends a fraction of a cell off
+  }
+}
+
+// A bead sunk so deep that its sides meet the surface below shows no wall:
+// nothing to place it by (the fit's work, not the silhouette's).
+TEST(Silhouette, ABeadWhoseSidesMeetTheSurfaceBelowHasNone) {
+  const Ellipse sunk{0.0, -0.6, 3.0, 1.5};
+  EXPECT_FALSE(AtSilhouette(Seen(sunk, kFlat, 0.0), 0.0, kScale, 0.5));
+  // Nor does a profile with nothing over the surface at the centre.
+  EXPECT_FALSE(AtSilhouette(Seen(sunk, kFlat, 0.0), 5.5, kScale, 0.5));
+}
+
+// On the layer below's shoulder (a surface rising toward the bead), the
+// walls are z0 less the surface there, each side its own.
+TEST(Silhouette, TheWallsStandOnTheSurfaceBelowWhereTheEndsAre) {
+  const Ellipse truth{0.4, 1.2, 3.0, 1.5};
+  const auto hill = [](double x) { return 1.0 - 0.04 * x * x; };  // an old bead's top under the new one
+  const auto s = AtSilhouette(Seen(truth, hill, 0.0), truth.x0, kScale, 0.5);
+  ASSERT_TRUE(s);
+  const double L = s->e.x0 - s->e.a, R = s->e.x0 + s->e.a;
+  EXPECT_NEAR(s->wall_left, s->e.z0 - hill(L), 1e-3);
+  EXPECT_NEAR(s->wall_right, s->e.z0 - hill(R), 1e-3);
+  // The bead's centre right of the old one's top: its right end farther
+  // down the shoulder, over a lower surface.
+  EXPECT_GT(s->wall_right, s->wall_left);
+}
+
+// The groove of e over a flat surface at 0: its lower outline's shadow
+// above 0, finely summed (the material the sensor cannot see).
+double FlatGroove(const Ellipse& e) {
+  double sum = 0.0;
+  const int n = 20000;
+  for (int k = 0; k < n; ++k) {
+    const double u = -1.0 + (k + 0.5) * 2.0 / n;
+    sum += std::max(0.0, e.z0 - e.b * std::sqrt(1.0 - u * u)) * e.a * 2.0 / n;
+  }
+  return sum;
+}
+
+// Its material above 0: the ellipse there.
+double FlatMaterial(const Ellipse& e) {
+  double sum = 0.0;
+  const int n = 20000;
+  for (int k = 0; k < n; ++k) {
+    const double u = -1.0 + (k + 0.5) * 2.0 / n, h = e.b * std::sqrt(1.0 - u * u);
+    sum += std::max(0.0, e.z0 + h - std::max(e.z0 - h, 0.0)) * e.a * 2.0 / n;
+  }
+  return sum;
+}
+
+// Where the ends lie in their cells is what the placement cannot see:
+// over the points' phases against beads of widths a fraction of a cell
+// apart (each end's place in its cell its own; noise-free), the area seen
+// (the trapezoids of the gain, as part/added_bead.h sums it) less the
+// groove of the ellipse placed misses the material by as much as the
+// variance's ends say: its RMS within a factor of two of their predicted
+// sigma, its mean within two of them.
+TEST(Silhouette, TheEndsVarianceIsWhatTheirPlacesInTheCellsMove) {
+  double sum = 0.0, sum2 = 0.0, predicted = 0.0;
+  int runs = 0;
+  for (int m = 0; m < 5; ++m) {
+    const Ellipse truth{0.13, 0.4, 3.003 + 0.0093 * m, 0.5 * (3.003 + 0.0093 * m)};
+    const double material = FlatMaterial(truth);
+    for (int k = 0; k < 8; ++k, ++runs) {
+      const Window w = Seen(truth, kFlat, kSpacing * k / 8.0);
+      auto s = AtSilhouette(w, truth.x0, kScale, 0.5);
+      ASSERT_TRUE(s) << m << " " << k;
+      double seen = 0.0;
+      for (std::size_t j = 0; j + 1 < w.x.size(); ++j)
+        seen += 0.5 * (std::max(w.Gain(j), 0.0) + std::max(w.Gain(j + 1), 0.0)) * (w.x[j + 1] - w.x[j]);
+      const double error = seen - FlatGroove(s->e) - material;
+      sum += error, sum2 += error * error;
+      double gradient[4];
+      for (std::size_t i = 0; i < 4; ++i) {
+        Ellipse up = s->e, down = s->e;
+        up[i] += 1e-5, down[i] -= 1e-5;
+        gradient[i] = (FlatGroove(up) - FlatGroove(down)) / 2e-5;
+      }
+      s->residual_variance = 0.0;  // noise-free: the ends alone
+      predicted += SilhouetteVariance(w, *s, 0.5, 0.0, gradient);
+    }
+  }
+  const double rms = std::sqrt(sum2 / runs), sigma = std::sqrt(predicted / runs);
+  std::printf("over %d beads: error mean %+.4f, RMS %.4f mm^2; the ends' sigma %.4f mm^2\n", runs, sum / runs, rms,
+              sigma);
+  EXPECT_GT(rms, 0.5 * sigma);
+  EXPECT_LT(rms, 2.0 * sigma);
+  EXPECT_LT(std::abs(sum / runs), 2.0 * sigma);
+}
+
+}  // namespace
+}  // namespace bead::part
