@@ -84,6 +84,11 @@ std::optional<Silhouette> AtSilhouette(const Window& w, double center, const Sil
   if (!SolveTop(w, jl + 1, jr, L, R, aspect, s)) return std::nullopt;
   s.wall_left = s.e.z0 - OldBetween(w, jl, L);
   s.wall_right = s.e.z0 - OldBetween(w, jr, R);
+  // The ellipse's widest point standing over the surface below by a wall
+  // at each end: an overhang. (A bead whose sides meet the surface, seen at
+  // points far apart, rises as steeply from one to the next; placed there,
+  // its widest point lies on the surface.)
+  if (!(s.wall_left > k.rise && s.wall_right > k.rise)) return std::nullopt;
   return s;
 }
 

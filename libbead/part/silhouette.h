@@ -51,7 +51,9 @@ struct SilhouetteScale {
 // The ellipse at the silhouette of the bead around `center` in w; aspect:
 // b / a held (NaN: b solved too).
 // nullopt where the run around the centre is too short, or either end is
-// no wall (the bead's side meets the surface below: nothing to place it by).
+// no wall (the gain rises by less than `rise` there, or the ellipse placed
+// stands on the surface below by less at its end: the bead's side meets
+// the surface below, nothing to place it by).
 std::optional<Silhouette> AtSilhouette(const Window& w, double center, const SilhouetteScale& scale, double aspect);
 
 // The variance the placement adds to the area seen less the groove: each

@@ -18,11 +18,12 @@ constexpr double kSpacing = 0.05;  // a profiler's point spacing, mm
 // the ellipse's top where it stands over the surface, the surface elsewhere,
 // at points kSpacing apart from x = -6 + offset, with Gaussian noise.
 template <class Old>
-Window Seen(const Ellipse& e, Old old, double offset, double noise = 0.0, unsigned seed = 1) {
+Window Seen(const Ellipse& e, Old old, double offset, double noise = 0.0, unsigned seed = 1,
+            double spacing = kSpacing) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> n(0.0, noise);
   Window w;
-  for (double x = -6.0 + offset; x <= 6.0; x += kSpacing) {
+  for (double x = -6.0 + offset; x <= 6.0; x += spacing) {
     const double u = (x - e.x0) / e.a, below = old(x);
     const double top = std::abs(u) < 1.0 ? e.z0 + e.b * std::sqrt(1.0 - u * u) : -INFINITY;
     w.x.push_back(x), w.old.push_back(below), w.z.push_back(std::max(top, below) + (noise > 0.0 ? n(rng) : 0.0));
@@ -80,6 +81,12 @@ TEST(Silhouette, ABeadWhoseSidesMeetTheSurfaceBelowHasNone) {
   EXPECT_FALSE(AtSilhouette(Seen(sunk, kFlat, 0.0), 0.0, kScale, 0.5));
   // Nor does a profile with nothing over the surface at the centre.
   EXPECT_FALSE(AtSilhouette(Seen(sunk, kFlat, 0.0), 5.5, kScale, 0.5));
+  // Seen at points 0.2 mm apart, a bead whose widest point lies on the
+  // surface (a half ellipse laid on it) rises from one point to the next as
+  // steeply as a wall; placed there, it stands on the surface by no wall.
+  const Ellipse on{0.0, 0.0, 1.5, 0.8};
+  for (double offset : {0.03, 0.09, 0.15})
+    EXPECT_FALSE(AtSilhouette(Seen(on, kFlat, offset, 0.0, 1, 0.2), 0.0, kScale, NAN)) << offset;
 }
 
 // On the layer below's shoulder (a surface rising toward the bead), the
