@@ -73,8 +73,8 @@ TEST(HiddenGroove, TheCorrectedAreaIsTheMaterialLaidWhereTheSeenAreaIsNot) {
     EXPECT_LT(MedianAbs(f.corrected_rel), 0.03) << seed;
     EXPECT_GT(f.visible / f.laid - 1, 0.05) << seed << ": the wall hides nothing; the test says nothing";
   }
-  std::printf("95 %% intervals covering the material laid: %d of %d, the errors' RMS over their sigmas %.2f\n",
-              covered, rows, std::sqrt(z2 / rows));
+  std::printf("95 %% intervals covering the material laid: %d of %d, the errors' RMS over their sigmas %.2f\n", covered,
+              rows, std::sqrt(z2 / rows));
 
   // Never over-confident (at least 90 %); and not so wide that it never
   // misses (at most 99.2 %). On these walls, the beads placed at their
