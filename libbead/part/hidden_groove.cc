@@ -20,10 +20,12 @@ namespace {
 // the sum's own (its nodes x = x0 + a u_k move with the ellipse, s =
 // sqrt(1 - u^2)): over the nodes where the outline stands above the
 // surface below, a step times 1 for z0, -s for b, -old'(x) for x0; and
-// groove / a less a step times old'(x) u for a.
+// groove / a less a step times old'(x) u for a. Beside them, the surface
+// below's variance (in one point's) integrated over those nodes.
 struct GrooveSum {
   double groove = 0.0;
-  double gradient[4] = {};  // x0, z0, a, b
+  double gradient[4] = {};      // x0, z0, a, b
+  double variance_under = 0.0;  // mm
 };
 
 // The nodes u_k across the ellipse and sqrt(1 - u_k^2) there (the same for
@@ -39,17 +41,18 @@ struct Nodes {
 GrooveSum GrooveWithGradient(const Ellipse& e, const SurfaceGrid& below, double shift) {
   static const Nodes nodes;
   constexpr double kDu = 2.0 / kNodes;
-  double sum = 0.0, on = 0.0, s_on = 0.0, slope_on = 0.0, slope_u_on = 0.0;
+  double sum = 0.0, on = 0.0, s_on = 0.0, slope_on = 0.0, slope_u_on = 0.0, variance = 0.0;
   for (int k = 0; k < kNodes; ++k) {
     const double u = nodes.u[k], s = nodes.s[k];
-    const SurfaceGrid::Rise old = below.RiseAt(e.x0 + e.a * u - shift);
+    const SurfaceGrid::Sample old = below.SampleAt(e.x0 + e.a * u - shift);
     const double f = e.z0 - e.b * s - old.z;
     if (!(f > 0.0)) continue;  // the surface below above the outline, or not known
-    sum += f, on += 1.0, s_on += s, slope_on += old.slope, slope_u_on += old.slope * u;
+    sum += f, on += 1.0, s_on += s, slope_on += old.slope, slope_u_on += old.slope * u, variance += old.variance;
   }
   const double step = e.a * kDu;
   GrooveSum g;
   g.groove = sum * step;
+  g.variance_under = variance * step;
   g.gradient[0] = -slope_on * step;
   g.gradient[1] = on * step;
   g.gradient[2] = sum * kDu - slope_u_on * step;
@@ -166,12 +169,10 @@ struct Around {
 // one independent value per point spacing) and its place to the shift's
 // sigma. seen_by_shift: the area seen's own derivative in the shift, where
 // it is counted with the groove's (0: the groove's alone).
-double AroundVariance(const Ellipse& e, const GrooveSum& sum, const Around& o, double seen_by_shift = 0.0) {
-  double below_var = 0.0;
-  const double step = o.spacing;
-  for (double at = e.x0 - e.a + 0.5 * step; at < e.x0 + e.a; at += step)
-    if (const SurfaceGrid::Sample b = o.below.SampleAt(at - o.shift); e.z0 - e.Half(at) > b.z)
-      below_var += o.noise_mm * o.noise_mm * b.variance * step * step;
+double AroundVariance(const GrooveSum& sum, const Around& o, double seen_by_shift = 0.0) {
+  // One value a point spacing, its variance the integral's over the groove
+  // (the nodes': the sum over spacings it stands for).
+  const double below_var = o.noise_mm * o.noise_mm * sum.variance_under * o.spacing;
   // The surface below moved by the shift is the ellipse moved the other
   // way: the groove's derivative in the shift is minus its x0's.
   const double by_shift = (seen_by_shift + sum.gradient[0]) * o.shift_sigma;
@@ -201,12 +202,11 @@ double GrooveSigma(const Ellipse& e, const Shape& shape, const Eigen::Matrix4d& 
   // plus a sigma gave the same coverage, 4726 of 4800).
   const double by_aspect =
       std::isfinite(shape.aspect) && o.aspect_sigma > 0.0 ? sum.gradient[3] * e.a * o.aspect_sigma : 0.0;
-  return std::sqrt(std::max(0.0, grad.dot(cov * grad)) + AroundVariance(e, sum, o) + by_aspect * by_aspect);
+  return std::sqrt(std::max(0.0, grad.dot(cov * grad)) + AroundVariance(sum, o) + by_aspect * by_aspect);
 }
 
 // The groove of the ellipse placed at the bead's silhouette (no fit).
-HiddenGroove AtTheSilhouette(const Silhouette& s, const Window& w, const Around& o, double aspect, double center,
-                             double base) {
+HiddenGroove AtTheSilhouette(const Silhouette& s, const Around& o, double aspect, double center, double base) {
   HiddenGroove out;
   const GrooveSum groove = GrooveWithGradient(s.e, o.below, o.shift);
   out.hidden_mm2 = groove.groove;
@@ -215,7 +215,7 @@ HiddenGroove AtTheSilhouette(const Silhouette& s, const Window& w, const Around&
   // to the right one (the ends stay at the walls the data show).
   const double seen_by_shift = s.wall_left - s.wall_right;
   const double var =
-      SilhouetteVariance(w, s, aspect, o.aspect_sigma, groove.gradient) + AroundVariance(s.e, groove, o, seen_by_shift);
+      SilhouetteVariance(s, aspect, o.aspect_sigma, groove.gradient) + AroundVariance(groove, o, seen_by_shift);
   out.sigma_mm2 = std::sqrt(var);
   out.at_silhouette = true;
   out.aspect = s.e.b / s.e.a;
@@ -247,7 +247,6 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   }
   w.x.resize(n), w.z.resize(n), w.old.resize(n);
   if (w.x.size() < 12) return out;
-  w.Close();
   const double spacing = (w.x.back() - w.x.front()) / static_cast<double>(w.x.size() - 1);
   const double base = below.At(center - shift);
   const Around around{below, shift, shift_sigma, spacing, pooled ? pooled->sigma : 0.0, noise_mm};
@@ -258,8 +257,9 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   const SilhouetteScale scale{std::max(3.0 * noise_mm, 0.02 * height), std::max(6.0 * noise_mm, 0.15 * height)};
   const double held = pooled ? pooled->aspect : NAN;
   if (const std::optional<Silhouette> s = AtSilhouette(w, center, scale, held))
-    return AtTheSilhouette(*s, w, around, held, center, base);
+    return AtTheSilhouette(*s, around, held, center, base);
   // Otherwise fitted.
+  w.Close();
   Shape shape{2.0 * spacing, held};
   // Started sunk to four depths (its centre on the surface below, a
   // quarter, half and three quarters of its height above) and two widths:

@@ -40,6 +40,9 @@ struct Silhouette {
   double residual_variance = 0.0;          // theirs, mm^2
   double z0_var = 0, b_var = 0, z0_b = 0;  // the solution's covariance over the residual variance (b's 0 where held)
   double mean_s = 0.0;                     // the mean of sqrt(1 - u^2) over those points
+  // z0's and b's derivatives in the place of each end (left, right), the
+  // top re-solved with the same points.
+  double z0_by_end[2] = {}, b_by_end[2] = {};
 };
 
 // What a silhouette is: the bead's run stands more than `floor` over the
@@ -61,7 +64,6 @@ std::optional<Silhouette> AtSilhouette(const Window& w, double center, const Sil
 // over the cell, squared, over 12), z0 (and b) to their least squares'
 // covariance, and a held aspect to its sigma; gradient: the groove's in
 // x0, z0, a and b at s.e.
-double SilhouetteVariance(const Window& w, const Silhouette& s, double aspect, double aspect_sigma,
-                          const double gradient[4]);
+double SilhouetteVariance(const Silhouette& s, double aspect, double aspect_sigma, const double gradient[4]);
 
 }  // namespace bead::part

@@ -156,7 +156,7 @@ TEST(Silhouette, TheEndsVarianceIsWhatTheirPlacesInTheCellsMove) {
         gradient[i] = (FlatGroove(up) - FlatGroove(down)) / 2e-5;
       }
       s->residual_variance = 0.0;  // noise-free: the ends alone
-      predicted += SilhouetteVariance(w, *s, 0.5, 0.0, gradient);
+      predicted += SilhouetteVariance(*s, 0.5, 0.0, gradient);
     }
   }
   const double rms = std::sqrt(sum2 / runs), sigma = std::sqrt(predicted / runs);
