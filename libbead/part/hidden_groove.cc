@@ -38,13 +38,31 @@ struct Nodes {
   }
 };
 
+// The surface below, moved by the shift, sampled at many places: one
+// row's (a blend's, a layer's on its grid) with its step's inverse taken
+// once; two rows as SurfaceGrid blends them.
+class BelowSampler {
+ public:
+  BelowSampler(const SurfaceGrid& grid, double shift)
+      : grid_(grid), row_(grid.single_row()), shift_(shift), per_mm_(row_ ? 1.0 / row_->dx_mm : 0.0) {}
+  SurfaceGrid::Sample At(double x) const {
+    return row_ ? row_->SampleAtIndex((x - shift_ - row_->x0_mm) * per_mm_, per_mm_) : grid_.SampleAt(x - shift_);
+  }
+
+ private:
+  const SurfaceGrid& grid_;
+  const SurfaceRow* row_;
+  double shift_, per_mm_;
+};
+
 GrooveSum GrooveWithGradient(const Ellipse& e, const SurfaceGrid& below, double shift) {
+  const BelowSampler under(below, shift);
   static const Nodes nodes;
   constexpr double kDu = 2.0 / kNodes;
   double sum = 0.0, on = 0.0, s_on = 0.0, slope_on = 0.0, slope_u_on = 0.0, variance = 0.0;
   for (int k = 0; k < kNodes; ++k) {
     const double u = nodes.u[k], s = nodes.s[k];
-    const SurfaceGrid::Sample old = below.SampleAt(e.x0 + e.a * u - shift);
+    const SurfaceGrid::Sample old = under.At(e.x0 + e.a * u);
     const double f = e.z0 - e.b * s - old.z;
     if (!(f > 0.0)) continue;  // the surface below above the outline, or not known
     sum += f, on += 1.0, s_on += s, slope_on += old.slope, slope_u_on += old.slope * u, variance += old.variance;
@@ -240,8 +258,9 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   const std::size_t span = std::max(first, end) - first;
   w.x.resize(span), w.z.resize(span), w.old.resize(span);
   std::size_t n = 0;
+  const BelowSampler under(below, shift);
   for (std::size_t j = first; j < first + span; ++j) {
-    const double old = below.At(x[j] - shift);
+    const double old = under.At(x[j]).z;
     w.x[n] = x[j], w.z[n] = z[j], w.old[n] = old;
     n += std::isfinite(old) && std::isfinite(z[j]);
   }

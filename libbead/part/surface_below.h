@@ -35,27 +35,19 @@ struct SurfaceRow {
   static double NaN() { return std::numeric_limits<double>::quiet_NaN(); }
   // Linear between grid values, with dz/dx between the two around x; z and
   // slope NaN outside the grid or next to a NaN.
-  Sample SampleAt(double x_mm) const {
+  Sample SampleAt(double x_mm) const { return SampleAtIndex((x_mm - x0_mm) / dx_mm, 1.0 / dx_mm); }
+  // The same at a fractional index u = (x - x0) / dx, given 1 / dx (a
+  // caller sampling many places takes the inverse once: no division).
+  Sample SampleAtIndex(double u, double per_mm) const {
     std::size_t k = 0;
     double t = 0.0;
-    if (!Locate(x_mm, k, t)) return {NaN(), 0.0, NaN()};
+    if (!LocateIndex(u, k, t)) return {NaN(), 0.0, NaN()};
     const double rise = static_cast<double>(z_mm[k + 1]) - z_mm[k];
     double v = 0.0;
     if (variance.size() == z_mm.size())
       v = at_points ? (1 - t) * (1 - t) * variance[k] + t * t * variance[k + 1]
                     : variance[k] + t * (variance[k + 1] - variance[k]);
-    return {z_mm[k] + t * rise, v, rise / dx_mm};
-  }
-  // SampleAt's z and slope, without the variance.
-  struct Rise {
-    double z, slope;
-  };
-  Rise RiseAt(double x_mm) const {
-    std::size_t k = 0;
-    double t = 0.0;
-    if (!Locate(x_mm, k, t)) return {NaN(), NaN()};
-    const double rise = static_cast<double>(z_mm[k + 1]) - z_mm[k];
-    return {z_mm[k] + t * rise, rise / dx_mm};
+    return {z_mm[k] + t * rise, v, rise * per_mm};
   }
   // SampleAt's z alone.
   double At(double x_mm) const {
@@ -66,8 +58,8 @@ struct SurfaceRow {
   }
   // Where x falls: a fraction t of the way from value k to value k + 1;
   // false outside the grid.
-  bool Locate(double x_mm, std::size_t& k, double& t) const {
-    const double u = (x_mm - x0_mm) / dx_mm;
+  bool Locate(double x_mm, std::size_t& k, double& t) const { return LocateIndex((x_mm - x0_mm) / dx_mm, k, t); }
+  bool LocateIndex(double u, std::size_t& k, double& t) const {
     if (!(u >= 0.0) || !(u <= static_cast<double>(z_mm.size()) - 1.0) || z_mm.size() < 2) return false;
     k = std::min(static_cast<std::size_t>(u), z_mm.size() - 2);
     t = u - static_cast<double>(k);
@@ -111,17 +103,6 @@ class SurfaceGrid {
     return (1 - w_) * za + w_ * zb;
   }
   double VarianceAt(double x_mm) const { return SampleAt(x_mm).variance; }
-  // SampleAt's z and slope alone.
-  using Rise = SurfaceRow::Rise;
-  Rise RiseAt(double x_mm) const {
-    if (!a_) return {SurfaceRow::NaN(), SurfaceRow::NaN()};
-    const Rise ra = a_->RiseAt(x_mm);
-    if (!b_) return ra;
-    const Rise rb = b_->RiseAt(x_mm);
-    if (std::isnan(rb.z)) return ra;
-    if (std::isnan(ra.z)) return rb;
-    return {(1 - w_) * ra.z + w_ * rb.z, (1 - w_) * ra.slope + w_ * rb.slope};
-  }
   // The one row this surface is (nullptr where it blends two).
   const SurfaceRow* single_row() const { return b_ ? nullptr : a_.get(); }
   // Its rows (the second nullptr where there is one) and the second's weight.
