@@ -48,6 +48,7 @@ class BelowSampler {
   SurfaceGrid::Sample At(double x) const {
     return row_ ? row_->SampleAtIndex((x - shift_ - row_->x0_mm) * per_mm_, per_mm_) : grid_.SampleAt(x - shift_);
   }
+  double Z(double x) const { return row_ ? row_->AtIndex((x - shift_ - row_->x0_mm) * per_mm_) : grid_.At(x - shift_); }
 
  private:
   const SurfaceGrid& grid_;
@@ -260,7 +261,7 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   std::size_t n = 0;
   const BelowSampler under(below, shift);
   for (std::size_t j = first; j < first + span; ++j) {
-    const double old = under.At(x[j]).z;
+    const double old = under.Z(x[j]);
     w.x[n] = x[j], w.z[n] = z[j], w.old[n] = old;
     n += std::isfinite(old) && std::isfinite(z[j]);
   }

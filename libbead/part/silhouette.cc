@@ -21,12 +21,13 @@ bool SolveTop(const Window& w, std::size_t first, std::size_t last, double L, do
   const bool held = std::isfinite(aspect);
   double m = 0, s1 = 0, s2 = 0, z1 = 0, zs = 0, zz = 0;
   double d1[2] = {}, d2[2] = {}, dz[2] = {};  // the sums s1, s2, zs in x0 and a
+  const double per_a = 1.0 / e.a;
   for (std::size_t j = first; j <= last; ++j) {
-    const double u = (w.x[j] - e.x0) / e.a;
+    const double u = (w.x[j] - e.x0) * per_a;
     if (!(std::abs(u) <= kInner)) continue;
     const double sv = std::sqrt(1.0 - u * u), z = w.z[j];
     m += 1, s1 += sv, s2 += sv * sv, z1 += z, zs += z * sv, zz += z * z;
-    const double by[2] = {u / (e.a * sv), u * u / (e.a * sv)};
+    const double by_x0 = u * per_a / sv, by[2] = {by_x0, u * by_x0};
     for (int i = 0; i < 2; ++i) d1[i] += by[i], d2[i] += 2.0 * sv * by[i], dz[i] += z * by[i];
   }
   const int params = held ? 1 : 2;

@@ -49,11 +49,12 @@ struct SurfaceRow {
                     : variance[k] + t * (variance[k + 1] - variance[k]);
     return {z_mm[k] + t * rise, v, rise * per_mm};
   }
-  // SampleAt's z alone.
-  double At(double x_mm) const {
+  // SampleAt's z alone (and at a fractional index).
+  double At(double x_mm) const { return AtIndex((x_mm - x0_mm) / dx_mm); }
+  double AtIndex(double u) const {
     std::size_t k = 0;
     double t = 0.0;
-    if (!Locate(x_mm, k, t)) return NaN();
+    if (!LocateIndex(u, k, t)) return NaN();
     return z_mm[k] + t * (static_cast<double>(z_mm[k + 1]) - z_mm[k]);
   }
   // Where x falls: a fraction t of the way from value k to value k + 1;
