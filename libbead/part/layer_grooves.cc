@@ -76,7 +76,7 @@ void LayerGrooves::Flush(const Emit& emit) {
   waiting_.clear();
 }
 
-// The layer's first free fits' aspects, then their pool, held.
+// The layer's first rows' own aspects, then their pool, held.
 void LayerGrooves::Pool(double aspect) {
   aspects_.push_back(aspect);
   if (aspects_.size() < kPoolProfiles) return;

@@ -1,13 +1,13 @@
 // The groove a layer's beads hide under their overhangs (part/hidden_groove.h),
 // taken off each row's area. One material, one process: the layer's first
-// free fits pool its beads' aspect b / a, and every row of the layer is
-// corrected with the aspect held, the first ones too. A free fit on a
-// single profile, where the bead's sides are seen poorly, can misplace
-// its widest point (on the twin's contour, one in ten of a layer's first
-// rows was 4.5 % or more off with its own fit, a few 8-10 %), so the rows
-// measured before the pool is formed wait for it: at most kMaxWaiting
-// rows, a layer's end or the scan's end, after which they go out with
-// their own fits.
+// rows, each bead's aspect b / a its own (placed at its silhouette, or
+// fitted), pool its beads' aspect, and every row of the layer is corrected
+// with the aspect held, the first ones too. One profile alone, where the
+// bead's sides are seen poorly, can misplace its widest point (on the
+// twin's contour, fitted from eight starts, one in ten of a layer's first
+// rows was 4.5 % or more off, a few 8-10 %), so the rows measured before
+// the pool is formed wait for it: at most kMaxWaiting rows, a layer's end
+// or the scan's end, after which they go out with their own aspects.
 #pragma once
 
 #include <cstdint>
