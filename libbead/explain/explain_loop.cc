@@ -193,8 +193,6 @@ Rows SplitRows(const SeriesData& d, const ExplainOptions& o) {
   return r;
 }
 
-// The base model at its best: gain, operating point and delay refitted,
-// each started from the fit of the ones before it.
 // The model as given, each stretch's initial state fitted (as identify's
 // fit and compare take it: a stretch's free response is no part of a
 // model, and one from rest is not the model's error; a part's stretches
@@ -208,6 +206,8 @@ Set AsGiven(const SeriesData& d, const CatalogueOptions& catalogue, const std::v
   return set;
 }
 
+// The base model at its best: gain, operating point and delay refitted,
+// each started from the fit of the ones before it.
 Set FittedBase(const SeriesData& d, const CatalogueOptions& catalogue, const std::vector<std::size_t>& all) {
   Set est;
   for (const Effect& e : BaseRefit(d, catalogue)) est.push_back(Activate(e));

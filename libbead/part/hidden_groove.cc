@@ -193,7 +193,8 @@ double AroundVariance(const GrooveSum& sum, const Around& o, double seen_by_shif
   // (the nodes': the sum over spacings it stands for).
   const double below_var = o.noise_mm * o.noise_mm * sum.variance_under * o.spacing;
   // The surface below moved by the shift is the ellipse moved the other
-  // way: the groove's derivative in the shift is minus its x0's.
+  // way: the groove's derivative in the shift is minus its x0's, the area
+  // seen less the groove's that plus seen_by_shift.
   const double by_shift = (seen_by_shift + sum.gradient[0]) * o.shift_sigma;
   return below_var + by_shift * by_shift;
 }

@@ -31,14 +31,14 @@ struct HiddenGroove {
   static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   bool ok = false;
   double hidden_mm2 = kNaN;  // the groove under the overhangs
-  double sigma_mm2 = kNaN;   // its 1-sigma from the fit
+  double sigma_mm2 = kNaN;   // its 1-sigma
   double fit_rms_mm = kNaN;  // the fit's (NaN: placed at the silhouette, not fitted)
   double aspect = kNaN;      // the ellipse's b / a
   // Placed at the silhouette: the sigma holds the area seen's edges too
   // (they move with the ellipse's ends; part/silhouette.h).
   bool at_silhouette = false;
-  // The ellipse fitted, its centre from the bead's centre and the surface
-  // below there: where the next profile's fit starts.
+  // The ellipse placed or fitted, its centre from the bead's centre and the
+  // surface below there: where the next profile's fit starts.
   double dx0 = kNaN, dz0 = kNaN, a = kNaN, b = kNaN;
 };
 

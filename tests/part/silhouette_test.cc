@@ -105,7 +105,8 @@ TEST(Silhouette, TheWallsStandOnTheSurfaceBelowWhereTheEndsAre) {
 }
 
 // The groove of e over a flat surface at 0: its lower outline's shadow
-// above 0, finely summed (the material the sensor cannot see).
+// above 0, finely summed (the void under the overhang that the area seen
+// counts as material).
 double FlatGroove(const Ellipse& e) {
   double sum = 0.0;
   const int n = 20000;
