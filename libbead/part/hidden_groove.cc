@@ -63,9 +63,9 @@ GrooveSum GrooveWithGradient(const Ellipse& e, const SurfaceGrid& below, double 
   double sum = 0.0, on = 0.0, s_on = 0.0, slope_on = 0.0, slope_u_on = 0.0, variance = 0.0;
   for (int k = 0; k < kNodes; ++k) {
     const double u = nodes.u[k], s = nodes.s[k];
-    const SurfaceGrid::Sample old = under.At(e.x0 + e.a * u);
-    const double f = e.z0 - e.b * s - old.z;
-    if (!(f > 0.0)) continue;  // the surface below above the outline, or not known
+    const double x = e.x0 + e.a * u, f = e.z0 - e.b * s - under.Z(x);
+    if (!(f > 0.0)) continue;                     // the surface below above the outline, or not known
+    const SurfaceGrid::Sample old = under.At(x);  // its slope and variance, where they count
     sum += f, on += 1.0, s_on += s, slope_on += old.slope, slope_u_on += old.slope * u, variance += old.variance;
   }
   const double step = e.a * kDu;
