@@ -274,7 +274,8 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   // Placed at its silhouette where the bead shows one (part/silhouette.h):
   // its run over 3 sigmas of a point's noise and 2 % of its height; each
   // end's wall rising over 6 sigmas (a difference of two points' noise at
-  // over 4) and 15 % of its height.
+  // over 4) and 15 % of its height. (The first values tried, not tuned:
+  // the walls' and contours' figures were read once, with these.)
   const SilhouetteScale scale{std::max(3.0 * noise_mm, 0.02 * height), std::max(6.0 * noise_mm, 0.15 * height)};
   const double held = pooled ? pooled->aspect : NAN;
   if (const std::optional<Silhouette> s = AtSilhouette(w, center, scale, held))
