@@ -57,7 +57,6 @@ bool SolveTop(const Window& w, std::size_t first, std::size_t last, double L, do
   }
   // The residuals' sum of squares from the sums: sum (z - z0 - b s)^2.
   const double rss = zz + m * e.z0 * e.z0 + e.b * e.b * s2 - 2.0 * e.z0 * z1 - 2.0 * e.b * zs + 2.0 * e.z0 * e.b * s1;
-  s.points = static_cast<int>(m);
   s.residual_variance = std::max(rss, 0.0) / (m - params);
   s.mean_s = s1 / m;
   return e.b > 0.0 && std::isfinite(e.z0);

@@ -36,8 +36,7 @@ struct Silhouette {
   Ellipse e;
   double cell[4] = {};                     // the left end lies in [cell[0], cell[1]], the right in [cell[2], cell[3]]
   double wall_left = 0, wall_right = 0;    // the seen wall at each end: z0 over the surface below there, mm
-  int points = 0;                          // the top's points solved over
-  double residual_variance = 0.0;          // theirs, mm^2
+  double residual_variance = 0.0;          // the top's points', mm^2
   double z0_var = 0, b_var = 0, z0_b = 0;  // the solution's covariance over the residual variance (b's 0 where held)
   double mean_s = 0.0;                     // the mean of sqrt(1 - u^2) over those points
   // z0's and b's derivatives in the place of each end (left, right), the

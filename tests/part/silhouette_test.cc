@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <random>
 
 namespace bead::part {
 namespace {
@@ -16,19 +15,15 @@ constexpr double kSpacing = 0.05;  // a profiler's point spacing, mm
 
 // What a sensor looking down sees of `e` over a surface below z = old(x):
 // the ellipse's top where it stands over the surface, the surface elsewhere,
-// at points kSpacing apart from x = -6 + offset, with Gaussian noise.
+// at points `spacing` apart from x = -6 + offset, noise-free.
 template <class Old>
-Window Seen(const Ellipse& e, Old old, double offset, double noise = 0.0, unsigned seed = 1,
-            double spacing = kSpacing) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> n(0.0, noise);
+Window Seen(const Ellipse& e, Old old, double offset, double spacing = kSpacing) {
   Window w;
   for (double x = -6.0 + offset; x <= 6.0; x += spacing) {
     const double u = (x - e.x0) / e.a, below = old(x);
     const double top = std::abs(u) < 1.0 ? e.z0 + e.b * std::sqrt(1.0 - u * u) : -INFINITY;
-    w.x.push_back(x), w.old.push_back(below), w.z.push_back(std::max(top, below) + (noise > 0.0 ? n(rng) : 0.0));
+    w.x.push_back(x), w.old.push_back(below), w.z.push_back(std::max(top, below));
   }
-  w.Close();
   return w;
 }
 
@@ -86,7 +81,7 @@ TEST(Silhouette, ABeadWhoseSidesMeetTheSurfaceBelowHasNone) {
   // steeply as a wall; placed there, it stands on the surface by no wall.
   const Ellipse on{0.0, 0.0, 1.5, 0.8};
   for (double offset : {0.03, 0.09, 0.15})
-    EXPECT_FALSE(AtSilhouette(Seen(on, kFlat, offset, 0.0, 1, 0.2), 0.0, kScale, NAN)) << offset;
+    EXPECT_FALSE(AtSilhouette(Seen(on, kFlat, offset, 0.2), 0.0, kScale, NAN)) << offset;
 }
 
 // On the layer below's shoulder (a surface rising toward the bead), the
