@@ -9,16 +9,28 @@
 
 namespace bead::part {
 
-// The ellipse: centre (x0, z0), semi-axes a across, b up.
+// The bead: centre (x0, z0), semi-axes a across, b up, and its exponent
+// (part/superellipse.h: 2 the ellipse).
 struct Ellipse {
-  double x0 = 0.0, z0 = 0.0, a = 1.0, b = 1.0;
+  double x0 = 0.0, z0 = 0.0, a = 1.0, b = 1.0, p = 2.0;
   // Half its height at x (0 off it).
   double Half(double x) const {
-    const double u = (x - x0) / a;
-    return std::abs(u) < 1.0 ? b * std::sqrt(1.0 - u * u) : 0.0;
+    const double u = std::abs((x - x0) / a);
+    return u < 1.0 ? b * std::pow(1.0 - std::pow(u, p), 1.0 / p) : 0.0;
   }
   double& operator[](std::size_t i) { return i == 0 ? x0 : i == 1 ? z0 : i == 2 ? a : b; }
   double operator[](std::size_t i) const { return i == 0 ? x0 : i == 1 ? z0 : i == 2 ? a : b; }
+};
+
+// The layer's beads' shape, pooled (part/layer_grooves.h): the median aspect
+// b / a and exponent of the free placements and fits on its first profiles,
+// each with its median's standard error (one material, one process: the
+// wheel's pooled occlusion carried over). Held, it leaves each profile its
+// bead's place, depth and size. A fit (no silhouette) holds the aspect and
+// is an ellipse.
+struct PooledShape {
+  double aspect = NAN, aspect_sigma = 0.0;
+  double exponent = 2.0, exponent_sigma = 0.0;
 };
 
 // The points around the bead with the surface below under each.

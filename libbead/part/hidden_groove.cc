@@ -2,40 +2,32 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <optional>
 #include <vector>
 
 #include "libbead/part/part_kernel.h"
 #include "libbead/part/silhouette.h"
+#include "libbead/part/superellipse.h"
 
 namespace bead::part {
 namespace {
 
-// The groove: the ellipse's lower outline above the surface below, by the
-// midpoint rule, a hundred steps across each half of the ellipse (off by
+// The groove: the bead's lower outline above the surface below, by the
+// midpoint rule, a hundred steps across each half of the bead (off by
 // the square of a step where the outline crosses the surface below, a
 // kink: well under a point's noise); with its gradient in x0, z0, a and b,
-// the sum's own (its nodes x = x0 + a u_k move with the ellipse, s =
-// sqrt(1 - u^2)): over the nodes where the outline stands above the
+// the sum's own (its nodes x = x0 + a u_k move with the bead, s = s(u_k),
+// part/superellipse.h): over the nodes where the outline stands above the
 // surface below, a step times 1 for z0, -s for b, -old'(x) for x0; and
-// groove / a less a step times old'(x) u for a. Beside them, the surface
-// below's variance (in one point's) integrated over those nodes.
+// groove / a less a step times old'(x) u for a; and in the exponent, a step
+// times -b ds/dp. Beside them, the surface below's variance (in one point's)
+// integrated over those nodes.
 struct GrooveSum {
   double groove = 0.0;
   double gradient[4] = {};      // x0, z0, a, b
+  double by_exponent = 0.0;     // mm^2 per unit of p
   double variance_under = 0.0;  // mm
-};
-
-// The nodes u_k across the ellipse and sqrt(1 - u_k^2) there (the same for
-// every ellipse).
-constexpr int kNodes = 200;
-struct Nodes {
-  std::array<double, kNodes> u, s;
-  Nodes() {
-    for (int k = 0; k < kNodes; ++k) u[k] = -1.0 + (k + 0.5) * (2.0 / kNodes), s[k] = std::sqrt(1.0 - u[k] * u[k]);
-  }
 };
 
 // The surface below, moved by the shift, sampled at many places: one
@@ -58,15 +50,18 @@ class BelowSampler {
 
 GrooveSum GrooveWithGradient(const Ellipse& e, const SurfaceGrid& below, double shift) {
   const BelowSampler under(below, shift);
-  static const Nodes nodes;
+  const SuperellipseTable& shape = SuperellipseOf(e.p);
+  constexpr int kNodes = SuperellipseTable::kNodes;
   constexpr double kDu = 2.0 / kNodes;
-  double sum = 0.0, on = 0.0, s_on = 0.0, slope_on = 0.0, slope_u_on = 0.0, variance = 0.0;
+  const auto &node_u = shape.node_u(), &node_s = shape.node_s(), &node_ds_dp = shape.node_ds_dp();
+  double sum = 0.0, on = 0.0, s_on = 0.0, slope_on = 0.0, slope_u_on = 0.0, variance = 0.0, dp_on = 0.0;
   for (int k = 0; k < kNodes; ++k) {
-    const double u = nodes.u[k], s = nodes.s[k];
+    const double u = node_u[k], s = node_s[k];
     const double x = e.x0 + e.a * u, f = e.z0 - e.b * s - under.Z(x);
     if (!(f > 0.0)) continue;                     // the surface below above the outline, or not known
     const SurfaceGrid::Sample old = under.At(x);  // its slope and variance, where they count
     sum += f, on += 1.0, s_on += s, slope_on += old.slope, slope_u_on += old.slope * u, variance += old.variance;
+    dp_on += node_ds_dp[k];
   }
   const double step = e.a * kDu;
   GrooveSum g;
@@ -76,6 +71,7 @@ GrooveSum GrooveWithGradient(const Ellipse& e, const SurfaceGrid& below, double 
   g.gradient[1] = on * step;
   g.gradient[2] = sum * kDu - slope_u_on * step;
   g.gradient[3] = -s_on * step;
+  g.by_exponent = -e.b * dp_on * step;
   return g;
 }
 
@@ -226,7 +222,8 @@ double GrooveSigma(const Ellipse& e, const Shape& shape, const Eigen::Matrix4d& 
 }
 
 // The groove of the ellipse placed at the bead's silhouette (no fit).
-HiddenGroove AtTheSilhouette(const Silhouette& s, const Around& o, double aspect, double center, double base) {
+HiddenGroove AtTheSilhouette(const Silhouette& s, const Around& o, const PooledShape* held, double center,
+                             double base) {
   HiddenGroove out;
   const GrooveSum groove = GrooveWithGradient(s.e, o.below, o.shift);
   out.hidden_mm2 = groove.groove;
@@ -235,10 +232,10 @@ HiddenGroove AtTheSilhouette(const Silhouette& s, const Around& o, double aspect
   // to the right one (the ends stay at the walls the data show).
   const double seen_by_shift = s.wall_left - s.wall_right;
   const double var =
-      SilhouetteVariance(s, aspect, o.aspect_sigma, groove.gradient) + AroundVariance(groove, o, seen_by_shift);
+      SilhouetteVariance(s, held, groove.gradient, groove.by_exponent) + AroundVariance(groove, o, seen_by_shift);
   out.sigma_mm2 = std::sqrt(var);
   out.at_silhouette = true;
-  out.aspect = s.e.b / s.e.a;
+  out.aspect = s.aspect, out.exponent = s.exponent;
   out.dx0 = s.e.x0 - center, out.dz0 = s.e.z0 - base, out.a = s.e.a, out.b = s.e.b;
   out.ok = std::isfinite(out.hidden_mm2) && std::isfinite(out.sigma_mm2);
   return out;
@@ -248,7 +245,7 @@ HiddenGroove AtTheSilhouette(const Silhouette& s, const Around& o, double aspect
 
 HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
                                   double shift, double shift_sigma, double noise_mm, double center, double width,
-                                  double height, const PooledAspect* pooled, const HiddenGroove* previous) {
+                                  double height, const PooledShape* pooled, const HiddenGroove* previous) {
   HiddenGroove out;
   if (!(width > 0.0) || !(height > 0.0)) return out;
   // The points within a width of the centre (x increasing: a range).
@@ -270,17 +267,17 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   if (w.x.size() < 12) return out;
   const double spacing = (w.x.back() - w.x.front()) / static_cast<double>(w.x.size() - 1);
   const double base = below.At(center - shift);
-  const Around around{below, shift, shift_sigma, spacing, pooled ? pooled->sigma : 0.0, noise_mm};
+  const Around around{below, shift, shift_sigma, spacing, pooled ? pooled->aspect_sigma : 0.0, noise_mm};
   // Placed at its silhouette where the bead shows one (part/silhouette.h):
   // its run over 3 sigmas of a point's noise and 2 % of its height; each
   // end's wall rising over 6 sigmas (a difference of two points' noise at
   // over 4) and 15 % of its height. (The first values tried, not tuned:
   // the walls' and contours' figures were read once, with these.)
   const SilhouetteScale scale{std::max(3.0 * noise_mm, 0.02 * height), std::max(6.0 * noise_mm, 0.15 * height)};
+  if (const std::optional<Silhouette> s = AtSilhouette(w, center, scale, pooled))
+    return AtTheSilhouette(*s, around, pooled, center, base);
+  // Otherwise fitted: an ellipse, its aspect the layer's where held.
   const double held = pooled ? pooled->aspect : NAN;
-  if (const std::optional<Silhouette> s = AtSilhouette(w, center, scale, held))
-    return AtTheSilhouette(*s, around, held, center, base);
-  // Otherwise fitted.
   w.Close();
   Shape shape{2.0 * spacing, held};
   // Started sunk to four depths (its centre on the surface below, a
@@ -315,7 +312,7 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
       if (rss < best_rss) best_rss = rss, best = e, best_JtJ = JtJ;
     }
   out.fit_rms_mm = std::sqrt(best_rss / static_cast<double>(w.x.size()));
-  out.aspect = best.b / best.a;
+  out.aspect = best.b / best.a, out.exponent = 2.0;
   out.dx0 = best.x0 - center, out.dz0 = best.z0 - base, out.a = best.a, out.b = best.b;
   const GrooveSum groove = GrooveWithGradient(best, below, shift);
   out.hidden_mm2 = groove.groove;

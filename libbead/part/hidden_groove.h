@@ -4,25 +4,28 @@
 // occlusion bias inflates the measured area). The area a layer visibly
 // added (part/added_bead.h) counts that groove as material.
 //
-// Model: the new bead's cross-section is an ellipse (centre x0, z0;
-// semi-axes A across, B up; the wall's beads as the thesis' rounded beads
-// and the twin's), its material what lies inside it above the surface
-// before it. The sensor sees max(surface below, the ellipse's top). Where
-// the bead overhangs, its ends show as walls in the seen profile and the
-// ellipse is placed there, its height solved (part/silhouette.h); where
-// they do not, it is fitted to the profile's points around the bead by
-// Levenberg-Marquardt (the surface below known, moved by the registration's
-// shift; its sigma the fit's covariance, residual variance times
-// (J^T J)^-1, carried through the groove's gradient). The groove is the
-// part of the ellipse's outline's shadow that lies above the surface
-// below: the integral of max(0, z0 - B sqrt(1 - u^2) - z_below(x)) over
-// the ellipse's width. Where the bead's sides are not seen steep enough to
-// place its widest point, the sigma says so.
+// Model: the new bead's cross-section is a superellipse (centre x0, z0;
+// semi-axes A across, B up; exponent p, part/superellipse.h: p = 2 the
+// ellipse of the thesis' rounded beads and the twin's, a box above, a
+// diamond below), its material what lies inside it above the surface
+// before it. The sensor sees max(surface below, the bead's top). Where the
+// bead overhangs, its ends show as walls in the seen profile and the bead
+// is placed there, its height solved over its top, and its shape (aspect
+// and exponent) with it until the layer's is pooled (part/silhouette.h);
+// where they do not, an ellipse is fitted to the profile's points around
+// the bead by Levenberg-Marquardt (the surface below known, moved by the
+// registration's shift; its sigma the fit's covariance, residual variance
+// times (J^T J)^-1, carried through the groove's gradient). The groove is
+// the part of the bead's outline's shadow that lies above the surface
+// below: the integral of max(0, z0 - B s(u) - z_below(x)) over the bead's
+// width. Where the bead's sides are not seen steep enough to place its
+// widest point, the sigma says so.
 #pragma once
 
 #include <limits>
 #include <span>
 
+#include "libbead/part/groove_window.h"
 #include "libbead/part/surface_below.h"
 
 namespace bead::part {
@@ -33,7 +36,8 @@ struct HiddenGroove {
   double hidden_mm2 = kNaN;  // the groove under the overhangs
   double sigma_mm2 = kNaN;   // its 1-sigma
   double fit_rms_mm = kNaN;  // the fit's (NaN: placed at the silhouette, not fitted)
-  double aspect = kNaN;      // the ellipse's b / a
+  double aspect = kNaN;      // the bead's b / a
+  double exponent = kNaN;    // its superellipse's (part/superellipse.h; a fit's: 2)
   // Placed at the silhouette: the sigma holds the area seen's edges too
   // (they move with the ellipse's ends; part/silhouette.h).
   bool at_silhouette = false;
@@ -42,23 +46,15 @@ struct HiddenGroove {
   double dx0 = kNaN, dz0 = kNaN, a = kNaN, b = kNaN;
 };
 
-// The layer's beads' shape, pooled: the median aspect b / a of the free
-// fits on its first profiles and its standard error (one material, one
-// process: the wheel's pooled occlusion carried over). Held, it leaves the
-// fit the bead's place, depth and size.
-struct PooledAspect {
-  double aspect = HiddenGroove::kNaN, sigma = 0.0;
-};
-
 // x, z: the profile's valid points in the bed frame (x increasing); below:
 // the surface before it, moved by `shift` (z_below(x) = below.At(x - shift))
 // known to shift_sigma (0 where not registered), its variance in units of
 // noise_mm^2 (surface_below.h); center, width, height:
-// the bead as part/added_bead.h measured it; pooled: the layer's aspect to
-// hold (nullptr: fitted here).
+// the bead as part/added_bead.h measured it; pooled: the layer's shape to
+// hold (nullptr: solved here).
 HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
                                   double shift, double shift_sigma, double noise_mm, double center, double width,
-                                  double height, const PooledAspect* pooled = nullptr,
+                                  double height, const PooledShape* pooled = nullptr,
                                   const HiddenGroove* previous = nullptr);
 
 }  // namespace bead::part

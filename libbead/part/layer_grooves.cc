@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
+#include <utility>
 
 namespace bead::part {
 namespace {
@@ -34,33 +36,34 @@ void Apply(const HiddenGroove& g, double spacing, PartGeometryRow& row) {
 }  // namespace
 
 HiddenGroove LayerGrooves::Estimate(const StoredProfile& p, const SurfaceGrid& under, const PartGeometryRow& row,
-                                    const HiddenGroove* previous) const {
+                                    const HiddenGroove* previous, const PooledShape* shape) const {
   const double shift_sigma = std::isfinite(row.bead.shift_sigma_mm) ? row.bead.shift_sigma_mm : 0.0;
   return EstimateHiddenGroove(p.x_mm, p.z_mm, under, row.bead.shift_mm, shift_sigma, row.bead.noise_mm,
-                              row.bead.center_x_mm, row.bead.width_mm, row.bead.height_mm,
-                              pooled_ ? &*pooled_ : nullptr, previous);
+                              row.bead.center_x_mm, row.bead.width_mm, row.bead.height_mm, shape, previous);
 }
 
 void LayerGrooves::Add(PartGeometryRow row, const StoredProfile* points, const SurfaceGrid* under, const Emit& emit) {
   if (row.layer != layer_) {
     Flush(emit);
-    aspects_.clear(), pooled_.reset(), last_.reset(), layer_ = row.layer;
+    aspects_.clear(), exponents_.clear(), pooled_.reset(), last_.reset(), layer_ = row.layer;
   }
   if (points && under) {
-    const HiddenGroove g = Estimate(*points, *under, row, last_ ? &*last_ : nullptr);
+    const HiddenGroove g = Estimate(*points, *under, row, last_ ? &*last_ : nullptr, pooled_ ? &*pooled_ : nullptr);
     if (g.ok) last_ = g;
     Apply(g, points->spacing_mm, row);
-    if (!pooled_ && g.ok) Pool(g.aspect);
+    if (!pooled_ && g.ok) aspects_.push_back(g.aspect);
+    if (!pooled_ && g.ok && g.at_silhouette) exponents_.push_back(g.exponent);
   }
   if (pooled_ && waiting_.empty()) return emit(row);
   waiting_.push_back({std::move(row), points && under ? std::optional(*points) : std::nullopt,
                       points && under ? std::optional(*under) : std::nullopt});
+  if (!pooled_ && aspects_.size() >= kPoolProfiles) Pool();
   if (pooled_) {
     // The pool is formed: the rows that waited for it, corrected with it.
     std::optional<HiddenGroove> previous;
     for (Waiting& w : waiting_) {
       if (!w.points) continue;
-      const HiddenGroove g = Estimate(*w.points, *w.under, w.row, previous ? &*previous : nullptr);
+      const HiddenGroove g = Estimate(*w.points, *w.under, w.row, previous ? &*previous : nullptr, &*pooled_);
       if (g.ok) previous = g;
       Apply(g, w.points->spacing_mm, w.row);
     }
@@ -76,17 +79,32 @@ void LayerGrooves::Flush(const Emit& emit) {
   waiting_.clear();
 }
 
-// The layer's first rows' own aspects, then their pool, held.
-void LayerGrooves::Pool(double aspect) {
-  aspects_.push_back(aspect);
-  if (aspects_.size() < kPoolProfiles) return;
-  std::vector<double> v = aspects_;
+namespace {
+
+// The median of v (reordered) and its standard error: sqrt(pi / 2) sigma /
+// sqrt(n), sigma from the median absolute deviation.
+std::pair<double, double> MedianAndError(std::vector<double> v) {
   std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
   const double median = v[v.size() / 2];
   for (double& a : v) a = std::abs(a - median);
   std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-  // The median's standard error: sqrt(pi / 2) sigma / sqrt(n), sigma from the MAD.
-  pooled_ = PooledAspect{median, 1.2533 * 1.4826 * v[v.size() / 2] / std::sqrt(static_cast<double>(v.size()))};
+  return {median, 1.2533 * 1.4826 * v[v.size() / 2] / std::sqrt(static_cast<double>(v.size()))};
+}
+
+}  // namespace
+
+// The layer's first rows' own shapes, then their pool, held: the aspect
+// over every row, the exponent over those placed at their silhouette (a
+// fit's is an ellipse's by assumption, not measured; with fewer than
+// kMinExponents placed, the ellipse's is held). (Each row's aspect solved
+// again at the pooled exponent, its pool's sigma was a third as wide, and
+// the walls' intervals covered 4549 of 4800, not 4578: the two are pooled
+// apart.)
+void LayerGrooves::Pool() {
+  PooledShape pool;
+  std::tie(pool.aspect, pool.aspect_sigma) = MedianAndError(aspects_);
+  if (exponents_.size() >= kMinExponents) std::tie(pool.exponent, pool.exponent_sigma) = MedianAndError(exponents_);
+  pooled_ = pool;
 }
 
 }  // namespace bead::part

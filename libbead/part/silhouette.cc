@@ -2,64 +2,133 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
+
+#include "libbead/part/superellipse.h"
 
 namespace bead::part {
 namespace {
 
-// The top's points within kInner of the half-width are solved over.
-constexpr double kInner = 0.9;
+// The top's points within kInner of the half-width are solved over (where
+// the exponent's table holds s).
+constexpr double kInner = SuperellipseTable::kTabulatedU;
 
-// z0 and b (b = aspect a where held) of the ellipse with ends L and R, by
-// least squares over the points [first, last] within kInner of the
-// half-width, and their derivatives in each end's place (the points kept:
-// the sums' derivatives through s = sqrt(1 - u^2), u = (x - x0) / a, ds/dx0
-// = u / (a s), ds/da = u^2 / (a s), x0 and a each moving by half an end's
-// step); false where too few points are, or b is not positive.
-bool SolveTop(const Window& w, std::size_t first, std::size_t last, double L, double R, double aspect, Silhouette& s) {
+// The least squares' sums over the top's points within kInner of the
+// half-width, for the bead with ends L and R at exponent t: of 1, s, s^2,
+// z, z s, z^2 and ds/dp, and the derivatives of s, s^2 and z s in x0 and a
+// (through u = (x - x0) / a: ds/dx0 = -s'(u) / a, ds/da = u ds/dx0).
+struct TopSums {
+  double m = 0, s1 = 0, s2 = 0, z1 = 0, zs = 0, zz = 0, sp = 0;
+  double d1[2] = {}, d2[2] = {}, dz[2] = {};
+};
+
+TopSums SumTop(const Window& w, std::size_t first, std::size_t last, double x0, double a, const SuperellipseTable& t) {
+  TopSums m;
+  const double per_a = 1.0 / a;
+  for (std::size_t j = first; j <= last; ++j) {
+    const double u = (w.x[j] - x0) * per_a;
+    if (!(std::abs(u) <= kInner)) continue;
+    const SuperellipseTable::Value v = t.At(u);
+    const double sv = v.s, z = w.z[j];
+    m.m += 1, m.s1 += sv, m.s2 += sv * sv, m.z1 += z, m.zs += z * sv, m.zz += z * z, m.sp += v.ds_dp;
+    const double by_x0 = -v.ds_du * per_a, by[2] = {by_x0, u * by_x0};
+    for (int i = 0; i < 2; ++i) m.d1[i] += by[i], m.d2[i] += 2.0 * sv * by[i], m.dz[i] += z * by[i];
+  }
+  return m;
+}
+
+// z0 and b (b = aspect a where held) from the sums, for the bead with ends L
+// and R, and their derivatives in each end's place (the points kept: x0 and
+// a each moving by half an end's step); false where too few points are, or
+// b is not positive.
+bool SolveTop(const TopSums& t, double L, double R, double aspect, Silhouette& s) {
   Ellipse& e = s.e;
   e.x0 = 0.5 * (L + R), e.a = 0.5 * (R - L);
   const bool held = std::isfinite(aspect);
-  double m = 0, s1 = 0, s2 = 0, z1 = 0, zs = 0, zz = 0;
-  double d1[2] = {}, d2[2] = {}, dz[2] = {};  // the sums s1, s2, zs in x0 and a
-  const double per_a = 1.0 / e.a;
-  for (std::size_t j = first; j <= last; ++j) {
-    const double u = (w.x[j] - e.x0) * per_a;
-    if (!(std::abs(u) <= kInner)) continue;
-    const double sv = std::sqrt(1.0 - u * u), z = w.z[j];
-    m += 1, s1 += sv, s2 += sv * sv, z1 += z, zs += z * sv, zz += z * z;
-    const double by_x0 = u * per_a / sv, by[2] = {by_x0, u * by_x0};
-    for (int i = 0; i < 2; ++i) d1[i] += by[i], d2[i] += 2.0 * sv * by[i], dz[i] += z * by[i];
-  }
   const int params = held ? 1 : 2;
-  if (m < 3.0 * params + 2.0) return false;
-  const double det = m * s2 - s1 * s1;
+  if (t.m < 3.0 * params + 2.0) return false;
+  const double det = t.m * t.s2 - t.s1 * t.s1;
   if (held) {
     e.b = aspect * e.a;
-    e.z0 = (z1 - e.b * s1) / m;
-    s.z0_var = 1.0 / m, s.b_var = 0.0, s.z0_b = 0.0;
+    e.z0 = (t.z1 - e.b * t.s1) / t.m;
+    s.z0_var = 1.0 / t.m, s.b_var = 0.0, s.z0_b = 0.0;
+    s.z0_by_exponent = -e.b * t.sp / t.m;
   } else {
     if (!(det > 0.0)) return false;
-    e.b = (m * zs - s1 * z1) / det, e.z0 = (z1 - e.b * s1) / m;
-    s.z0_var = s2 / det, s.b_var = m / det, s.z0_b = -s1 / det;
+    e.b = (t.m * t.zs - t.s1 * t.z1) / det, e.z0 = (t.z1 - e.b * t.s1) / t.m;
+    s.z0_var = t.s2 / det, s.b_var = t.m / det, s.z0_b = -t.s1 / det;
+    s.z0_by_exponent = 0.0;
   }
   for (int end = 0; end < 2; ++end) {
     // The left end moves x0 by half its step and a by minus half; the right, both by half.
     const double by_x0 = 0.5, by_a = end ? 0.5 : -0.5;
-    const double ds1 = d1[0] * by_x0 + d1[1] * by_a, ds2 = d2[0] * by_x0 + d2[1] * by_a;
-    const double dzs = dz[0] * by_x0 + dz[1] * by_a;
+    const double ds1 = t.d1[0] * by_x0 + t.d1[1] * by_a, ds2 = t.d2[0] * by_x0 + t.d2[1] * by_a;
+    const double dzs = t.dz[0] * by_x0 + t.dz[1] * by_a;
     if (held) {
       s.b_by_end[end] = aspect * by_a;
-      s.z0_by_end[end] = -(s.b_by_end[end] * s1 + e.b * ds1) / m;
+      s.z0_by_end[end] = -(s.b_by_end[end] * t.s1 + e.b * ds1) / t.m;
     } else {
       const double r0 = -ds1 * e.b, r1 = dzs - ds1 * e.z0 - ds2 * e.b;
-      s.z0_by_end[end] = (s2 * r0 - s1 * r1) / det, s.b_by_end[end] = (m * r1 - s1 * r0) / det;
+      s.z0_by_end[end] = (t.s2 * r0 - t.s1 * r1) / det, s.b_by_end[end] = (t.m * r1 - t.s1 * r0) / det;
     }
   }
   // The residuals' sum of squares from the sums: sum (z - z0 - b s)^2.
-  const double rss = zz + m * e.z0 * e.z0 + e.b * e.b * s2 - 2.0 * e.z0 * z1 - 2.0 * e.b * zs + 2.0 * e.z0 * e.b * s1;
-  s.residual_variance = std::max(rss, 0.0) / (m - params);
-  s.mean_s = s1 / m;
+  const double rss =
+      t.zz + t.m * e.z0 * e.z0 + e.b * e.b * t.s2 - 2.0 * e.z0 * t.z1 - 2.0 * e.b * t.zs + 2.0 * e.z0 * e.b * t.s1;
+  s.residual_variance = std::max(rss, 0.0) / (t.m - params);
+  s.mean_s = t.s1 / t.m;
   return e.b > 0.0 && std::isfinite(e.z0);
+}
+
+// The shape held: solved at it.
+bool SolveHeld(const Window& w, std::size_t first, std::size_t last, double L, double R, const PooledShape& held,
+               Silhouette& s) {
+  const SuperellipseTable& t = SuperellipseOf(held.exponent);
+  if (!SolveTop(SumTop(w, first, last, 0.5 * (L + R), 0.5 * (R - L), t), L, R, held.aspect, s)) return false;
+  s.e.p = held.exponent, s.exponent = held.exponent;
+  s.aspect = std::isfinite(held.aspect) ? held.aspect : s.e.b / s.e.a;
+  return true;
+}
+
+// The shape free: solved at the exponents of the grid, from the one
+// nearest the ellipse's downhill to the least residual (the residual
+// changes smoothly with the exponent: one least), its exponent refined by
+// the parabola through it and its neighbours' residuals in ln p, the
+// aspect interpolated there.
+bool SolveFree(const Window& w, std::size_t first, std::size_t last, double L, double R, Silhouette& s) {
+  const std::vector<double>& grid = SuperellipseGrid();
+  const auto n = static_cast<std::ptrdiff_t>(grid.size());
+  std::vector<double> rss(grid.size(), NAN), aspect(grid.size(), NAN);
+  std::vector<Silhouette> solved(grid.size(), s);  // each with the cells
+  // The residual at grid index k (INFINITY off the grid or unsolved).
+  const auto at = [&](std::ptrdiff_t k) {
+    if (k < 0 || k >= n) return static_cast<double>(INFINITY);
+    const auto i = static_cast<std::size_t>(k);
+    if (std::isnan(rss[i])) {
+      Silhouette& t = solved[i];
+      const bool ok =
+          SolveTop(SumTop(w, first, last, 0.5 * (L + R), 0.5 * (R - L), SuperellipseOf(grid[i])), L, R, NAN, t);
+      rss[i] = ok ? t.residual_variance : INFINITY, aspect[i] = t.e.b / t.e.a;
+    }
+    return rss[i];
+  };
+  std::ptrdiff_t best = 0;
+  while (best + 1 < n && grid[static_cast<std::size_t>(best) + 1] <= 2.0) ++best;
+  const std::ptrdiff_t way = at(best + 1) < at(best) ? 1 : -1;
+  while (at(best + way) < at(best)) best += way;
+  if (!std::isfinite(at(best))) return false;
+  const auto b = static_cast<std::size_t>(best);
+  s = solved[b];
+  s.e.p = s.exponent = grid[b], s.aspect = aspect[b];
+  const double lo = at(best - 1), mid = rss[b], hi = at(best + 1), curve = lo - 2.0 * mid + hi;
+  if (!std::isfinite(curve) || !(curve > 0.0)) return true;
+  // The vertex of the parabola through (ln p, rss) at best - 1, best, best +
+  // 1 (equally spaced in ln p), and Lagrange's interpolation of the aspect
+  // there.
+  const double t = std::clamp(0.5 * (lo - hi) / curve, -1.0, 1.0);  // in steps from best
+  s.exponent = grid[b] * std::pow(grid[b + 1] / grid[b], t);
+  s.aspect = aspect[b - 1] * 0.5 * t * (t - 1.0) + aspect[b] * (1.0 - t * t) + aspect[b + 1] * 0.5 * t * (t + 1.0);
+  return true;
 }
 
 // The surface below at x, between the window's points j and j + 1.
@@ -77,7 +146,8 @@ double GrooveChange(const Ellipse& from, const Ellipse& to, const double gradien
 
 }  // namespace
 
-std::optional<Silhouette> AtSilhouette(const Window& w, double center, const SilhouetteScale& k, double aspect) {
+std::optional<Silhouette> AtSilhouette(const Window& w, double center, const SilhouetteScale& k,
+                                       const PooledShape* held) {
   const std::size_t n = w.x.size();
   const auto c = static_cast<std::size_t>(std::lower_bound(w.x.begin(), w.x.end(), center) - w.x.begin());
   if (c >= n || !(w.Gain(c) > k.floor)) return std::nullopt;
@@ -99,18 +169,30 @@ std::optional<Silhouette> AtSilhouette(const Window& w, double center, const Sil
   Silhouette s;
   s.cell[0] = w.x[jl], s.cell[1] = w.x[jl + 1], s.cell[2] = w.x[jr], s.cell[3] = w.x[jr + 1];
   const double L = 0.5 * (s.cell[0] + s.cell[1]), R = 0.5 * (s.cell[2] + s.cell[3]);
-  if (!SolveTop(w, jl + 1, jr, L, R, aspect, s)) return std::nullopt;
-  s.wall_left = s.e.z0 - OldBetween(w, jl, L);
-  s.wall_right = s.e.z0 - OldBetween(w, jr, R);
-  // The ellipse's widest point standing over the surface below by a wall
-  // at each end: an overhang. (A bead whose sides meet the surface, seen at
-  // points far apart, rises as steeply from one to the next; placed there,
-  // its widest point lies on the surface.)
-  if (!(s.wall_left > k.rise && s.wall_right > k.rise)) return std::nullopt;
+  // The widest point standing over the surface below by a wall at each
+  // end: an overhang. (A bead whose sides meet the surface, seen at points
+  // far apart, rises as steeply from one to the next; placed there, its
+  // widest point lies on the surface.) With the shape free, by more: an end
+  // placed half a cell inside the true one lets a bead lying on the surface
+  // (an ellipse) be solved as one standing b sqrt(cell / a) higher, its
+  // sides steepened by the exponent (at 0.2 mm spacing, a half ellipse lying
+  // on the surface was placed as a box of p ~ 2.6 on a wall otherwise).
+  const auto stands = [&](Silhouette& t, double lift) {
+    t.wall_left = t.e.z0 - OldBetween(w, jl, L);
+    t.wall_right = t.e.z0 - OldBetween(w, jr, R);
+    return t.wall_left > k.rise + lift && t.wall_right > k.rise + lift;
+  };
+  if (held) {
+    if (!SolveHeld(w, jl + 1, jr, L, R, *held, s) || !stands(s, 0.0)) return std::nullopt;
+    return s;
+  }
+  if (!SolveFree(w, jl + 1, jr, L, R, s)) return std::nullopt;
+  const double cell = std::max(s.cell[1] - s.cell[0], s.cell[3] - s.cell[2]);
+  if (!stands(s, s.e.b * std::sqrt(cell / s.e.a))) return std::nullopt;
   return s;
 }
 
-double SilhouetteVariance(const Silhouette& s, double aspect, double aspect_sigma, const double gradient[4]) {
+double SilhouetteVariance(const Silhouette& s, const PooledShape* held, const double gradient[4], double by_exponent) {
   // Each end from one side of its cell to the other: the area seen changes
   // by the wall times the step (less where the left end moves in, more where
   // the right one moves out), the groove as the ellipse re-solved there
@@ -132,11 +214,13 @@ double SilhouetteVariance(const Silhouette& s, double aspect, double aspect_sigm
   const double g_z0 = gradient[1], g_b = gradient[3];
   const double solved =
       s.residual_variance * (g_z0 * g_z0 * s.z0_var + 2.0 * g_z0 * g_b * s.z0_b + g_b * g_b * s.b_var);
+  if (!held) return ends + solved;
   // A held aspect a sigma off: b moves by a sigma, z0 by the mean of s
-  // times that, the other way.
-  const double by_aspect =
-      std::isfinite(aspect) && aspect_sigma > 0.0 ? (g_b - g_z0 * s.mean_s) * s.e.a * aspect_sigma : 0.0;
-  return ends + solved + by_aspect * by_aspect;
+  // times that, the other way. A held exponent a sigma off: the groove by
+  // its own derivative, z0 re-solved (the area seen stays: the ends do).
+  const double by_aspect = (g_b - g_z0 * s.mean_s) * s.e.a * held->aspect_sigma;
+  const double by_p = (by_exponent + g_z0 * s.z0_by_exponent) * held->exponent_sigma;
+  return ends + solved + by_aspect * by_aspect + by_p * by_p;
 }
 
 }  // namespace bead::part

@@ -7,10 +7,13 @@
 // rises most from one point to the next in the outer third of the bead's
 // run on each side; each lies somewhere between those two points (its
 // cell), and is placed halfway. With the ends placed, the top's height z0 +
-// b sqrt(1 - u^2) is linear in z0 and b (z0 alone with the aspect b / a
-// held): solved by least squares over the top's points within 0.9 of the
-// half-width (the outer tenth, where the top is steeper than twice b / a,
-// turns with the ends' places inside their cells).
+// b s(u) (part/superellipse.h: s = sqrt(1 - u^2) for the ellipse) is linear
+// in z0 and b (z0 alone with the aspect b / a held): solved by least squares
+// over the top's points within 0.9 of the half-width (the outer tenth, where
+// the top is steeper than twice b / a, turns with the ends' places inside
+// their cells). The exponent, where it is not held, is the one of
+// SuperellipseGrid whose solution leaves the least residual, refined
+// between its neighbours by the parabola through the three (in ln p).
 //
 // A least-squares fit of all four parameters to every point would place
 // the ends to within a fraction of a cell, but its residual jumps wherever
@@ -33,7 +36,10 @@
 namespace bead::part {
 
 struct Silhouette {
-  Ellipse e;
+  Ellipse e;  // its exponent the grid's where free
+  // Where the shape is free: the exponent refined between the grid's, and
+  // the aspect there (the pool's values); where held, the held ones.
+  double exponent = 2.0, aspect = 0.0;
   double cell[4] = {};                     // the left end lies in [cell[0], cell[1]], the right in [cell[2], cell[3]]
   double wall_left = 0, wall_right = 0;    // the seen wall at each end: z0 over the surface below there, mm
   double residual_variance = 0.0;          // the top's points', mm^2
@@ -42,6 +48,9 @@ struct Silhouette {
   // z0's and b's derivatives in the place of each end (left, right), the
   // top re-solved with the same points.
   double z0_by_end[2] = {}, b_by_end[2] = {};
+  // z0's derivative in the exponent where the shape is held (b then held
+  // too): the top re-solved with the same points.
+  double z0_by_exponent = 0.0;
 };
 
 // What a silhouette is: the bead's run stands more than `floor` over the
@@ -50,19 +59,21 @@ struct SilhouetteScale {
   double floor = 0.0, rise = 0.0;
 };
 
-// The ellipse at the silhouette of the bead around `center` in w; aspect:
-// b / a held (NaN: b solved too).
+// The bead at the silhouette of the bead around `center` in w; held: the
+// layer's shape (nullptr: its aspect and exponent solved too).
 // nullopt where the run around the centre is too short, or either end is
 // no wall (the gain rises by less than `rise` there, or the ellipse placed
 // stands on the surface below by less at its end: the bead's side meets
 // the surface below, nothing to place it by).
-std::optional<Silhouette> AtSilhouette(const Window& w, double center, const SilhouetteScale& scale, double aspect);
+std::optional<Silhouette> AtSilhouette(const Window& w, double center, const SilhouetteScale& scale,
+                                       const PooledShape* held);
 
 // The variance the placement adds to the area seen less the groove: each
 // end anywhere in its cell (uniform: the range of the difference's change
 // over the cell, squared, over 12), z0 (and b) to their least squares'
-// covariance, and a held aspect to its sigma; gradient: the groove's in
-// x0, z0, a and b at s.e.
-double SilhouetteVariance(const Silhouette& s, double aspect, double aspect_sigma, const double gradient[4]);
+// covariance, and a held aspect and exponent to their sigmas; gradient: the
+// groove's in x0, z0, a and b at s.e, by_exponent its own in the exponent
+// (z0 held).
+double SilhouetteVariance(const Silhouette& s, const PooledShape* held, const double gradient[4], double by_exponent);
 
 }  // namespace bead::part

@@ -1,6 +1,6 @@
 // The twin's surfaces across a part (bed frame, on a fine truth grid) and
-// how a bead is laid on one: an ellipse sunk into the surface before it
-// until its material is the bead's area.
+// how a bead is laid on one: an ellipse (or a superellipse) sunk into the
+// surface before it until its material is the bead's area.
 #pragma once
 
 #include <algorithm>
@@ -30,7 +30,8 @@ struct Layer {
 // surface below wherever the ellipse's top stands over it (a road that
 // leaves no void under its sides: nothing hidden from above); else only the
 // ellipse is material (an overhanging bead hides the groove under it).
-Surface Lay(const Surface& below, const Layer& layer, double a, double b, double* zc = nullptr,
-            bool fill_under = false);
+// exponent: the bead a superellipse |u|^p + |v|^p = 1 (2: the ellipse).
+Surface Lay(const Surface& below, const Layer& layer, double a, double b, double* zc = nullptr, bool fill_under = false,
+            double exponent = 2.0);
 
 }  // namespace bead::sim

@@ -60,7 +60,7 @@ class WallPrinter {
     // Where the head slows, the bead spreads: its ellipse grows with the
     // material per length it gets (as the square root: the same shape).
     const double a = 0.5 * c_.width_mm * std::sqrt(c_.head_speed_mm_s / head_.SpeedAt(p)), b = c_.aspect * a;
-    for (int k = 0; k <= n; ++k) stack.push_back(Lay(stack.back(), LayerAt(k, p), a, b));
+    for (int k = 0; k <= n; ++k) stack.push_back(Lay(stack.back(), LayerAt(k, p), a, b, nullptr, false, c_.exponent));
     return stack;
   }
 

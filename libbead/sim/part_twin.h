@@ -2,7 +2,7 @@
 // scan), with its truth beside each profile.
 //
 // Each layer's bead is an ellipse (half-width a = width / 2, half-height
-// aspect a) laid on the surface the layers before left, sunk into it until
+// aspect a; or a superellipse |u|^p + |v|^p = 1 of the config's exponent) laid on the surface the layers before left, sunk into it until
 // the material it adds (the ellipse above the old surface) is the layer's
 // area at that place; where it overhangs the bead below, the groove under
 // its side is filled by nothing and hidden from a sensor looking down. The
@@ -38,7 +38,8 @@ struct PartTwinConfig {
   double profile_spacing_mm = 0.5;
   double trail_mm = 30.0;            // the laser line behind the nozzle, along the path
   double width_mm = 6.0;             // the bead's ellipse, full width ...
-  double aspect = 0.5;               // ... and half-height over half-width
+  double aspect = 0.5;               // ... and half-height over half-width ...
+  double exponent = 2.0;             // ... and its superellipse's exponent (2: the ellipse)
   double area_mm2 = 12.0;            // the material a layer adds, mean (a contour: on its straights) ...
   double area_wave_mm2 = 2.0;        // ... a wave along the path of this amplitude ...
   double wave_period_mm = 40.0;      // ... and period

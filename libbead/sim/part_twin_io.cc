@@ -1,6 +1,7 @@
 #include "libbead/sim/part_twin_io.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "libbead/io/atomic_file.h"
@@ -24,6 +25,7 @@ void ParsePart(const YAML::Node& root, const Reader& r, PartTwinConfig& c) {
                                   "trail_mm",
                                   "width_mm",
                                   "aspect",
+                                  "exponent",
                                   "area_mm2",
                                   "area_wave_mm2",
                                   "wave_period_mm",
@@ -65,6 +67,7 @@ void ParsePart(const YAML::Node& root, const Reader& r, PartTwinConfig& c) {
   r.Get(p, at, "trail_mm", c.trail_mm, 0.0, 1e3);
   r.Get(p, at, "width_mm", c.width_mm, 0.1, 100.0);
   r.Get(p, at, "aspect", c.aspect, 0.05, 5.0);
+  r.Get(p, at, "exponent", c.exponent, 1.2, 8.0);
   r.Get(p, at, "area_mm2", c.area_mm2, 0.01, 1e4);
   r.Get(p, at, "area_wave_mm2", c.area_wave_mm2, 0.0, 1e4);
   r.Get(p, at, "wave_period_mm", c.wave_period_mm, 0.1, 1e6);
@@ -88,6 +91,15 @@ void ParsePart(const YAML::Node& root, const Reader& r, PartTwinConfig& c) {
   if (c.bed_radius_mm > 0 && c.bed_radius_mm <= c.field_half_mm)
     r.Fail(p["bed_radius_mm"], at + "bed_radius_mm", "must exceed field_half_mm: the pipe spans the profile");
   if (c.area_wave_mm2 >= c.area_mm2) r.Fail(p["area_wave_mm2"], at + "area_wave_mm2", "must be less than area_mm2");
+  // A bead sunk into the surface below holds at most its whole outline:
+  // 4 a b Gamma(1 + 1/p)^2 / Gamma(1 + 2/p) (pi a b for the ellipse).
+  const double a = 0.5 * c.width_mm, b = c.aspect * a, p_ = c.exponent;
+  const double whole = 4.0 * a * b * std::pow(std::tgamma(1.0 + 1.0 / p_), 2) / std::tgamma(1.0 + 2.0 / p_);
+  if (c.roads <= 1 && c.area_mm2 + c.area_wave_mm2 >= whole)
+    r.Fail(p["area_mm2"], at + "area_mm2",
+           "with area_wave_mm2 asks up to " + std::to_string(c.area_mm2 + c.area_wave_mm2) +
+               " mm^2 of a bead whose whole outline (width_mm, aspect, exponent) holds " + std::to_string(whole) +
+               ": it would float off the surface below; lower the area or widen the bead");
   if (c.field_half_mm <= 0.5 * c.width_mm + 5.0)
     r.Fail(p["field_half_mm"], at + "field_half_mm",
            "must leave 5 mm of bare bed beside the bead (more than width/2 + 5)");

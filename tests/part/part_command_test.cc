@@ -56,6 +56,23 @@ TEST(PartCommand, SimulateThenMeasureWritesThePartGeometryCsv) {
   for (std::size_t k = 0; k < flow_spec.size(); ++k) EXPECT_EQ(flow[0][k], flow_spec[k]);
 }
 
+// A bead whose whole outline holds less than the area asked of it would
+// float off the surface below: the twin says so and writes nothing. (The
+// twin's 6 mm bead of aspect 0.5 holds 14.1 mm^2 as an ellipse, 12.8 as a
+// superellipse of exponent 1.6: 12 + 2 fits the one, not the other.)
+TEST(PartCommand, ABeadThatCannotHoldItsAreaIsRefused) {
+  test::TempDir dir;
+  {
+    std::ofstream cfg(dir / "wall.yaml");
+    cfg << "part:\n  layers: 2\n  length_mm: 10\n  exponent: 1.6\n";
+  }
+  const auto [code, out] = test::RunCli(dir, "simulate " + (dir / "wall.yaml") + " -o " + (dir / "sim"));
+  EXPECT_NE(code, 0) << out;
+  EXPECT_NE(out.find("part.area_mm2"), std::string::npos) << out;
+  EXPECT_NE(out.find("float"), std::string::npos) << out;
+  EXPECT_FALSE(std::ifstream(dir / "sim/part.h5").good());
+}
+
 TEST(PartCommand, TheWheelsCommandsNameAPartScanAndAPartRigNamesWhatIsMissing) {
   test::TempDir dir;
   {
