@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <iomanip>
+#include <sstream>
 
 #include "libbead/io/atomic_file.h"
 #include "libbead/io/csv_reader.h"
@@ -95,11 +97,13 @@ void ParsePart(const YAML::Node& root, const Reader& r, PartTwinConfig& c) {
   // 4 a b Gamma(1 + 1/p)^2 / Gamma(1 + 2/p) (pi a b for the ellipse).
   const double a = 0.5 * c.width_mm, b = c.aspect * a, p_ = c.exponent;
   const double whole = 4.0 * a * b * std::pow(std::tgamma(1.0 + 1.0 / p_), 2) / std::tgamma(1.0 + 2.0 / p_);
-  if (c.roads <= 1 && c.area_mm2 + c.area_wave_mm2 >= whole)
-    r.Fail(p["area_mm2"], at + "area_mm2",
-           "with area_wave_mm2 asks up to " + std::to_string(c.area_mm2 + c.area_wave_mm2) +
-               " mm^2 of a bead whose whole outline (width_mm, aspect, exponent) holds " + std::to_string(whole) +
-               ": it would float off the surface below; lower the area or widen the bead");
+  if (c.roads <= 1 && c.area_mm2 + c.area_wave_mm2 >= whole) {
+    std::ostringstream what;
+    what << std::setprecision(4) << "with area_wave_mm2 asks up to " << c.area_mm2 + c.area_wave_mm2
+         << " mm^2 of a bead whose whole outline (width_mm, aspect, exponent) holds " << whole
+         << " mm^2: it would float off the surface below; lower the area or widen the bead";
+    r.Fail(p["area_mm2"], at + "area_mm2", what.str());
+  }
   if (c.field_half_mm <= 0.5 * c.width_mm + 5.0)
     r.Fail(p["field_half_mm"], at + "field_half_mm",
            "must leave 5 mm of bare bed beside the bead (more than width/2 + 5)");
