@@ -250,8 +250,8 @@ const char* AddedStatusName(AddedStatus s) {
 }
 
 AddedBead MeasureAddedBead(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
-                           bool register_shift, const AddedBeadOptions& o, const double* start_shift,
-                           double spacing_mm) {
+                           bool register_shift, const AddedBeadOptions& o, const double* start_shift, double spacing_mm,
+                           double start_hidden_sigma) {
   AddedBead out;
   out.noise_mm = NoiseOf(z);
   const double tau = std::max(o.min_threshold_mm, o.threshold_sigmas * out.noise_mm);
@@ -268,7 +268,7 @@ AddedBead MeasureAddedBead(std::span<const float> x, std::span<const float> z, c
   if (x.size() < 10) return out;  // kTooFewPoints: fewer gains still
   if (register_shift) {
     const double spacing = std::isfinite(spacing_mm) ? spacing_mm : PointSpacingMm(x);
-    reg = Register(x, z, below, {tau, out.noise_mm, spacing}, o, start_shift, grid);
+    reg = Register(x, z, below, {tau, out.noise_mm, spacing}, o, start_shift, grid, start_hidden_sigma);
   }
   const Gains& g = GainsAt(x, z, below, reg.shift, grid);
   if (g.d.size() < 10) return out;  // kTooFewPoints
@@ -282,6 +282,7 @@ AddedBead MeasureAddedBead(std::span<const float> x, std::span<const float> z, c
   if (seen) Geometry(g, z, s, floor, out);
   out.shift_mm = reg.shift;
   out.shift_sigma_mm = reg.sigma;
+  out.shift_hidden_sigma_mm = reg.hidden_sigma;
   out.shift_constrained = reg.constrained;
   out.registration_rms_mm = reg.rms;
   out.outside_points = reg.points;

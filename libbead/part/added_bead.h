@@ -26,7 +26,9 @@
 //    costs the same at every shift), on a grid of a quarter point spacing
 //    over +-max_shift_mm, averaged over one spacing. s is the middle of the
 //    shifts within 1 of the least cost, its sigma a quarter of the range
-//    within 4, at least spacing / sqrt 12. Given the pass's recent shift,
+//    within 4, at least spacing / sqrt 12, and at least the uniform sigma
+//    of the range within the cap (one point's disagreement: where the
+//    layer below may lie hidden; part/registration.h). Given the pass's recent shift,
 //    the same least is first followed from it by Gauss-Newton, its sigma
 //    from the cost's curvature (part/registration.h); the grid is searched
 //    where that does not settle constrained. Where the layer below shows
@@ -89,6 +91,7 @@ struct AddedBead {
   double center_x_mm = kNaN;  // the bead's top, this pass's bed frame
   double shift_mm = 0.0;      // the layer below moved by this into this pass's frame (least cost)
   double shift_sigma_mm = kNaN;
+  double shift_hidden_sigma_mm = 0.0;  // part/registration.h's hidden_sigma
   bool shift_constrained = false;
   double registration_rms_mm = kNaN;  // the gain's RMS outside the bead (0 expected)
   // The gain at each foot (the outermost bead point, left and right): the
@@ -111,9 +114,11 @@ double PointSpacingMm(std::span<const float> x);
 // x, z: the new profile's valid points in the bed frame, x increasing.
 // register_shift = false: s = 0 (the bed's line, fitted on this profile).
 // start_shift: where the pass's shift was last found (nullptr: nowhere
-// yet); spacing_mm: PointSpacingMm(x) where known (NaN: found here).
+// yet), start_hidden_sigma: its hidden sigma (part/registration.h);
+// spacing_mm: PointSpacingMm(x) where known (NaN: found here).
 AddedBead MeasureAddedBead(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
                            bool register_shift, const AddedBeadOptions& options = {},
-                           const double* start_shift = nullptr, double spacing_mm = AddedBead::kNaN);
+                           const double* start_shift = nullptr, double spacing_mm = AddedBead::kNaN,
+                           double start_hidden_sigma = 0.0);
 
 }  // namespace bead::part

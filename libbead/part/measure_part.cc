@@ -142,11 +142,11 @@ class PartMeasurer {
       row.bead.status = AddedStatus::kNoSurfaceBelow;  // on layer 0: no bed found either side of the bead
     } else {
       const bool shift = row.layer > 0 && options_.register_layers;
-      if (row.layer != warm_layer_) recent_shifts_.clear(), warm_layer_ = row.layer;
+      if (row.layer != warm_layer_) recent_shifts_.clear(), hidden_ = 0.0, warm_layer_ = row.layer;
       const double warm = RecentShift();
       row.bead = MeasureAddedBead(mine.x_mm, mine.z_mm, *under, shift, options_.added,
-                                  std::isfinite(warm) ? &warm : nullptr, mine.spacing_mm);
-      if (row.bead.shift_constrained) KeepShift(row.bead.shift_mm);
+                                  std::isfinite(warm) ? &warm : nullptr, mine.spacing_mm, hidden_);
+      if (row.bead.shift_constrained) KeepShift(row.bead.shift_mm), hidden_ = row.bead.shift_hidden_sigma_mm;
     }
     // Several beads over the surface below, at the shift the layer's
     // registration found (its truncated cost holds any number of beads).
@@ -182,6 +182,7 @@ class PartMeasurer {
   }
   static constexpr std::size_t kRecentShifts = 9;
   std::vector<double> recent_shifts_;
+  double hidden_ = 0.0;  // the last shift kept's hidden sigma (part/registration.h), carried by a track
   int64_t warm_layer_ = -1;
 };
 

@@ -93,6 +93,7 @@ void Settle(std::span<const float> x, std::span<const float> z, const SurfaceGri
     }
   }
   r.rms = r.points ? std::sqrt(sum / r.points) : Registration::kNaN;
+  r.sigma = std::max(r.sigma, r.hidden_sigma);
   r.constrained = !r.at_end && r.sigma <= o.max_shift_sigma_mm && features >= o.min_feature_points;
 }
 
@@ -103,8 +104,8 @@ void Settle(std::span<const float> x, std::span<const float> z, const SurfaceGri
 // (nothing outside the bead to register on: a bare bed).
 Registration FromCurve(const CostCurve& curve, const RegistrationScale& k) {
   const std::vector<double> cost = Smoothed(curve, 2);
-  const double least = *std::min_element(cost.begin(), cost.end());
-  double lo1 = 1e300, hi1 = -1e300, lo4 = 1e300, hi4 = -1e300;
+  const double least = *std::min_element(cost.begin(), cost.end()), cap = k.tau * k.tau / (k.noise * k.noise);
+  double lo1 = 1e300, hi1 = -1e300, lo4 = 1e300, hi4 = -1e300, lo_cap = 1e300, hi_cap = -1e300;
   Registration r;
   for (std::size_t i = 0; i < cost.size(); ++i) {
     if (cost[i] <= least + 1.0) lo1 = std::min(lo1, curve.s[i]), hi1 = std::max(hi1, curve.s[i]);
@@ -112,9 +113,11 @@ Registration FromCurve(const CostCurve& curve, const RegistrationScale& k) {
       lo4 = std::min(lo4, curve.s[i]), hi4 = std::max(hi4, curve.s[i]);
       r.at_end = r.at_end || i == 0 || i + 1 == cost.size();
     }
+    if (cost[i] <= least + cap) lo_cap = std::min(lo_cap, curve.s[i]), hi_cap = std::max(hi_cap, curve.s[i]);
   }
   r.shift = 0.5 * (lo1 + hi1);
   r.sigma = std::max(0.25 * (hi4 - lo4), k.spacing / std::sqrt(12.0));
+  r.hidden_sigma = (hi_cap - lo_cap) / std::sqrt(12.0);
   return r;
 }
 
@@ -188,13 +191,14 @@ bool Track(std::span<const float> x, std::span<const float> z, const SurfaceGrid
 
 Registration Register(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
                       const RegistrationScale& k, const AddedBeadOptions& o, const double* start,
-                      const PointsOnGrid* grid) {
+                      const PointsOnGrid* grid, double start_hidden_sigma) {
   // The new points on the surface below's grid, where they lie on it: the
   // costs eight points at a time (part/grid_costs.h).
   thread_local PointsOnGrid on_grid;
   if (!grid && on_grid.Make(x, z, below)) grid = &on_grid;
   if (start && std::abs(*start) + o.warm_half_mm < o.max_shift_mm) {
     Registration r;
+    r.hidden_sigma = start_hidden_sigma;
     if (Track(x, z, below, k, o, *start, grid, r)) {
       Settle(x, z, below, k, o, grid, r);
       if (r.constrained) return r;

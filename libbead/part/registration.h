@@ -31,6 +31,13 @@ struct Registration {
   bool constrained = false;
   bool at_end = false;   // the scan's band within 4 of the least reached the search's end
   bool tracked = false;  // found by the track, not the scan
+  // The shifts whose cost is within one point's disagreement (the cap) of
+  // the least, as a uniform sigma (range / sqrt 12): where the layer below
+  // may lie and stay hidden (a bead covering the one below, its ends over
+  // the old ends: the bare bed beside it brackets the shift, nothing inside
+  // the bracket tells one shift from another). The sigma is at least this.
+  // A scan's own; a track carries the pass's last.
+  double hidden_sigma = 0.0;
 };
 
 // The noise and the point spacing the registration weighs gains by.
@@ -45,9 +52,10 @@ class PointsOnGrid;
 // x, z: the new profile's points (bed frame, x increasing); start: the
 // shift found for the profile before in the same pass (nullptr: none);
 // grid: the points on the surface below's grid (part/grid_costs.h), where
-// the caller made it (nullptr: made here where they lie on it).
+// the caller made it (nullptr: made here where they lie on it);
+// start_hidden_sigma: the pass's last hidden_sigma, which a track carries.
 Registration Register(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
                       const RegistrationScale& scale, const AddedBeadOptions& options, const double* start,
-                      const PointsOnGrid* grid = nullptr);
+                      const PointsOnGrid* grid = nullptr, double start_hidden_sigma = 0.0);
 
 }  // namespace bead::part

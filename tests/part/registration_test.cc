@@ -76,5 +76,37 @@ TEST(Registration, OnABareBedNothingIsTrackedOrConstrained) {
   EXPECT_FALSE(r.constrained);
 }
 
+// A new bead that covers the one below, its walls beyond the old walls by
+// 0.1 mm either side (a straight wall's beads, stacked): only the bare bed
+// beside it speaks, and it says the old bead lies anywhere it stays hidden,
+// a 0.2 mm bracket. The shift is somewhere in it, and its sigma says so:
+// at least the bracket's uniform sigma (less the scan's quarter-spacing
+// steps), the truth within two of it. (Counted as constrained by the few
+// agreeing bed points whose noise slopes like a flank, the scan's least
+// among the bracket's noise claimed a wall's sampling, 0.014 mm.)
+TEST(Registration, ABeadCoveringTheOneBelowBracketsTheShift) {
+  const auto box = [](double x, double half, double h) { return std::abs(x) < half ? h : 0.0; };
+  std::mt19937 rng(11);
+  std::normal_distribution<double> noise(0.0, 0.01);
+  SurfaceRow row;
+  row.x0_mm = -10.0, row.dx_mm = 0.05, row.at_points = true;
+  for (int k = 0; k <= 400; ++k) row.z_mm.push_back(static_cast<float>(box(-10.0 + 0.05 * k, 2.5, 1.2) + noise(rng)));
+  row.variance.assign(row.z_mm.size(), 1.0f);
+  const SurfaceGrid below(std::move(row));
+  const double truth = 0.03;
+  std::vector<float> x, z;
+  for (int k = 0; k <= 400; ++k) {
+    const double xk = -10.0 + 0.05 * k;
+    x.push_back(static_cast<float>(xk));
+    z.push_back(static_cast<float>(std::max(box(xk - truth, 2.5, 1.2), box(xk - truth, 2.6, 3.0)) + noise(rng)));
+  }
+  const double uniform = (0.2 - 0.025) / std::sqrt(12.0);
+  for (const double* start : {static_cast<const double*>(nullptr), &truth}) {
+    const Registration r = Register(x, z, below, kScale, {}, start, nullptr, start ? uniform : 0.0);
+    EXPECT_GE(r.sigma, uniform) << (start ? "tracked" : "scanned");
+    EXPECT_NEAR(r.shift, truth, 2.0 * r.sigma);
+  }
+}
+
 }  // namespace
 }  // namespace bead::part
