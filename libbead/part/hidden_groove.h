@@ -38,6 +38,10 @@ struct HiddenGroove {
   double fit_rms_mm = kNaN;  // the fit's (NaN: placed at the silhouette, not fitted)
   double aspect = kNaN;      // the bead's b / a
   double exponent = kNaN;    // its superellipse's (part/superellipse.h; a fit's: 2)
+  // Placed at the silhouette with the shape free: the aspect's and
+  // exponent's variances from where the ends lie in their cells
+  // (part/silhouette.h), and the left end's place (bed frame).
+  double aspect_end_var = 0.0, exponent_end_var = 0.0, left_end_mm = kNaN;
   // Placed at the silhouette: the sigma holds the area seen's edges too
   // (they move with the ellipse's ends; part/silhouette.h).
   bool at_silhouette = false;

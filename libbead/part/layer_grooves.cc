@@ -45,14 +45,17 @@ HiddenGroove LayerGrooves::Estimate(const StoredProfile& p, const SurfaceGrid& u
 void LayerGrooves::Add(PartGeometryRow row, const StoredProfile* points, const SurfaceGrid* under, const Emit& emit) {
   if (row.layer != layer_) {
     Flush(emit);
-    aspects_.clear(), exponents_.clear(), pooled_.reset(), last_.reset(), layer_ = row.layer;
+    aspects_.clear(), exponents_.clear(), placed_.clear(), pooled_.reset(), last_.reset(), layer_ = row.layer;
   }
   if (points && under) {
     const HiddenGroove g = Estimate(*points, *under, row, last_ ? &*last_ : nullptr, pooled_ ? &*pooled_ : nullptr);
     if (g.ok) last_ = g;
     Apply(g, points->spacing_mm, row);
     if (!pooled_ && g.ok) aspects_.push_back(g.aspect);
-    if (!pooled_ && g.ok && g.at_silhouette) exponents_.push_back(g.exponent);
+    if (!pooled_ && g.ok && g.at_silhouette) {
+      exponents_.push_back(g.exponent);
+      placed_.push_back({g.aspect_end_var, g.exponent_end_var, g.left_end_mm, points->spacing_mm});
+    }
   }
   if (pooled_ && waiting_.empty()) return emit(row);
   waiting_.push_back({std::move(row), points && under ? std::optional(*points) : std::nullopt,
@@ -99,11 +102,26 @@ std::pair<double, double> MedianAndError(std::vector<double> v) {
 // kMinExponents placed, the ellipse's is held). (Each row's aspect solved
 // again at the pooled exponent, its pool's sigma was a third as wide, and
 // the walls' intervals covered 4549 of 4800, not 4578: the two are pooled
-// apart.)
+// apart.) Each sigma is at least what the ends' places in their cells
+// leave over the rows placed: their mean variance over as many independent
+// places as the left ends span cells (rows whose ends share a cell share
+// the error; the median's spread does not show it).
 void LayerGrooves::Pool() {
   PooledShape pool;
   std::tie(pool.aspect, pool.aspect_sigma) = MedianAndError(aspects_);
   if (exponents_.size() >= kMinExponents) std::tie(pool.exponent, pool.exponent_sigma) = MedianAndError(exponents_);
+  if (!placed_.empty()) {
+    double lo = INFINITY, hi = -INFINITY, aspect_var = 0.0, exponent_var = 0.0, spacing = 0.0;
+    for (const Placed& p : placed_) {
+      lo = std::min(lo, p.left_end_mm), hi = std::max(hi, p.left_end_mm), spacing += p.spacing_mm;
+      aspect_var += p.aspect_end_var, exponent_var += p.exponent_end_var;
+    }
+    const auto n = static_cast<double>(placed_.size());
+    const double places = std::clamp(1.0 + (hi - lo) / (spacing / n), 1.0, n);
+    pool.aspect_sigma = std::max(pool.aspect_sigma, std::sqrt(aspect_var / n / places));
+    if (exponents_.size() >= kMinExponents)
+      pool.exponent_sigma = std::max(pool.exponent_sigma, std::sqrt(exponent_var / n / places));
+  }
   pooled_ = pool;
 }
 

@@ -48,6 +48,11 @@ class LayerGrooves {
 
   int64_t layer_ = -1;
   std::vector<double> aspects_, exponents_;
+  // The rows placed at their silhouettes, for the pool's sigma.
+  struct Placed {
+    double aspect_end_var, exponent_end_var, left_end_mm, spacing_mm;
+  };
+  std::vector<Placed> placed_;
   std::optional<PooledShape> pooled_;
   std::optional<HiddenGroove> last_;  // the layer's last fit: where the next starts
   std::vector<Waiting> waiting_;

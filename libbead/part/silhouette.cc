@@ -90,12 +90,13 @@ bool SolveHeld(const Window& w, std::size_t first, std::size_t last, double L, d
   return true;
 }
 
-// The shape free: solved at the exponents of the grid, from the one
-// nearest the ellipse's downhill to the least residual (the residual
-// changes smoothly with the exponent: one least), its exponent refined by
-// the parabola through it and its neighbours' residuals in ln p, the
-// aspect interpolated there.
-bool SolveFree(const Window& w, std::size_t first, std::size_t last, double L, double R, Silhouette& s) {
+// The shape free: solved at the exponents of the grid, from grid index
+// `from` downhill to the least residual (the residual changes smoothly with
+// the exponent: one least), its exponent refined by the parabola through it
+// and its neighbours' residuals in ln p, the aspect interpolated there.
+// Returns the least's grid index (-1: none solved).
+std::ptrdiff_t SolveFree(const Window& w, std::size_t first, std::size_t last, double L, double R, Silhouette& s,
+                         std::ptrdiff_t from) {
   const std::vector<double>& grid = SuperellipseGrid();
   const auto n = static_cast<std::ptrdiff_t>(grid.size());
   std::vector<double> rss(grid.size(), NAN), aspect(grid.size(), NAN);
@@ -112,23 +113,45 @@ bool SolveFree(const Window& w, std::size_t first, std::size_t last, double L, d
     }
     return rss[i];
   };
-  std::ptrdiff_t best = 0;
-  while (best + 1 < n && grid[static_cast<std::size_t>(best) + 1] <= 2.0) ++best;
+  std::ptrdiff_t best = std::clamp<std::ptrdiff_t>(from, 0, n - 1);
   const std::ptrdiff_t way = at(best + 1) < at(best) ? 1 : -1;
   while (at(best + way) < at(best)) best += way;
-  if (!std::isfinite(at(best))) return false;
+  if (!std::isfinite(at(best))) return -1;
   const auto b = static_cast<std::size_t>(best);
   s = solved[b];
   s.e.p = s.exponent = grid[b], s.aspect = aspect[b];
   const double lo = at(best - 1), mid = rss[b], hi = at(best + 1), curve = lo - 2.0 * mid + hi;
-  if (!std::isfinite(curve) || !(curve > 0.0)) return true;
+  if (!std::isfinite(curve) || !(curve > 0.0)) return best;
   // The vertex of the parabola through (ln p, rss) at best - 1, best, best +
   // 1 (equally spaced in ln p), and Lagrange's interpolation of the aspect
   // there.
   const double t = std::clamp(0.5 * (lo - hi) / curve, -1.0, 1.0);  // in steps from best
   s.exponent = grid[b] * std::pow(grid[b + 1] / grid[b], t);
   s.aspect = aspect[b - 1] * 0.5 * t * (t - 1.0) + aspect[b] * (1.0 - t * t) + aspect[b + 1] * 0.5 * t * (t + 1.0);
-  return true;
+  return best;
+}
+
+// The grid index nearest the ellipse's exponent, where a free search starts.
+std::ptrdiff_t EllipseIndex() {
+  const std::vector<double>& grid = SuperellipseGrid();
+  std::ptrdiff_t k = 0;
+  while (k + 1 < std::ssize(grid) && grid[static_cast<std::size_t>(k) + 1] <= 2.0) ++k;
+  return k;
+}
+
+// What the free shape owes to where the ends lie in their cells: solved
+// again with each end moved by half its cell, the aspect's and exponent's
+// changes d as an end uniform over the cell (variance (2 d)^2 / 12).
+void EndsShapeVariance(const Window& w, std::size_t first, std::size_t last, double L, double R, std::ptrdiff_t from,
+                       Silhouette& s) {
+  s.aspect_end_var = s.exponent_end_var = 0.0;
+  for (int side = 0; side < 2; ++side) {
+    const double half = 0.5 * (s.cell[2 * side + 1] - s.cell[2 * side]);
+    Silhouette moved = s;
+    if (SolveFree(w, first, last, side ? L : L + half, side ? R + half : R, moved, from) < 0) continue;
+    const double da = moved.aspect - s.aspect, dp = moved.exponent - s.exponent;
+    s.aspect_end_var += da * da / 3.0, s.exponent_end_var += dp * dp / 3.0;
+  }
 }
 
 // The surface below at x, between the window's points j and j + 1.
@@ -186,9 +209,11 @@ std::optional<Silhouette> AtSilhouette(const Window& w, double center, const Sil
     if (!SolveHeld(w, jl + 1, jr, L, R, *held, s) || !stands(s, 0.0)) return std::nullopt;
     return s;
   }
-  if (!SolveFree(w, jl + 1, jr, L, R, s)) return std::nullopt;
+  const std::ptrdiff_t found = SolveFree(w, jl + 1, jr, L, R, s, EllipseIndex());
+  if (found < 0) return std::nullopt;
   const double cell = std::max(s.cell[1] - s.cell[0], s.cell[3] - s.cell[2]);
   if (!stands(s, s.e.b * std::sqrt(cell / s.e.a))) return std::nullopt;
+  EndsShapeVariance(w, jl + 1, jr, L, R, found, s);
   return s;
 }
 

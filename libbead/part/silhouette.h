@@ -51,6 +51,12 @@ struct Silhouette {
   // z0's derivative in the exponent where the shape is held (b then held
   // too): the top re-solved with the same points.
   double z0_by_exponent = 0.0;
+  // Where the shape is free: the aspect's and exponent's variances from
+  // where the ends lie in their cells (each solved again with an end moved
+  // by half its cell). Rows whose ends share their places in the cells (a
+  // bead whose width changes by less than a cell) share these errors: a
+  // layer's pool does not average them away.
+  double aspect_end_var = 0.0, exponent_end_var = 0.0;
 };
 
 // What a silhouette is: the bead's run stands more than `floor` over the

@@ -210,6 +210,7 @@ TEST(Silhouette, PointsLostAtTheWallWidenTheCellAndTheSigma) {
 // bead placed, taken off the area seen, leaves the material to within the
 // ends' sigma.
 TEST(Silhouette, ABeadOfAnotherShapeIsPlacedWithItsExponent) {
+  double aspect_err2 = 0.0, aspect_var = 0.0, exponent_err2 = 0.0, exponent_var = 0.0;
   for (double p : {1.5, 2.6, 3.5}) {
     double sum = 0.0, variance = 0.0;
     for (int m = 0; m < 4; ++m) {
@@ -220,6 +221,9 @@ TEST(Silhouette, ABeadOfAnotherShapeIsPlacedWithItsExponent) {
       const auto free = AtSilhouette(w, truth.x0, kScale, nullptr);
       ASSERT_TRUE(free) << p << " " << m;
       EXPECT_NEAR(free->exponent, p, p * 2.0 * share) << m;
+      aspect_err2 += (free->aspect - 0.5) * (free->aspect - 0.5), aspect_var += free->aspect_end_var;
+      exponent_err2 += (free->exponent - p) * (free->exponent - p) / (p * p),
+          exponent_var += free->exponent_end_var / (p * p);
       const PooledShape found{free->aspect, 0.0, free->exponent, 0.0};
       auto s = AtSilhouette(w, truth.x0, kScale, &found);
       ASSERT_TRUE(s) << p << " " << m;
@@ -238,6 +242,17 @@ TEST(Silhouette, ABeadOfAnotherShapeIsPlacedWithItsExponent) {
     }
     EXPECT_LT(std::abs(sum / 4.0), 2.0 * std::sqrt(variance / 4.0)) << p;
   }
+  // What the ends' places in their cells leave in the free shape (each
+  // solved again with an end moved by half its cell) is the shape's actual
+  // error over the phases: its RMS within a factor of two of their sigma.
+  const double aspect_rms = std::sqrt(aspect_err2 / 12), aspect_sigma = std::sqrt(aspect_var / 12);
+  const double exponent_rms = std::sqrt(exponent_err2 / 12), exponent_sigma = std::sqrt(exponent_var / 12);
+  std::printf("aspect: error RMS %.4f, the ends' sigma %.4f; exponent (relative): %.4f, %.4f\n", aspect_rms,
+              aspect_sigma, exponent_rms, exponent_sigma);
+  EXPECT_GT(aspect_rms, 0.5 * aspect_sigma);
+  EXPECT_LT(aspect_rms, 2.0 * aspect_sigma);
+  EXPECT_GT(exponent_rms, 0.5 * exponent_sigma);
+  EXPECT_LT(exponent_rms, 2.0 * exponent_sigma);
 }
 
 }  // namespace
