@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "libbead/part/superellipse.h"
@@ -13,28 +15,68 @@ namespace {
 // the exponent's table holds s).
 constexpr double kInner = SuperellipseTable::kTabulatedU;
 
-// The least squares' sums over the top's points within kInner of the
-// half-width, for the bead with ends L and R at exponent t: of 1, s, s^2,
-// z, z s, z^2 and ds/dp, and the derivatives of s, s^2 and z s in x0 and a
-// (through u = (x - x0) / a: ds/dx0 = -s'(u) / a, ds/da = u ds/dx0).
+// The top's points within kInner of the half-width of the bead with ends L
+// and R: u, z, and where u falls in the exponents' tables (the same in all).
+struct TopPoints {
+  double per_a = 0.0;
+  std::vector<double> u, z, t;
+  std::vector<int> k;
+};
+
+const TopPoints& TopOf(const Window& w, std::size_t first, std::size_t last, double L, double R) {
+  thread_local TopPoints p;
+  p.u.clear(), p.z.clear(), p.t.clear(), p.k.clear();
+  const double x0 = 0.5 * (L + R);
+  p.per_a = 2.0 / (R - L);
+  for (std::size_t j = first; j <= last; ++j) {
+    const double u = (w.x[j] - x0) * p.per_a;
+    if (!(std::abs(u) <= kInner)) continue;
+    int k = 0;
+    double t = 0.0;
+    SuperellipseTable::Locate(u, k, t);
+    p.u.push_back(u), p.z.push_back(w.z[j]), p.k.push_back(k), p.t.push_back(t);
+  }
+  return p;
+}
+
+// The least squares' sums over the top's points at exponent t: of 1, s,
+// s^2, z, z s, z^2 and ds/dp, and (full) the derivatives of s, s^2 and z s
+// in x0 and a (through u = (x - x0) / a: ds/dx0 = -s'(u) / a, ds/da = u
+// ds/dx0).
 struct TopSums {
   double m = 0, s1 = 0, s2 = 0, z1 = 0, zs = 0, zz = 0, sp = 0;
   double d1[2] = {}, d2[2] = {}, dz[2] = {};
 };
 
-TopSums SumTop(const Window& w, std::size_t first, std::size_t last, double x0, double a, const SuperellipseTable& t) {
+TopSums SumTop(const TopPoints& p, const SuperellipseTable& t, bool full = true) {
   TopSums m;
-  const double per_a = 1.0 / a;
-  for (std::size_t j = first; j <= last; ++j) {
-    const double u = (w.x[j] - x0) * per_a;
-    if (!(std::abs(u) <= kInner)) continue;
-    const SuperellipseTable::Value v = t.At(u);
-    const double sv = v.s, z = w.z[j];
-    m.m += 1, m.s1 += sv, m.s2 += sv * sv, m.z1 += z, m.zs += z * sv, m.zz += z * z, m.sp += v.ds_dp;
-    const double by_x0 = -v.ds_du * per_a, by[2] = {by_x0, u * by_x0};
+  m.m = static_cast<double>(p.u.size());
+  for (std::size_t j = 0; j < p.u.size(); ++j) {
+    const double z = p.z[j];
+    m.z1 += z, m.zz += z * z;
+    if (!full) {
+      const double sv = t.S(p.k[j], p.t[j]);
+      m.s1 += sv, m.s2 += sv * sv, m.zs += z * sv;
+      continue;
+    }
+    const SuperellipseTable::Value v = t.At(p.k[j], p.t[j], p.u[j] < 0.0);
+    const double sv = v.s;
+    m.s1 += sv, m.s2 += sv * sv, m.zs += z * sv, m.sp += v.ds_dp;
+    const double by_x0 = -v.ds_du * p.per_a, by[2] = {by_x0, p.u[j] * by_x0};
     for (int i = 0; i < 2; ++i) m.d1[i] += by[i], m.d2[i] += 2.0 * sv * by[i], m.dz[i] += z * by[i];
   }
   return m;
+}
+
+// The residual variance and the aspect of the free solve from the sums
+// (INFINITY where b is not positive or too few points are).
+std::pair<double, double> FreeResidual(const TopSums& t, double a) {
+  const double det = t.m * t.s2 - t.s1 * t.s1;
+  if (t.m < 8.0 || !(det > 0.0)) return {INFINITY, NAN};
+  const double b = (t.m * t.zs - t.s1 * t.z1) / det, z0 = (t.z1 - b * t.s1) / t.m;
+  if (!(b > 0.0)) return {INFINITY, NAN};
+  const double rss = t.zz + t.m * z0 * z0 + b * b * t.s2 - 2.0 * z0 * t.z1 - 2.0 * b * t.zs + 2.0 * z0 * b * t.s1;
+  return {std::max(rss, 0.0) / (t.m - 2.0), b / a};
 }
 
 // z0 and b (b = aspect a where held) from the sums, for the bead with ends L
@@ -84,7 +126,7 @@ bool SolveTop(const TopSums& t, double L, double R, double aspect, Silhouette& s
 bool SolveHeld(const Window& w, std::size_t first, std::size_t last, double L, double R, const PooledShape& held,
                Silhouette& s) {
   const SuperellipseTable& t = SuperellipseOf(held.exponent);
-  if (!SolveTop(SumTop(w, first, last, 0.5 * (L + R), 0.5 * (R - L), t), L, R, held.aspect, s)) return false;
+  if (!SolveTop(SumTop(TopOf(w, first, last, L, R), t), L, R, held.aspect, s)) return false;
   s.e.p = held.exponent, s.exponent = held.exponent;
   s.aspect = std::isfinite(held.aspect) ? held.aspect : s.e.b / s.e.a;
   return true;
@@ -99,26 +141,21 @@ std::ptrdiff_t SolveFree(const Window& w, std::size_t first, std::size_t last, d
                          std::ptrdiff_t from) {
   const std::vector<double>& grid = SuperellipseGrid();
   const auto n = static_cast<std::ptrdiff_t>(grid.size());
+  const TopPoints& top = TopOf(w, first, last, L, R);
   std::vector<double> rss(grid.size(), NAN), aspect(grid.size(), NAN);
-  std::vector<Silhouette> solved(grid.size(), s);  // each with the cells
   // The residual at grid index k (INFINITY off the grid or unsolved).
   const auto at = [&](std::ptrdiff_t k) {
     if (k < 0 || k >= n) return static_cast<double>(INFINITY);
     const auto i = static_cast<std::size_t>(k);
-    if (std::isnan(rss[i])) {
-      Silhouette& t = solved[i];
-      const bool ok =
-          SolveTop(SumTop(w, first, last, 0.5 * (L + R), 0.5 * (R - L), SuperellipseOf(grid[i])), L, R, NAN, t);
-      rss[i] = ok ? t.residual_variance : INFINITY, aspect[i] = t.e.b / t.e.a;
-    }
+    if (std::isnan(rss[i]))
+      std::tie(rss[i], aspect[i]) = FreeResidual(SumTop(top, SuperellipseOf(grid[i]), false), 0.5 * (R - L));
     return rss[i];
   };
   std::ptrdiff_t best = std::clamp<std::ptrdiff_t>(from, 0, n - 1);
   const std::ptrdiff_t way = at(best + 1) < at(best) ? 1 : -1;
   while (at(best + way) < at(best)) best += way;
-  if (!std::isfinite(at(best))) return -1;
   const auto b = static_cast<std::size_t>(best);
-  s = solved[b];
+  if (!std::isfinite(at(best)) || !SolveTop(SumTop(top, SuperellipseOf(grid[b])), L, R, NAN, s)) return -1;
   s.e.p = s.exponent = grid[b], s.aspect = aspect[b];
   const double lo = at(best - 1), mid = rss[b], hi = at(best + 1), curve = lo - 2.0 * mid + hi;
   if (!std::isfinite(curve) || !(curve > 0.0)) return best;

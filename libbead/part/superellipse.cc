@@ -42,11 +42,10 @@ SuperellipseTable::SuperellipseTable(double p) : p_(p) {
 }
 
 SuperellipseTable::Value SuperellipseTable::At(double u) const {
-  const double f = std::min(std::abs(u), kTabulatedU) * (kEntries / kTabulatedU);
-  const int k = std::min(static_cast<int>(f), kEntries - 1);
-  const double t = f - k;
-  const double slope = ds_du_[k] + t * (ds_du_[k + 1] - ds_du_[k]);
-  return {s_[k] + t * (s_[k + 1] - s_[k]), u < 0.0 ? -slope : slope, ds_dp_[k] + t * (ds_dp_[k + 1] - ds_dp_[k])};
+  int k = 0;
+  double t = 0.0;
+  Locate(u, k, t);
+  return At(k, t, u < 0.0);
 }
 
 const std::array<double, SuperellipseTable::kNodes>& SuperellipseTable::node_u() const { return Nodes(); }

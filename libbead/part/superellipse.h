@@ -17,6 +17,7 @@
 // a profiler's noise.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -38,6 +39,19 @@ class SuperellipseTable {
   };
   // At |u| <= kTabulatedU (beyond it: the last entry's).
   Value At(double u) const;
+  // Where |u| falls between the entries: entry k and the fraction t of the
+  // way to k + 1 (the same for every exponent: found once for many); s
+  // alone there, and all three (u's sign given).
+  static void Locate(double u, int& k, double& t) {
+    const double f = std::min(u < 0.0 ? -u : u, kTabulatedU) * (kEntries / kTabulatedU);
+    k = std::min(static_cast<int>(f), kEntries - 1);
+    t = f - k;
+  }
+  double S(int k, double t) const { return s_[k] + t * (s_[k + 1] - s_[k]); }
+  Value At(int k, double t, bool negative) const {
+    const double slope = ds_du_[k] + t * (ds_du_[k + 1] - ds_du_[k]);
+    return {S(k, t), negative ? -slope : slope, ds_dp_[k] + t * (ds_dp_[k + 1] - ds_dp_[k])};
+  }
 
   // The nodes: u_k, s(u_k) and ds/dp there.
   const std::array<double, kNodes>& node_u() const;
