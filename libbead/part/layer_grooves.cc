@@ -20,6 +20,12 @@ namespace {
 // better than half of it (else the ellipse did not find the bead's sides:
 // the row keeps the area seen, and no correction). An ellipse placed at
 // the silhouette has its ends where those walls are: its sigma holds them.
+// Beside them, the area seen's own noise: its trapezoids over the bead's
+// width / spacing points, each a spacing times a gain of the point's noise
+// and the surface below's (as much again: a layer below's point, or the
+// bed line's offset over the bead), width spacing 2 noise^2. (Left out,
+// beads whose sides meet the surface, a groove of nothing, were given
+// sigmas of 0.001 mm^2 against errors of 0.009: 28 % covered.)
 void Apply(const HiddenGroove& g, double spacing, PartGeometryRow& row) {
   row.area_corrected_mm2 = row.area_corrected_sigma_mm2 = PartGeometryRow::kNaN;
   const double edges =
@@ -27,8 +33,9 @@ void Apply(const HiddenGroove& g, double spacing, PartGeometryRow& row) {
           ? 0.0
           : spacing * spacing *
                 (row.bead.edge_left_mm * row.bead.edge_left_mm + row.bead.edge_right_mm * row.bead.edge_right_mm);
+  const double seen_noise = 2.0 * row.bead.width_mm * spacing * row.bead.noise_mm * row.bead.noise_mm;
   const double corrected = row.bead.area_mm2 - g.hidden_mm2;
-  const double sigma = std::sqrt(g.sigma_mm2 * g.sigma_mm2 + edges / 12.0);
+  const double sigma = std::sqrt(g.sigma_mm2 * g.sigma_mm2 + edges / 12.0 + seen_noise);
   if (g.ok && corrected > 0.0 && sigma < 0.5 * corrected)
     row.area_corrected_mm2 = corrected, row.area_corrected_sigma_mm2 = sigma;
 }
