@@ -19,6 +19,18 @@
 namespace bead::tools {
 namespace {
 
+// The layer's pooled bead shape, and in words how far from an ellipse.
+void SayShape(const part::PooledShape& s) {
+  const double off = s.exponent - 2.0, two_sigmas = 2.0 * s.exponent_sigma;
+  const char* words = std::abs(off) <= two_sigmas ? "an ellipse, within two sigmas"
+                      : off > 0.0                 ? "toward a box: flatter on top, steeper at the sides"
+                                                  : "toward a diamond: narrower at top and bottom";
+  std::printf(
+      "    bead shape (its first profiles pooled): half-height over half-width %.3f +- %.3f, exponent %.3f +- %.3f "
+      "(%s)\n",
+      s.aspect, s.aspect_sigma, s.exponent, s.exponent_sigma, words);
+}
+
 void SayLayers(const std::vector<part::LayerSummary>& layers) {
   for (const part::LayerSummary& l : layers) {
     std::printf("  layer %lld: %zu profiles over path %.1f to %.1f mm, %zu valid", static_cast<long long>(l.layer),
@@ -42,6 +54,7 @@ void SayLayers(const std::vector<part::LayerSummary>& layers) {
           "    %zu profiles' corrected areas are loose (sigma over a tenth of the area): the bead's sides are not "
           "seen steep enough to place its widest point\n",
           l.loose);
+    if (l.shape) SayShape(*l.shape);
   }
 }
 

@@ -130,6 +130,7 @@ void LayerGrooves::Pool() {
       pool.exponent_sigma = std::max(pool.exponent_sigma, std::sqrt(exponent_var / n / places));
   }
   pooled_ = pool;
+  pools_.emplace_back(layer_, pool);
 }
 
 }  // namespace bead::part

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "libbead/part/hidden_groove.h"
@@ -35,6 +36,8 @@ class LayerGrooves {
   void Add(PartGeometryRow row, const StoredProfile* points, const SurfaceGrid* under, const Emit& emit);
   // The rows still waiting, with their own fits (the scan's end).
   void Flush(const Emit& emit);
+  // Each layer's pooled shape, in the order they were formed.
+  const std::vector<std::pair<int64_t, PooledShape>>& pools() const { return pools_; }
 
  private:
   struct Waiting {
@@ -53,6 +56,7 @@ class LayerGrooves {
     double aspect_end_var, exponent_end_var, left_end_mm, spacing_mm;
   };
   std::vector<Placed> placed_;
+  std::vector<std::pair<int64_t, PooledShape>> pools_;
   std::optional<PooledShape> pooled_;
   std::optional<HiddenGroove> last_;  // the layer's last fit: where the next starts
   std::vector<Waiting> waiting_;

@@ -159,6 +159,7 @@ class PartMeasurer {
     below_.Keep(std::move(mine));
   }
   void Flush(const LayerGrooves::Emit& emit) { grooves_.Flush(emit); }
+  const LayerGrooves& grooves() const { return grooves_; }
 
  private:
   const Rig& rig_;
@@ -249,6 +250,9 @@ std::vector<LayerSummary> MeasurePart(ProfileStream& stream, const PartPlaces& p
     if (progress) progress(begin + count);
   }
   measurer.Flush(emit);
+  for (const auto& [layer, shape] : measurer.grooves().pools())
+    for (LayerSummary& l : layers)
+      if (l.layer == layer) l.shape = shape;
   return layers;
 }
 

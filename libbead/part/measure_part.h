@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,7 @@
 #include "libbead/core/run_data.h"
 #include "libbead/io/profile_stream.h"
 #include "libbead/part/added_bead.h"
+#include "libbead/part/groove_window.h"
 #include "libbead/part/roads.h"
 #include "libbead/part/surface_below.h"
 #include "libbead/profile/profile_processor.h"
@@ -71,6 +73,9 @@ struct LayerSummary {
   double MeanCorrected() const { return corrected ? corrected_sum_mm2 / static_cast<double>(corrected) : kNaN(); }
   double first_path_mm = 0.0, last_path_mm = 0.0;
   std::vector<double> shifts_mm;  // the shifts found (median: the pass's)
+  // The layer's bead shape as its first rows pooled it (part/layer_grooves.h;
+  // none where too few of them were corrected).
+  std::optional<PooledShape> shape;
   double MeanArea() const { return valid ? area_sum_mm2 / static_cast<double>(valid) : kNaN(); }
   double MedianShift() const;
   static double kNaN() { return std::numeric_limits<double>::quiet_NaN(); }

@@ -29,6 +29,11 @@ TEST(PartCommand, SimulateThenMeasureWritesThePartGeometryCsv) {
   ASSERT_EQ(code, 0) << out;
   EXPECT_NE(out.find("part scan"), std::string::npos) << out;
   EXPECT_NE(out.find("layer 2:"), std::string::npos) << out;
+  // Each layer's bead shape, pooled on its first profiles: the twin's
+  // ellipse (exponent 2, to well within a tenth: its sigma ~0.005).
+  const std::size_t shape = out.find("exponent ");
+  ASSERT_NE(shape, std::string::npos) << out;
+  EXPECT_NEAR(std::stod(out.substr(shape + 9)), 2.0, 0.05) << out;
   const auto geo = CsvRows(dir / "geo.csv"), truth = CsvRows(dir / "sim/truth.csv");
   ASSERT_GT(geo.size(), 2u);
   const std::vector<std::string> spec = {
