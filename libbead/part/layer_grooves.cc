@@ -91,7 +91,7 @@ void LayerGrooves::Flush(const Emit& emit) {
 
 namespace {
 
-// The median of v (reordered) and its standard error: sqrt(pi / 2) sigma /
+// The median of v and its standard error: sqrt(pi / 2) sigma /
 // sqrt(n), sigma from the median absolute deviation.
 std::pair<double, double> MedianAndError(std::vector<double> v) {
   std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
