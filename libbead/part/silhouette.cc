@@ -25,17 +25,18 @@ struct TopPoints {
 
 const TopPoints& TopOf(const Window& w, std::size_t first, std::size_t last, double L, double R) {
   thread_local TopPoints p;
-  p.u.clear(), p.z.clear(), p.t.clear(), p.k.clear();
+  const std::size_t most = last >= first ? last - first + 1 : 0;
+  p.u.resize(most), p.z.resize(most), p.t.resize(most), p.k.resize(most);
   const double x0 = 0.5 * (L + R);
   p.per_a = 2.0 / (R - L);
+  std::size_t n = 0;
   for (std::size_t j = first; j <= last; ++j) {
     const double u = (w.x[j] - x0) * p.per_a;
     if (!(std::abs(u) <= kInner)) continue;
-    int k = 0;
-    double t = 0.0;
-    SuperellipseTable::Locate(u, k, t);
-    p.u.push_back(u), p.z.push_back(w.z[j]), p.k.push_back(k), p.t.push_back(t);
+    SuperellipseTable::Locate(u, p.k[n], p.t[n]);
+    p.u[n] = u, p.z[n] = w.z[j], ++n;
   }
+  p.u.resize(n), p.z.resize(n), p.t.resize(n), p.k.resize(n);
   return p;
 }
 
