@@ -7,6 +7,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "libbead/part/superellipse.h"
+
 namespace bead::part {
 
 // The bead: centre (x0, z0), semi-axes a across, b up, and its exponent
@@ -15,8 +17,8 @@ struct Ellipse {
   double x0 = 0.0, z0 = 0.0, a = 1.0, b = 1.0, p = 2.0;
   // Half its height at x (0 off it).
   double Half(double x) const {
-    const double u = std::abs((x - x0) / a);
-    return u < 1.0 ? b * std::pow(1.0 - std::pow(u, p), 1.0 / p) : 0.0;
+    const double u = (x - x0) / a;
+    return std::abs(u) < 1.0 ? b * SuperellipseAt(u, p).s : 0.0;
   }
   double& operator[](std::size_t i) { return i == 0 ? x0 : i == 1 ? z0 : i == 2 ? a : b; }
   double operator[](std::size_t i) const { return i == 0 ? x0 : i == 1 ? z0 : i == 2 ? a : b; }

@@ -231,8 +231,8 @@ HiddenGroove AtTheSilhouette(const Silhouette& s, const Around& o, const PooledS
   // by the shift, it changes by the surface below's rise from the left end
   // to the right one (the ends stay at the walls the data show).
   const double seen_by_shift = s.wall_left - s.wall_right;
-  const double around = AroundVariance(groove, o, seen_by_shift);
-  const double var = SilhouetteVariance(s, held, groove.gradient, groove.by_exponent) + around;
+  const double var =
+      SilhouetteVariance(s, held, groove.gradient, groove.by_exponent) + AroundVariance(groove, o, seen_by_shift);
   out.sigma_mm2 = std::sqrt(var);
   out.at_silhouette = true;
   out.aspect = s.aspect, out.exponent = s.exponent;

@@ -52,17 +52,15 @@ HiddenGroove LayerGrooves::Estimate(const StoredProfile& p, const SurfaceGrid& u
 void LayerGrooves::Add(PartGeometryRow row, const StoredProfile* points, const SurfaceGrid* under, const Emit& emit) {
   if (row.layer != layer_) {
     Flush(emit);
-    aspects_.clear(), exponents_.clear(), placed_.clear(), pooled_.reset(), last_.reset(), layer_ = row.layer;
+    aspects_.clear(), placed_.clear(), pooled_.reset(), last_.reset(), layer_ = row.layer;
   }
   if (points && under) {
     const HiddenGroove g = Estimate(*points, *under, row, last_ ? &*last_ : nullptr, pooled_ ? &*pooled_ : nullptr);
     if (g.ok) last_ = g;
     Apply(g, points->spacing_mm, row);
     if (!pooled_ && g.ok) aspects_.push_back(g.aspect);
-    if (!pooled_ && g.ok && g.at_silhouette) {
-      exponents_.push_back(g.exponent);
-      placed_.push_back({g.aspect_end_var, g.exponent_end_var, g.left_end_mm, points->spacing_mm});
-    }
+    if (!pooled_ && g.ok && g.at_silhouette)
+      placed_.push_back({g.exponent, g.aspect_end_var, g.exponent_end_var, g.left_end_mm, points->spacing_mm});
   }
   if (pooled_ && waiting_.empty()) return emit(row);
   waiting_.push_back({std::move(row), points && under ? std::optional(*points) : std::nullopt,
@@ -116,18 +114,21 @@ std::pair<double, double> MedianAndError(std::vector<double> v) {
 void LayerGrooves::Pool() {
   PooledShape pool;
   std::tie(pool.aspect, pool.aspect_sigma) = MedianAndError(aspects_);
-  if (exponents_.size() >= kMinExponents) std::tie(pool.exponent, pool.exponent_sigma) = MedianAndError(exponents_);
   if (!placed_.empty()) {
+    std::vector<double> exponents;
     double lo = INFINITY, hi = -INFINITY, aspect_var = 0.0, exponent_var = 0.0, spacing = 0.0;
     for (const Placed& p : placed_) {
+      exponents.push_back(p.exponent);
       lo = std::min(lo, p.left_end_mm), hi = std::max(hi, p.left_end_mm), spacing += p.spacing_mm;
       aspect_var += p.aspect_end_var, exponent_var += p.exponent_end_var;
     }
     const auto n = static_cast<double>(placed_.size());
     const double places = std::clamp(1.0 + (hi - lo) / (spacing / n), 1.0, n);
     pool.aspect_sigma = std::max(pool.aspect_sigma, std::sqrt(aspect_var / n / places));
-    if (exponents_.size() >= kMinExponents)
+    if (placed_.size() >= kMinExponents) {
+      std::tie(pool.exponent, pool.exponent_sigma) = MedianAndError(exponents);
       pool.exponent_sigma = std::max(pool.exponent_sigma, std::sqrt(exponent_var / n / places));
+    }
   }
   pooled_ = pool;
   pools_.emplace_back(layer_, pool);

@@ -50,10 +50,11 @@ class LayerGrooves {
   void Pool();
 
   int64_t layer_ = -1;
-  std::vector<double> aspects_, exponents_;
-  // The rows placed at their silhouettes, for the pool's sigma.
+  std::vector<double> aspects_;
+  // The rows placed at their silhouettes: their exponents, and for the
+  // pool's sigma what their ends' cells leave.
   struct Placed {
-    double aspect_end_var, exponent_end_var, left_end_mm, spacing_mm;
+    double exponent, aspect_end_var, exponent_end_var, left_end_mm, spacing_mm;
   };
   std::vector<Placed> placed_;
   std::vector<std::pair<int64_t, PooledShape>> pools_;

@@ -2,8 +2,9 @@
 // scan), with its truth beside each profile.
 //
 // Each layer's bead is an ellipse (half-width a = width / 2, half-height
-// aspect a; or a superellipse |u|^p + |v|^p = 1 of the config's exponent) laid on the surface the layers before left, sunk into it until
-// the material it adds (the ellipse above the old surface) is the layer's
+// aspect a; or a superellipse |u|^p + |v|^p = 1 of the config's exponent)
+// laid on the surface the layers before left, sunk into it until the
+// material it adds (the ellipse above the old surface) is the layer's
 // area at that place; where it overhangs the bead below, the groove under
 // its side is filled by nothing and hidden from a sensor looking down. The
 // sensor sees the top envelope, max(old surface, ellipse top). The head's
