@@ -18,7 +18,7 @@
 
 namespace {
 
-// The wall of `length_mm` (50: 100 profiles a layer, a quarter of them
+// The wall of `length_mm` (50: 100 profiles a layer, half of them
 // those a layer's groove shape is pooled on; 400: 800 a layer).
 // frame_moving: the profiler's frame moves sideways along the path by a
 // known amount (PartTwinConfig::frame_x_wave_mm 0.37 mm), each profile's

@@ -27,8 +27,8 @@ void SayShape(const part::PooledShape& s) {
                                                   : "toward a diamond: narrower at top and bottom";
   std::printf(
       "    bead shape (its first profiles pooled): half-height over half-width %.3f +- %.3f, exponent %.3f +- %.3f "
-      "(%s)\n",
-      s.aspect, s.aspect_sigma, s.exponent, s.exponent_sigma, words);
+      "(%s; the two errors correlated %+.2f)\n",
+      s.aspect, s.aspect_sigma, s.exponent, s.exponent_sigma, words, s.correlation);
 }
 
 void SayLayers(const std::vector<part::LayerSummary>& layers) {

@@ -283,7 +283,7 @@ double SilhouetteVariance(const Silhouette& s, const PooledShape* held, const do
   // its own derivative, z0 re-solved (the area seen stays: the ends do).
   const double by_aspect = (g_b - g_z0 * s.mean_s) * s.e.a * held->aspect_sigma;
   const double by_p = (by_exponent + g_z0 * s.z0_by_exponent) * held->exponent_sigma;
-  return ends + solved + by_aspect * by_aspect + by_p * by_p;
+  return ends + solved + by_aspect * by_aspect + by_p * by_p + 2.0 * held->correlation * by_aspect * by_p;
 }
 
 }  // namespace bead::part

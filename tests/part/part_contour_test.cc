@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "libbead/io/profile_stream.h"
+#include "libbead/part/layer_grooves.h"
 #include "libbead/part/measure_part.h"
 #include "libbead/part/part_flow.h"
 #include "libbead/sim/part_twin.h"
@@ -21,7 +22,7 @@ namespace {
 struct ContourFigures {
   double laid = 0.0, measured = 0.0;
   std::vector<double> area_rel, height_error;
-  std::vector<double> first_rel;  // of each layer's first 25 rows (those its groove shape is pooled on)
+  std::vector<double> first_rel;  // of each layer's first rows (those its groove shape is pooled on)
   std::vector<double> flow, true_flow;
   part::CornerBulge bulge;
 };
@@ -33,9 +34,9 @@ ContourFigures Figures(const sim::PartTwin& twin, bool naive) {
   const part::NozzleClock clock(*twin.scan.log, "twin");
   part::SpeedAndArea speeds;
   ContourFigures f;
-  std::vector<int> layer_rows(64, 0);
+  std::vector<std::size_t> layer_rows(64, 0);
   part::MeasurePart(stream, *twin.scan.part, twin.rig, options, [&](const part::PartGeometryRow& g) {
-    const bool first = layer_rows[g.layer]++ < 25;
+    const bool first = layer_rows[g.layer]++ < part::LayerGrooves::kPoolProfiles;
     const part::PartFlowRow r = part::FlowOf(g, clock);
     if (!r.valid) return;
     speeds.Add(r);
@@ -88,11 +89,12 @@ TEST(PartContour, TheMaterialTheHeightAndTheFlowAlongACornersPath) {
     std::printf(
         "contour seed %llu: area over the run %+.2f %% (naive %+.2f %%), per profile median |error| %.2f %% (naive "
         "%.2f %%), height median |error| %.4f mm (naive %.4f), flow fit %.1f %% (naive %.1f %%); slow %zu profiles: "
-        "area %+.1f %%, flow %+.1f %%; each layer's first 25 rows' 90th percentile of |error| %.2f %%\n",
+        "area %+.1f %%, flow %+.1f %%; each layer's first %zu rows' 90th percentile of |error| %.2f %%\n",
         static_cast<unsigned long long>(seed), 100 * (f.measured / f.laid - 1), 100 * (naive.measured / naive.laid - 1),
         100 * MedianAbs(f.area_rel), 100 * MedianAbs(naive.area_rel), MedianAbs(f.height_error),
         MedianAbs(naive.height_error), FitPercent(f.true_flow, f.flow), FitPercent(naive.true_flow, naive.flow),
-        f.bulge.slow, 100 * f.bulge.area_excess, 100 * f.bulge.flow_excess, 100 * QuantileAbs(f.first_rel, 0.9));
+        f.bulge.slow, 100 * f.bulge.area_excess, 100 * f.bulge.flow_excess, part::LayerGrooves::kPoolProfiles,
+        100 * QuantileAbs(f.first_rel, 0.9));
     EXPECT_LT(std::abs(f.measured / f.laid - 1), 0.01) << seed;
     EXPECT_LT(MedianAbs(f.area_rel), 0.03) << seed;
     EXPECT_LT(MedianAbs(f.height_error), 0.05) << seed;
