@@ -209,8 +209,8 @@ int FlowPartScan(const std::string& rig_path, const std::string& run, const std:
             ? "the extruder did not follow the head (the corner bulge, thesis 1.3.2)"
             : "the extruder's flow followed the head's speed");
   if (f.unplaced)
-    std::printf("  %zu profiles stand where the log never had the nozzle moving forward in their layer: no time\n",
-                f.unplaced);
+    std::printf("  %zu %s where the log never had the nozzle pass in the layer's printing direction: no time\n",
+                f.unplaced, f.unplaced == 1 ? "profile stands" : "profiles stand");
   return 0;
 }
 

@@ -2,42 +2,97 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <optional>
 
 #include "libbead/core/error.h"
 
 namespace bead::part {
 
+namespace {
+
+// The log's monotone stretches, each within one layer, the path growing or
+// falling from sample to sample.
+struct Stretches {
+  std::map<int64_t, std::vector<std::pair<std::size_t, std::size_t>>> each_way[2];  // [0] backward, [1] forward
+};
+
+Stretches MonotoneStretches(const AcquisitionLog& log) {
+  Stretches out;
+  const auto& path = log.path_mm;
+  for (std::size_t i = 0; i + 1 < log.size();) {
+    if (log.layer[i + 1] != log.layer[i] || !(path[i + 1] != path[i])) {
+      ++i;  // a new layer, or the nozzle standing still
+      continue;
+    }
+    const bool forward = path[i + 1] > path[i];
+    std::size_t j = i + 1;
+    while (j + 1 < log.size() && log.layer[j + 1] == log.layer[i] &&
+           (forward ? path[j + 1] > path[j] : path[j + 1] < path[j]))
+      ++j;
+    out.each_way[forward][log.layer[i]].push_back({i, j});
+    i = j;  // a turn's sample ends one stretch and starts the next
+  }
+  return out;
+}
+
+// The screw's revolutions over a stretch (rpm over minutes), and its time.
+std::pair<double, double> TurnsAndTime(const AcquisitionLog& log, std::size_t first, std::size_t last) {
+  double turns = 0.0;
+  for (std::size_t i = first; i < last; ++i)
+    turns += 0.5 * (std::max(log.screw_rpm[i], 0.0) + std::max(log.screw_rpm[i + 1], 0.0)) *
+             (log.t_s[i + 1] - log.t_s[i]) / 60.0;
+  return {turns, log.t_s[last] - log.t_s[first]};
+}
+
+}  // namespace
+
 NozzleClock::NozzleClock(const AcquisitionLog& log, const std::string& file) : log_(log) {
   if (!log.part() || log.layer.size() != log.size() || log.path_mm.size() != log.size())
     throw Error(Located(file, "/log", "holds no /log/layer and /log/path_mm: the flow along the path needs them"));
-  // A forward stretch: consecutive samples of one layer whose path grows.
-  std::size_t start = 0;
-  for (std::size_t i = 1; i <= log.size(); ++i) {
-    const bool ends = i == log.size() || log.layer[i] != log.layer[start] || !(log.path_mm[i] > log.path_mm[i - 1]);
-    if (!ends) continue;
-    if (i - 1 > start) forward_[log.layer[start]].push_back({start, i - 1});
-    start = i;
-  }
+  const Stretches all = MonotoneStretches(log);
+  std::map<int64_t, double> turns[2], time[2];
+  for (int way = 0; way < 2; ++way)
+    for (const auto& [layer, stretches] : all.each_way[way])
+      for (const auto& [first, last] : stretches) {
+        const auto [n, t] = TurnsAndTime(log, first, last);
+        turns[way][layer] += n, time[way][layer] += t;
+      }
+  for (int way = 0; way < 2; ++way)
+    for (const auto& [layer, stretches] : all.each_way[way]) {
+      const bool turned = turns[0][layer] > 0.0 || turns[1][layer] > 0.0;
+      const double mine = turned ? turns[way][layer] : time[way][layer];
+      const double other = turned ? turns[1 - way][layer] : time[1 - way][layer];
+      if (way == 1 ? !(mine >= other) : !(mine > other)) continue;
+      for (const auto& [first, last] : stretches) printing_[layer].push_back({first, last, way == 1});
+    }
+}
+
+int NozzleClock::Direction(int64_t layer) const {
+  const auto it = printing_.find(layer);
+  return it == printing_.end() ? 0 : it->second.front().forward ? 1 : -1;
 }
 
 double NozzleClock::SpeedAt(std::size_t i, double t) const {
   if (!log_.head_speed_mm_s.empty()) {
     const double w = (t - log_.t_s[i]) / (log_.t_s[i + 1] - log_.t_s[i]);
-    return (1 - w) * log_.head_speed_mm_s[i] + w * log_.head_speed_mm_s[i + 1];
+    return std::abs((1 - w) * log_.head_speed_mm_s[i] + w * log_.head_speed_mm_s[i + 1]);
   }
-  return (log_.path_mm[i + 1] - log_.path_mm[i]) / (log_.t_s[i + 1] - log_.t_s[i]);
+  return std::abs(log_.path_mm[i + 1] - log_.path_mm[i]) / (log_.t_s[i + 1] - log_.t_s[i]);
 }
 
 std::optional<NozzleClock::Passing> NozzleClock::At(int64_t layer, double path) const {
-  const auto it = forward_.find(layer);
-  if (it == forward_.end()) return std::nullopt;
-  for (const auto& [first, last] : it->second) {
-    if (path < log_.path_mm[first] || path > log_.path_mm[last]) continue;
-    // The path grows strictly within a stretch: a binary search.
-    const auto begin = log_.path_mm.begin();
-    const auto up = std::upper_bound(begin + first, begin + last + 1, path);
-    const std::size_t i = std::min<std::size_t>(static_cast<std::size_t>(up - begin), last) - 1;
+  const auto it = printing_.find(layer);
+  if (it == printing_.end()) return std::nullopt;
+  for (const Stretch& s : it->second) {
+    const double a = log_.path_mm[s.first], b = log_.path_mm[s.last];
+    if (path < std::min(a, b) || path > std::max(a, b)) continue;
+    // The path strictly monotone within a stretch: a binary search.
+    const auto begin = log_.path_mm.begin() + static_cast<std::ptrdiff_t>(s.first);
+    const auto end = log_.path_mm.begin() + static_cast<std::ptrdiff_t>(s.last) + 1;
+    const auto up =
+        s.forward ? std::upper_bound(begin, end, path) : std::upper_bound(begin, end, path, std::greater<>());
+    const std::size_t i = std::min<std::size_t>(s.first + static_cast<std::size_t>(up - begin), s.last) - 1;
     const double w = (path - log_.path_mm[i]) / (log_.path_mm[i + 1] - log_.path_mm[i]);
     Passing p;
     p.t_s = log_.t_s[i] + w * (log_.t_s[i + 1] - log_.t_s[i]);
@@ -71,9 +126,17 @@ void LayerVolumes::Add(const PartFlowRow& r) {
   if (!r.valid) return;
   const double area = r.Area();
   double& v = volume_[r.layer];
-  if (const auto it = last_.find(r.layer); it != last_.end() && r.path_mm > it->second.first)
-    v += 0.5 * (area + it->second.second) * (r.path_mm - it->second.first);
-  last_[r.layer] = {r.path_mm, area};
+  const auto it = last_.find(r.layer);
+  if (it == last_.end()) {
+    last_[r.layer] = {r.path_mm, area, 0};
+    return;
+  }
+  Last& last = it->second;
+  const double step = r.path_mm - last.path_mm;
+  const int way = (step > 0.0) - (step < 0.0);
+  if (last.way == 0) last.way = way;
+  if (way != 0 && way == last.way) v += 0.5 * (area + last.area_mm2) * std::abs(step);
+  last.path_mm = r.path_mm, last.area_mm2 = area;
 }
 
 void SpeedAndArea::Add(const PartFlowRow& row) {

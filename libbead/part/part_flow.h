@@ -21,7 +21,13 @@
 namespace bead::part {
 
 // When the nozzle was where: the log's samples of each layer while the
-// head moved forward along the path (printing; a travel back is not).
+// head moved along the path in the layer's printing direction. A layer is
+// printed one way: forward (path_mm growing), or backward (a wall laid
+// back and forth, every other layer from the far end); the other way is a
+// travel. The printing direction is the one the extruder turned over
+// longer (the screw's revolutions, /log/screw_rpm over time, summed over
+// the layer's stretches each way; where the screw never turned, the time
+// spent each way); forward on a tie.
 class NozzleClock {
  public:
   // Throws (naming `file`) when the log is not a part scan's.
@@ -30,14 +36,23 @@ class NozzleClock {
   struct Passing {
     double t_s = 0.0, head_speed_mm_s = 0.0, screw_rpm = 0.0;
   };
-  // The first time the nozzle passed `path_mm` moving forward in `layer`,
-  // linear between the log's samples; nullopt where it never did.
+  // The first time the nozzle passed `path_mm` in `layer` in its printing
+  // direction, linear between the log's samples; its speed along the path
+  // (a magnitude, whichever way); nullopt where it never did.
   std::optional<Passing> At(int64_t layer, double path_mm) const;
+  // +1 where `layer` was printed forward, -1 backward, 0 not in the log.
+  int Direction(int64_t layer) const;
 
  private:
   const AcquisitionLog& log_;
-  // Each layer's forward stretches: [first, last] sample indices.
-  std::map<int64_t, std::vector<std::pair<std::size_t, std::size_t>>> forward_;
+  // A monotone stretch of one layer's samples: [first, last] indices, the
+  // path growing (forward) or falling along it.
+  struct Stretch {
+    std::size_t first, last;
+    bool forward;
+  };
+  // Each layer's printing stretches.
+  std::map<int64_t, std::vector<Stretch>> printing_;
   double SpeedAt(std::size_t i, double t) const;
 };
 
@@ -62,7 +77,9 @@ struct PartFlowRow {
 PartFlowRow FlowOf(const PartGeometryRow& geometry, const NozzleClock& clock);
 
 // The volume each layer added, the trapezoid integral of the area along the
-// path (mm^3), over the valid rows of each layer in path order.
+// path (mm^3), over the valid rows of each layer in the scan's order: the
+// steps along the path the layer's first step went (forward, or backward on
+// a layer laid from the far end); a step back is not new material.
 class LayerVolumes {
  public:
   void Add(const PartFlowRow& row);
@@ -70,7 +87,11 @@ class LayerVolumes {
 
  private:
   std::map<int64_t, double> volume_;
-  std::map<int64_t, std::pair<double, double>> last_;  // path, area of the layer's last valid row
+  struct Last {
+    double path_mm, area_mm2;  // the layer's last valid row's
+    int way;                   // +1 forward, -1 backward, 0 not yet known
+  };
+  std::map<int64_t, Last> last_;
 };
 
 // Where the head slowed (a corner) against where it did not: the thesis'

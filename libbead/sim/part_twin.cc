@@ -4,7 +4,9 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <vector>
 
+#include "libbead/core/error.h"
 #include "libbead/sim/head_path.h"
 #include "libbead/sim/laid_surface.h"
 
@@ -98,6 +100,8 @@ PartTruthRow Truth(const WallPrinter& printer, const std::vector<Surface>& stack
 
 PartTwin SimulatePartWall(const PartTwinConfig& c) {
   if (c.roads > 1) return SimulateRoadLayer(c);
+  if (c.alternate && c.shape != PartTwinConfig::Shape::kWall)
+    throw Error("part twin: alternate lays a straight wall back and forth, not a contour");
   PartTwin twin;
   WallPrinter printer(c);
   RunArchive& scan = twin.scan;
@@ -108,11 +112,20 @@ PartTwin SimulatePartWall(const PartTwinConfig& c) {
   const double length = head.length_mm(), pass_s = head.pass_s(), layer_s = pass_s + c.return_s;
   twin.path_length_mm = length;
   const double pitch = c.area_mm2 / c.width_mm;
+  // Layer n laid from the far end back (alternate, odd n): the place p
+  // lies length - p along its pass (a straight wall: the head's speed the
+  // same either way).
+  const auto backward = [&](int n) { return c.alternate && n % 2 == 1; };
+  const auto along = [&](int n, double p) { return backward(n) ? length - p : p; };
   for (int n = 0; n < c.layers; ++n) {
     const double frame_z = n * pitch + c.standoff_mm;
-    for (double p = printer.Phase(n) * c.profile_spacing_mm; p <= length; p += c.profile_spacing_mm) {
+    std::vector<double> places;
+    for (double p = printer.Phase(n) * c.profile_spacing_mm; p <= length; p += c.profile_spacing_mm)
+      places.push_back(p);
+    if (backward(n)) std::reverse(places.begin(), places.end());
+    for (double p : places) {
       const std::vector<Surface> stack = printer.Stack(n, p);
-      b.t_s.push_back(n * layer_s + head.TimeAt(p + c.trail_mm));
+      b.t_s.push_back(n * layer_s + head.TimeAt(along(n, p) + c.trail_mm));
       b.encoder.push_back(0);
       const double frame_x = c.frame_x_wave_mm * std::sin(2.0 * std::numbers::pi * p / 23.0);
       for (std::size_t j = 0; j < b.points; ++j)
@@ -130,12 +143,16 @@ PartTwin SimulatePartWall(const PartTwinConfig& c) {
     const int n = static_cast<int>(t / layer_s);
     const double into = t - n * layer_s;
     const bool printing = into < pass_s;
-    const double path = printing ? head.PathAt(into) : (length + c.trail_mm) * (1.0 - (into - pass_s) / c.return_s);
-    const bool extruding = printing && path <= length;
+    // Printing: `ahead` along the pass; then the travel from where it
+    // ended (the profiler past the path's end) to where the next begins.
+    const double ahead = head.PathAt(into), sign = backward(n) ? -1.0 : 1.0;
+    const double from = backward(n) ? -c.trail_mm : length + c.trail_mm, to = backward(n + 1) ? length : 0.0;
+    const double path = printing ? along(n, ahead) : from + (to - from) * (into - pass_s) / c.return_s;
+    const bool extruding = printing && ahead <= length;
     log.t_s.push_back(t);
     log.layer.push_back(n);
     log.path_mm.push_back(path);
-    log.head_speed_mm_s.push_back(printing ? head.SpeedAt(path) : -(length + c.trail_mm) / c.return_s);
+    log.head_speed_mm_s.push_back(printing ? sign * head.SpeedAt(ahead) : (to - from) / c.return_s);
     const double q = extruding ? printer.FlowAt(n, path) : 0.0;
     log.screw_rpm.push_back(60.0 * q / c.displacement_mm3_per_rev);
   }

@@ -36,6 +36,10 @@ struct PartTwinConfig {
   double length_mm = 100.0;       // the wall's toolpath (a contour's is its perimeter)
   double head_speed_mm_s = 20.0;  // along the path, while printing (a contour's straights)
   double return_s = 2.0;          // travel back to the start between layers
+  // A straight wall laid back and forth: every other layer (1, 3, ...)
+  // from the far end back, the profiler trailing the nozzle the other way
+  // and the log's path falling; the travel between layers a short move.
+  bool alternate = false;
   double profile_spacing_mm = 0.5;
   double trail_mm = 30.0;            // the laser line behind the nozzle, along the path
   double width_mm = 6.0;             // the bead's ellipse, full width ...

@@ -23,6 +23,7 @@ void ParsePart(const YAML::Node& root, const Reader& r, PartTwinConfig& c) {
                                   "length_mm",
                                   "head_speed_mm_s",
                                   "return_s",
+                                  "alternate",
                                   "profile_spacing_mm",
                                   "trail_mm",
                                   "width_mm",
@@ -65,6 +66,7 @@ void ParsePart(const YAML::Node& root, const Reader& r, PartTwinConfig& c) {
   r.Get(p, at, "length_mm", c.length_mm, 1.0, 1e5);
   r.Get(p, at, "head_speed_mm_s", c.head_speed_mm_s, 0.1, 1e4);
   r.Get(p, at, "return_s", c.return_s, 0.0, 1e4);
+  r.GetBool(p, at, "alternate", c.alternate);
   r.Get(p, at, "profile_spacing_mm", c.profile_spacing_mm, 0.01, 100.0);
   r.Get(p, at, "trail_mm", c.trail_mm, 0.0, 1e3);
   r.Get(p, at, "width_mm", c.width_mm, 0.1, 100.0);
@@ -83,6 +85,8 @@ void ParsePart(const YAML::Node& root, const Reader& r, PartTwinConfig& c) {
   r.Get(p, at, "displacement_mm3_per_rev", c.displacement_mm3_per_rev, 1e-3, 1e9);
   r.Get(p, at, "bed_radius_mm", c.bed_radius_mm, 0.0, 1e5);
   r.GetInt(p, at, "roads", c.roads, 1, 50);
+  if (c.alternate && (c.shape != PartTwinConfig::Shape::kWall || c.roads > 1))
+    r.Fail(p["alternate"], at + "alternate", "lays a straight wall back and forth: shape wall, roads 1");
   r.Get(p, at, "road_spacing_mm", c.road_spacing_mm, 0.01, 1e3);
   if (c.roads > 1 && (c.layers != 1 || c.bed_radius_mm > 0))
     r.Fail(p["roads"], at + "roads", "above 1 is one layer of roads on a flat bed: set layers: 1 and no bed_radius_mm");

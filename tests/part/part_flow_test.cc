@@ -62,6 +62,70 @@ TEST(PartFlow, EachPlaceIsTimedWhenTheNozzleLaidItAndItsFlowIsHeadSpeedTimesArea
   }
 }
 
+// A wall laid back and forth: every other layer printed from the far end,
+// its path falling in the log. Each place is timed when the nozzle laid it
+// whichever way it went (the profiler trails it either way), the head's
+// speed is a speed, and each layer's volume counts its steps back along
+// the path. (Timed forward only, every other layer had no flow at all.)
+TEST(PartFlow, AWallLaidBackAndForthIsTimedEachWay) {
+  sim::PartTwinConfig config;
+  config.layers = 4;
+  config.length_mm = 40.0;
+  config.seed = 22;
+  config.alternate = true;
+  const sim::PartTwin twin = sim::SimulatePartWall(config);
+  const part::NozzleClock clock(*twin.scan.log, "twin");
+  for (int n = 0; n < config.layers; ++n) EXPECT_EQ(clock.Direction(n), n % 2 ? -1 : 1) << n;
+  ProfileStream stream("twin", twin.scan.profiles);
+  part::LayerVolumes measured;
+  std::map<int64_t, double> laid;  // the material over each layer's path, its trapezoids
+  std::map<int64_t, std::pair<double, double>> last;
+  int timed = 0, rows = 0;
+  part::MeasurePart(stream, *twin.scan.part, twin.rig, {}, [&](const part::PartGeometryRow& g) {
+    const part::PartFlowRow r = part::FlowOf(g, clock);
+    const sim::PartTruthRow& t = twin.truth[g.profile];
+    ++rows;
+    measured.Add(r);
+    if (const auto it = last.find(t.layer); it != last.end())
+      laid[t.layer] += 0.5 * (t.area_mm2 + it->second.second) * std::abs(t.path_mm - it->second.first);
+    last[t.layer] = {t.path_mm, t.area_mm2};
+    if (!r.valid) return;
+    ++timed;
+    EXPECT_NEAR(r.t_s, g.t_s - config.trail_mm / config.head_speed_mm_s, 1e-9) << g.profile;
+    EXPECT_NEAR(r.head_speed_mm_s, config.head_speed_mm_s, 1e-9) << g.profile;
+    EXPECT_GT(r.flow_mm3_s, 0.0);
+  });
+  EXPECT_GE(timed, rows - config.layers);
+  for (const auto& [layer, volume] : laid)
+    EXPECT_NEAR(measured.volumes_mm3().at(layer), volume, 0.15 * config.length_mm + 0.01 * volume) << "layer " << layer;
+}
+
+// The printing direction is the one the screw turned over longer; where it
+// never turned, the one the head spent longer on (printing is slower than
+// a travel).
+TEST(PartFlow, ALayersPrintingDirectionIsWhereTheScrewTurned) {
+  AcquisitionLog log;
+  const auto add = [&](double t, int64_t layer, double path, double rpm) {
+    log.t_s.push_back(t), log.layer.push_back(layer), log.path_mm.push_back(path), log.screw_rpm.push_back(rpm);
+  };
+  // Layer 0: printed back from 10 to 0 over 5 s, the screw at 60 rpm; a
+  // quick travel forward with it stopped. Layer 1: the screw never turns;
+  // forward over 1 s, back over 4 s.
+  for (int k = 0; k <= 10; ++k) add(0.5 * k, 0, 10.0 - k, 60.0);
+  for (int k = 1; k <= 10; ++k) add(5.0 + 0.1 * k, 0, k, 0.0);
+  for (int k = 0; k <= 10; ++k) add(7.0 + 0.1 * k, 1, k, 0.0);
+  for (int k = 1; k <= 10; ++k) add(8.0 + 0.4 * k, 1, 10.0 - k, 0.0);
+  const part::NozzleClock clock(log, "log.h5");
+  EXPECT_EQ(clock.Direction(0), -1);
+  EXPECT_EQ(clock.Direction(1), -1);
+  EXPECT_EQ(clock.Direction(2), 0);
+  const auto at = clock.At(0, 7.5);
+  ASSERT_TRUE(at);
+  EXPECT_NEAR(at->t_s, 1.25, 1e-12);             // path 10 - t / 0.5
+  EXPECT_NEAR(at->head_speed_mm_s, 2.0, 1e-12);  // 1 mm each 0.5 s, a speed whichever way
+  EXPECT_NEAR(clock.At(1, 2.5)->t_s, 8.0 + 0.4 * 7.5, 1e-12);
+}
+
 TEST(PartFlow, AWheelsLogIsNamed) {
   AcquisitionLog log;
   log.t_s = {0.0, 0.1};
