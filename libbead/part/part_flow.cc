@@ -21,8 +21,9 @@ Stretches MonotoneStretches(const AcquisitionLog& log) {
   Stretches out;
   const auto& path = log.path_mm;
   for (std::size_t i = 0; i + 1 < log.size();) {
-    if (log.layer[i + 1] != log.layer[i] || !(path[i + 1] != path[i])) {
-      ++i;  // a new layer, or the nozzle standing still
+    if (log.layer[i + 1] != log.layer[i] || !std::isfinite(path[i]) || !std::isfinite(path[i + 1]) ||
+        path[i + 1] == path[i]) {
+      ++i;  // a new layer, a place not known, or the nozzle standing still
       continue;
     }
     const bool forward = path[i + 1] > path[i];
@@ -36,10 +37,11 @@ Stretches MonotoneStretches(const AcquisitionLog& log) {
   return out;
 }
 
-// The screw's revolutions over a stretch (rpm over minutes), and its time.
+// The screw's revolutions over a stretch (rpm over minutes; none where the
+// log holds no screw speed), and its time.
 std::pair<double, double> TurnsAndTime(const AcquisitionLog& log, std::size_t first, std::size_t last) {
   double turns = 0.0;
-  for (std::size_t i = first; i < last; ++i)
+  for (std::size_t i = first; i < last && log.screw_rpm.size() == log.size(); ++i)
     turns += 0.5 * (std::max(log.screw_rpm[i], 0.0) + std::max(log.screw_rpm[i + 1], 0.0)) *
              (log.t_s[i + 1] - log.t_s[i]) / 60.0;
   return {turns, log.t_s[last] - log.t_s[first]};
@@ -74,7 +76,7 @@ int NozzleClock::Direction(int64_t layer) const {
 }
 
 double NozzleClock::SpeedAt(std::size_t i, double t) const {
-  if (!log_.head_speed_mm_s.empty()) {
+  if (log_.head_speed_mm_s.size() == log_.size()) {
     const double w = (t - log_.t_s[i]) / (log_.t_s[i + 1] - log_.t_s[i]);
     return std::abs((1 - w) * log_.head_speed_mm_s[i] + w * log_.head_speed_mm_s[i + 1]);
   }
@@ -97,7 +99,7 @@ std::optional<NozzleClock::Passing> NozzleClock::At(int64_t layer, double path) 
     Passing p;
     p.t_s = log_.t_s[i] + w * (log_.t_s[i + 1] - log_.t_s[i]);
     p.head_speed_mm_s = SpeedAt(i, p.t_s);
-    p.screw_rpm = (1 - w) * log_.screw_rpm[i] + w * log_.screw_rpm[i + 1];
+    p.screw_rpm = log_.screw_rpm.size() == log_.size() ? (1 - w) * log_.screw_rpm[i] + w * log_.screw_rpm[i + 1] : NAN;
     return p;
   }
   return std::nullopt;

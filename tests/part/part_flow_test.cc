@@ -124,6 +124,16 @@ TEST(PartFlow, ALayersPrintingDirectionIsWhereTheScrewTurned) {
   EXPECT_NEAR(at->t_s, 1.25, 1e-12);             // path 10 - t / 0.5
   EXPECT_NEAR(at->head_speed_mm_s, 2.0, 1e-12);  // 1 mm each 0.5 s, a speed whichever way
   EXPECT_NEAR(clock.At(1, 2.5)->t_s, 8.0 + 0.4 * 7.5, 1e-12);
+  // A log without the screw's speed, or with a place not known: the time
+  // decides, and the unknown place ends a stretch (no crash, no NaN time).
+  log.screw_rpm.clear();
+  log.path_mm[3] = NAN;
+  const part::NozzleClock without(log, "log.h5");
+  EXPECT_EQ(without.Direction(0), -1);  // back over 4 s in two pieces around the unknown place, forward over 1 s
+  EXPECT_FALSE(without.At(0, 7.0)) << "timed across the unknown place (between 8 and 6 mm)";
+  EXPECT_NEAR(without.At(0, 8.5)->t_s, 0.75, 1e-12);
+  EXPECT_TRUE(std::isnan(without.At(1, 2.5)->screw_rpm));
+  EXPECT_NEAR(without.At(1, 2.5)->t_s, 8.0 + 0.4 * 7.5, 1e-12);
 }
 
 TEST(PartFlow, AWheelsLogIsNamed) {
