@@ -19,8 +19,16 @@
 namespace bead::tools {
 namespace {
 
-// The layer's pooled bead shape, and in words how far from an ellipse.
+// The layer's pooled bead shape, and in words how far from an ellipse (or
+// that an ellipse is assumed).
 void SayShape(const part::PooledShape& s) {
+  if (!s.exponent_solved) {
+    std::printf(
+        "    bead shape (its first profiles pooled): half-height over half-width %.3f +- %.3f; an ellipse assumed "
+        "(too few of its beads overhang to show their walls and solve the exponent)\n",
+        s.aspect, s.aspect_sigma);
+    return;
+  }
   const double off = s.exponent - 2.0, two_sigmas = 2.0 * s.exponent_sigma;
   const char* words = std::abs(off) <= two_sigmas ? "an ellipse, within two sigmas"
                       : off > 0.0                 ? "toward a box: flatter on top, steeper at the sides"

@@ -37,6 +37,9 @@ struct PooledShape {
   double aspect = NAN, aspect_sigma = 0.0;
   double exponent = 2.0, exponent_sigma = 0.0;
   double correlation = 0.0;
+  // false: too few rows were placed at their walls to solve the exponent;
+  // the ellipse's is held, by assumption.
+  bool exponent_solved = false;
 };
 
 // The points around the bead with the surface below under each.

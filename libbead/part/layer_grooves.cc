@@ -153,6 +153,7 @@ void LayerGrooves::Pool() {
       std::tie(pool.exponent, pool.exponent_sigma) = MedianAndError(exponents);
       pool.exponent_sigma = std::max(pool.exponent_sigma, shared * std::sqrt(exponent_var / n));
       pool.correlation = ShapeCorrelation(placed_);
+      pool.exponent_solved = true;
     }
   }
   pooled_ = pool;

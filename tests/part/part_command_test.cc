@@ -61,6 +61,24 @@ TEST(PartCommand, SimulateThenMeasureWritesThePartGeometryCsv) {
   for (std::size_t k = 0; k < flow_spec.size(); ++k) EXPECT_EQ(flow[0][k], flow_spec[k]);
 }
 
+// Beads sunk so deep that their sides meet the surface below show no walls
+// to solve their exponent on: the shape line says the ellipse is assumed,
+// not that it was found within two sigmas.
+TEST(PartCommand, AShapeNotSolvedIsSaidToBeAssumed) {
+  test::TempDir dir;
+  {
+    std::ofstream cfg(dir / "sunk.yaml");
+    cfg << "seed: 4\npart:\n  layers: 1\n  length_mm: 20\n  area_mm2: 6\n  area_wave_mm2: 1\n";
+  }
+  auto [code, out] = test::RunCli(dir, "simulate " + (dir / "sunk.yaml") + " -o " + (dir / "sim"));
+  ASSERT_EQ(code, 0) << out;
+  std::tie(code, out) = test::RunCli(
+      dir, "measure --rig " + (dir / "sim/rig.yaml") + " " + (dir / "sim/part.h5") + " -o " + (dir / "geo.csv"));
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("an ellipse assumed"), std::string::npos) << out;
+  EXPECT_EQ(out.find("within two sigmas"), std::string::npos) << out;
+}
+
 // A bead whose whole outline holds less than the area asked of it would
 // float off the surface below: the twin says so and writes nothing. (The
 // twin's 6 mm bead of aspect 0.5 holds 14.1 mm^2 as an ellipse, 12.8 as a
