@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <map>
 #include <vector>
 
@@ -14,6 +15,43 @@
 namespace bead {
 namespace {
 
+// The twin's wall measured and timed: each profile's geometry, flow and
+// truth rows to `each`; the layers' volumes measured, and the material the
+// twin laid over each layer's path (its trapezoids, in the scan's order).
+struct Timed {
+  part::LayerVolumes measured;
+  std::map<int64_t, double> laid;
+  int timed = 0, rows = 0;
+};
+using EachRow = std::function<void(const part::PartGeometryRow&, const part::PartFlowRow&, const sim::PartTruthRow&)>;
+Timed MeasureAndTime(const sim::PartTwin& twin, const part::NozzleClock& clock, const EachRow& each) {
+  ProfileStream stream("twin", twin.scan.profiles);
+  Timed out;
+  std::map<int64_t, std::pair<double, double>> last;  // path, material of the layer's last row
+  part::MeasurePart(stream, *twin.scan.part, twin.rig, {}, [&](const part::PartGeometryRow& g) {
+    const part::PartFlowRow r = part::FlowOf(g, clock);
+    const sim::PartTruthRow& t = twin.truth[g.profile];
+    ++out.rows;
+    out.measured.Add(r);
+    if (const auto it = last.find(t.layer); it != last.end())
+      out.laid[t.layer] += 0.5 * (t.area_mm2 + it->second.second) * std::abs(t.path_mm - it->second.first);
+    last[t.layer] = {t.path_mm, t.area_mm2};
+    if (!r.valid) return;
+    ++out.timed;
+    each(g, r, t);
+  });
+  return out;
+}
+
+// Each layer's volume against the material the twin laid over the same
+// path: the areas' sampling bound (0.15 mm^2, part_wall_test.cc) over the
+// length, and the corrected area's bias over a run (within 1 %,
+// hidden_groove_test.cc).
+void ExpectVolumes(const Timed& t, double length_mm) {
+  for (const auto& [layer, volume] : t.laid)
+    EXPECT_NEAR(t.measured.volumes_mm3().at(layer), volume, 0.15 * length_mm + 0.01 * volume) << "layer " << layer;
+}
+
 TEST(PartFlow, EachPlaceIsTimedWhenTheNozzleLaidItAndItsFlowIsHeadSpeedTimesArea) {
   sim::PartTwinConfig config;
   config.layers = 3;
@@ -21,18 +59,7 @@ TEST(PartFlow, EachPlaceIsTimedWhenTheNozzleLaidItAndItsFlowIsHeadSpeedTimesArea
   config.seed = 21;
   const sim::PartTwin twin = sim::SimulatePartWall(config);
   const part::NozzleClock clock(*twin.scan.log, "twin");
-  ProfileStream stream("twin", twin.scan.profiles);
-  part::LayerVolumes measured;
-  std::map<int64_t, std::vector<std::pair<double, double>>> truth;  // path, material laid
-  int timed = 0, rows = 0;
-  part::MeasurePart(stream, *twin.scan.part, twin.rig, {}, [&](const part::PartGeometryRow& g) {
-    const part::PartFlowRow r = part::FlowOf(g, clock);
-    const sim::PartTruthRow& t = twin.truth[g.profile];
-    ++rows;
-    measured.Add(r);
-    truth[t.layer].push_back({t.path_mm, t.area_mm2});
-    if (!r.valid) return;
-    ++timed;
+  const Timed t = MeasureAndTime(twin, clock, [&](const auto& g, const auto& r, const auto& truth) {
     // The laser line trails the nozzle by trail_mm at the head's speed:
     // the nozzle laid the place that long before the profile saw it (the
     // log's path is linear between samples: exact to rounding).
@@ -45,21 +72,12 @@ TEST(PartFlow, EachPlaceIsTimedWhenTheNozzleLaidItAndItsFlowIsHeadSpeedTimesArea
     // dQ/dt = v^2 dA/dpath <= v^2 wave 2 pi / period.
     const double v = config.head_speed_mm_s, dt = 1.0 / config.log_rate_hz;
     const double slope = v * v * config.area_wave_mm2 * 2.0 * M_PI / config.wave_period_mm;
-    EXPECT_NEAR(r.screw_rpm * config.displacement_mm3_per_rev / 60.0, v * t.area_mm2, slope * dt + 1e-9);
+    EXPECT_NEAR(r.screw_rpm * config.displacement_mm3_per_rev / 60.0, v * truth.area_mm2, slope * dt + 1e-9);
   });
   // Only a place laid before the log's first sample of its layer can be
   // without a time: at most one per layer.
-  EXPECT_GE(timed, rows - config.layers);
-  // Each layer's volume against the material the twin laid over the same
-  // path: the areas' sampling bound (0.15 mm^2, part_wall_test.cc) over the
-  // length, and the corrected area's bias over a run (within 1 %,
-  // hidden_groove_test.cc).
-  for (auto& [layer, v] : truth) {
-    double volume = 0.0;
-    for (std::size_t i = 1; i < v.size(); ++i)
-      volume += 0.5 * (v[i].second + v[i - 1].second) * (v[i].first - v[i - 1].first);
-    EXPECT_NEAR(measured.volumes_mm3().at(layer), volume, 0.15 * config.length_mm + 0.01 * volume) << "layer " << layer;
-  }
+  EXPECT_GE(t.timed, t.rows - config.layers);
+  ExpectVolumes(t, config.length_mm);
 }
 
 // A wall laid back and forth: every other layer printed from the far end,
@@ -76,28 +94,13 @@ TEST(PartFlow, AWallLaidBackAndForthIsTimedEachWay) {
   const sim::PartTwin twin = sim::SimulatePartWall(config);
   const part::NozzleClock clock(*twin.scan.log, "twin");
   for (int n = 0; n < config.layers; ++n) EXPECT_EQ(clock.Direction(n), n % 2 ? -1 : 1) << n;
-  ProfileStream stream("twin", twin.scan.profiles);
-  part::LayerVolumes measured;
-  std::map<int64_t, double> laid;  // the material over each layer's path, its trapezoids
-  std::map<int64_t, std::pair<double, double>> last;
-  int timed = 0, rows = 0;
-  part::MeasurePart(stream, *twin.scan.part, twin.rig, {}, [&](const part::PartGeometryRow& g) {
-    const part::PartFlowRow r = part::FlowOf(g, clock);
-    const sim::PartTruthRow& t = twin.truth[g.profile];
-    ++rows;
-    measured.Add(r);
-    if (const auto it = last.find(t.layer); it != last.end())
-      laid[t.layer] += 0.5 * (t.area_mm2 + it->second.second) * std::abs(t.path_mm - it->second.first);
-    last[t.layer] = {t.path_mm, t.area_mm2};
-    if (!r.valid) return;
-    ++timed;
+  const Timed t = MeasureAndTime(twin, clock, [&](const auto& g, const auto& r, const auto&) {
     EXPECT_NEAR(r.t_s, g.t_s - config.trail_mm / config.head_speed_mm_s, 1e-9) << g.profile;
     EXPECT_NEAR(r.head_speed_mm_s, config.head_speed_mm_s, 1e-9) << g.profile;
     EXPECT_GT(r.flow_mm3_s, 0.0);
   });
-  EXPECT_GE(timed, rows - config.layers);
-  for (const auto& [layer, volume] : laid)
-    EXPECT_NEAR(measured.volumes_mm3().at(layer), volume, 0.15 * config.length_mm + 0.01 * volume) << "layer " << layer;
+  EXPECT_GE(t.timed, t.rows - config.layers);
+  ExpectVolumes(t, config.length_mm);
 }
 
 // The printing direction is the one the screw turned over longer; where it
