@@ -127,18 +127,20 @@ PartFlowRow FlowOf(const PartGeometryRow& g, const NozzleClock& clock) {
 void LayerVolumes::Add(const PartFlowRow& r) {
   if (!r.valid) return;
   const double area = r.Area();
-  double& v = volume_[r.layer];
-  const auto it = last_.find(r.layer);
-  if (it == last_.end()) {
-    last_[r.layer] = {r.path_mm, area, 0};
-    return;
+  const auto [it, first] = layers_.try_emplace(r.layer);
+  Layer& l = it->second;
+  if (!first && r.path_mm != l.path_mm) {
+    const int way = r.path_mm > l.path_mm ? 1 : 0;
+    const double step = std::abs(r.path_mm - l.path_mm);
+    l.way[way] += 0.5 * (area + l.area_mm2) * step, l.covered[way] += step;
   }
-  Last& last = it->second;
-  const double step = r.path_mm - last.path_mm;
-  const int way = (step > 0.0) - (step < 0.0);
-  if (last.way == 0) last.way = way;
-  if (way != 0 && way == last.way) v += 0.5 * (area + last.area_mm2) * std::abs(step);
-  last.path_mm = r.path_mm, last.area_mm2 = area;
+  l.path_mm = r.path_mm, l.area_mm2 = area;
+}
+
+std::map<int64_t, double> LayerVolumes::volumes_mm3() const {
+  std::map<int64_t, double> out;
+  for (const auto& [layer, l] : layers_) out[layer] = l.covered[1] >= l.covered[0] ? l.way[1] : l.way[0];
+  return out;
 }
 
 void SpeedAndArea::Add(const PartFlowRow& row) {

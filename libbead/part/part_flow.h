@@ -78,20 +78,21 @@ PartFlowRow FlowOf(const PartGeometryRow& geometry, const NozzleClock& clock);
 
 // The volume each layer added, the trapezoid integral of the area along the
 // path (mm^3), over the valid rows of each layer in the scan's order: the
-// steps along the path the layer's first step went (forward, or backward on
-// a layer laid from the far end); a step back is not new material.
+// steps the way the layer went along its path (forward, or backward on a
+// layer laid from the far end: the way its steps cover more path); a step
+// the other way (a place scanned again) is not new material.
 class LayerVolumes {
  public:
   void Add(const PartFlowRow& row);
-  const std::map<int64_t, double>& volumes_mm3() const { return volume_; }
+  std::map<int64_t, double> volumes_mm3() const;
 
  private:
-  std::map<int64_t, double> volume_;
-  struct Last {
-    double path_mm, area_mm2;  // the layer's last valid row's
-    int way;                   // +1 forward, -1 backward, 0 not yet known
+  struct Layer {
+    double path_mm = 0.0, area_mm2 = 0.0;  // its last valid row's
+    double way[2] = {0.0, 0.0};            // the integral over its steps back [0] and forward [1]
+    double covered[2] = {0.0, 0.0};        // the path those steps cover
   };
-  std::map<int64_t, Last> last_;
+  std::map<int64_t, Layer> layers_;
 };
 
 // Where the head slowed (a corner) against where it did not: the thesis'

@@ -139,6 +139,23 @@ TEST(PartFlow, ALayersPrintingDirectionIsWhereTheScrewTurned) {
   EXPECT_NEAR(without.At(1, 2.5)->t_s, 8.0 + 0.4 * 7.5, 1e-12);
 }
 
+// A layer's volume is integrated the way it went along its path, whatever
+// its first step: a place scanned again just behind the last (a sensor's
+// jitter at the start) takes nothing away and does not turn the layer round.
+TEST(PartFlow, ALayersVolumeFollowsTheWayItWentNotItsFirstStep) {
+  part::LayerVolumes v;
+  const auto add = [&](int64_t layer, double path, double area) {
+    part::PartFlowRow r;
+    r.layer = layer, r.path_mm = path, r.area_mm2 = area, r.valid = true;
+    v.Add(r);
+  };
+  add(0, 1.0, 10.0), add(0, 0.9, 10.0);  // a step back first
+  for (int k = 1; k <= 10; ++k) add(0, 0.9 + k, 10.0);
+  for (int k = 0; k <= 10; ++k) add(1, 10.0 - k, 5.0);  // laid from the far end
+  EXPECT_NEAR(v.volumes_mm3().at(0), 100.0, 1e-9);
+  EXPECT_NEAR(v.volumes_mm3().at(1), 50.0, 1e-9);
+}
+
 TEST(PartFlow, AWheelsLogIsNamed) {
   AcquisitionLog log;
   log.t_s = {0.0, 0.1};
