@@ -229,6 +229,15 @@ std::optional<Silhouette> AtSilhouette(const Window& w, double center, const Sil
   if (!(rise_l > k.rise && rise_r > k.rise)) return std::nullopt;
   Silhouette s;
   s.cell[0] = w.x[jl], s.cell[1] = w.x[jl + 1], s.cell[2] = w.x[jr], s.cell[3] = w.x[jr + 1];
+  // A wall that rises across missing points (a cell half as wide again as
+  // the window's spacing: a triangulation shadow or a dropout beside it)
+  // does not solve the bead's shape: the end lies anywhere in the gap, and
+  // where (next to the wall, for a shadow the bead casts) is not the
+  // cell's middle. With the shape held, the end is placed at the middle
+  // and its sigma spans the gap (SilhouetteVariance).
+  const double spacing = (w.x.back() - w.x.front()) / static_cast<double>(n - 1);
+  const bool gap = std::max(s.cell[1] - s.cell[0], s.cell[3] - s.cell[2]) > 1.5 * spacing;
+  if (gap && !held) return std::nullopt;
   const double L = 0.5 * (s.cell[0] + s.cell[1]), R = 0.5 * (s.cell[2] + s.cell[3]);
   // The widest point standing over the surface below by a wall at each
   // end: an overhang. (A bead whose sides meet the surface, seen at points
