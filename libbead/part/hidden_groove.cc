@@ -227,6 +227,7 @@ HiddenGroove AtTheSilhouette(const Silhouette& s, const Around& o, const PooledS
   HiddenGroove out;
   const GrooveSum groove = GrooveWithGradient(s.e, o.below, o.shift);
   out.hidden_mm2 = groove.groove;
+  out.seen_adjust_mm2 = s.seen_adjust;
   // The area seen stands on the same surface below, between the ends: moved
   // by the shift, it changes by the surface below's rise from the left end
   // to the right one (the ends stay at the walls the data show).

@@ -34,6 +34,9 @@ struct HiddenGroove {
   static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   bool ok = false;
   double hidden_mm2 = kNaN;  // the groove under the overhangs
+  // Where an end was placed in a gap beside its wall (part/silhouette.h):
+  // what the area seen's trapezoid across the gap counted wrongly (add it).
+  double seen_adjust_mm2 = 0.0;
   double sigma_mm2 = kNaN;   // its 1-sigma
   double fit_rms_mm = kNaN;  // the fit's (NaN: placed at the silhouette, not fitted)
   double aspect = kNaN;      // the bead's b / a

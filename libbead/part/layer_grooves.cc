@@ -35,7 +35,7 @@ void Apply(const HiddenGroove& g, double spacing, PartGeometryRow& row) {
           : spacing * spacing *
                 (row.bead.edge_left_mm * row.bead.edge_left_mm + row.bead.edge_right_mm * row.bead.edge_right_mm);
   const double seen_noise = 2.0 * row.bead.width_mm * spacing * row.bead.noise_mm * row.bead.noise_mm;
-  const double corrected = row.bead.area_mm2 - g.hidden_mm2;
+  const double corrected = row.bead.area_mm2 + g.seen_adjust_mm2 - g.hidden_mm2;
   const double sigma = std::sqrt(g.sigma_mm2 * g.sigma_mm2 + edges / 12.0 + seen_noise);
   if (g.ok && corrected > 0.0 && sigma < 0.5 * corrected)
     row.area_corrected_mm2 = corrected, row.area_corrected_sigma_mm2 = sigma;

@@ -14,6 +14,8 @@ namespace {
 // The top's points within kInner of the half-width are solved over (where
 // the exponent's table holds s).
 constexpr double kInner = SuperellipseTable::kTabulatedU;
+// A cell wider than this many of the window's spacings spans lost points.
+constexpr double kGapSpacings = 1.5;
 
 // The top's points within kInner of the half-width of the bead with ends L
 // and R: u, z, and where u falls in the exponents' tables (the same in all).
@@ -205,6 +207,60 @@ double GrooveChange(const Ellipse& from, const Ellipse& to, const double gradien
   return change;
 }
 
+// An end whose cell spans lost points (a gap), with the shape held: placed
+// where the held shape's top fits the points best, searched over the gap a
+// quarter spacing at a time and refined by the parabola through the least
+// and its neighbours; its cell narrowed to the width the residual's
+// curvature places it within (at least a spacing). false where no place in
+// the gap solves.
+bool PlaceInGap(const Window& w, std::size_t first, std::size_t last, double spacing, const PooledShape& held, int side,
+                double& L, double& R, Silhouette& s) {
+  double& end = side ? R : L;
+  const double lo = s.cell[2 * side], hi = s.cell[2 * side + 1];
+  const int steps = std::max(3, static_cast<int>(std::ceil((hi - lo) / (0.25 * spacing))));
+  const double step = (hi - lo) / steps;
+  std::vector<double> var(static_cast<std::size_t>(steps), INFINITY);
+  Silhouette trial = s;
+  for (int k = 0; k < steps; ++k) {
+    end = lo + (k + 0.5) * step;
+    if (SolveHeld(w, first, last, L, R, held, trial)) var[static_cast<std::size_t>(k)] = trial.residual_variance;
+  }
+  const auto best = static_cast<std::size_t>(std::min_element(var.begin(), var.end()) - var.begin());
+  if (!std::isfinite(var[best])) return false;
+  double t = 0.0, width = hi - lo;
+  if (best > 0 && best + 1 < var.size() && std::isfinite(var[best - 1]) && std::isfinite(var[best + 1])) {
+    const double curve = var[best - 1] - 2.0 * var[best] + var[best + 1];
+    if (curve > 0.0) {
+      t = std::clamp(0.5 * (var[best - 1] - var[best + 1]) / curve, -0.5, 0.5);
+      // The end's variance, least squares' 2 sigma^2 / (d2 rss / dE^2): the
+      // top's m points' rss = (m - 1) var, sigma^2 the least var, so
+      // sigma_E^2 = 2 var step^2 / ((m - 1) curve); the cell a uniform of
+      // that sigma (sqrt 12 of it wide).
+      const double m = static_cast<double>(TopOf(w, first, last, L, R).u.size());
+      const double sigma2 = m > 1.0 ? 2.0 * var[best] * step * step / ((m - 1.0) * curve) : INFINITY;
+      width = std::clamp(std::sqrt(12.0 * sigma2), spacing, hi - lo);
+    }
+  }
+  end = lo + (static_cast<double>(best) + 0.5 + t) * step;
+  s.cell[2 * side] = std::max(lo, end - 0.5 * width), s.cell[2 * side + 1] = std::min(hi, end + 0.5 * width);
+  return true;
+}
+
+// The area seen over the gap between points j and j + 1 as the placed bead
+// e shows it (its top over the surface below, the surface beyond its end:
+// the midpoint rule, 32 steps) less the trapezoid the area seen counted
+// there (part/added_bead.h: the gains, each at least 0).
+double GapSeenChange(const Window& w, std::size_t j, const Ellipse& e) {
+  constexpr int kSteps = 32;
+  const double lo = w.x[j], hi = w.x[j + 1], dx = (hi - lo) / kSteps;
+  double model = 0.0;
+  for (int k = 0; k < kSteps; ++k) {
+    const double x = lo + (k + 0.5) * dx, old = OldBetween(w, j, x);
+    if (std::abs(x - e.x0) < e.a) model += std::max(e.z0 + e.Half(x) - old, 0.0) * dx;
+  }
+  return model - 0.5 * (std::max(w.Gain(j), 0.0) + std::max(w.Gain(j + 1), 0.0)) * (hi - lo);
+}
+
 }  // namespace
 
 std::optional<Silhouette> AtSilhouette(const Window& w, double center, const SilhouetteScale& k,
@@ -233,12 +289,13 @@ std::optional<Silhouette> AtSilhouette(const Window& w, double center, const Sil
   // the window's spacing: a triangulation shadow or a dropout beside it)
   // does not solve the bead's shape: the end lies anywhere in the gap, and
   // where (next to the wall, for a shadow the bead casts) is not the
-  // cell's middle. With the shape held, the end is placed at the middle
-  // and its sigma spans the gap (SilhouetteVariance).
-  const double spacing = (w.x.back() - w.x.front()) / static_cast<double>(n - 1);
-  const bool gap = std::max(s.cell[1] - s.cell[0], s.cell[3] - s.cell[2]) > 1.5 * spacing;
+  // cell's middle. With the shape held, the end is placed in the gap where
+  // the top fits best (PlaceInGap), and the area seen's trapezoid across
+  // the gap is replaced by what the bead placed shows there (seen_adjust).
+  const double spacing = w.x[c + 1] - w.x[c];  // the points' own, at the bead's top
+  const bool gap = std::max(s.cell[1] - s.cell[0], s.cell[3] - s.cell[2]) > kGapSpacings * spacing;
   if (gap && !held) return std::nullopt;
-  const double L = 0.5 * (s.cell[0] + s.cell[1]), R = 0.5 * (s.cell[2] + s.cell[3]);
+  double L = 0.5 * (s.cell[0] + s.cell[1]), R = 0.5 * (s.cell[2] + s.cell[3]);
   // The widest point standing over the surface below by a wall at each
   // end: an overhang. (A bead whose sides meet the surface, seen at points
   // far apart, rises as steeply from one to the next; placed there, its
@@ -253,7 +310,27 @@ std::optional<Silhouette> AtSilhouette(const Window& w, double center, const Sil
     return t.wall_left > k.rise + lift && t.wall_right > k.rise + lift;
   };
   if (held) {
+    // Each gapped end placed with the other where it was last placed; two
+    // ends in gaps, in turn until neither moves by a hundredth of a
+    // spacing (each placed with the other at its gap's middle, both came
+    // out 0.01 mm outward).
+    const bool gapped[2] = {s.cell[1] - s.cell[0] > kGapSpacings * spacing,
+                            s.cell[3] - s.cell[2] > kGapSpacings * spacing};
+    const double gap_cell[4] = {s.cell[0], s.cell[1], s.cell[2], s.cell[3]};
+    for (int pass = 0; pass < 6 && gap; ++pass) {
+      double moved = 0.0;
+      for (int side = 0; side < 2; ++side) {
+        if (!gapped[side]) continue;
+        const double before = side ? R : L;
+        s.cell[2 * side] = gap_cell[2 * side], s.cell[2 * side + 1] = gap_cell[2 * side + 1];
+        if (!PlaceInGap(w, jl + 1, jr, spacing, *held, side, L, R, s)) return std::nullopt;
+        moved = std::max(moved, std::abs((side ? R : L) - before));
+      }
+      if (moved < 0.01 * spacing || !(gapped[0] && gapped[1])) break;
+    }
     if (!SolveHeld(w, jl + 1, jr, L, R, *held, s) || !stands(s, 0.0)) return std::nullopt;
+    for (int side = 0; side < 2; ++side)
+      if (gapped[side]) s.seen_adjust += GapSeenChange(w, side ? jr : jl, s.e);
     return s;
   }
   const std::ptrdiff_t found = SolveFree(w, jl + 1, jr, L, R, s, EllipseIndex());

@@ -57,6 +57,11 @@ struct Silhouette {
   // bead whose width changes by less than a cell) share these errors: a
   // layer's pool does not average them away.
   double aspect_end_var = 0.0, exponent_end_var = 0.0;
+  // With the shape held, an end in a gap (lost points beside its wall) is
+  // placed where the top fits best; the area seen over the gap as the bead
+  // placed shows it, less the trapezoid the area seen counted across it
+  // (mm^2; add it to the area seen).
+  double seen_adjust = 0.0;
 };
 
 // What a silhouette is: the bead's run stands more than `floor` over the
