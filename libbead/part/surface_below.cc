@@ -54,18 +54,29 @@ bool OnEveryGridPoint(std::span<const float> x, double dx) {
   return off == 0;
 }
 
-// Each run of missing values between two known ones bridged linearly
-// where the run's two ends lie no farther apart than max_gap (variance
-// (1 - t)^2 + t^2).
+// Each run of missing values between two known ones bridged where the
+// run's two ends lie no farther apart than max_gap: linearly (variance
+// (1 - t)^2 + t^2), or across a wall (the surface rising or falling by
+// more than the run is long: points a triangulation shadow lost beside a
+// bead) as a step at the run's middle, each side's height held to it. (A
+// ramp there, under the next layer's bead, made the old bead's top a gain:
+// +9 % on a layer of an independent wall; the run left unknown, +1.3 to
+// +4.4 % over the run.)
 void Bridge(double max_gap, SurfaceRow& row) {
   const std::size_t n = row.z_mm.size();
   std::size_t ka = 0;
   while (ka < n && std::isnan(row.z_mm[ka])) ++ka;
   for (std::size_t kb = ka + 1; kb < n; ++kb) {
     if (std::isnan(row.z_mm[kb])) continue;
-    if (kb > ka + 1 && static_cast<double>(kb - ka) * row.dx_mm <= max_gap)
+    const double length = static_cast<double>(kb - ka) * row.dx_mm;
+    const bool wall = std::abs(row.z_mm[kb] - row.z_mm[ka]) > length;
+    if (kb > ka + 1 && length <= max_gap)
       for (std::size_t k = ka + 1; k < kb; ++k) {
         const double t = static_cast<double>(k - ka) / static_cast<double>(kb - ka);
+        if (wall) {
+          row.z_mm[k] = t < 0.5 ? row.z_mm[ka] : row.z_mm[kb];
+          continue;
+        }
         row.z_mm[k] = static_cast<float>((1 - t) * row.z_mm[ka] + t * row.z_mm[kb]);
         row.variance[k] = static_cast<float>((1 - t) * (1 - t) + t * t);
       }

@@ -69,6 +69,28 @@ TEST(SurfaceBelow, UniformPointsAreTheirOwnGridAndShortDropoutsAreBridged) {
   }
 }
 
+// Points lost beside a bead's wall (a triangulation shadow: the surface
+// drops by more than the gap is long) are no ramp: each side's height is
+// held to the gap's middle, where the wall is put. (Bridged as a ramp, the
+// next layer's bead over it was measured +9 % on an independent wall: the
+// ramp under the old bead's top made its top a gain.) A gentle gap is
+// still bridged linearly.
+TEST(SurfaceBelow, PointsLostAtAWallAreAStepNotARamp) {
+  const auto wall = [](double x) { return x < 0.02 ? 3.0 : 0.0; };     // a 3 mm wall between x = 0 and 0.05
+  const StoredProfile p = Profile(0.0, -2.0, 81, wall, {40, 41, 42});  // x = 0, 0.05, 0.1 lost
+  const SurfaceRow row = RowOf(p, 1.0);
+  ASSERT_TRUE(row.at_points);
+  // The gap from x = -0.05 (3 mm) to 0.15 (0 mm): 3 mm up to its middle, 0 beyond.
+  EXPECT_NEAR(row.At(-0.05), 3.0, 1e-6);
+  EXPECT_NEAR(row.At(0.0), 3.0, 1e-6);
+  EXPECT_NEAR(row.At(0.1), 0.0, 1e-6);
+  EXPECT_NEAR(row.At(0.15), 0.0, 1e-6);
+  // A slope of 0.5 across the same gap: linear.
+  const StoredProfile gentle = Profile(0.0, -2.0, 81, [](double x) { return 0.5 * x; }, {40, 41, 42});
+  const SurfaceRow bridged = RowOf(gentle, 1.0);
+  EXPECT_NEAR(bridged.At(0.05), 0.025, 1e-6);
+}
+
 TEST(SurfaceBelow, EveryGridPointMeasuredIsTheRowAsItIs) {
   const StoredProfile p = Profile(0.0, -10.0, 401, Wave);
   const SurfaceRow row = RowOf(p, 1.0);
