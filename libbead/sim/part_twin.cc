@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -59,14 +60,17 @@ class WallPrinter {
       bed.z[k] = std::sqrt(std::max(r * r - x * x, 0.0)) - r;
     }
     std::vector<Surface> stack{bed};
-    // Where the head slows, the bead spreads: its ellipse grows with the
-    // material per length it gets (as the square root: the same shape).
-    const double a = 0.5 * c_.width_mm * std::sqrt(c_.head_speed_mm_s / head_.SpeedAt(p)), b = c_.aspect * a;
+    const double a = HalfWidth(p), b = c_.aspect * a;
     for (int k = 0; k <= n; ++k) stack.push_back(Lay(stack.back(), LayerAt(k, p), a, b, nullptr, false, c_.exponent));
     return stack;
   }
 
   double Noise() { return std::normal_distribution<double>(0.0, c_.noise_mm)(rng_); }
+
+  // The bead's half-width at path p: where the head slows, the bead
+  // spreads, its ellipse growing with the material per length it gets (as
+  // the square root: the same shape).
+  double HalfWidth(double p) const { return 0.5 * c_.width_mm * std::sqrt(c_.head_speed_mm_s / head_.SpeedAt(p)); }
 
  private:
   const PartTwinConfig& c_;
@@ -128,9 +132,13 @@ PartTwin SimulatePartWall(const PartTwinConfig& c) {
       b.t_s.push_back(n * layer_s + head.TimeAt(along(n, p) + c.trail_mm));
       b.encoder.push_back(0);
       const double frame_x = c.frame_x_wave_mm * std::sin(2.0 * std::numbers::pi * p / 23.0);
-      for (std::size_t j = 0; j < b.points; ++j)
-        b.z_mm.push_back(
-            static_cast<float>(stack.back().At(b.x_mm[j] + frame_x + printer.Shift(n)) - frame_z + printer.Noise()));
+      const double right_end = printer.LayerAt(n, p).center + printer.HalfWidth(p);
+      for (std::size_t j = 0; j < b.points; ++j) {
+        const double x = b.x_mm[j] + frame_x + printer.Shift(n);
+        const double z = stack.back().At(x) - frame_z + printer.Noise();
+        const bool shadowed = x > right_end && x < right_end + c.shadow_mm;
+        b.z_mm.push_back(shadowed ? std::numeric_limits<float>::quiet_NaN() : static_cast<float>(z));
+      }
       scan.part->layer.push_back(n);
       scan.part->path_mm.push_back(p);
       scan.part->frame_z_mm.push_back(frame_z);

@@ -57,6 +57,10 @@ struct PartTwinConfig {
   double frame_x_wave_mm = 0.0;
   double standoff_mm = 60.0;  // the profile frame's z = 0 this far above the layer's base
   double noise_mm = 0.01;
+  // > 0: the points within this of each bead's right end, outside it, are
+  // lost (NaN): a triangulation camera on the left, the bead hiding the
+  // surface beside its right wall from it, mm.
+  double shadow_mm = 0.0;
   double point_spacing_mm = 0.05;
   double field_half_mm = 20.0;  // the profile spans +-this in x
   double log_rate_hz = 100.0;

@@ -36,6 +36,7 @@ void ParsePart(const YAML::Node& root, const Reader& r, PartTwinConfig& c) {
                                   "pass_shift_sigma_mm",
                                   "standoff_mm",
                                   "noise_mm",
+                                  "shadow_mm",
                                   "point_spacing_mm",
                                   "field_half_mm",
                                   "log_rate_hz",
@@ -79,6 +80,7 @@ void ParsePart(const YAML::Node& root, const Reader& r, PartTwinConfig& c) {
   r.Get(p, at, "pass_shift_sigma_mm", c.pass_shift_sigma_mm, 0.0, 10.0);
   r.Get(p, at, "standoff_mm", c.standoff_mm, 0.0, 1e3);
   r.Get(p, at, "noise_mm", c.noise_mm, 0.0, 1.0);
+  r.Get(p, at, "shadow_mm", c.shadow_mm, 0.0, 10.0);
   r.Get(p, at, "point_spacing_mm", c.point_spacing_mm, 0.001, 10.0);
   r.Get(p, at, "field_half_mm", c.field_half_mm, 1.0, 1e3);
   r.Get(p, at, "log_rate_hz", c.log_rate_hz, 1.0, 1e5);

@@ -22,11 +22,12 @@ struct GrooveFigures {
   int rows = 0, corrected_rows = 0;
 };
 
-GrooveFigures Figures(uint64_t seed, double exponent = 2.0, double area_mm2 = 12.0) {
+GrooveFigures Figures(uint64_t seed, double exponent = 2.0, double area_mm2 = 12.0, double shadow_mm = 0.0) {
   sim::PartTwinConfig c;
   c.seed = seed;
   c.exponent = exponent;
   c.area_mm2 = area_mm2;
+  c.shadow_mm = shadow_mm;
   const sim::PartTwin twin = sim::SimulatePartWall(c);
   ProfileStream stream("twin", twin.scan.profiles);
   GrooveFigures f;
@@ -130,6 +131,30 @@ TEST(HiddenGroove, BeadsThatHideLittleKeepIntervalsThatCover) {
       f.z.size());
   EXPECT_LT(std::abs(f.corrected / f.laid - 1), 0.01);
   EXPECT_GE(covered, 0.90 * static_cast<double>(f.z.size()));
+}
+
+// A profiler that loses the points beside each bead's right wall (a
+// triangulation camera on the left: the bead hides the surface next to it;
+// 0.15 mm, three points): each layer's wall rises across the gap, the
+// layer below carries the same gap. The bars hold and the intervals
+// stay honest. (Each end placed at its gap's middle and the layer below
+// bridged as a ramp, these walls were +2.71 and +2.31 % over the run, 342
+// of 2400 intervals covering.)
+TEST(HiddenGroove, AShadowBesideEachWallKeepsTheBarsAndTheIntervals) {
+  int covered = 0, rows = 0;
+  for (uint64_t seed : {41u, 42u}) {
+    const GrooveFigures f = Figures(seed, 2.0, 12.0, 0.15);
+    for (double z : f.z) covered += std::abs(z) < 1.96;
+    rows += static_cast<int>(f.z.size());
+    std::printf("shadowed wall seed %llu: over the run corrected %+.2f %%, per profile median |error| %.2f %%\n",
+                static_cast<unsigned long long>(seed), 100 * (f.corrected / f.laid - 1),
+                100 * MedianAbs(f.corrected_rel));
+    EXPECT_EQ(f.corrected_rows, f.rows) << seed;
+    EXPECT_LT(std::abs(f.corrected / f.laid - 1), 0.01) << seed;
+    EXPECT_LT(MedianAbs(f.corrected_rel), 0.03) << seed;
+  }
+  std::printf("shadowed walls: 95 %% intervals covering %d of %d\n", covered, rows);
+  EXPECT_GE(covered, static_cast<int>(0.85 * rows));
 }
 
 }  // namespace
