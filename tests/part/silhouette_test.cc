@@ -242,6 +242,29 @@ TEST(Silhouette, PointsLostBesideTheWallsArePlacedByTheTop) {
   }
 }
 
+// A bead laid beside the one below rather than on it (an independent
+// generator's wall, wandering 1 mm a layer: the new bead on the bed, its
+// centre 2.53 mm off the old one's, its right side against the old bead's
+// flank, the old top standing above it there). The old bead's flank makes a
+// step inside the run over the floor: taken for the bead's end, the bead
+// came out half as wide (a half-width of 1.25 mm for 2.47), its groove
+// -41 % at 9 sigmas. Where the walls found span less than the run, there is
+// no silhouette (the fit's work).
+TEST(Silhouette, AStepInsideTheRunIsNotTheBeadsEnd) {
+  const Ellipse below{0.0, 0.9438, 2.5169, 1.2585};
+  const auto old = [&](double x) { return std::abs(x - below.x0) < below.a ? below.z0 + below.Half(x) : 0.0; };
+  const Ellipse bead{-2.531, 0.9266, 2.471, 1.2355};
+  for (double offset : {0.0, 0.013, 0.029, 0.041}) {
+    const Window w = Seen(bead, old, offset);
+    for (const PooledShape* held : {static_cast<const PooledShape*>(nullptr), &kHalf}) {
+      const auto s = AtSilhouette(w, bead.x0, kScale, held);
+      if (s) {
+        EXPECT_NEAR(s->e.a, bead.a, 2.0 * kSpacing) << offset << (held ? " held" : " free");
+      }
+    }
+  }
+}
+
 // A bead of another shape: from near a diamond to near a box, the free
 // placement finds its exponent to within what an end half a cell off moves
 // it (as the ellipse's aspect above). Its aspect is looser: on a box's flat
