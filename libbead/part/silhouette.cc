@@ -288,8 +288,9 @@ std::optional<Silhouette> AtSilhouette(const Window& w, double center, const Sil
   // The walls span most of the run: a silhouette's widest point is the
   // bead's, and what stands over the floor beyond a wall is its foot. Walls
   // spanning less than kWallsOfRun of the run are steps on the bead (a bead
-  // laid down the flank of the one below had one taken for its end, a
-  // half-width of 1.25 mm for 2.6, corrected -41 % at 9 sigmas).
+  // laid beside the one below, the old bead's flank making a step inside
+  // its run, had it taken for its end: a half-width of 1.25 mm for 2.47,
+  // corrected -41 % at 9 sigmas).
   if (w.x[jr + 1] - w.x[jl] < kWallsOfRun * (w.x[r + 1] - w.x[l - 1])) return std::nullopt;
   Silhouette s;
   s.cell[0] = w.x[jl], s.cell[1] = w.x[jl + 1], s.cell[2] = w.x[jr], s.cell[3] = w.x[jr + 1];
