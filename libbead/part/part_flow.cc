@@ -40,11 +40,13 @@ Stretches MonotoneStretches(const AcquisitionLog& log) {
 // The screw's revolutions over a stretch (rpm over minutes; none where the
 // log holds no screw speed), and its time.
 std::pair<double, double> TurnsAndTime(const AcquisitionLog& log, std::size_t first, std::size_t last) {
+  const double time = log.t_s[last] - log.t_s[first];
+  if (log.screw_rpm.size() != log.size()) return {0.0, time};
   double turns = 0.0;
-  for (std::size_t i = first; i < last && log.screw_rpm.size() == log.size(); ++i)
+  for (std::size_t i = first; i < last; ++i)
     turns += 0.5 * (std::max(log.screw_rpm[i], 0.0) + std::max(log.screw_rpm[i + 1], 0.0)) *
              (log.t_s[i + 1] - log.t_s[i]) / 60.0;
-  return {turns, log.t_s[last] - log.t_s[first]};
+  return {turns, time};
 }
 
 }  // namespace

@@ -263,6 +263,27 @@ double GapSeenChange(const Window& w, std::size_t j, const Ellipse& e) {
   return model - 0.5 * (std::max(w.Gain(j), 0.0) + std::max(w.Gain(j + 1), 0.0)) * (hi - lo);
 }
 
+// The ends in gaps (gapped[side]) placed with the held shape, in turn, each
+// with the other where it was last placed, until neither moves by a
+// hundredth of a spacing (each placed with the other at its gap's middle,
+// both came out 0.01 mm outward); false where one cannot be.
+bool PlaceGappedEnds(const Window& w, std::size_t first, std::size_t last, double spacing, const PooledShape& held,
+                     const bool gapped[2], double& L, double& R, Silhouette& s) {
+  const double gap_cell[4] = {s.cell[0], s.cell[1], s.cell[2], s.cell[3]};
+  for (int pass = 0; pass < 6; ++pass) {
+    double moved = 0.0;
+    for (int side = 0; side < 2; ++side) {
+      if (!gapped[side]) continue;
+      const double before = side ? R : L;
+      s.cell[2 * side] = gap_cell[2 * side], s.cell[2 * side + 1] = gap_cell[2 * side + 1];
+      if (!PlaceInGap(w, first, last, spacing, held, side, L, R, s)) return false;
+      moved = std::max(moved, std::abs((side ? R : L) - before));
+    }
+    if (moved < 0.01 * spacing || !(gapped[0] && gapped[1])) break;
+  }
+  return true;
+}
+
 }  // namespace
 
 std::optional<Silhouette> AtSilhouette(const Window& w, double center, const SilhouetteScale& k,
@@ -302,7 +323,9 @@ std::optional<Silhouette> AtSilhouette(const Window& w, double center, const Sil
   // the top fits best (PlaceInGap), and the area seen's trapezoid across
   // the gap is replaced by what the bead placed shows there (seen_adjust).
   const double spacing = w.x[c + 1] - w.x[c];  // the points' own, at the bead's top
-  const bool gap = std::max(s.cell[1] - s.cell[0], s.cell[3] - s.cell[2]) > kGapSpacings * spacing;
+  const bool gapped[2] = {s.cell[1] - s.cell[0] > kGapSpacings * spacing,
+                          s.cell[3] - s.cell[2] > kGapSpacings * spacing};
+  const bool gap = gapped[0] || gapped[1];
   if (gap && !held) return std::nullopt;
   double L = 0.5 * (s.cell[0] + s.cell[1]), R = 0.5 * (s.cell[2] + s.cell[3]);
   // The widest point standing over the surface below by a wall at each
@@ -319,24 +342,7 @@ std::optional<Silhouette> AtSilhouette(const Window& w, double center, const Sil
     return t.wall_left > k.rise + lift && t.wall_right > k.rise + lift;
   };
   if (held) {
-    // Each gapped end placed with the other where it was last placed; two
-    // ends in gaps, in turn until neither moves by a hundredth of a
-    // spacing (each placed with the other at its gap's middle, both came
-    // out 0.01 mm outward).
-    const bool gapped[2] = {s.cell[1] - s.cell[0] > kGapSpacings * spacing,
-                            s.cell[3] - s.cell[2] > kGapSpacings * spacing};
-    const double gap_cell[4] = {s.cell[0], s.cell[1], s.cell[2], s.cell[3]};
-    for (int pass = 0; pass < 6 && gap; ++pass) {
-      double moved = 0.0;
-      for (int side = 0; side < 2; ++side) {
-        if (!gapped[side]) continue;
-        const double before = side ? R : L;
-        s.cell[2 * side] = gap_cell[2 * side], s.cell[2 * side + 1] = gap_cell[2 * side + 1];
-        if (!PlaceInGap(w, jl + 1, jr, spacing, *held, side, L, R, s)) return std::nullopt;
-        moved = std::max(moved, std::abs((side ? R : L) - before));
-      }
-      if (moved < 0.01 * spacing || !(gapped[0] && gapped[1])) break;
-    }
+    if (gap && !PlaceGappedEnds(w, jl + 1, jr, spacing, *held, gapped, L, R, s)) return std::nullopt;
     if (!SolveHeld(w, jl + 1, jr, L, R, *held, s) || !stands(s, 0.0)) return std::nullopt;
     for (int side = 0; side < 2; ++side)
       if (gapped[side]) s.seen_adjust += GapSeenChange(w, side ? jr : jl, s.e);
