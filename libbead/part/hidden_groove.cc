@@ -238,6 +238,8 @@ HiddenGroove AtTheSilhouette(const Silhouette& s, const Around& o, const PooledS
   out.at_silhouette = true;
   out.aspect = s.aspect, out.exponent = s.exponent;
   out.aspect_end_var = s.aspect_end_var, out.exponent_end_var = s.exponent_end_var, out.left_end_mm = s.e.x0 - s.e.a;
+  out.aspect_grid_var = s.aspect_grid_var, out.exponent_grid_var = s.exponent_grid_var;
+  out.shape_consistent = s.shape_consistent;
   out.dx0 = s.e.x0 - center, out.dz0 = s.e.z0 - base, out.a = s.e.a, out.b = s.e.b;
   out.ok = std::isfinite(out.hidden_mm2) && std::isfinite(out.sigma_mm2);
   return out;

@@ -45,6 +45,10 @@ struct HiddenGroove {
   // exponent's variances from where the ends lie in their cells
   // (part/silhouette.h), and the left end's place (bed frame).
   double aspect_end_var = 0.0, exponent_end_var = 0.0, left_end_mm = kNaN;
+  // What the exponent grid's steps leave in them, and whether the top
+  // agrees with the walls' cells (part/silhouette.h: else not pooled).
+  double aspect_grid_var = 0.0, exponent_grid_var = 0.0;
+  bool shape_consistent = true;
   // Placed at the silhouette: the sigma holds the area seen's edges too
   // (they move with the ellipse's ends; part/silhouette.h).
   bool at_silhouette = false;

@@ -59,10 +59,10 @@ void LayerGrooves::Add(PartGeometryRow row, const StoredProfile* points, const S
     const HiddenGroove g = Estimate(*points, *under, row, last_ ? &*last_ : nullptr, pooled_ ? &*pooled_ : nullptr);
     if (g.ok) last_ = g;
     Apply(g, points->spacing_mm, row);
-    if (!pooled_ && g.ok) aspects_.push_back(g.aspect);
-    if (!pooled_ && g.ok && g.at_silhouette)
-      placed_.push_back(
-          {g.aspect, g.exponent, g.aspect_end_var, g.exponent_end_var, g.left_end_mm, points->spacing_mm});
+    if (!pooled_ && g.ok && g.shape_consistent) aspects_.push_back(g.aspect);
+    if (!pooled_ && g.ok && g.shape_consistent && g.at_silhouette)
+      placed_.push_back({g.aspect, g.exponent, g.aspect_end_var, g.exponent_end_var, g.aspect_grid_var,
+                         g.exponent_grid_var, g.left_end_mm, points->spacing_mm});
   }
   if (pooled_ && waiting_.empty()) return emit(row);
   waiting_.push_back({std::move(row), points && under ? std::optional(*points) : std::nullopt,
@@ -120,38 +120,43 @@ double ShapeCorrelation(const std::vector<LayerGrooves::Placed>& placed) {
 // The layer's first rows' own shapes, then their pool, held: the aspect
 // over every row, the exponent over those placed at their silhouette (a
 // fit's is an ellipse's by assumption, not measured; with fewer than
-// kMinExponents placed, the ellipse's is held). (Each row's aspect solved
+// kMinExponents placed, the ellipse's is held; a row whose top disagrees
+// with its walls' cells, none of its shape). (Each row's aspect solved
 // again at the pooled exponent, its pool's sigma was a third as wide, and
 // the walls' intervals covered 4549 of 4800, not 4578: the two are pooled
 // apart.) Their errors' correlation is the rows' own.
-// Each sigma is at least what the ends' places in their cells leave that
-// the median's spread does not show: rows whose ends share a phase in
-// their cells share its error. Where the left ends sweep K cells over the
+// Each sigma is at least what the ends' places and the exponent grid leave
+// that the median's spread does not show. Rows whose ends share a phase in
+// their cells share its error: where the left ends sweep K cells over the
 // rows, each phase's error (a periodic function of it, zero on average over
-// a cell) is averaged over K periods: what is left, a share |sin(pi K)| /
-// (pi K) of one row's, at most 1 / (pi K), is the floor (one row's where
-// they sweep under a third of a cell). (The floor over sqrt(1 + K)
-// independent places made the aspect's interval 2.4 times too wide on
-// twin walls, its errors' RMS over sigma 0.42; this one 1.07, and 1.00 on
-// an independent generator's 36 pools.)
+// a cell) is averaged over K periods; what is left, a share |sin(pi K)| /
+// (pi K) of one row's, at most 1 / (pi K), counts (one row's where they
+// sweep under a third of a cell). (The floor over sqrt(1 + K) independent
+// places made the aspect's interval 2.4 times too wide on twin walls, its
+// errors' RMS over sigma 0.42; this one 1.07, and 1.00 on an independent
+// generator's 36 pools, with the ends at their cells' middles.) The grid's
+// is the same in every row: counted whole.
 void LayerGrooves::Pool() {
   PooledShape pool;
   std::tie(pool.aspect, pool.aspect_sigma) = MedianAndError(aspects_);
   if (!placed_.empty()) {
     std::vector<double> exponents;
     double lo = INFINITY, hi = -INFINITY, aspect_var = 0.0, exponent_var = 0.0, spacing = 0.0;
+    double aspect_grid = 0.0, exponent_grid = 0.0;
     for (const Placed& p : placed_) {
       exponents.push_back(p.exponent);
       lo = std::min(lo, p.left_end_mm), hi = std::max(hi, p.left_end_mm), spacing += p.spacing_mm;
       aspect_var += p.aspect_end_var, exponent_var += p.exponent_end_var;
+      aspect_grid += p.aspect_grid_var, exponent_grid += p.exponent_grid_var;
     }
     const auto n = static_cast<double>(placed_.size());
     const double cycles = (hi - lo) / (spacing / n);  // K
     const double shared = std::min(1.0, 1.0 / (std::numbers::pi * cycles));
-    pool.aspect_sigma = std::max(pool.aspect_sigma, shared * std::sqrt(aspect_var / n));
+    const auto floor = [&](double ends, double grid) { return std::sqrt(shared * shared * ends / n + grid / n); };
+    pool.aspect_sigma = std::max(pool.aspect_sigma, floor(aspect_var, aspect_grid));
     if (placed_.size() >= kMinExponents) {
       std::tie(pool.exponent, pool.exponent_sigma) = MedianAndError(exponents);
-      pool.exponent_sigma = std::max(pool.exponent_sigma, shared * std::sqrt(exponent_var / n));
+      pool.exponent_sigma = std::max(pool.exponent_sigma, floor(exponent_var, exponent_grid));
       pool.correlation = ShapeCorrelation(placed_);
       pool.exponent_solved = true;
     }

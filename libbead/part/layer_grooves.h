@@ -52,7 +52,8 @@ class LayerGrooves {
   // A row placed at its silhouette: its shape, and for the pool's sigma
   // what its ends' cells leave.
   struct Placed {
-    double aspect, exponent, aspect_end_var, exponent_end_var, left_end_mm, spacing_mm;
+    double aspect, exponent, aspect_end_var, exponent_end_var, aspect_grid_var, exponent_grid_var, left_end_mm,
+        spacing_mm;
   };
 
  private:

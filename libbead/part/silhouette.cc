@@ -6,195 +6,16 @@
 #include <utility>
 #include <vector>
 
+#include "libbead/part/silhouette_top.h"
 #include "libbead/part/superellipse.h"
 
 namespace bead::part {
 namespace {
 
-// The top's points within kInner of the half-width are solved over (where
-// the exponent's table holds s).
-constexpr double kInner = SuperellipseTable::kTabulatedU;
 // A cell wider than this many of the window's spacings spans lost points.
 constexpr double kGapSpacings = 1.5;
 // The least share of the run over the floor a silhouette's walls span.
 constexpr double kWallsOfRun = 0.8;
-
-// The top's points within kInner of the half-width of the bead with ends L
-// and R: u, z, and where u falls in the exponents' tables (the same in all).
-struct TopPoints {
-  double per_a = 0.0;
-  std::vector<double> u, z, t;
-  std::vector<int> k;
-};
-
-const TopPoints& TopOf(const Window& w, std::size_t first, std::size_t last, double L, double R) {
-  thread_local TopPoints p;
-  const std::size_t most = last >= first ? last - first + 1 : 0;
-  p.u.resize(most), p.z.resize(most), p.t.resize(most), p.k.resize(most);
-  const double x0 = 0.5 * (L + R);
-  p.per_a = 2.0 / (R - L);
-  std::size_t n = 0;
-  for (std::size_t j = first; j <= last; ++j) {
-    const double u = (w.x[j] - x0) * p.per_a;
-    if (!(std::abs(u) <= kInner)) continue;
-    SuperellipseTable::Locate(u, p.k[n], p.t[n]);
-    p.u[n] = u, p.z[n] = w.z[j], ++n;
-  }
-  p.u.resize(n), p.z.resize(n), p.t.resize(n), p.k.resize(n);
-  return p;
-}
-
-// The least squares' sums over the top's points at exponent t: of 1, s,
-// s^2, z, z s, z^2 and ds/dp, and (full) the derivatives of s, s^2 and z s
-// in x0 and a (through u = (x - x0) / a: ds/dx0 = -s'(u) / a, ds/da = u
-// ds/dx0).
-struct TopSums {
-  double m = 0, s1 = 0, s2 = 0, z1 = 0, zs = 0, zz = 0, sp = 0;
-  double d1[2] = {}, d2[2] = {}, dz[2] = {};
-};
-
-TopSums SumTop(const TopPoints& p, const SuperellipseTable& t, bool full = true) {
-  TopSums m;
-  m.m = static_cast<double>(p.u.size());
-  for (std::size_t j = 0; j < p.u.size(); ++j) {
-    const double z = p.z[j];
-    m.z1 += z, m.zz += z * z;
-    if (!full) {
-      const double sv = t.S(p.k[j], p.t[j]);
-      m.s1 += sv, m.s2 += sv * sv, m.zs += z * sv;
-      continue;
-    }
-    const SuperellipseTable::Value v = t.At(p.k[j], p.t[j], p.u[j] < 0.0);
-    const double sv = v.s;
-    m.s1 += sv, m.s2 += sv * sv, m.zs += z * sv, m.sp += v.ds_dp;
-    const double by_x0 = -v.ds_du * p.per_a, by[2] = {by_x0, p.u[j] * by_x0};
-    for (int i = 0; i < 2; ++i) m.d1[i] += by[i], m.d2[i] += 2.0 * sv * by[i], m.dz[i] += z * by[i];
-  }
-  return m;
-}
-
-// The residual variance and the aspect of the free solve from the sums
-// (INFINITY where b is not positive or too few points are).
-std::pair<double, double> FreeResidual(const TopSums& t, double a) {
-  const double det = t.m * t.s2 - t.s1 * t.s1;
-  if (t.m < 8.0 || !(det > 0.0)) return {INFINITY, NAN};
-  const double b = (t.m * t.zs - t.s1 * t.z1) / det, z0 = (t.z1 - b * t.s1) / t.m;
-  if (!(b > 0.0)) return {INFINITY, NAN};
-  const double rss = t.zz + t.m * z0 * z0 + b * b * t.s2 - 2.0 * z0 * t.z1 - 2.0 * b * t.zs + 2.0 * z0 * b * t.s1;
-  return {std::max(rss, 0.0) / (t.m - 2.0), b / a};
-}
-
-// z0 and b (b = aspect a where held) from the sums, for the bead with ends L
-// and R, and their derivatives in each end's place (the points kept: x0 and
-// a each moving by half an end's step); false where too few points are, or
-// b is not positive.
-bool SolveTop(const TopSums& t, double L, double R, double aspect, Silhouette& s) {
-  Ellipse& e = s.e;
-  e.x0 = 0.5 * (L + R), e.a = 0.5 * (R - L);
-  const bool held = std::isfinite(aspect);
-  const int params = held ? 1 : 2;
-  if (t.m < 3.0 * params + 2.0) return false;
-  const double det = t.m * t.s2 - t.s1 * t.s1;
-  if (held) {
-    e.b = aspect * e.a;
-    e.z0 = (t.z1 - e.b * t.s1) / t.m;
-    s.z0_var = 1.0 / t.m, s.b_var = 0.0, s.z0_b = 0.0;
-    s.z0_by_exponent = -e.b * t.sp / t.m;
-  } else {
-    if (!(det > 0.0)) return false;
-    e.b = (t.m * t.zs - t.s1 * t.z1) / det, e.z0 = (t.z1 - e.b * t.s1) / t.m;
-    s.z0_var = t.s2 / det, s.b_var = t.m / det, s.z0_b = -t.s1 / det;
-    s.z0_by_exponent = 0.0;
-  }
-  for (int end = 0; end < 2; ++end) {
-    // The left end moves x0 by half its step and a by minus half; the right, both by half.
-    const double by_x0 = 0.5, by_a = end ? 0.5 : -0.5;
-    const double ds1 = t.d1[0] * by_x0 + t.d1[1] * by_a, ds2 = t.d2[0] * by_x0 + t.d2[1] * by_a;
-    const double dzs = t.dz[0] * by_x0 + t.dz[1] * by_a;
-    if (held) {
-      s.b_by_end[end] = aspect * by_a;
-      s.z0_by_end[end] = -(s.b_by_end[end] * t.s1 + e.b * ds1) / t.m;
-    } else {
-      const double r0 = -ds1 * e.b, r1 = dzs - ds1 * e.z0 - ds2 * e.b;
-      s.z0_by_end[end] = (t.s2 * r0 - t.s1 * r1) / det, s.b_by_end[end] = (t.m * r1 - t.s1 * r0) / det;
-    }
-  }
-  // The residuals' sum of squares from the sums: sum (z - z0 - b s)^2.
-  const double rss =
-      t.zz + t.m * e.z0 * e.z0 + e.b * e.b * t.s2 - 2.0 * e.z0 * t.z1 - 2.0 * e.b * t.zs + 2.0 * e.z0 * e.b * t.s1;
-  s.residual_variance = std::max(rss, 0.0) / (t.m - params);
-  s.mean_s = t.s1 / t.m;
-  return e.b > 0.0 && std::isfinite(e.z0);
-}
-
-// The shape held: solved at it.
-bool SolveHeld(const Window& w, std::size_t first, std::size_t last, double L, double R, const PooledShape& held,
-               Silhouette& s) {
-  const SuperellipseTable& t = SuperellipseOf(held.exponent);
-  if (!SolveTop(SumTop(TopOf(w, first, last, L, R), t), L, R, held.aspect, s)) return false;
-  s.e.p = held.exponent, s.exponent = held.exponent;
-  s.aspect = std::isfinite(held.aspect) ? held.aspect : s.e.b / s.e.a;
-  return true;
-}
-
-// The shape free: solved at the exponents of the grid, from grid index
-// `from` downhill to the least residual (the residual changes smoothly with
-// the exponent: one least), its exponent refined by the parabola through it
-// and its neighbours' residuals in ln p, the aspect interpolated there.
-// Returns the least's grid index (-1: none solved).
-std::ptrdiff_t SolveFree(const Window& w, std::size_t first, std::size_t last, double L, double R, Silhouette& s,
-                         std::ptrdiff_t from) {
-  const std::vector<double>& grid = SuperellipseGrid();
-  const auto n = static_cast<std::ptrdiff_t>(grid.size());
-  const TopPoints& top = TopOf(w, first, last, L, R);
-  std::vector<double> rss(grid.size(), NAN), aspect(grid.size(), NAN);
-  // The residual at grid index k (INFINITY off the grid or unsolved).
-  const auto at = [&](std::ptrdiff_t k) {
-    if (k < 0 || k >= n) return static_cast<double>(INFINITY);
-    const auto i = static_cast<std::size_t>(k);
-    if (std::isnan(rss[i]))
-      std::tie(rss[i], aspect[i]) = FreeResidual(SumTop(top, SuperellipseOf(grid[i]), false), 0.5 * (R - L));
-    return rss[i];
-  };
-  std::ptrdiff_t best = std::clamp<std::ptrdiff_t>(from, 0, n - 1);
-  const std::ptrdiff_t way = at(best + 1) < at(best) ? 1 : -1;
-  while (at(best + way) < at(best)) best += way;
-  const auto b = static_cast<std::size_t>(best);
-  if (!std::isfinite(at(best)) || !SolveTop(SumTop(top, SuperellipseOf(grid[b])), L, R, NAN, s)) return -1;
-  s.e.p = s.exponent = grid[b], s.aspect = aspect[b];
-  const double lo = at(best - 1), mid = rss[b], hi = at(best + 1), curve = lo - 2.0 * mid + hi;
-  if (!std::isfinite(curve) || !(curve > 0.0)) return best;
-  // The vertex of the parabola through (ln p, rss) at best - 1, best, best +
-  // 1 (equally spaced in ln p), and Lagrange's interpolation of the aspect
-  // there.
-  const double t = std::clamp(0.5 * (lo - hi) / curve, -1.0, 1.0);  // in steps from best
-  s.exponent = grid[b] * std::pow(grid[b + 1] / grid[b], t);
-  s.aspect = aspect[b - 1] * 0.5 * t * (t - 1.0) + aspect[b] * (1.0 - t * t) + aspect[b + 1] * 0.5 * t * (t + 1.0);
-  return best;
-}
-
-// The grid index nearest the ellipse's exponent, where a free search starts.
-std::ptrdiff_t EllipseIndex() {
-  const std::vector<double>& grid = SuperellipseGrid();
-  std::ptrdiff_t k = 0;
-  while (k + 1 < std::ssize(grid) && grid[static_cast<std::size_t>(k) + 1] <= 2.0) ++k;
-  return k;
-}
-
-// What the free shape owes to where the ends lie in their cells: solved
-// again with each end moved by half its cell, the aspect's and exponent's
-// changes d as an end uniform over the cell (variance (2 d)^2 / 12).
-void EndsShapeVariance(const Window& w, std::size_t first, std::size_t last, double L, double R, std::ptrdiff_t from,
-                       Silhouette& s) {
-  s.aspect_end_var = s.exponent_end_var = 0.0;
-  for (int side = 0; side < 2; ++side) {
-    const double half = 0.5 * (s.cell[2 * side + 1] - s.cell[2 * side]);
-    Silhouette moved = s;
-    if (SolveFree(w, first, last, side ? L : L + half, side ? R + half : R, moved, from) < 0) continue;
-    const double da = moved.aspect - s.aspect, dp = moved.exponent - s.exponent;
-    s.aspect_end_var += da * da / 3.0, s.exponent_end_var += dp * dp / 3.0;
-  }
-}
 
 // The surface below at x, between the window's points j and j + 1.
 double OldBetween(const Window& w, std::size_t j, double x) {
@@ -238,7 +59,7 @@ bool PlaceInGap(const Window& w, std::size_t first, std::size_t last, double spa
       // top's m points' rss = (m - 1) var, sigma^2 the least var, so
       // sigma_E^2 = 2 var step^2 / ((m - 1) curve); the cell a uniform of
       // that sigma (sqrt 12 of it wide).
-      const double m = static_cast<double>(TopOf(w, first, last, L, R).u.size());
+      const auto m = static_cast<double>(TopPointCount(w, first, last, L, R));
       const double sigma2 = m > 1.0 ? 2.0 * var[best] * step * step / ((m - 1.0) * curve) : INFINITY;
       width = std::clamp(std::sqrt(12.0 * sigma2), spacing, hi - lo);
     }
@@ -352,7 +173,10 @@ std::optional<Silhouette> AtSilhouette(const Window& w, double center, const Sil
   if (found < 0) return std::nullopt;
   const double cell = std::max(s.cell[1] - s.cell[0], s.cell[3] - s.cell[2]);
   if (!stands(s, s.e.b * std::sqrt(cell / s.e.a))) return std::nullopt;
-  EndsShapeVariance(w, jl + 1, jr, L, R, found, s);
+  // The shape (for the layer's pool) with the ends placed by the top; the
+  // bead itself stays placed at the cells' middles (its area seen counts
+  // the walls' cells as trapezoids, which the middles match).
+  ShapeByTop(w, jl + 1, jr, L, R, found, s);
   return s;
 }
 

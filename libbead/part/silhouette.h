@@ -14,6 +14,10 @@
 // their cells). The exponent, where it is not held, is the one of
 // SuperellipseGrid whose solution leaves the least residual, refined
 // between its neighbours by the parabola through the three (in ln p).
+// For the layer's pool, the free shape is solved again with each end placed
+// within its cell where the top reaches the outermost point's height
+// (part/silhouette_top.h); the bead itself stays placed halfway, where its
+// area seen's trapezoids across the walls' cells expect it.
 //
 // A least-squares fit of all four parameters to every point would place
 // the ends to within a fraction of a cell, but its residual jumps wherever
@@ -29,6 +33,7 @@
 // counts their difference, not each.
 #pragma once
 
+#include <cmath>
 #include <optional>
 
 #include "libbead/part/groove_window.h"
@@ -38,8 +43,19 @@ namespace bead::part {
 struct Silhouette {
   Ellipse e;  // its exponent the grid's where free
   // Where the shape is free: the exponent refined between the grid's, and
-  // the aspect there (the pool's values); where held, the held ones.
+  // the aspect there, with the ends placed within their cells by the top
+  // (part/silhouette_top.h: the pool's values); where held, the held ones.
   double exponent = 2.0, aspect = 0.0;
+  // The top's z0 and b at that exponent (e's where held).
+  double top_z0 = 0.0, top_b = 0.0;
+  // Where the free shape's ends are placed by the top: each end's sigma
+  // (NaN: anywhere in its cell).
+  double end_sigma[2] = {NAN, NAN};
+  // false where the top places an end outside the cell its wall was found
+  // in by more than three of its sigmas: the wall taken for the end is not
+  // the bead's (the layer below's wall, interpolated across a registration
+  // a fraction of a spacing off, rising beside it). Its shape is not pooled.
+  bool shape_consistent = true;
   double cell[4] = {};                     // the left end lies in [cell[0], cell[1]], the right in [cell[2], cell[3]]
   double wall_left = 0, wall_right = 0;    // the seen wall at each end: z0 over the surface below there, mm
   double residual_variance = 0.0;          // the top's points', mm^2
@@ -52,11 +68,14 @@ struct Silhouette {
   // too): the top re-solved with the same points.
   double z0_by_exponent = 0.0;
   // Where the shape is free: the aspect's and exponent's variances from
-  // where the ends lie in their cells (each solved again with an end moved
-  // by half its cell). Rows whose ends share their places in the cells (a
-  // bead whose width changes by less than a cell) share these errors: a
-  // layer's pool does not average them away.
+  // where the ends lie (each solved again with an end moved by half its
+  // cell, times the end's sigma). Rows whose ends share their places in the
+  // cells (a bead whose width changes by less than a cell) share what the
+  // places leave: a layer's pool does not average it away.
   double aspect_end_var = 0.0, exponent_end_var = 0.0;
+  // What the exponent grid's steps leave in them (the same in every row of
+  // a shape: a pool does not average it).
+  double aspect_grid_var = 0.0, exponent_grid_var = 0.0;
   // With the shape held, an end in a gap (lost points beside its wall) is
   // placed where the top fits best; the area seen over the gap as the bead
   // placed shows it, less the trapezoid the area seen counted across it

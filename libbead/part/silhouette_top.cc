@@ -1,0 +1,340 @@
+#include "libbead/part/silhouette_top.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "libbead/part/superellipse.h"
+
+namespace bead::part {
+namespace {
+
+// The top's points within kInner of the half-width are solved over (where
+// the exponent's table holds s).
+constexpr double kInner = SuperellipseTable::kTabulatedU;
+
+// The top's points within kInner of the half-width of the bead with ends L
+// and R: u, z, and where u falls in the exponents' tables (the same in all).
+struct TopPoints {
+  double per_a = 0.0;
+  std::vector<double> u, z, t;
+  std::vector<int> k;
+};
+
+const TopPoints& TopOf(const Window& w, std::size_t first, std::size_t last, double L, double R) {
+  thread_local TopPoints p;
+  const std::size_t most = last >= first ? last - first + 1 : 0;
+  p.u.resize(most), p.z.resize(most), p.t.resize(most), p.k.resize(most);
+  const double x0 = 0.5 * (L + R);
+  p.per_a = 2.0 / (R - L);
+  std::size_t n = 0;
+  for (std::size_t j = first; j <= last; ++j) {
+    const double u = (w.x[j] - x0) * p.per_a;
+    if (!(std::abs(u) <= kInner)) continue;
+    SuperellipseTable::Locate(u, p.k[n], p.t[n]);
+    p.u[n] = u, p.z[n] = w.z[j], ++n;
+  }
+  p.u.resize(n), p.z.resize(n), p.t.resize(n), p.k.resize(n);
+  return p;
+}
+
+// The least squares' sums over the top's points at exponent t: of 1, s,
+// s^2, z, z s, z^2 and ds/dp, and (full) the derivatives of s, s^2 and z s
+// in x0 and a (through u = (x - x0) / a: ds/dx0 = -s'(u) / a, ds/da = u
+// ds/dx0).
+struct TopSums {
+  double m = 0, s1 = 0, s2 = 0, z1 = 0, zs = 0, zz = 0, sp = 0;
+  double d1[2] = {}, d2[2] = {}, dz[2] = {};
+};
+
+TopSums SumTop(const TopPoints& p, const SuperellipseTable& t, bool full = true) {
+  TopSums m;
+  m.m = static_cast<double>(p.u.size());
+  for (std::size_t j = 0; j < p.u.size(); ++j) {
+    const double z = p.z[j];
+    m.z1 += z, m.zz += z * z;
+    if (!full) {
+      const double sv = t.S(p.k[j], p.t[j]);
+      m.s1 += sv, m.s2 += sv * sv, m.zs += z * sv;
+      continue;
+    }
+    const SuperellipseTable::Value v = t.At(p.k[j], p.t[j], p.u[j] < 0.0);
+    const double sv = v.s;
+    m.s1 += sv, m.s2 += sv * sv, m.zs += z * sv, m.sp += v.ds_dp;
+    const double by_x0 = -v.ds_du * p.per_a, by[2] = {by_x0, p.u[j] * by_x0};
+    for (int i = 0; i < 2; ++i) m.d1[i] += by[i], m.d2[i] += 2.0 * sv * by[i], m.dz[i] += z * by[i];
+  }
+  return m;
+}
+
+// The free solve from the sums: its residual variance (INFINITY where b
+// is not positive or too few points are), z0 and b.
+struct FreeTop {
+  double rss = INFINITY, z0 = NAN, b = NAN;
+};
+FreeTop FreeResidual(const TopSums& t) {
+  const double det = t.m * t.s2 - t.s1 * t.s1;
+  if (t.m < 8.0 || !(det > 0.0)) return {};
+  const double b = (t.m * t.zs - t.s1 * t.z1) / det, z0 = (t.z1 - b * t.s1) / t.m;
+  if (!(b > 0.0)) return {};
+  const double rss = t.zz + t.m * z0 * z0 + b * b * t.s2 - 2.0 * z0 * t.z1 - 2.0 * b * t.zs + 2.0 * z0 * b * t.s1;
+  return {std::max(rss, 0.0) / (t.m - 2.0), z0, b};
+}
+
+// z0 and b (b = aspect a where held) from the sums, for the bead with ends L
+// and R, and their derivatives in each end's place (the points kept: x0 and
+// a each moving by half an end's step); false where too few points are, or
+// b is not positive.
+bool SolveTop(const TopSums& t, double L, double R, double aspect, Silhouette& s) {
+  Ellipse& e = s.e;
+  e.x0 = 0.5 * (L + R), e.a = 0.5 * (R - L);
+  const bool held = std::isfinite(aspect);
+  const int params = held ? 1 : 2;
+  if (t.m < 3.0 * params + 2.0) return false;
+  const double det = t.m * t.s2 - t.s1 * t.s1;
+  if (held) {
+    e.b = aspect * e.a;
+    e.z0 = (t.z1 - e.b * t.s1) / t.m;
+    s.z0_var = 1.0 / t.m, s.b_var = 0.0, s.z0_b = 0.0;
+    s.z0_by_exponent = -e.b * t.sp / t.m;
+  } else {
+    if (!(det > 0.0)) return false;
+    e.b = (t.m * t.zs - t.s1 * t.z1) / det, e.z0 = (t.z1 - e.b * t.s1) / t.m;
+    s.z0_var = t.s2 / det, s.b_var = t.m / det, s.z0_b = -t.s1 / det;
+    s.z0_by_exponent = 0.0;
+  }
+  for (int end = 0; end < 2; ++end) {
+    // The left end moves x0 by half its step and a by minus half; the right, both by half.
+    const double by_x0 = 0.5, by_a = end ? 0.5 : -0.5;
+    const double ds1 = t.d1[0] * by_x0 + t.d1[1] * by_a, ds2 = t.d2[0] * by_x0 + t.d2[1] * by_a;
+    const double dzs = t.dz[0] * by_x0 + t.dz[1] * by_a;
+    if (held) {
+      s.b_by_end[end] = aspect * by_a;
+      s.z0_by_end[end] = -(s.b_by_end[end] * t.s1 + e.b * ds1) / t.m;
+    } else {
+      const double r0 = -ds1 * e.b, r1 = dzs - ds1 * e.z0 - ds2 * e.b;
+      s.z0_by_end[end] = (t.s2 * r0 - t.s1 * r1) / det, s.b_by_end[end] = (t.m * r1 - t.s1 * r0) / det;
+    }
+  }
+  // The residuals' sum of squares from the sums: sum (z - z0 - b s)^2.
+  const double rss =
+      t.zz + t.m * e.z0 * e.z0 + e.b * e.b * t.s2 - 2.0 * e.z0 * t.z1 - 2.0 * e.b * t.zs + 2.0 * e.z0 * e.b * t.s1;
+  s.residual_variance = std::max(rss, 0.0) / (t.m - params);
+  s.mean_s = t.s1 / t.m;
+  return e.b > 0.0 && std::isfinite(e.z0);
+}
+
+// The top solved free between the grid's exponents around the least, grid
+// index k: from the solves at k - 1, k, k + 1 (f[0..2]), the vertex of the
+// parabola through their residuals in ln p (x grid steps from k) and z0 and
+// b there by Lagrange's interpolation; with `beyond`, the solve at k + 2
+// side (side the vertex's), the cubic's (Newton's form: the parabola plus
+// the third divided difference times (x + 1) x (x - 1)), its vertex by a
+// Newton step from the parabola's, and (dx, db) the cubic's less the
+// parabola's: the grid's own error, to the next order. false where the
+// residual is not curved upward there.
+struct Between {
+  double x = 0.0, z0 = NAN, b = NAN;
+  double dx = 0.0, db = 0.0;
+};
+bool Interpolate(const FreeTop f[3], const FreeTop* beyond, int side, Between& out) {
+  const double curve = f[0].rss - 2.0 * f[1].rss + f[2].rss;
+  if (!std::isfinite(curve) || !(curve > 0.0)) return false;
+  const auto parabola = [&](double FreeTop::*v, double x) {
+    return f[0].*v * 0.5 * x * (x - 1.0) + f[1].*v * (1.0 - x * x) + f[2].*v * 0.5 * x * (x + 1.0);
+  };
+  const double t = std::clamp(0.5 * (f[0].rss - f[2].rss) / curve, -1.0, 1.0);
+  out = {t, parabola(&FreeTop::z0, t), parabola(&FreeTop::b, t)};
+  if (!beyond || !std::isfinite(beyond->rss)) return true;
+  const FreeTop &near = f[1 + side], &far = f[1 - side];
+  const auto third = [&](double FreeTop::*v) {
+    return side * (beyond->*v - 3.0 * (near.*v) + 3.0 * (f[1].*v) - far.*v) / 6.0;
+  };
+  const auto term = [](double x) { return (x + 1.0) * x * (x - 1.0); };
+  const double k = third(&FreeTop::rss), slope = curve + 6.0 * k * t;
+  const double x = slope > 0.0 ? std::clamp(t - k * (3.0 * t * t - 1.0) / slope, -1.0, 1.0) : t;
+  const Between cubic{x, parabola(&FreeTop::z0, x) + third(&FreeTop::z0) * term(x),
+                      parabola(&FreeTop::b, x) + third(&FreeTop::b) * term(x)};
+  out = cubic;
+  out.dx = x - t, out.db = cubic.b - parabola(&FreeTop::b, t);
+  return true;
+}
+
+// The top solved free at each exponent of the grid around the least (from
+// grid index `found`): z0, b and the exponent between the grid's to the
+// next order (Interpolate), the residual variance at the least, the aspect,
+// and what the grid's steps leave in the aspect and exponent (the cubic's
+// less the parabola's). The least is moved along the grid where the vertex
+// lies nearer a neighbour. false where the grid ends or nothing is solved.
+struct FreeShape {
+  double z0 = NAN, b = NAN, exponent = NAN, residual_variance = NAN, aspect = NAN;
+  double aspect_grid_var = 0.0, exponent_grid_var = 0.0;
+};
+bool ShapeBetween(const Window& w, std::size_t first, std::size_t last, double L, double R, std::ptrdiff_t& found,
+                  FreeShape& out) {
+  const std::vector<double>& grid = SuperellipseGrid();
+  const TopPoints& top = TopOf(w, first, last, L, R);
+  for (int moves = 0; moves < 3; ++moves) {
+    if (found < 2 || found + 2 >= std::ssize(grid)) return false;
+    const auto k = static_cast<std::size_t>(found);
+    const auto solve = [&](std::size_t i) { return FreeResidual(SumTop(top, SuperellipseOf(grid[i]), false)); };
+    const FreeTop f[3] = {solve(k - 1), solve(k), solve(k + 1)};
+    Between there;
+    if (!Interpolate(f, nullptr, 0, there)) return false;
+    const int side = there.x >= 0.0 ? 1 : -1;
+    if (std::abs(there.x) > 0.5 && moves < 2) {
+      found += side;
+      continue;
+    }
+    const FreeTop beyond = solve(static_cast<std::size_t>(found + 2 * side));
+    if (!Interpolate(f, &beyond, side, there)) return false;
+    const double a = 0.5 * (R - L), step = std::log(grid[k + 1] / grid[k]);
+    out.z0 = there.z0, out.b = there.b, out.exponent = grid[k] * std::exp(there.x * step);
+    out.residual_variance = f[1].rss, out.aspect = there.b / a;
+    const double da = there.db / a, dp = out.exponent * there.dx * step;
+    out.aspect_grid_var = da * da, out.exponent_grid_var = dp * dp;
+    return std::isfinite(out.aspect) && out.b > 0.0;
+  }
+  return false;
+}
+
+// |u| at which a top of exponent p stands a share h of its half-height b
+// over z0: (1 - h^p)^(1/p) (h held to [0, 1)).
+double ReachAt(double h, double p) {
+  h = std::clamp(h, 0.0, 1.0 - 1e-9);
+  return std::pow(1.0 - std::pow(h, p), 1.0 / p);
+}
+
+// Where the top f places the ends: the outermost point of the top on each
+// side stands a share h = (z - z0) / b of its half-height up, at |u| =
+// ReachAt(h) of the half-width from the centre; the two points' places give
+// x0 and a, the ends x0 -+ a, held to their cells. Each end's sigma: half
+// the range its point's height one residual sigma either way moves it over
+// (at most the cell's uniform sigma, half / sqrt 3); consistent: each end
+// lies in its cell to three of those sigmas.
+struct EndsPlaced {
+  double end[2] = {}, sigma[2] = {};
+  bool consistent = true;
+};
+EndsPlaced PlaceEnds(const Window& w, std::size_t first, std::size_t last, const double cell[4], const FreeShape& f) {
+  const double sigma_h = std::sqrt(f.residual_variance) / f.b;
+  const double h[2] = {(w.z[first] - f.z0) / f.b, (w.z[last] - f.z0) / f.b};
+  const double a = (w.x[last] - w.x[first]) / (ReachAt(h[0], f.exponent) + ReachAt(h[1], f.exponent));
+  const double x0 = w.x[first] + a * ReachAt(h[0], f.exponent);
+  EndsPlaced out;
+  for (int side = 0; side < 2; ++side) {
+    const double lo = cell[2 * side], hi = cell[2 * side + 1], end = side ? x0 + a : x0 - a;
+    out.end[side] = std::clamp(end, lo, hi);
+    const double range =
+        0.5 * a * std::abs(ReachAt(h[side] - sigma_h, f.exponent) - ReachAt(h[side] + sigma_h, f.exponent));
+    out.sigma[side] = std::min(range, 0.5 * (hi - lo) / std::sqrt(3.0));
+    out.consistent = out.consistent && std::abs(end - out.end[side]) <= 3.0 * range + 1e-3 * (hi - lo);
+  }
+  return out;
+}
+
+// The ends placed by the top and the top solved again there, until neither
+// end moves by a hundredth of its cell (at most kPlacements times).
+constexpr int kPlacements = 8;
+constexpr double kSettledCell = 1e-2;
+
+}  // namespace
+
+// The shape held: solved at it.
+bool SolveHeld(const Window& w, std::size_t first, std::size_t last, double L, double R, const PooledShape& held,
+               Silhouette& s) {
+  const SuperellipseTable& t = SuperellipseOf(held.exponent);
+  if (!SolveTop(SumTop(TopOf(w, first, last, L, R), t), L, R, held.aspect, s)) return false;
+  s.e.p = held.exponent, s.exponent = held.exponent;
+  s.aspect = std::isfinite(held.aspect) ? held.aspect : s.e.b / s.e.a;
+  s.top_z0 = s.e.z0, s.top_b = s.e.b;
+  return true;
+}
+
+// The shape free: solved at the exponents of the grid, from grid index
+// `from` downhill to the least residual (the residual changes smoothly with
+// the exponent: one least), its exponent, z0 and b between the grid's
+// (Interpolate's parabola).
+std::ptrdiff_t SolveFree(const Window& w, std::size_t first, std::size_t last, double L, double R, Silhouette& s,
+                         std::ptrdiff_t from) {
+  const std::vector<double>& grid = SuperellipseGrid();
+  const auto n = static_cast<std::ptrdiff_t>(grid.size());
+  const TopPoints& top = TopOf(w, first, last, L, R);
+  std::vector<FreeTop> solved(grid.size(), FreeTop{NAN});
+  // The solve at grid index k (its residual INFINITY off the grid or unsolved).
+  const auto at = [&](std::ptrdiff_t k) -> const FreeTop& {
+    static const FreeTop none;
+    if (k < 0 || k >= n) return none;
+    const auto i = static_cast<std::size_t>(k);
+    if (std::isnan(solved[i].rss)) solved[i] = FreeResidual(SumTop(top, SuperellipseOf(grid[i]), false));
+    return solved[i];
+  };
+  std::ptrdiff_t best = std::clamp<std::ptrdiff_t>(from, 0, n - 1);
+  const std::ptrdiff_t way = at(best + 1).rss < at(best).rss ? 1 : -1;
+  while (at(best + way).rss < at(best).rss) best += way;
+  const auto b = static_cast<std::size_t>(best);
+  if (!std::isfinite(at(best).rss) || !SolveTop(SumTop(top, SuperellipseOf(grid[b])), L, R, NAN, s)) return -1;
+  const double a = 0.5 * (R - L);
+  s.e.p = s.exponent = grid[b], s.aspect = solved[b].b / a;
+  s.top_z0 = solved[b].z0, s.top_b = solved[b].b;
+  const FreeTop around[3] = {at(best - 1), solved[b], at(best + 1)};
+  Between there;
+  if (!Interpolate(around, nullptr, 0, there)) return best;
+  s.exponent = grid[b] * std::pow(grid[b + 1] / grid[b], there.x);
+  s.top_z0 = there.z0, s.top_b = there.b, s.aspect = there.b / a;
+  return best;
+}
+
+// The grid index nearest the ellipse's exponent, where a free search starts.
+std::ptrdiff_t EllipseIndex() {
+  const std::vector<double>& grid = SuperellipseGrid();
+  std::ptrdiff_t k = 0;
+  while (k + 1 < std::ssize(grid) && grid[static_cast<std::size_t>(k) + 1] <= 2.0) ++k;
+  return k;
+}
+
+std::size_t TopPointCount(const Window& w, std::size_t first, std::size_t last, double L, double R) {
+  return TopOf(w, first, last, L, R).u.size();
+}
+
+// Placed at the cells' middles, the ends left a layer's pooled aspect 2-4 %
+// off on an independent contour at 0.1 mm spacing (the rows' widths sweeping
+// under a cell, the phases' errors not averaging out); the top between the
+// grid's exponents interpolated by the parabola alone, -1.7 % on noise-free
+// ellipses (the cubic: under 0.1 %). What the shape owes to the ends: solved
+// again with each end moved by half its cell, the change over that step
+// times the end's sigma.
+void ShapeByTop(const Window& w, std::size_t first, std::size_t last, double L, double R, std::ptrdiff_t found,
+                Silhouette& s) {
+  FreeShape f;
+  if (!ShapeBetween(w, first, last, L, R, found, f)) return;
+  double ends[2] = {L, R};
+  for (int k = 0; k < kPlacements; ++k) {
+    const EndsPlaced next = PlaceEnds(w, first, last, s.cell, f);
+    const double moved = std::max(std::abs(next.end[0] - ends[0]) / (s.cell[1] - s.cell[0]),
+                                  std::abs(next.end[1] - ends[1]) / (s.cell[3] - s.cell[2]));
+    FreeShape there;
+    if (!ShapeBetween(w, first, last, next.end[0], next.end[1], found, there)) break;
+    ends[0] = next.end[0], ends[1] = next.end[1], f = there;
+    if (moved < kSettledCell) break;
+  }
+  const EndsPlaced placed = PlaceEnds(w, first, last, s.cell, f);
+  s.aspect = f.aspect, s.exponent = f.exponent;
+  s.aspect_grid_var = f.aspect_grid_var, s.exponent_grid_var = f.exponent_grid_var;
+  s.end_sigma[0] = placed.sigma[0], s.end_sigma[1] = placed.sigma[1];
+  s.shape_consistent = placed.consistent;
+  s.aspect_end_var = s.exponent_end_var = 0.0;
+  for (int side = 0; side < 2; ++side) {
+    const double half = 0.5 * (s.cell[2 * side + 1] - s.cell[2 * side]);
+    double moved[2] = {ends[0], ends[1]};
+    moved[side] += half;
+    std::ptrdiff_t at = found;
+    FreeShape m;
+    if (!ShapeBetween(w, first, last, moved[0], moved[1], at, m)) continue;
+    const double da = (m.aspect - f.aspect) / half, dp = (m.exponent - f.exponent) / half;
+    const double v = placed.sigma[side] * placed.sigma[side];
+    s.aspect_end_var += da * da * v, s.exponent_end_var += dp * dp * v;
+  }
+}
+
+}  // namespace bead::part
