@@ -24,9 +24,9 @@ namespace {
 void SayShape(const part::PooledShape& s) {
   if (!s.exponent_solved) {
     std::printf(
-        "    bead shape (its first profiles pooled): half-height over half-width %.3f +- %.3f; an ellipse assumed "
-        "(too few of its beads overhang to show their walls and solve the exponent)\n",
-        s.aspect, s.aspect_sigma);
+        "    bead shape (its first %zu profiles pooled): half-height over half-width %.3f +- %.3f; an ellipse "
+        "assumed (too few of its beads overhang to show their walls and solve the exponent)\n",
+        s.rows, s.aspect, s.aspect_sigma);
     return;
   }
   const double off = s.exponent - 2.0, two_sigmas = 2.0 * s.exponent_sigma;
@@ -34,9 +34,9 @@ void SayShape(const part::PooledShape& s) {
                       : off > 0.0                 ? "toward a box: flatter on top, steeper at the sides"
                                                   : "toward a diamond: narrower at top and bottom";
   std::printf(
-      "    bead shape (its first profiles pooled): half-height over half-width %.3f +- %.3f, exponent %.3f +- %.3f "
-      "(%s; the two errors correlated %+.2f)\n",
-      s.aspect, s.aspect_sigma, s.exponent, s.exponent_sigma, words, s.correlation);
+      "    bead shape (its first %zu profiles pooled): half-height over half-width %.3f +- %.3f, exponent %.3f +- "
+      "%.3f (%s; the two errors correlated %+.2f)\n",
+      s.rows, s.aspect, s.aspect_sigma, s.exponent, s.exponent_sigma, words, s.correlation);
 }
 
 void SayLayers(const std::vector<part::LayerSummary>& layers) {

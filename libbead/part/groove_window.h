@@ -40,6 +40,8 @@ struct PooledShape {
   // false: too few rows were placed at their walls to solve the exponent;
   // the ellipse's is held, by assumption.
   bool exponent_solved = false;
+  // The rows whose aspects were pooled.
+  std::size_t rows = 0;
 };
 
 // The points around the bead with the surface below under each.

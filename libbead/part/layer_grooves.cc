@@ -67,7 +67,11 @@ void LayerGrooves::Add(PartGeometryRow row, const StoredProfile* points, const S
   if (pooled_ && waiting_.empty()) return emit(row);
   waiting_.push_back({std::move(row), points && under ? std::optional(*points) : std::nullopt,
                       points && under ? std::optional(*under) : std::nullopt});
-  if (!pooled_ && aspects_.size() >= kPoolProfiles) Pool();
+  if (!pooled_ && aspects_.size() >= kPoolProfiles && aspects_.size() % kLooseStep == 0) {
+    Pool();
+    if (pooled_->aspect_sigma > kLoosePool * pooled_->aspect && waiting_.size() < kMaxWaiting)
+      pooled_.reset(), pools_.pop_back();  // too loose: more rows first
+  }
   if (pooled_ || waiting_.size() >= kMaxWaiting) Flush(emit);
 }
 
@@ -139,6 +143,7 @@ double ShapeCorrelation(const std::vector<LayerGrooves::Placed>& placed) {
 void LayerGrooves::Pool() {
   PooledShape pool;
   std::tie(pool.aspect, pool.aspect_sigma) = MedianAndError(aspects_);
+  pool.rows = aspects_.size();
   if (!placed_.empty()) {
     std::vector<double> exponents;
     double lo = INFINITY, hi = -INFINITY, aspect_var = 0.0, exponent_var = 0.0, spacing = 0.0;

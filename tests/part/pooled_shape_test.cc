@@ -105,5 +105,43 @@ TEST(PooledShape, ALayerShorterThanThePoolIsPooledAtItsEnd) {
   EXPECT_EQ(e.pooled, 3) << "a short layer's rows went out with their own shapes";
 }
 
+// A pool whose aspect is known loosely after kPoolProfiles rows (a coarse,
+// noisy profiler: 0.1 mm between points, 30 um of noise) gathers more rows,
+// until its sigma is within kLoosePool of it or kMaxWaiting rows wait; on
+// the twin's own wall (0.05 mm, 10 um) every layer pools on kPoolProfiles.
+TEST(PooledShape, ALoosePoolGathersMoreRows) {
+  using part::LayerGrooves;
+  const auto pools = [](const sim::PartTwinConfig& c) {
+    const sim::PartTwin twin = sim::SimulatePartWall(c);
+    ProfileStream stream("twin", twin.scan.profiles);
+    return part::MeasurePart(stream, *twin.scan.part, twin.rig, {}, [](const part::PartGeometryRow&) {});
+  };
+  sim::PartTwinConfig c;
+  c.seed = 5;
+  c.layers = 4;
+  c.length_mm = 150.0;  // 300 profiles a layer
+  for (const part::LayerSummary& l : pools(c)) {
+    ASSERT_TRUE(l.shape) << l.layer;
+    EXPECT_EQ(l.shape->rows, LayerGrooves::kPoolProfiles) << l.layer;
+  }
+  c.point_spacing_mm = 0.1;
+  c.noise_mm = 0.03;
+  int gathered = 0;
+  for (const part::LayerSummary& l : pools(c)) {
+    ASSERT_TRUE(l.shape) << l.layer;
+    const part::PooledShape& s = *l.shape;
+    std::printf("coarse layer %lld: pooled on %zu rows, aspect %.3f +- %.3f\n", static_cast<long long>(l.layer), s.rows,
+                s.aspect, s.aspect_sigma);
+    EXPECT_GE(s.rows, LayerGrooves::kPoolProfiles) << l.layer;
+    if (s.rows > LayerGrooves::kPoolProfiles) ++gathered;
+    // Loose only where the queue filled (a few of its rows with no shape
+    // of their own: since the last check, under kLooseStep rows short).
+    EXPECT_TRUE(s.aspect_sigma <= LayerGrooves::kLoosePool * s.aspect ||
+                s.rows + LayerGrooves::kLooseStep >= LayerGrooves::kMaxWaiting)
+        << l.layer << ": " << s.rows << " rows";
+  }
+  EXPECT_GT(gathered, 0) << "no pool was loose: the test says nothing";
+}
+
 }  // namespace
 }  // namespace bead
