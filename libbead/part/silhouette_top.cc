@@ -1,6 +1,7 @@
 #include "libbead/part/silhouette_top.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -170,6 +171,30 @@ struct FreeShape {
   double z0 = NAN, b = NAN, exponent = NAN, residual_variance = NAN, aspect = NAN;
   double aspect_grid_var = 0.0, exponent_grid_var = 0.0;
 };
+// The free solves at the grid's exponents k - 2 .. k + 2, in one pass over
+// the top's points.
+std::array<FreeTop, 5> FiveSolves(const TopPoints& top, std::size_t k) {
+  const std::vector<double>& grid = SuperellipseGrid();
+  const SuperellipseTable* t[5];
+  for (std::size_t i = 0; i < 5; ++i) t[i] = &SuperellipseOf(grid[k + i - 2]);
+  TopSums m[5];
+  double z1 = 0.0, zz = 0.0;
+  for (std::size_t j = 0; j < top.u.size(); ++j) {
+    const double z = top.z[j];
+    z1 += z, zz += z * z;
+    for (std::size_t i = 0; i < 5; ++i) {
+      const double sv = t[i]->S(top.k[j], top.t[j]);
+      m[i].s1 += sv, m[i].s2 += sv * sv, m[i].zs += z * sv;
+    }
+  }
+  std::array<FreeTop, 5> out;
+  for (std::size_t i = 0; i < 5; ++i) {
+    m[i].m = static_cast<double>(top.u.size()), m[i].z1 = z1, m[i].zz = zz;
+    out[i] = FreeResidual(m[i]);
+  }
+  return out;
+}
+
 bool ShapeBetween(const Window& w, std::size_t first, std::size_t last, double L, double R, std::ptrdiff_t& found,
                   FreeShape& out) {
   const std::vector<double>& grid = SuperellipseGrid();
@@ -177,8 +202,8 @@ bool ShapeBetween(const Window& w, std::size_t first, std::size_t last, double L
   for (int moves = 0; moves < 3; ++moves) {
     if (found < 2 || found + 2 >= std::ssize(grid)) return false;
     const auto k = static_cast<std::size_t>(found);
-    const auto solve = [&](std::size_t i) { return FreeResidual(SumTop(top, SuperellipseOf(grid[i]), false)); };
-    const FreeTop f[3] = {solve(k - 1), solve(k), solve(k + 1)};
+    const std::array<FreeTop, 5> f5 = FiveSolves(top, k);
+    const FreeTop f[3] = {f5[1], f5[2], f5[3]};
     Between there;
     if (!Interpolate(f, nullptr, 0, there)) return false;
     const int side = there.x >= 0.0 ? 1 : -1;
@@ -186,8 +211,7 @@ bool ShapeBetween(const Window& w, std::size_t first, std::size_t last, double L
       found += side;
       continue;
     }
-    const FreeTop beyond = solve(static_cast<std::size_t>(found + 2 * side));
-    if (!Interpolate(f, &beyond, side, there)) return false;
+    if (!Interpolate(f, &f5[static_cast<std::size_t>(2 + 2 * side)], side, there)) return false;
     const double a = 0.5 * (R - L), step = std::log(grid[k + 1] / grid[k]);
     out.z0 = there.z0, out.b = there.b, out.exponent = grid[k] * std::exp(there.x * step);
     out.residual_variance = f[1].rss, out.aspect = there.b / a;
