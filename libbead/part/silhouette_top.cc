@@ -161,16 +161,6 @@ bool Interpolate(const FreeTop f[3], const FreeTop* beyond, int side, Between& o
   return true;
 }
 
-// The top solved free at each exponent of the grid around the least (from
-// grid index `found`): z0, b and the exponent between the grid's to the
-// next order (Interpolate), the residual variance at the least, the aspect,
-// and what the grid's steps leave in the aspect and exponent (the cubic's
-// less the parabola's). The least is moved along the grid where the vertex
-// lies nearer a neighbour. false where the grid ends or nothing is solved.
-struct FreeShape {
-  double z0 = NAN, b = NAN, exponent = NAN, residual_variance = NAN, aspect = NAN;
-  double aspect_grid_var = 0.0, exponent_grid_var = 0.0;
-};
 // The free solves at the grid's exponents k - 2 .. k + 2, in one pass over
 // the top's points.
 std::array<FreeTop, 5> FiveSolves(const TopPoints& top, std::size_t k) {
@@ -195,6 +185,16 @@ std::array<FreeTop, 5> FiveSolves(const TopPoints& top, std::size_t k) {
   return out;
 }
 
+// The top solved free at each exponent of the grid around the least (from
+// grid index `found`): z0, b and the exponent between the grid's to the
+// next order (Interpolate), the residual variance at the least, the aspect,
+// and what the grid's steps leave in the aspect and exponent (the cubic's
+// less the parabola's). The least is moved along the grid where the vertex
+// lies nearer a neighbour. false where the grid ends or nothing is solved.
+struct FreeShape {
+  double z0 = NAN, b = NAN, exponent = NAN, residual_variance = NAN, aspect = NAN;
+  double aspect_grid_var = 0.0, exponent_grid_var = 0.0;
+};
 bool ShapeBetween(const Window& w, std::size_t first, std::size_t last, double L, double R, std::ptrdiff_t& found,
                   FreeShape& out) {
   const std::vector<double>& grid = SuperellipseGrid();
@@ -321,6 +321,22 @@ std::size_t TopPointCount(const Window& w, std::size_t first, std::size_t last, 
   return TopOf(w, first, last, L, R).u.size();
 }
 
+// Where the exponent lies at the grid's ends (no two grid exponents beyond
+// it either way), the ends stay at their cells' middles, each anywhere in
+// its cell: the shape solved again with each moved by half its cell, the
+// aspect's and exponent's changes d (variance (2 d)^2 / 12).
+void EndsAnywhereInTheirCells(const Window& w, std::size_t first, std::size_t last, double L, double R,
+                              std::ptrdiff_t from, Silhouette& s) {
+  s.aspect_end_var = s.exponent_end_var = 0.0;
+  for (int side = 0; side < 2; ++side) {
+    const double half = 0.5 * (s.cell[2 * side + 1] - s.cell[2 * side]);
+    Silhouette moved = s;
+    if (SolveFree(w, first, last, side ? L : L + half, side ? R + half : R, moved, from) < 0) continue;
+    const double da = moved.aspect - s.aspect, dp = moved.exponent - s.exponent;
+    s.aspect_end_var += da * da / 3.0, s.exponent_end_var += dp * dp / 3.0;
+  }
+}
+
 // Placed at the cells' middles, the ends left a layer's pooled aspect 2-4 %
 // off on an independent contour at 0.1 mm spacing (the rows' widths sweeping
 // under a cell, the phases' errors not averaging out); the top between the
@@ -331,7 +347,7 @@ std::size_t TopPointCount(const Window& w, std::size_t first, std::size_t last, 
 void ShapeByTop(const Window& w, std::size_t first, std::size_t last, double L, double R, std::ptrdiff_t found,
                 Silhouette& s) {
   FreeShape f;
-  if (!ShapeBetween(w, first, last, L, R, found, f)) return;
+  if (!ShapeBetween(w, first, last, L, R, found, f)) return EndsAnywhereInTheirCells(w, first, last, L, R, found, s);
   double ends[2] = {L, R};
   for (int k = 0; k < kPlacements; ++k) {
     const EndsPlaced next = PlaceEnds(w, first, last, s.cell, f);

@@ -324,5 +324,18 @@ TEST(Silhouette, ABeadOfAnotherShapeIsPlacedWithItsExponent) {
   EXPECT_LT(exponent_rms, 2.0 * exponent_sigma);
 }
 
+// A bead near a box (exponent 7: the grid has no two exponents beyond it)
+// keeps its ends at their cells' middles for the pool, each anywhere in its
+// cell: its shape still solved, its variance from the ends not nothing.
+TEST(Silhouette, ABeadAtTheGridsEndKeepsItsEndsAnywhereInTheirCells) {
+  const Ellipse truth{0.13, 0.6, 3.003, 1.5015, 7.0};
+  const auto free = AtSilhouette(Seen(truth, kFlat, 0.021), truth.x0, kScale, nullptr);
+  ASSERT_TRUE(free);
+  EXPECT_NEAR(free->exponent, 7.0, 0.7);  // within the grid's last step
+  EXPECT_NEAR(free->aspect, 0.5, 0.5 * 2.0 * 0.5 * kSpacing / truth.a);
+  EXPECT_FALSE(std::isfinite(free->end_sigma[0]));
+  EXPECT_GT(free->aspect_end_var, 0.0);
+}
+
 }  // namespace
 }  // namespace bead::part
