@@ -46,8 +46,6 @@ struct Silhouette {
   // the aspect there, with the ends placed within their cells by the top
   // (part/silhouette_top.h: the pool's values); where held, the held ones.
   double exponent = 2.0, aspect = 0.0;
-  // The top's z0 and b at that exponent (e's where held).
-  double top_z0 = 0.0, top_b = 0.0;
   // Where the free shape's ends are placed by the top: each end's sigma
   // (NaN: anywhere in its cell).
   double end_sigma[2] = {NAN, NAN};

@@ -271,7 +271,6 @@ bool SolveHeld(const Window& w, std::size_t first, std::size_t last, double L, d
   if (!SolveTop(SumTop(TopOf(w, first, last, L, R), t), L, R, held.aspect, s)) return false;
   s.e.p = held.exponent, s.exponent = held.exponent;
   s.aspect = std::isfinite(held.aspect) ? held.aspect : s.e.b / s.e.a;
-  s.top_z0 = s.e.z0, s.top_b = s.e.b;
   return true;
 }
 
@@ -300,12 +299,11 @@ std::ptrdiff_t SolveFree(const Window& w, std::size_t first, std::size_t last, d
   if (!std::isfinite(at(best).rss) || !SolveTop(SumTop(top, SuperellipseOf(grid[b])), L, R, NAN, s)) return -1;
   const double a = 0.5 * (R - L);
   s.e.p = s.exponent = grid[b], s.aspect = solved[b].b / a;
-  s.top_z0 = solved[b].z0, s.top_b = solved[b].b;
   const FreeTop around[3] = {at(best - 1), solved[b], at(best + 1)};
   Between there;
   if (!Interpolate(around, nullptr, 0, there)) return best;
   s.exponent = grid[b] * std::pow(grid[b + 1] / grid[b], there.x);
-  s.top_z0 = there.z0, s.top_b = there.b, s.aspect = there.b / a;
+  s.aspect = there.b / a;
   return best;
 }
 
@@ -321,29 +319,48 @@ std::size_t TopPointCount(const Window& w, std::size_t first, std::size_t last, 
   return TopOf(w, first, last, L, R).u.size();
 }
 
-// Where the exponent lies at the grid's ends (no two grid exponents beyond
-// it either way), the ends stay at their cells' middles, each anywhere in
-// its cell: the shape solved again with each moved by half its cell, the
-// aspect's and exponent's changes d (variance (2 d)^2 / 12).
-void EndsAnywhereInTheirCells(const Window& w, std::size_t first, std::size_t last, double L, double R,
-                              std::ptrdiff_t from, Silhouette& s) {
+// What the free shape owes to where its ends lie: solved again (solve(l,
+// r, aspect, exponent)) with each end moved by half its cell, the aspect's
+// and exponent's changes over that step times the end's sigma.
+template <class Solve>
+void EndsVariance(const double ends[2], const double sigma[2], double aspect, double exponent, Solve solve,
+                  Silhouette& s) {
   s.aspect_end_var = s.exponent_end_var = 0.0;
   for (int side = 0; side < 2; ++side) {
     const double half = 0.5 * (s.cell[2 * side + 1] - s.cell[2 * side]);
-    Silhouette moved = s;
-    if (SolveFree(w, first, last, side ? L : L + half, side ? R + half : R, moved, from) < 0) continue;
-    const double da = moved.aspect - s.aspect, dp = moved.exponent - s.exponent;
-    s.aspect_end_var += da * da / 3.0, s.exponent_end_var += dp * dp / 3.0;
+    double moved[2] = {ends[0], ends[1]}, moved_aspect = NAN, moved_exponent = NAN;
+    moved[side] += half;
+    if (!solve(moved[0], moved[1], moved_aspect, moved_exponent)) continue;
+    const double da = (moved_aspect - aspect) / half, dp = (moved_exponent - exponent) / half;
+    const double v = sigma[side] * sigma[side];
+    s.aspect_end_var += da * da * v, s.exponent_end_var += dp * dp * v;
   }
+}
+
+// Where the exponent lies at the grid's ends (no two grid exponents beyond
+// it either way), the ends stay at their cells' middles, each anywhere in
+// its cell (uniform: sigma half / sqrt 3).
+void EndsAnywhereInTheirCells(const Window& w, std::size_t first, std::size_t last, double L, double R,
+                              std::ptrdiff_t from, Silhouette& s) {
+  const double ends[2] = {L, R};
+  const double sigma[2] = {0.5 * (s.cell[1] - s.cell[0]) / std::sqrt(3.0),
+                           0.5 * (s.cell[3] - s.cell[2]) / std::sqrt(3.0)};
+  EndsVariance(
+      ends, sigma, s.aspect, s.exponent,
+      [&](double l, double r, double& aspect, double& exponent) {
+        Silhouette moved = s;
+        if (SolveFree(w, first, last, l, r, moved, from) < 0) return false;
+        aspect = moved.aspect, exponent = moved.exponent;
+        return true;
+      },
+      s);
 }
 
 // Placed at the cells' middles, the ends left a layer's pooled aspect 2-4 %
 // off on an independent contour at 0.1 mm spacing (the rows' widths sweeping
 // under a cell, the phases' errors not averaging out); the top between the
 // grid's exponents interpolated by the parabola alone, -1.7 % on noise-free
-// ellipses (the cubic: under 0.1 %). What the shape owes to the ends: solved
-// again with each end moved by half its cell, the change over that step
-// times the end's sigma.
+// ellipses (the cubic: under 0.1 %).
 void ShapeByTop(const Window& w, std::size_t first, std::size_t last, double L, double R, std::ptrdiff_t found,
                 Silhouette& s) {
   FreeShape f;
@@ -363,18 +380,16 @@ void ShapeByTop(const Window& w, std::size_t first, std::size_t last, double L, 
   s.aspect_grid_var = f.aspect_grid_var, s.exponent_grid_var = f.exponent_grid_var;
   s.end_sigma[0] = placed.sigma[0], s.end_sigma[1] = placed.sigma[1];
   s.shape_consistent = placed.consistent;
-  s.aspect_end_var = s.exponent_end_var = 0.0;
-  for (int side = 0; side < 2; ++side) {
-    const double half = 0.5 * (s.cell[2 * side + 1] - s.cell[2 * side]);
-    double moved[2] = {ends[0], ends[1]};
-    moved[side] += half;
-    std::ptrdiff_t at = found;
-    FreeShape m;
-    if (!ShapeBetween(w, first, last, moved[0], moved[1], at, m)) continue;
-    const double da = (m.aspect - f.aspect) / half, dp = (m.exponent - f.exponent) / half;
-    const double v = placed.sigma[side] * placed.sigma[side];
-    s.aspect_end_var += da * da * v, s.exponent_end_var += dp * dp * v;
-  }
+  EndsVariance(
+      ends, placed.sigma, f.aspect, f.exponent,
+      [&](double l, double r, double& aspect, double& exponent) {
+        std::ptrdiff_t at = found;
+        FreeShape m;
+        if (!ShapeBetween(w, first, last, l, r, at, m)) return false;
+        aspect = m.aspect, exponent = m.exponent;
+        return true;
+      },
+      s);
 }
 
 }  // namespace bead::part
