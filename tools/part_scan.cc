@@ -22,21 +22,18 @@ namespace {
 // The layer's pooled bead shape, and in words how far from an ellipse (or
 // that an ellipse is assumed).
 void SayShape(const part::PooledShape& s) {
+  std::printf("    bead shape (its first %zu profiles pooled): half-height over half-width %.3f +- %.3f", s.rows,
+              s.aspect, s.aspect_sigma);
   if (!s.exponent_solved) {
-    std::printf(
-        "    bead shape (its first %zu profiles pooled): half-height over half-width %.3f +- %.3f; an ellipse "
-        "assumed (too few of its beads overhang to show their walls and solve the exponent)\n",
-        s.rows, s.aspect, s.aspect_sigma);
+    std::printf("; an ellipse assumed (too few of its beads overhang to show their walls and solve the exponent)\n");
     return;
   }
   const double off = s.exponent - 2.0, two_sigmas = 2.0 * s.exponent_sigma;
   const char* words = std::abs(off) <= two_sigmas ? "an ellipse, within two sigmas"
                       : off > 0.0                 ? "toward a box: flatter on top, steeper at the sides"
                                                   : "toward a diamond: narrower at top and bottom";
-  std::printf(
-      "    bead shape (its first %zu profiles pooled): half-height over half-width %.3f +- %.3f, exponent %.3f +- "
-      "%.3f (%s; the two errors correlated %+.2f)\n",
-      s.rows, s.aspect, s.aspect_sigma, s.exponent, s.exponent_sigma, words, s.correlation);
+  std::printf(", exponent %.3f +- %.3f (%s; the two errors correlated %+.2f)\n", s.exponent, s.exponent_sigma, words,
+              s.correlation);
 }
 
 void SayLayers(const std::vector<part::LayerSummary>& layers) {

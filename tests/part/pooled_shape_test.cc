@@ -26,11 +26,15 @@ struct PoolErrors {
   int layers = 0, pooled = 0;
 };
 
-void AddWall(const sim::PartTwinConfig& c, PoolErrors& e) {
+// The twin's wall measured: each layer's brief.
+std::vector<part::LayerSummary> Layers(const sim::PartTwinConfig& c) {
   const sim::PartTwin twin = sim::SimulatePartWall(c);
   ProfileStream stream("twin", twin.scan.profiles);
-  const auto layers = part::MeasurePart(stream, *twin.scan.part, twin.rig, {}, [](const part::PartGeometryRow&) {});
-  for (const part::LayerSummary& l : layers) {
+  return part::MeasurePart(stream, *twin.scan.part, twin.rig, {}, [](const part::PartGeometryRow&) {});
+}
+
+void AddWall(const sim::PartTwinConfig& c, PoolErrors& e) {
+  for (const part::LayerSummary& l : Layers(c)) {
     ++e.layers;
     if (!l.shape) continue;
     ++e.pooled;
@@ -111,23 +115,18 @@ TEST(PooledShape, ALayerShorterThanThePoolIsPooledAtItsEnd) {
 // the twin's own wall (0.05 mm, 10 um) every layer pools on kPoolProfiles.
 TEST(PooledShape, ALoosePoolGathersMoreRows) {
   using part::LayerGrooves;
-  const auto pools = [](const sim::PartTwinConfig& c) {
-    const sim::PartTwin twin = sim::SimulatePartWall(c);
-    ProfileStream stream("twin", twin.scan.profiles);
-    return part::MeasurePart(stream, *twin.scan.part, twin.rig, {}, [](const part::PartGeometryRow&) {});
-  };
   sim::PartTwinConfig c;
   c.seed = 5;
   c.layers = 4;
   c.length_mm = 150.0;  // 300 profiles a layer
-  for (const part::LayerSummary& l : pools(c)) {
+  for (const part::LayerSummary& l : Layers(c)) {
     ASSERT_TRUE(l.shape) << l.layer;
     EXPECT_EQ(l.shape->rows, LayerGrooves::kPoolProfiles) << l.layer;
   }
   c.point_spacing_mm = 0.1;
   c.noise_mm = 0.03;
   int gathered = 0;
-  for (const part::LayerSummary& l : pools(c)) {
+  for (const part::LayerSummary& l : Layers(c)) {
     ASSERT_TRUE(l.shape) << l.layer;
     const part::PooledShape& s = *l.shape;
     std::printf("coarse layer %lld: pooled on %zu rows, aspect %.3f +- %.3f\n", static_cast<long long>(l.layer), s.rows,
