@@ -177,6 +177,25 @@ double CrestVertex(const Gains& g, std::span<const float> z, const Span& s, std:
   return std::abs(vertex) <= half ? xc + vertex : xc;
 }
 
+// The crest: the first of the run's points whose median of three new
+// heights (itself and its neighbours in the run, an end its own twice) is
+// highest, as an offset from the left foot. The run's heights copied
+// first (its points are the gains', not the profile's), then read in
+// place: floats, whose medians and order are their doubles'.
+std::size_t CrestOf(const Gains& g, std::span<const float> z, const Span& s) {
+  thread_local std::vector<float> run;
+  const std::size_t n = s.foot_right - s.foot_left + 1;
+  run.resize(n);
+  for (std::size_t k = 0; k < n; ++k) run[k] = z[g.index[s.foot_left + k]];
+  const auto median = [](float a, float b, float c) { return std::max(std::min(a, b), std::min(std::max(a, b), c)); };
+  std::size_t crest = 0;
+  float top = median(run[0], run[0], run[n > 1 ? 1 : 0]);
+  for (std::size_t k = 1; k + 1 < n; ++k)
+    if (const float m = median(run[k - 1], run[k], run[k + 1]); m > top) top = m, crest = k;
+  if (n > 1 && median(run[n - 2], run[n - 1], run[n - 1]) > top) crest = n - 1;
+  return crest;
+}
+
 void Geometry(const Gains& g, std::span<const float> z, const Span& s, double floor, AddedBead& out) {
   double area = 0.0;
   for (std::size_t k = s.bare_left; k < s.bare_right; ++k) {
@@ -186,14 +205,7 @@ void Geometry(const Gains& g, std::span<const float> z, const Span& s, double fl
   out.area_mm2 = area;
   out.width_mm = Crossing(g, s.foot_right, s.bare_right, floor) - Crossing(g, s.bare_left, s.foot_left, floor);
   out.edge_left_mm = g.d[s.foot_left], out.edge_right_mm = g.d[s.foot_right];
-  // The crest: the highest median of three new heights; the gain there.
-  std::size_t crest = s.foot_left;
-  double top = -1e300;
-  for (std::size_t k = s.foot_left; k <= s.foot_right; ++k) {
-    const std::size_t lo = k > s.foot_left ? k - 1 : k, hi = std::min(k + 1, s.foot_right);
-    const double m = Median3(z[g.index[lo]], z[g.index[k]], z[g.index[hi]]);
-    if (m > top) top = m, crest = k;
-  }
+  const std::size_t crest = s.foot_left + CrestOf(g, z, s);
   const std::size_t lo = crest > s.foot_left ? crest - 1 : crest, hi = std::min(crest + 1, s.foot_right);
   out.height_mm = Median3(g.d[lo], g.d[crest], g.d[hi]);
   out.center_x_mm = CrestVertex(g, z, s, crest, 0.2 * out.width_mm);

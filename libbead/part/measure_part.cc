@@ -13,6 +13,7 @@
 #include "libbead/io/part_scan_csv.h"
 #include "libbead/part/bed_arc.h"
 #include "libbead/part/layer_grooves.h"
+#include "libbead/part/part_kernel.h"
 
 namespace bead::part {
 namespace {
@@ -49,12 +50,8 @@ StoredProfile InBedFrame(const ProfileView& v, double path, double frame_x, doub
   p.x_mm.resize(points), p.z_mm.resize(points);
   // Every point moved; a sensor's complete profile (every point finite, x
   // increasing) is then taken as it is, checked without branches.
-  int off = 0;
-  for (std::size_t j = 0; j < points; ++j) {
-    const auto x = static_cast<float>(v.x_mm[j] + frame_x), z = static_cast<float>(v.z_mm[j] + frame_z);
-    p.x_mm[j] = x, p.z_mm[j] = z;
-    off |= !(x - x == 0.0f) | !(z - z == 0.0f);  // NaN and infinity
-  }
+  int off =
+      ActivePartKernel().to_bed(v.x_mm.data(), v.z_mm.data(), points, frame_x, frame_z, p.x_mm.data(), p.z_mm.data());
   for (std::size_t j = 1; j < points; ++j) off |= !(p.x_mm[j - 1] < p.x_mm[j]);
   if (off) KeepValid(p);
   p.spacing_mm = PointSpacingMm(p.x_mm);

@@ -2,7 +2,9 @@
 #include "libbead/part/part_kernel.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <type_traits>
 
@@ -291,10 +293,25 @@ EllipseSums Ellipse(const double* x, const double* z, const double* old, std::si
   return e.aspect == e.aspect ? EllipseOver<true>(x, z, old, lo, hi, e) : EllipseOver<false>(x, z, old, lo, hi, e);
 }
 
+// (float)(x + frame) in doubles: one rounding, no product to contract,
+// so the builds agree bit for bit. NaN or infinity told by the exponent's
+// bits (this build's associative math folds v - v to 0).
+bool ToBed(const float* x, const float* z, std::size_t n, double frame_x, double frame_z, float* ox, float* oz) {
+  uint32_t off = 0;
+  const auto not_finite = [](float v) { return (std::bit_cast<uint32_t>(v) & 0x7f800000u) == 0x7f800000u; };
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto xi = static_cast<float>(static_cast<double>(x[i]) + frame_x);
+    const auto zi = static_cast<float>(static_cast<double>(z[i]) + frame_z);
+    ox[i] = xi, oz[i] = zi;
+    off |= static_cast<uint32_t>(not_finite(xi)) | static_cast<uint32_t>(not_finite(zi));
+  }
+  return off != 0;
+}
+
 #define BEAD_STRINGIFY_(x) #x
 #define BEAD_STRINGIFY(x) BEAD_STRINGIFY_(x)
-constexpr PartKernel kPartKernel{BEAD_STRINGIFY(BEAD_KERNEL), Truncated, Local, Agree,  BelowAt,
-                                 SecondDifferences,           Band,      Kth,   Ellipse};
+constexpr PartKernel kPartKernel{BEAD_STRINGIFY(BEAD_KERNEL), Truncated, Local, Agree,   BelowAt,
+                                 SecondDifferences,           Band,      Kth,   Ellipse, ToBed};
 
 }  // namespace
 

@@ -9,6 +9,7 @@
 //    in (part/added_bead.cc).
 //  - The hidden groove's ellipse: its residuals' sums over the points under
 //    it (part/hidden_groove.cc), in doubles, four a register.
+//  - A profile's points moved into the bed frame (part/measure_part.cc).
 #pragma once
 
 #include <cstddef>
@@ -82,6 +83,10 @@ struct PartKernel {
   // old (the surface below there), as hidden_groove.cc defines them.
   EllipseSums (*ellipse)(const double* x, const double* z, const double* old, std::size_t lo, std::size_t hi,
                          const EllipseAt& e);
+  // A profile's points moved into the bed frame: ox[i] = x[i] + frame_x,
+  // oz[i] = z[i] + frame_z, each sum in doubles rounded once to a float
+  // (the same in both builds); whether any moved value is NaN or infinite.
+  bool (*to_bed)(const float* x, const float* z, std::size_t n, double frame_x, double frame_z, float* ox, float* oz);
 };
 
 // The build this processor runs.

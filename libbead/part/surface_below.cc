@@ -1,7 +1,9 @@
 #include "libbead/part/surface_below.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 namespace bead::part {
 namespace {
@@ -112,17 +114,22 @@ bool Blend(const SurfaceRow& a, const SurfaceRow& b, double w, SurfaceRow& r) {
   };
   b_alone(shift, std::min(lo, shift + nb));
   b_alone(std::max(hi, shift), shift + nb);
-  // (On pointers, both ways computed and one kept: a loop the compiler
-  // makes four or eight values a step.)
   const float wa = static_cast<float>(1 - w), wb = static_cast<float>(w);
   float *rz = r.z_mm.data() + (lo - first), *rv = r.variance.data() + (lo - first);
   const float *bz = b.z_mm.data() + (lo - shift), *bv = b.variance.data() + (lo - shift);
+  // On pointers, both ways computed and one kept, chosen by the values'
+  // bits (b's NaN keeps a's, a's alone b's): a float comparison may trap,
+  // so the compiler kept a branch per value; integer masks it makes four or
+  // eight values a step.
+  const auto bits = [](float v) { return std::bit_cast<uint32_t>(v); };
   for (std::ptrdiff_t k = 0; k < hi - lo; ++k) {
     const float za = rz[k], va = rv[k], zb = bz[k], vb = bv[k];
-    const bool a_nan = za != za, b_nan = zb != zb;
+    const uint32_t b_nan = 0u - static_cast<uint32_t>((bits(zb) & 0x7fffffffu) > 0x7f800000u);
+    const uint32_t a_nan = (0u - static_cast<uint32_t>((bits(za) & 0x7fffffffu) > 0x7f800000u)) & ~b_nan;
+    const uint32_t both = ~(a_nan | b_nan);
     const float v = wa * wa * va + wb * wb * vb, z = wa * za + wb * zb;
-    rv[k] = b_nan ? va : a_nan ? vb : v;
-    rz[k] = b_nan ? za : a_nan ? zb : z;
+    rv[k] = std::bit_cast<float>((bits(va) & b_nan) | (bits(vb) & a_nan) | (bits(v) & both));
+    rz[k] = std::bit_cast<float>((bits(za) & b_nan) | (bits(zb) & a_nan) | (bits(z) & both));
   }
   return true;
 }
