@@ -240,6 +240,7 @@ HiddenGroove AtTheSilhouette(const Silhouette& s, const Around& o, const PooledS
   out.aspect_end_var = s.aspect_end_var, out.exponent_end_var = s.exponent_end_var, out.left_end_mm = s.e.x0 - s.e.a;
   out.aspect_grid_var = s.aspect_grid_var, out.exponent_grid_var = s.exponent_grid_var;
   out.shape_consistent = s.shape_consistent;
+  out.end_place[0] = s.end_place[0], out.end_place[1] = s.end_place[1];
   out.dx0 = s.e.x0 - center, out.dz0 = s.e.z0 - base, out.a = s.e.a, out.b = s.e.b;
   out.ok = std::isfinite(out.hidden_mm2) && std::isfinite(out.sigma_mm2);
   return out;
@@ -278,7 +279,8 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   // over 4) and 15 % of its height. (The first values tried, not tuned:
   // the walls' and contours' figures were read once, with these.)
   const SilhouetteScale scale{std::max(3.0 * noise_mm, 0.02 * height), std::max(6.0 * noise_mm, 0.15 * height)};
-  if (const std::optional<Silhouette> s = AtSilhouette(w, center, scale, pooled))
+  const double* start_place = previous && previous->ok ? previous->end_place : nullptr;
+  if (const std::optional<Silhouette> s = AtSilhouette(w, center, scale, pooled, start_place))
     return AtTheSilhouette(*s, around, pooled, center, base);
   // Otherwise fitted: an ellipse, its aspect the layer's where held.
   const double held = pooled ? pooled->aspect : NAN;

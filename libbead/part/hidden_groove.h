@@ -49,6 +49,9 @@ struct HiddenGroove {
   // agrees with the walls' cells (part/silhouette.h: else not pooled).
   double aspect_grid_var = 0.0, exponent_grid_var = 0.0;
   bool shape_consistent = true;
+  // Where the top placed the free shape's ends in their cells
+  // (Silhouette::end_place): where the next row's placement starts.
+  double end_place[2] = {kNaN, kNaN};
   // Placed at the silhouette: the sigma holds the area seen's edges too
   // (they move with the ellipse's ends; part/silhouette.h).
   bool at_silhouette = false;

@@ -108,7 +108,7 @@ bool PlaceGappedEnds(const Window& w, std::size_t first, std::size_t last, doubl
 }  // namespace
 
 std::optional<Silhouette> AtSilhouette(const Window& w, double center, const SilhouetteScale& k,
-                                       const PooledShape* held) {
+                                       const PooledShape* held, const double* start_place) {
   const std::size_t n = w.x.size();
   const auto c = static_cast<std::size_t>(std::lower_bound(w.x.begin(), w.x.end(), center) - w.x.begin());
   if (c >= n || !(w.Gain(c) > k.floor)) return std::nullopt;
@@ -176,7 +176,7 @@ std::optional<Silhouette> AtSilhouette(const Window& w, double center, const Sil
   // The shape (for the layer's pool) with the ends placed by the top; the
   // bead itself stays placed at the cells' middles (its area seen counts
   // the walls' cells as trapezoids, which the middles match).
-  ShapeByTop(w, jl + 1, jr, L, R, found, s);
+  ShapeByTop(w, jl + 1, jr, L, R, found, s, start_place);
   return s;
 }
 

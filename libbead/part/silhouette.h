@@ -49,6 +49,9 @@ struct Silhouette {
   // Where the free shape's ends are placed by the top: each end's sigma
   // (NaN: anywhere in its cell).
   double end_sigma[2] = {NAN, NAN};
+  // ... and where each settled: its share of the way across its cell (a
+  // row's placement starts from the row before's).
+  double end_place[2] = {NAN, NAN};
   // false where the top places an end outside the cell its wall was found
   // in by more than three of its sigmas: the wall taken for the end is not
   // the bead's (the layer below's wall, interpolated across a registration
@@ -88,13 +91,15 @@ struct SilhouetteScale {
 };
 
 // The bead at the silhouette of the bead around `center` in w; held: the
-// layer's shape (nullptr: its aspect and exponent solved too).
+// layer's shape (nullptr: its aspect and exponent solved too); start_place:
+// where the row before's free shape placed its ends (Silhouette::end_place;
+// nullptr: none).
 // nullopt where the run around the centre is too short, or either end is
 // no wall (the gain rises by less than `rise` there, or the ellipse placed
 // stands on the surface below by less at its end: the bead's side meets
 // the surface below, nothing to place it by).
 std::optional<Silhouette> AtSilhouette(const Window& w, double center, const SilhouetteScale& scale,
-                                       const PooledShape* held);
+                                       const PooledShape* held, const double* start_place = nullptr);
 
 // The variance the placement adds to the area seen less the groove: each
 // end anywhere in its cell (uniform: the range of the difference's change

@@ -362,20 +362,35 @@ void EndsAnywhereInTheirCells(const Window& w, std::size_t first, std::size_t la
 // grid's exponents interpolated by the parabola alone, -1.7 % on noise-free
 // ellipses (the cubic: under 0.1 %).
 void ShapeByTop(const Window& w, std::size_t first, std::size_t last, double L, double R, std::ptrdiff_t found,
-                Silhouette& s) {
+                Silhouette& s, const double* start) {
   FreeShape f;
-  if (!ShapeBetween(w, first, last, L, R, found, f)) return EndsAnywhereInTheirCells(w, first, last, L, R, found, s);
   double ends[2] = {L, R};
-  for (int k = 0; k < kPlacements; ++k) {
-    const EndsPlaced next = PlaceEnds(w, first, last, s.cell, f);
-    const double moved = std::max(std::abs(next.end[0] - ends[0]) / (s.cell[1] - s.cell[0]),
-                                  std::abs(next.end[1] - ends[1]) / (s.cell[3] - s.cell[2]));
-    FreeShape there;
-    if (!ShapeBetween(w, first, last, next.end[0], next.end[1], found, there)) break;
-    ends[0] = next.end[0], ends[1] = next.end[1], f = there;
-    if (moved < kSettledCell) break;
+  const auto in_cell = [&](int side, double place) {
+    return s.cell[2 * side] + place * (s.cell[2 * side + 1] - s.cell[2 * side]);
+  };
+  // From where the row before's ends settled in their cells (a bead's
+  // width changes little from one profile to the next), else the middles.
+  bool solved = false;
+  if (start && std::isfinite(start[0]) && std::isfinite(start[1])) {
+    std::ptrdiff_t at = found;
+    const double warm[2] = {in_cell(0, start[0]), in_cell(1, start[1])};
+    if ((solved = ShapeBetween(w, first, last, warm[0], warm[1], at, f)))
+      ends[0] = warm[0], ends[1] = warm[1], found = at;
   }
-  const EndsPlaced placed = PlaceEnds(w, first, last, s.cell, f);
+  if (!solved && !ShapeBetween(w, first, last, L, R, found, f))
+    return EndsAnywhereInTheirCells(w, first, last, L, R, found, s);
+  EndsPlaced placed = PlaceEnds(w, first, last, s.cell, f);
+  for (int k = 0; k < kPlacements; ++k) {
+    const double moved = std::max(std::abs(placed.end[0] - ends[0]) / (s.cell[1] - s.cell[0]),
+                                  std::abs(placed.end[1] - ends[1]) / (s.cell[3] - s.cell[2]));
+    if (moved < kSettledCell) break;
+    FreeShape there;
+    if (!ShapeBetween(w, first, last, placed.end[0], placed.end[1], found, there)) break;
+    ends[0] = placed.end[0], ends[1] = placed.end[1], f = there;
+    placed = PlaceEnds(w, first, last, s.cell, f);
+  }
+  for (int side = 0; side < 2; ++side)
+    s.end_place[side] = (ends[side] - s.cell[2 * side]) / (s.cell[2 * side + 1] - s.cell[2 * side]);
   s.aspect = f.aspect, s.exponent = f.exponent;
   s.aspect_grid_var = f.aspect_grid_var, s.exponent_grid_var = f.exponent_grid_var;
   s.end_sigma[0] = placed.sigma[0], s.end_sigma[1] = placed.sigma[1];

@@ -40,8 +40,10 @@ std::size_t TopPointCount(const Window& w, std::size_t first, std::size_t last, 
 // The free shape s (solved at ends L, R, grid index `found`) with its ends
 // placed within their cells by the top: s's aspect, exponent, their
 // variances from the ends' places and from the grid's steps, and whether
-// the top agrees with the cells (Silhouette::shape_consistent).
+// the top agrees with the cells (Silhouette::shape_consistent); the
+// placement starts from `start` (Silhouette::end_place: the row before's)
+// where given, else from the cells' middles.
 void ShapeByTop(const Window& w, std::size_t first, std::size_t last, double L, double R, std::ptrdiff_t found,
-                Silhouette& s);
+                Silhouette& s, const double* start = nullptr);
 
 }  // namespace bead::part
