@@ -78,8 +78,14 @@ std::optional<SurfaceGrid> SampledBed(const StoredProfile& p, double step, doubl
   const std::size_t n = GridPoints(p.x_mm.front(), p.x_mm.back(), row.dx_mm);
   if (n < 2) return std::nullopt;
   row.z_mm.resize(n);
-  for (std::size_t k = 0; k < n; ++k)
-    row.z_mm[k] = static_cast<float>(height_at(row.x0_mm + static_cast<double>(k) * row.dx_mm - frame_x) + frame_z);
+  // (From locals, an int index: written through the row's own buffer, its
+  // x0 and dx were read again for every value, and a 64-bit index turns
+  // into a double one value at a time.)
+  const double x0 = row.x0_mm, dx = row.dx_mm;
+  float* z = row.z_mm.data();
+  const auto count = static_cast<int>(n);
+  for (int k = 0; k < count; ++k)
+    z[k] = static_cast<float>(height_at(x0 + static_cast<double>(k) * dx - frame_x) + frame_z);
   if (at_points) row.at_points = true, row.variance.assign(n, 0.0f);
   return SurfaceGrid(std::move(row));
 }
