@@ -1,7 +1,9 @@
 #include "libbead/part/added_bead.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "libbead/part/grid_costs.h"
@@ -33,8 +35,11 @@ const Gains& GainsAt(std::span<const float> x, std::span<const float> z, const S
     std::size_t a = 0, b = x.size();
     while (a < b && std::isnan(under[a])) ++a;
     while (b > a && std::isnan(under[b - 1])) --b;
-    int unknown = 0;
-    for (std::size_t i = a; i < b; ++i) unknown |= under[i] != under[i];
+    // (NaN told by its bits: a float comparison may trap, and kept a
+    // branch per value.)
+    uint32_t unknown = 0;
+    for (std::size_t i = a; i < b; ++i)
+      unknown |= static_cast<uint32_t>((std::bit_cast<uint32_t>(under[i]) & 0x7fffffffu) > 0x7f800000u);
     if (!unknown) {
       g.index.resize(b - a), g.x.resize(b - a), g.d.resize(b - a);
       for (std::size_t i = a; i < b; ++i)
