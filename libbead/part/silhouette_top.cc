@@ -28,12 +28,32 @@ const TopPoints& TopOf(const Window& w, std::size_t first, std::size_t last, dou
   p.u.resize(most), p.z.resize(most), p.t.resize(most), p.k.resize(most);
   const double x0 = 0.5 * (L + R);
   p.per_a = 2.0 / (R - L);
+  const auto u_at = [&](std::size_t j) { return (w.x[j] - x0) * p.per_a; };
   std::size_t n = 0;
-  for (std::size_t j = first; j <= last; ++j) {
-    const double u = (w.x[j] - x0) * p.per_a;
-    if (!(std::abs(u) <= kInner)) continue;
+  const auto keep = [&](std::size_t j, double u) {
     SuperellipseTable::Locate(u, p.k[n], p.t[n]);
     p.u[n] = u, p.z[n] = w.z[j], ++n;
+  };
+  if (!(p.per_a > 0.0)) {
+    for (std::size_t j = first; j <= last; ++j)
+      if (const double u = u_at(j); std::abs(u) <= kInner) keep(j, u);
+  } else {
+    // x increases, and u with it: the points within kInner are one range,
+    // its ends found by the test each point would be put to.
+    const auto first_where = [&](std::size_t a, auto above) {
+      std::size_t b = last + 1;
+      while (a < b) {
+        const std::size_t m = a + (b - a) / 2;
+        if (above(u_at(m)))
+          b = m;
+        else
+          a = m + 1;
+      }
+      return a;
+    };
+    const std::size_t lo = first_where(first, [](double u) { return u >= -kInner; });
+    const std::size_t hi = first_where(lo, [](double u) { return u > kInner; });
+    for (std::size_t j = lo; j < hi; ++j) keep(j, u_at(j));
   }
   p.u.resize(n), p.z.resize(n), p.t.resize(n), p.k.resize(n);
   return p;
