@@ -2,7 +2,9 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -29,6 +31,17 @@ struct GrooveSum {
   double by_exponent = 0.0;     // mm^2 per unit of p
   double variance_under = 0.0;  // mm
 };
+
+// Neither NaN nor infinite, told by the exponent's bits (std::isfinite
+// here was a fifth of the window's loop, and a branch).
+bool Finite(double v) {
+  constexpr uint64_t kExponent = 0x7ff0000000000000u;
+  return (std::bit_cast<uint64_t>(v) & kExponent) != kExponent;
+}
+bool Finite(float v) {
+  constexpr uint32_t kExponent = 0x7f800000u;
+  return (std::bit_cast<uint32_t>(v) & kExponent) != kExponent;
+}
 
 // The surface below, moved by the shift, sampled at many places: one
 // row's (a blend's, a layer's on its grid) with its step's inverse taken
@@ -266,7 +279,7 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   for (std::size_t j = first; j < first + span; ++j) {
     const double old = under.Z(x[j]);
     w.x[n] = x[j], w.z[n] = z[j], w.old[n] = old;
-    n += std::isfinite(old) && std::isfinite(z[j]);
+    n += Finite(old) & Finite(z[j]);
   }
   w.x.resize(n), w.z.resize(n), w.old.resize(n);
   if (w.x.size() < 12) return out;
