@@ -279,7 +279,7 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   for (std::size_t j = first; j < first + span; ++j) {
     const double old = under.Z(x[j]);
     w.x[n] = x[j], w.z[n] = z[j], w.old[n] = old;
-    n += Finite(old) & Finite(z[j]);
+    n += static_cast<std::size_t>(Finite(old)) & static_cast<std::size_t>(Finite(z[j]));
   }
   w.x.resize(n), w.z.resize(n), w.old.resize(n);
   if (w.x.size() < 12) return out;
