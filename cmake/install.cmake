@@ -25,7 +25,8 @@ install(TARGETS ${bead_full_targets} EXPORT beadTargets ARCHIVE DESTINATION ${CM
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/libbead/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/libbead
   FILES_MATCHING PATTERN "*.h"
   PATTERN "vec8.h" EXCLUDE PATTERN "vec_sort.h" EXCLUDE PATTERN "kernel.h" EXCLUDE PATTERN "part_kernel.h" EXCLUDE PATTERN "grid_costs.h" EXCLUDE PATTERN "bead_heights.h" EXCLUDE PATTERN "sim_yaml_reader.h" EXCLUDE PATTERN "sim_timeline.h" EXCLUDE
-  PATTERN "output_error.h" EXCLUDE PATTERN "stripe_steger.h" EXCLUDE PATTERN "stripe_line.h" EXCLUDE)
+  PATTERN "output_error.h" EXCLUDE PATTERN "stripe_steger.h" EXCLUDE PATTERN "stripe_line.h" EXCLUDE
+  PATTERN "float_bits.h" EXCLUDE)
 install(FILES ${PROJECT_SOURCE_DIR}/include/bead/bead.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/bead)
 install(TARGETS bead bead-measure bead-flow bead-batch bead-calibrate bead-simulate bead-import bead-export bead-frames
   bead-identify bead-explain bead-report bead-tune bead-feedforward RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})

@@ -1,11 +1,11 @@
 #include "libbead/part/added_bead.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <vector>
 
+#include "libbead/core/float_bits.h"
 #include "libbead/part/grid_costs.h"
 #include "libbead/part/part_kernel.h"
 #include "libbead/part/registration.h"
@@ -35,11 +35,8 @@ const Gains& GainsAt(std::span<const float> x, std::span<const float> z, const S
     std::size_t a = 0, b = x.size();
     while (a < b && std::isnan(under[a])) ++a;
     while (b > a && std::isnan(under[b - 1])) --b;
-    // (NaN told by its bits: a float comparison may trap, and kept a
-    // branch per value.)
-    uint32_t unknown = 0;
-    for (std::size_t i = a; i < b; ++i)
-      unknown |= static_cast<uint32_t>((std::bit_cast<uint32_t>(under[i]) & 0x7fffffffu) > 0x7f800000u);
+    uint32_t unknown = 0;  // (by the bits: core/float_bits.h)
+    for (std::size_t i = a; i < b; ++i) unknown |= static_cast<uint32_t>(IsNanBits(under[i]));
     if (!unknown) {
       g.index.resize(b - a), g.x.resize(b - a), g.d.resize(b - a);
       for (std::size_t i = a; i < b; ++i)
@@ -58,7 +55,10 @@ const Gains& GainsAt(std::span<const float> x, std::span<const float> z, const S
   return g;
 }
 
-double Median3(double a, double b, double c) { return std::max(std::min(a, b), std::min(std::max(a, b), c)); }
+template <class T>
+T Median3(T a, T b, T c) {
+  return std::max(std::min(a, b), std::min(std::max(a, b), c));
+}
 
 // The median of v (reordered).
 double MedianOf(std::vector<float>& v) {
@@ -192,12 +192,11 @@ std::size_t CrestOf(const Gains& g, std::span<const float> z, const Span& s) {
   const std::size_t n = s.foot_right - s.foot_left + 1;
   run.resize(n);
   for (std::size_t k = 0; k < n; ++k) run[k] = z[g.index[s.foot_left + k]];
-  const auto median = [](float a, float b, float c) { return std::max(std::min(a, b), std::min(std::max(a, b), c)); };
   std::size_t crest = 0;
-  float top = median(run[0], run[0], run[n > 1 ? 1 : 0]);
+  float top = Median3(run[0], run[0], run[n > 1 ? 1 : 0]);
   for (std::size_t k = 1; k + 1 < n; ++k)
-    if (const float m = median(run[k - 1], run[k], run[k + 1]); m > top) top = m, crest = k;
-  if (n > 1 && median(run[n - 2], run[n - 1], run[n - 1]) > top) crest = n - 1;
+    if (const float m = Median3(run[k - 1], run[k], run[k + 1]); m > top) top = m, crest = k;
+  if (n > 1 && Median3(run[n - 2], run[n - 1], run[n - 1]) > top) crest = n - 1;
   return crest;
 }
 

@@ -2,12 +2,11 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
-#include <bit>
 #include <cmath>
-#include <cstdint>
 #include <optional>
 #include <vector>
 
+#include "libbead/core/float_bits.h"
 #include "libbead/part/part_kernel.h"
 #include "libbead/part/silhouette.h"
 #include "libbead/part/superellipse.h"
@@ -31,17 +30,6 @@ struct GrooveSum {
   double by_exponent = 0.0;     // mm^2 per unit of p
   double variance_under = 0.0;  // mm
 };
-
-// Neither NaN nor infinite, told by the exponent's bits (std::isfinite
-// here was a fifth of the window's loop, and a branch).
-bool Finite(double v) {
-  constexpr uint64_t kExponent = 0x7ff0000000000000u;
-  return (std::bit_cast<uint64_t>(v) & kExponent) != kExponent;
-}
-bool Finite(float v) {
-  constexpr uint32_t kExponent = 0x7f800000u;
-  return (std::bit_cast<uint32_t>(v) & kExponent) != kExponent;
-}
 
 // The surface below, moved by the shift, sampled at many places: one
 // row's (a blend's, a layer's on its grid) with its step's inverse taken
@@ -279,7 +267,8 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   for (std::size_t j = first; j < first + span; ++j) {
     const double old = under.Z(x[j]);
     w.x[n] = x[j], w.z[n] = z[j], w.old[n] = old;
-    n += static_cast<std::size_t>(Finite(old)) & static_cast<std::size_t>(Finite(z[j]));
+    // (By the bits, core/float_bits.h: std::isfinite was a fifth of this loop.)
+    n += static_cast<std::size_t>(IsFiniteBits(old)) & static_cast<std::size_t>(IsFiniteBits(z[j]));
   }
   w.x.resize(n), w.z.resize(n), w.old.resize(n);
   if (w.x.size() < 12) return out;

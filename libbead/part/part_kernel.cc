@@ -2,12 +2,12 @@
 #include "libbead/part/part_kernel.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <type_traits>
 
+#include "libbead/core/float_bits.h"
 #include "libbead/profile/vec8.h"
 #include "libbead/profile/vec_sort.h"
 
@@ -294,16 +294,15 @@ EllipseSums Ellipse(const double* x, const double* z, const double* old, std::si
 }
 
 // (float)(x + frame) in doubles: one rounding, no product to contract,
-// so the builds agree bit for bit. NaN or infinity told by the exponent's
-// bits (this build's associative math folds v - v to 0).
+// so the builds agree bit for bit. NaN or infinity told by the bits
+// (core/float_bits.h: this build's associative math folds v - v to 0).
 bool ToBed(const float* x, const float* z, std::size_t n, double frame_x, double frame_z, float* ox, float* oz) {
   uint32_t off = 0;
-  const auto not_finite = [](float v) { return (std::bit_cast<uint32_t>(v) & 0x7f800000u) == 0x7f800000u; };
   for (std::size_t i = 0; i < n; ++i) {
     const auto xi = static_cast<float>(static_cast<double>(x[i]) + frame_x);
     const auto zi = static_cast<float>(static_cast<double>(z[i]) + frame_z);
     ox[i] = xi, oz[i] = zi;
-    off |= static_cast<uint32_t>(not_finite(xi)) | static_cast<uint32_t>(not_finite(zi));
+    off |= static_cast<uint32_t>(!IsFiniteBits(xi)) | static_cast<uint32_t>(!IsFiniteBits(zi));
   }
   return off != 0;
 }

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "libbead/core/float_bits.h"
+
 namespace bead::part {
 namespace {
 
@@ -117,15 +119,14 @@ bool Blend(const SurfaceRow& a, const SurfaceRow& b, double w, SurfaceRow& r) {
   const float wa = static_cast<float>(1 - w), wb = static_cast<float>(w);
   float *rz = r.z_mm.data() + (lo - first), *rv = r.variance.data() + (lo - first);
   const float *bz = b.z_mm.data() + (lo - shift), *bv = b.variance.data() + (lo - shift);
-  // On pointers, both ways computed and one kept, chosen by the values'
-  // bits (b's NaN keeps a's, a's alone b's): a float comparison may trap,
-  // so the compiler kept a branch per value; integer masks it makes four or
-  // eight values a step.
+  // On pointers, both ways computed and one kept, chosen by integer masks
+  // from the values' bits (b's NaN keeps a's, a's alone b's;
+  // core/float_bits.h): a loop the compiler makes four values a step.
   const auto bits = [](float v) { return std::bit_cast<uint32_t>(v); };
   for (std::ptrdiff_t k = 0; k < hi - lo; ++k) {
     const float za = rz[k], va = rv[k], zb = bz[k], vb = bv[k];
-    const uint32_t b_nan = 0u - static_cast<uint32_t>((bits(zb) & 0x7fffffffu) > 0x7f800000u);
-    const uint32_t a_nan = (0u - static_cast<uint32_t>((bits(za) & 0x7fffffffu) > 0x7f800000u)) & ~b_nan;
+    const uint32_t b_nan = 0u - static_cast<uint32_t>(IsNanBits(zb));
+    const uint32_t a_nan = (0u - static_cast<uint32_t>(IsNanBits(za))) & ~b_nan;
     const uint32_t both = ~(a_nan | b_nan);
     const float v = wa * wa * va + wb * wb * vb, z = wa * za + wb * zb;
     rv[k] = std::bit_cast<float>((bits(va) & b_nan) | (bits(vb) & a_nan) | (bits(v) & both));

@@ -1,13 +1,18 @@
 // The hidden groove's ellipse sums four points a register
 // (part/part_kernel.h) against their definition written point by point
-// (part/hidden_groove.cc), in both builds, with the aspect fitted and held.
+// (part/hidden_groove.cc), in both builds, with the aspect fitted and held;
+// the points moved into the bed frame; the bits' NaN and finite tests
+// (core/float_bits.h) the loops use.
 #include "libbead/part/part_kernel.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
+
+#include "libbead/core/float_bits.h"
 
 namespace bead::part {
 namespace {
@@ -106,3 +111,34 @@ TEST(PartKernel, PointsMovedIntoTheBedFrameAreTheDoubleSumRoundedOnceInBothBuild
 
 }  // namespace
 }  // namespace bead::part
+
+namespace bead {
+namespace {
+
+// The bits' tests agree with the library's on every kind of value: NaNs
+// quiet, signalling and negative, both infinities, zeros of both signs,
+// subnormals, the largest finite, ordinary values.
+TEST(FloatBits, NanAndFiniteAreToldAsTheLibraryTellsThem) {
+  const std::vector<float> floats = {std::numeric_limits<float>::quiet_NaN(),
+                                     std::numeric_limits<float>::signaling_NaN(),
+                                     -std::numeric_limits<float>::quiet_NaN(),
+                                     std::numeric_limits<float>::infinity(),
+                                     -std::numeric_limits<float>::infinity(),
+                                     0.0f,
+                                     -0.0f,
+                                     std::numeric_limits<float>::denorm_min(),
+                                     std::numeric_limits<float>::max(),
+                                     -1.5f,
+                                     123.25f};
+  for (const float v : floats) {
+    EXPECT_EQ(IsNanBits(v), std::isnan(v)) << v;
+    EXPECT_EQ(IsFiniteBits(v), std::isfinite(v)) << v;
+    const auto d = static_cast<double>(v);
+    EXPECT_EQ(IsFiniteBits(d), std::isfinite(d)) << d;
+  }
+  EXPECT_FALSE(IsFiniteBits(std::numeric_limits<double>::signaling_NaN()));
+  EXPECT_TRUE(IsFiniteBits(std::numeric_limits<double>::max()));
+}
+
+}  // namespace
+}  // namespace bead
