@@ -68,9 +68,9 @@ void LayerGrooves::Add(PartGeometryRow row, const StoredProfile* points, const S
   waiting_.push_back({std::move(row), points && under ? std::optional(*points) : std::nullopt,
                       points && under ? std::optional(*under) : std::nullopt});
   if (!pooled_ && aspects_.size() >= kPoolProfiles && aspects_.size() % kLooseStep == 0) {
-    Pool();
-    if (pooled_->aspect_sigma > kLoosePool * pooled_->aspect && waiting_.size() < kMaxWaiting)
-      pooled_.reset(), pools_.pop_back();  // too loose: more rows first
+    const PooledShape pool = Pooled();
+    const bool loose = pool.aspect_sigma > kLoosePool * pool.aspect && waiting_.size() < kMaxWaiting;
+    if (!loose) Hold(pool);  // loose: more rows first
   }
   if (pooled_ || waiting_.size() >= kMaxWaiting) Flush(emit);
 }
@@ -78,7 +78,7 @@ void LayerGrooves::Add(PartGeometryRow row, const StoredProfile* points, const S
 // The rows that waited, corrected with the pool where one is formed (or
 // can be: kMinPoolProfiles rows), else with their own shapes.
 void LayerGrooves::Flush(const Emit& emit) {
-  if (!pooled_ && aspects_.size() >= kMinPoolProfiles) Pool();
+  if (!pooled_ && aspects_.size() >= kMinPoolProfiles) Hold(Pooled());
   if (pooled_) {
     std::optional<HiddenGroove> previous;
     for (Waiting& w : waiting_) {
@@ -140,7 +140,7 @@ double ShapeCorrelation(const std::vector<LayerGrooves::Placed>& placed) {
 // errors' RMS over sigma 0.42; this one 1.07, and 1.00 on an independent
 // generator's 36 pools, with the ends at their cells' middles.) The grid's
 // is the same in every row: counted whole.
-void LayerGrooves::Pool() {
+PooledShape LayerGrooves::Pooled() const {
   PooledShape pool;
   std::tie(pool.aspect, pool.aspect_sigma) = MedianAndError(aspects_);
   pool.rows = aspects_.size();
@@ -166,6 +166,10 @@ void LayerGrooves::Pool() {
       pool.exponent_solved = true;
     }
   }
+  return pool;
+}
+
+void LayerGrooves::Hold(const PooledShape& pool) {
   pooled_ = pool;
   pools_.emplace_back(layer_, pool);
 }

@@ -78,7 +78,10 @@ class LayerGrooves {
   };
   HiddenGroove Estimate(const StoredProfile& points, const SurfaceGrid& under, const PartGeometryRow& row,
                         const HiddenGroove* previous, const PooledShape* shape) const;
-  void Pool();
+  // The pool of the rows' shapes so far (layer_grooves.cc), and it held
+  // for the layer's rows.
+  PooledShape Pooled() const;
+  void Hold(const PooledShape& pool);
 
   int64_t layer_ = -1;
   std::vector<double> aspects_;

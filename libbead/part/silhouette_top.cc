@@ -88,6 +88,16 @@ TopSums SumTop(const TopPoints& p, const SuperellipseTable& t, bool full = true)
   return m;
 }
 
+// The residuals' sum of squares from the sums: sum (z - z0 - b s)^2.
+double ResidualSum(const TopSums& t, double z0, double b) {
+  return t.zz + t.m * z0 * z0 + b * b * t.s2 - 2.0 * z0 * t.z1 - 2.0 * b * t.zs + 2.0 * z0 * b * t.s1;
+}
+
+// z0 and b solved free from the sums (det: m s2 - s1^2, positive).
+void FreeZ0B(const TopSums& t, double det, double& z0, double& b) {
+  b = (t.m * t.zs - t.s1 * t.z1) / det, z0 = (t.z1 - b * t.s1) / t.m;
+}
+
 // The free solve from the sums: its residual variance (INFINITY where b
 // is not positive or too few points are), z0 and b.
 struct FreeTop {
@@ -96,10 +106,10 @@ struct FreeTop {
 FreeTop FreeResidual(const TopSums& t) {
   const double det = t.m * t.s2 - t.s1 * t.s1;
   if (t.m < 8.0 || !(det > 0.0)) return {};
-  const double b = (t.m * t.zs - t.s1 * t.z1) / det, z0 = (t.z1 - b * t.s1) / t.m;
+  double z0 = 0.0, b = 0.0;
+  FreeZ0B(t, det, z0, b);
   if (!(b > 0.0)) return {};
-  const double rss = t.zz + t.m * z0 * z0 + b * b * t.s2 - 2.0 * z0 * t.z1 - 2.0 * b * t.zs + 2.0 * z0 * b * t.s1;
-  return {std::max(rss, 0.0) / (t.m - 2.0), z0, b};
+  return {std::max(ResidualSum(t, z0, b), 0.0) / (t.m - 2.0), z0, b};
 }
 
 // z0 and b (b = aspect a where held) from the sums, for the bead with ends L
@@ -120,7 +130,7 @@ bool SolveTop(const TopSums& t, double L, double R, double aspect, Silhouette& s
     s.z0_by_exponent = -e.b * t.sp / t.m;
   } else {
     if (!(det > 0.0)) return false;
-    e.b = (t.m * t.zs - t.s1 * t.z1) / det, e.z0 = (t.z1 - e.b * t.s1) / t.m;
+    FreeZ0B(t, det, e.z0, e.b);
     s.z0_var = t.s2 / det, s.b_var = t.m / det, s.z0_b = -t.s1 / det;
     s.z0_by_exponent = 0.0;
   }
@@ -137,10 +147,7 @@ bool SolveTop(const TopSums& t, double L, double R, double aspect, Silhouette& s
       s.z0_by_end[end] = (t.s2 * r0 - t.s1 * r1) / det, s.b_by_end[end] = (t.m * r1 - t.s1 * r0) / det;
     }
   }
-  // The residuals' sum of squares from the sums: sum (z - z0 - b s)^2.
-  const double rss =
-      t.zz + t.m * e.z0 * e.z0 + e.b * e.b * t.s2 - 2.0 * e.z0 * t.z1 - 2.0 * e.b * t.zs + 2.0 * e.z0 * e.b * t.s1;
-  s.residual_variance = std::max(rss, 0.0) / (t.m - params);
+  s.residual_variance = std::max(ResidualSum(t, e.z0, e.b), 0.0) / (t.m - params);
   s.mean_s = t.s1 / t.m;
   return e.b > 0.0 && std::isfinite(e.z0);
 }
@@ -263,8 +270,9 @@ struct EndsPlaced {
 EndsPlaced PlaceEnds(const Window& w, std::size_t first, std::size_t last, const double cell[4], const FreeShape& f) {
   const double sigma_h = std::sqrt(f.residual_variance) / f.b;
   const double h[2] = {(w.z[first] - f.z0) / f.b, (w.z[last] - f.z0) / f.b};
-  const double a = (w.x[last] - w.x[first]) / (ReachAt(h[0], f.exponent) + ReachAt(h[1], f.exponent));
-  const double x0 = w.x[first] + a * ReachAt(h[0], f.exponent);
+  const double reach[2] = {ReachAt(h[0], f.exponent), ReachAt(h[1], f.exponent)};
+  const double a = (w.x[last] - w.x[first]) / (reach[0] + reach[1]);
+  const double x0 = w.x[first] + a * reach[0];
   EndsPlaced out;
   for (int side = 0; side < 2; ++side) {
     const double lo = cell[2 * side], hi = cell[2 * side + 1], end = side ? x0 + a : x0 - a;
