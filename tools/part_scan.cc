@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <vector>
 
 #include "libbead/archive/open_run.h"
 #include "libbead/core/worker_pool.h"
@@ -13,6 +14,7 @@
 #include "libbead/core/error.h"
 #include "libbead/part/part_csv.h"
 #include "libbead/part/part_flow.h"
+#include "libbead/part/superellipse.h"
 #include "tools/rig_input.h"
 #include "tools/tty_progress.h"
 
@@ -29,11 +31,39 @@ void SayShape(const part::PooledShape& s) {
     return;
   }
   const double off = s.exponent - 2.0, two_sigmas = 2.0 * s.exponent_sigma;
-  const char* words = std::abs(off) <= two_sigmas ? "an ellipse, within two sigmas"
-                      : off > 0.0                 ? "toward a box: flatter on top, steeper at the sides"
-                                                  : "toward a diamond: narrower at top and bottom";
+  const std::vector<double>& family = part::SuperellipseGrid();
+  const bool edge = s.exponent >= 0.999 * family.back() || s.exponent <= 1.001 * family.front();
+  const char* words = edge ? "the shapes' last: the bead is none of them, its rows not corrected"
+                      : std::abs(off) <= two_sigmas ? "an ellipse, within two sigmas"
+                      : off > 0.0                   ? "toward a box: flatter on top, steeper at the sides"
+                                                    : "toward a diamond: narrower at top and bottom";
   std::printf(", exponent %.3f +- %.3f (%s; the two errors correlated %+.2f)\n", s.exponent, s.exponent_sigma, words,
               s.correlation);
+}
+
+// The rows whose bead's outline is not one the model knows, by why
+// (part/hidden_groove.h: OutlineMisfit).
+void SayMisfits(const part::LayerSummary& l) {
+  using part::OutlineMisfit;
+  const auto count = [&](OutlineMisfit m) { return l.misfit[static_cast<std::size_t>(m)]; };
+  std::printf(
+      "    %zu valid profiles without a corrected area: the bead's outline is none of the model's shapes, so the "
+      "hidden groove is not estimated and the area seen stands (",
+      l.Misfits());
+  const char* sep = "";
+  if (count(OutlineMisfit::kFloats))
+    std::printf("%s%zu: the shape fitting its top would float over the surface it was laid on", sep,
+                count(OutlineMisfit::kFloats)),
+        sep = "; ";
+  if (count(OutlineMisfit::kTopOff))
+    std::printf(
+        "%s%zu: the layer's shape misses its beads' tops by %.1f times the noise (median; over %.0f, it is "
+        "not their shape)",
+        sep, count(OutlineMisfit::kTopOff), l.shape ? l.shape->top_noise : NAN, part::kTopOffNoise),
+        sep = "; ";
+  if (count(OutlineMisfit::kFamilyEdge))
+    std::printf("%s%zu: boxier or more pointed than any of the shapes", sep, count(OutlineMisfit::kFamilyEdge));
+  std::printf(")\n");
 }
 
 void SayLayers(const std::vector<part::LayerSummary>& layers) {
@@ -51,9 +81,10 @@ void SayLayers(const std::vector<part::LayerSummary>& layers) {
       std::printf("; pass shift %+.3f mm (median; found in %zu profiles)\n", l.MedianShift(), l.shift_found);
     else
       std::printf("; pass shift not found (the layer below shows nowhere beside the new bead): no offset\n");
-    if (l.valid > l.corrected)
+    if (l.Misfits()) SayMisfits(l);
+    if (l.valid > l.corrected + l.Misfits())
       std::printf("    %zu valid profiles without a corrected area: the bead's outline could not be fitted\n",
-                  l.valid - l.corrected);
+                  l.valid - l.corrected - l.Misfits());
     if (l.loose)
       std::printf(
           "    %zu profiles' corrected areas are loose (sigma over a tenth of the area): the bead's sides are not "

@@ -42,6 +42,9 @@ struct PooledShape {
   bool exponent_solved = false;
   // The rows whose aspects were pooled.
   std::size_t rows = 0;
+  // The median over those rows of their tops' RMS about the shape over
+  // their noise (part/hidden_groove.h: OutlineMisfit::kTopOff).
+  double top_noise = NAN;
 };
 
 // The points around the bead with the surface below under each.

@@ -23,9 +23,11 @@ namespace {
 // surface below, a step times 1 for z0, -s for b, -old'(x) for x0; and
 // groove / a less a step times old'(x) u for a; and in the exponent, a step
 // times -b ds/dp. Beside them, the surface below's variance (in one point's)
-// integrated over those nodes.
+// integrated over those nodes, and the outline's lowest stand over the
+// surface below (negative: sunk into it; infinite: nowhere known).
 struct GrooveSum {
   double groove = 0.0;
+  double lowest = INFINITY;
   double gradient[4] = {};      // x0, z0, a, b
   double by_exponent = 0.0;     // mm^2 per unit of p
   double variance_under = 0.0;  // mm
@@ -56,9 +58,11 @@ GrooveSum GrooveWithGradient(const Ellipse& e, const SurfaceGrid& below, double 
   constexpr double kDu = 2.0 / kNodes;
   const auto &node_u = shape.node_u(), &node_s = shape.node_s(), &node_ds_dp = shape.node_ds_dp();
   double sum = 0.0, on = 0.0, s_on = 0.0, slope_on = 0.0, slope_u_on = 0.0, variance = 0.0, dp_on = 0.0;
+  double lowest = INFINITY;
   for (int k = 0; k < kNodes; ++k) {
     const double u = node_u[k], s = node_s[k];
     const double x = e.x0 + e.a * u, f = e.z0 - e.b * s - under.Z(x);
+    lowest = f < lowest ? f : lowest;             // (NaN where not known: left out)
     if (!(f > 0.0)) continue;                     // the surface below above the outline, or not known
     const SurfaceGrid::Sample old = under.At(x);  // its slope and variance, where they count
     sum += f, on += 1.0, s_on += s, slope_on += old.slope, slope_u_on += old.slope * u, variance += old.variance;
@@ -73,7 +77,18 @@ GrooveSum GrooveWithGradient(const Ellipse& e, const SurfaceGrid& below, double 
   g.gradient[2] = sum * kDu - slope_u_on * step;
   g.gradient[3] = -s_on * step;
   g.by_exponent = -e.b * dp_on * step;
+  g.lowest = lowest;
   return g;
+}
+
+// Whether the shape placed on the bead is one it can have (hidden_groove.h:
+// OutlineMisfit; the top's residual is judged over the layer's pool, not
+// here); height, the bead's.
+OutlineMisfit MisfitOf(const GrooveSum& g, double height, double exponent) {
+  if (std::isfinite(g.lowest) && g.lowest > kFloatsHeights * height) return OutlineMisfit::kFloats;
+  const std::vector<double>& family = SuperellipseGrid();
+  if (exponent >= 0.999 * family.back() || exponent <= 1.001 * family.front()) return OutlineMisfit::kFamilyEdge;
+  return OutlineMisfit::kNone;
 }
 
 // The parameters fitted: x0, z0, a, and b unless the aspect b / a is held
@@ -222,9 +237,25 @@ double GrooveSigma(const Ellipse& e, const Shape& shape, const Eigen::Matrix4d& 
   return std::sqrt(std::max(0.0, grad.dot(cov * grad)) + AroundVariance(sum, o) + by_aspect * by_aspect);
 }
 
+// The RMS of the seen top's points about the fitted ellipse's top: those
+// within 0.9 of its half-width where it stands over the surface below (as
+// the silhouette's, part/silhouette.h: the fit's own residual counts the
+// walls, lost points' edges and the bare surface too); NaN where none.
+double TopRms(const Window& w, const Ellipse& e) {
+  double sum = 0.0;
+  int n = 0;
+  for (std::size_t j = 0; j < w.x.size(); ++j) {
+    if (!(std::abs(w.x[j] - e.x0) <= 0.9 * e.a)) continue;
+    const double top = e.z0 + e.Half(w.x[j]);
+    if (!(top > w.old[j])) continue;
+    sum += (w.z[j] - top) * (w.z[j] - top), ++n;
+  }
+  return n ? std::sqrt(sum / n) : NAN;
+}
+
 // The groove of the ellipse placed at the bead's silhouette (no fit).
-HiddenGroove AtTheSilhouette(const Silhouette& s, const Around& o, const PooledShape* held, double center,
-                             double base) {
+HiddenGroove AtTheSilhouette(const Silhouette& s, const Around& o, const PooledShape* held, double center, double base,
+                             double height) {
   HiddenGroove out;
   const GrooveSum groove = GrooveWithGradient(s.e, o.below, o.shift);
   out.hidden_mm2 = groove.groove;
@@ -243,7 +274,9 @@ HiddenGroove AtTheSilhouette(const Silhouette& s, const Around& o, const PooledS
   out.shape_consistent = s.shape_consistent;
   out.end_place[0] = s.end_place[0], out.end_place[1] = s.end_place[1];
   out.dx0 = s.e.x0 - center, out.dz0 = s.e.z0 - base, out.a = s.e.a, out.b = s.e.b;
-  out.ok = std::isfinite(out.hidden_mm2) && std::isfinite(out.sigma_mm2);
+  out.top_rms_mm = std::sqrt(s.residual_variance);
+  out.misfit = MisfitOf(groove, height, s.exponent);
+  out.ok = std::isfinite(out.hidden_mm2) && std::isfinite(out.sigma_mm2) && out.misfit == OutlineMisfit::kNone;
   return out;
 }
 
@@ -254,6 +287,10 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
                                   double height, const PooledShape* pooled, const HiddenGroove* previous) {
   HiddenGroove out;
   if (!(width > 0.0) || !(height > 0.0)) return out;
+  if (pooled && pooled->top_noise > kTopOffNoise) {
+    out.misfit = OutlineMisfit::kTopOff;  // the layer's shape is not its beads'
+    return out;
+  }
   // The points within a width of the centre (x increasing: a range).
   thread_local Window w;
   const auto first = static_cast<std::size_t>(std::upper_bound(x.begin(), x.end(), center - width) - x.begin());
@@ -283,7 +320,7 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   const SilhouetteScale scale{std::max(3.0 * noise_mm, 0.02 * height), std::max(6.0 * noise_mm, 0.15 * height)};
   const double* start_place = previous && previous->ok ? previous->end_place : nullptr;
   if (const std::optional<Silhouette> s = AtSilhouette(w, center, scale, pooled, start_place))
-    return AtTheSilhouette(*s, around, pooled, center, base);
+    return AtTheSilhouette(*s, around, pooled, center, base, height);
   // Otherwise fitted: an ellipse, its aspect the layer's where held.
   const double held = pooled ? pooled->aspect : NAN;
   w.Close();
@@ -326,7 +363,9 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   out.hidden_mm2 = groove.groove;
   const double dof = static_cast<double>(w.x.size()) - static_cast<double>(shape.Params());
   out.sigma_mm2 = GrooveSigma(best, shape, best_JtJ, best_rss / dof, groove, around);
-  out.ok = std::isfinite(out.hidden_mm2) && std::isfinite(out.sigma_mm2);
+  out.top_rms_mm = TopRms(w, best);
+  out.misfit = MisfitOf(groove, height, 2.0);
+  out.ok = std::isfinite(out.hidden_mm2) && std::isfinite(out.sigma_mm2) && out.misfit == OutlineMisfit::kNone;
   return out;
 }
 

@@ -22,6 +22,7 @@
 // widest point, the sigma says so.
 #pragma once
 
+#include <cstdint>
 #include <limits>
 #include <span>
 
@@ -30,15 +31,35 @@
 
 namespace bead::part {
 
+// Why a bead's outline is not one the model knows (its groove then not
+// estimated: HiddenGroove::ok false): the shape placed on its top
+//  - floats: it stands clear of the surface it was laid on everywhere
+//    under it, by more than a tenth of the bead's height (a bead touches
+//    what it was laid on; a flat-topped bead with rounded sides, a tamped
+//    bead, gets an ellipse that floats);
+//  - top_off: the layer's shape (its pool: part/layer_grooves.h) misses
+//    its beads' seen tops by over kTopOffNoise times their noise (the
+//    median over the pooled rows of each top's RMS; the right shape leaves
+//    the noise: 1.0-1.1 times it on the twin's walls and contours, while
+//    single rows reach 8-18 times it at mixed points and lost points'
+//    edges, one in a thousand: a row alone is not judged by it);
+//  - family_edge: its exponent is the family's last (or first): the bead
+//    is boxier (or more pointed) than any of the model's shapes.
+enum class OutlineMisfit : uint8_t { kNone = 0, kFloats, kTopOff, kFamilyEdge };
+inline constexpr double kTopOffNoise = 3.0;
+inline constexpr double kFloatsHeights = 0.1;
+
 struct HiddenGroove {
   static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   bool ok = false;
+  OutlineMisfit misfit = OutlineMisfit::kNone;
   double hidden_mm2 = kNaN;  // the groove under the overhangs
   // Where an end was placed in a gap beside its wall (part/silhouette.h):
   // what the area seen's trapezoid across the gap counted wrongly (add it).
   double seen_adjust_mm2 = 0.0;
   double sigma_mm2 = kNaN;   // its 1-sigma
   double fit_rms_mm = kNaN;  // the fit's (NaN: placed at the silhouette, not fitted)
+  double top_rms_mm = kNaN;  // the seen top's points about the shape's top (within 0.9 of its half-width)
   double aspect = kNaN;      // the bead's b / a
   double exponent = kNaN;    // its superellipse's (part/superellipse.h; a fit's: 2)
   // Placed at the silhouette with the shape free: the aspect's and

@@ -75,6 +75,7 @@ class LayerGrooves {
     PartGeometryRow row;
     std::optional<StoredProfile> points;
     std::optional<SurfaceGrid> under;
+    double top_noise = NAN;  // its own shape's top RMS over its noise
   };
   HiddenGroove Estimate(const StoredProfile& points, const SurfaceGrid& under, const PartGeometryRow& row,
                         const HiddenGroove* previous, const PooledShape* shape) const;
@@ -85,6 +86,7 @@ class LayerGrooves {
 
   int64_t layer_ = -1;
   std::vector<double> aspects_;
+  std::vector<double> tops_;  // the same rows' tops' RMS over their noise
   std::vector<Placed> placed_;
   std::vector<std::pair<int64_t, PooledShape>> pools_;
   std::optional<PooledShape> pooled_;

@@ -219,6 +219,8 @@ void Tally(std::vector<LayerSummary>& layers, const PartGeometryRow& r) {
     ++l.corrected;
     l.corrected_sum_mm2 += r.area_corrected_mm2;
     l.loose += r.area_corrected_sigma_mm2 > 0.1 * r.area_corrected_mm2;
+  } else {
+    ++l.misfit[static_cast<std::size_t>(r.outline_misfit)];
   }
   if (r.bead.shift_constrained) ++l.shift_found, l.shifts_mm.push_back(r.bead.shift_mm);
 }

@@ -20,6 +20,7 @@
 #include "libbead/io/profile_stream.h"
 #include "libbead/part/added_bead.h"
 #include "libbead/part/groove_window.h"
+#include "libbead/part/hidden_groove.h"
 #include "libbead/part/roads.h"
 #include "libbead/part/surface_below.h"
 #include "libbead/profile/profile_processor.h"
@@ -40,6 +41,9 @@ struct PartGeometryRow {
   // The area less the groove the bead hides under its overhangs
   // (part/hidden_groove.h), and its 1-sigma.
   double area_corrected_mm2 = kNaN, area_corrected_sigma_mm2 = kNaN;
+  // Where there is none on a valid row because the bead's outline is not
+  // one the model knows (part/hidden_groove.h), why.
+  OutlineMisfit outline_misfit = OutlineMisfit::kNone;
   // MeasurePartOptions::several_beads: each bead of the profile, left to
   // right, over the same surface below, moved by bead.shift_mm.
   std::vector<Road> roads;
@@ -69,6 +73,10 @@ struct LayerSummary {
   // area's sigma exceeds a tenth of it (the bead's sides not seen well
   // enough to place its widest point).
   std::size_t corrected = 0, loose = 0;
+  // The valid rows left without one because the bead's outline is not one
+  // the model knows, by OutlineMisfit (kNone's count unused).
+  std::size_t misfit[4] = {};
+  std::size_t Misfits() const { return misfit[1] + misfit[2] + misfit[3]; }
   double corrected_sum_mm2 = 0.0;
   double MeanCorrected() const { return corrected ? corrected_sum_mm2 / static_cast<double>(corrected) : kNaN(); }
   double first_path_mm = 0.0, last_path_mm = 0.0;
