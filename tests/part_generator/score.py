@@ -1,0 +1,66 @@
+"""The figures #37 judges a wall by, from the tool's geometry and flow
+CSVs against a generator's truth (rows in the scan's order, one per
+profile): the area the layer added over the run and per profile, the
+layer height, the flow along the path, and the naive layer subtraction
+(the area seen) beside the corrected area.
+
+Run: python3 score.py DIR (geom.csv, flow.csv, truth.csv in DIR)."""
+import csv
+import math
+import os
+import sys
+
+import numpy as np
+
+
+def number(text):
+    try:
+        return float(text)
+    except ValueError:
+        return math.nan  # empty, or a word (status)
+
+
+def columns(path):
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    return {k: np.array([number(r[k]) for r in rows]) for k in rows[0]}
+
+
+def fit(estimate, truth):
+    """100 (1 - |e - t| / |t - mean t|) over the rows both have."""
+    ok = np.isfinite(estimate) & np.isfinite(truth)
+    e, t = estimate[ok], truth[ok]
+    return 100.0 * (1.0 - np.linalg.norm(e - t) / np.linalg.norm(t - t.mean()))
+
+
+def score(directory):
+    geom = columns(os.path.join(directory, "geom.csv"))
+    truth = columns(os.path.join(directory, "truth.csv"))
+    flow = columns(os.path.join(directory, "flow.csv"))
+    assert geom["area_mm2"].size == truth["area_mm2"].size == flow["flow_mm3_s"].size
+    valid = geom["valid"] == 1
+    corrected = geom["area_corrected_mm2"]
+    has = valid & np.isfinite(corrected)
+    out = {"profiles": int(valid.size), "valid": int(valid.sum()), "corrected": int(has.sum())}
+    for name, area, rows in (("corrected", corrected, has), ("seen", geom["area_mm2"], valid)):
+        if not rows.any():
+            out[name + "_run_bias"] = out[name + "_median_abs"] = math.nan
+            continue
+        rel = area[rows] / truth["area_mm2"][rows] - 1.0
+        out[name + "_run_bias"] = area[rows].sum() / truth["area_mm2"][rows].sum() - 1.0
+        out[name + "_median_abs"] = float(np.median(np.abs(rel)))
+    sigma = geom["area_corrected_sigma_mm2"][has]
+    err = corrected[has] - truth["area_mm2"][has]
+    out["covered_95"] = float(np.mean(np.abs(err) <= 1.96 * sigma)) if has.any() else math.nan
+    out["height_median_abs_mm"] = float(np.median(np.abs(geom["height_mm"][valid] - truth["height_mm"][valid])))
+    # The flow against the melt's true flow at the time the tool gives.
+    out["flow_fit"] = fit(np.where(flow["valid"] == 1, flow["flow_mm3_s"], math.nan), truth["flow_mm3_s"])
+    seen_flow = flow["head_speed_mm_s"] * flow["area_mm2"]
+    out["seen_flow_fit"] = fit(np.where(flow["valid"] == 1, seen_flow, math.nan), truth["flow_mm3_s"])
+    out["time_error_s"] = float(np.nanmedian(np.abs(flow["t_s"] - truth["t_nozzle_s"])))
+    return out
+
+
+if __name__ == "__main__":
+    for key, value in score(sys.argv[1]).items():
+        print(f"{key}: {value:.4f}" if isinstance(value, float) else f"{key}: {value}")
