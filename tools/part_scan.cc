@@ -55,11 +55,17 @@ void SayMisfits(const part::LayerSummary& l) {
     std::printf("%s%zu: the shape fitting its top would float over the surface it was laid on", sep,
                 count(OutlineMisfit::kFloats)),
         sep = "; ";
-  if (count(OutlineMisfit::kTopOff))
+  if (count(OutlineMisfit::kTopOff) && l.shape)
     std::printf(
         "%s%zu: the layer's shape misses its beads' tops by %.1f times the noise (median; over %.0f, it is "
         "not their shape)",
-        sep, count(OutlineMisfit::kTopOff), l.shape ? l.shape->top_noise : NAN, part::kTopOffNoise),
+        sep, count(OutlineMisfit::kTopOff), l.shape->top_noise, part::kTopOffNoise),
+        sep = "; ";
+  else if (count(OutlineMisfit::kTopOff))
+    std::printf(
+        "%s%zu: too few rows to pool the layer's shape, and each one's own misses its top by over %.0f times "
+        "the noise",
+        sep, count(OutlineMisfit::kTopOff), part::kTopOffNoise),
         sep = "; ";
   if (count(OutlineMisfit::kFamilyEdge))
     std::printf("%s%zu: boxier or more pointed than any of the shapes", sep, count(OutlineMisfit::kFamilyEdge));
