@@ -51,6 +51,11 @@ class Config:
     wander_sigma_mm = 0.25
     standoff_mm = 60.0
     fine_mm = 0.005  # the generator's own grid across the wall
+    # "tamped": the stadium above; "pressed": an ellipse of this aspect
+    # (half-height over half-width) whose top the nozzle holds at the layer
+    # height, sunk into what lies under it, wider where more is laid.
+    shape = "tamped"
+    aspect = 0.5
 
 
 def contour(c, step=0.01):
@@ -116,12 +121,45 @@ def added_area(x, surface, centre, base, height, width):
     return np.nansum(np.clip(top - lower, 0, None), axis=1) * (x[1] - x[0]), top
 
 
+def pressed(x, surface, centre, top_z, aspect, a):
+    """A pressed ellipse's material over `surface` (what it overlaps of the
+    old material stays the old's) and its top (NaN outside it)."""
+    b = aspect * a
+    u = (x[None, :] - centre[:, None]) / a[:, None]
+    half = b[:, None] * np.sqrt(np.clip(1 - u * u, 0, None))
+    inside = np.abs(u) < 1
+    top = np.where(inside, top_z - b[:, None] + half, np.nan)
+    bottom = np.where(inside, top_z - b[:, None] - half, np.nan)
+    return np.nansum(np.clip(top - np.fmax(surface, bottom), 0, None), axis=1) * (x[1] - x[0]), top
+
+
+def lay_pressed(c, x, surface, centre, base, area):
+    """Each profile's pressed ellipse of the given area: its half-width by
+    Newton's steps on a difference quotient."""
+    window = np.abs(x) <= 11.0
+    xw, sw = x[window], surface[:, window]
+    top_z = base + c.layer_height_mm
+    a = np.sqrt(area / (math.pi * c.aspect))
+    for _ in range(8):
+        got, _ = pressed(xw, sw, centre, top_z, c.aspect, a)
+        more, _ = pressed(xw, sw, centre, top_z, c.aspect, a + 1e-3)
+        a = np.clip(a + (area - got) * 1e-3 / np.maximum(more - got, 1e-9), 0.5, 12.0)
+    material, top = pressed(xw, sw, centre, top_z, c.aspect, a)
+    after = surface.copy()
+    after[:, window] = np.where(np.isnan(top), sw, np.fmax(sw, top))
+    k = np.searchsorted(x, centre)
+    rows = np.arange(area.size)
+    return after, material, 2 * a, after[rows, k] - surface[rows, k]
+
+
 def lay_layer(c, x, surface, centre, base, area):
     """Each profile's stadium of the given area, the surface it leaves and
     the gain at its centre. Its width by Newton's steps: a wider stadium
     adds the layer height per mm while its sides stay clear of the old
     surface, which they nearly do (within the window of x its sides
     reach: beyond it the surface stays as it was)."""
+    if c.shape == "pressed":
+        return lay_pressed(c, x, surface, centre, base, area)
     h = c.layer_height_mm
     window = np.abs(x) <= 12.0
     xw, sw = x[window], surface[:, window]
@@ -244,8 +282,10 @@ def main():
     ap.add_argument("--layers", type=int, default=Config.layers)
     ap.add_argument("--spacing-mm", type=float, default=None, help="the sensor's point spacing (points over 40 mm)")
     ap.add_argument("--contour-mm", type=float, nargs=2, default=None, help="the contour's length and width")
+    ap.add_argument("--shape", choices=("tamped", "pressed"), default="tamped")
     args = ap.parse_args()
     c = Config()
+    c.shape = args.shape
     c.layers = args.layers
     if args.contour_mm:
         c.length_mm, c.width_mm = args.contour_mm
