@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "libbead/archive/open_run.h"
@@ -14,7 +15,6 @@
 #include "libbead/core/error.h"
 #include "libbead/part/part_csv.h"
 #include "libbead/part/part_flow.h"
-#include "libbead/part/superellipse.h"
 #include "tools/rig_input.h"
 #include "tools/tty_progress.h"
 
@@ -31,12 +31,9 @@ void SayShape(const part::PooledShape& s) {
     return;
   }
   const double off = s.exponent - 2.0, two_sigmas = 2.0 * s.exponent_sigma;
-  const std::vector<double>& family = part::SuperellipseGrid();
-  const bool edge = s.exponent >= 0.999 * family.back() || s.exponent <= 1.001 * family.front();
-  const char* words = edge ? "the shapes' last: the bead is none of them, its rows not corrected"
-                      : std::abs(off) <= two_sigmas ? "an ellipse, within two sigmas"
-                      : off > 0.0                   ? "toward a box: flatter on top, steeper at the sides"
-                                                    : "toward a diamond: narrower at top and bottom";
+  const char* words = std::abs(off) <= two_sigmas ? "an ellipse, within two sigmas"
+                      : off > 0.0                 ? "toward a box: flatter on top, steeper at the sides"
+                                                  : "toward a diamond: narrower at top and bottom";
   std::printf(", exponent %.3f +- %.3f (%s; the two errors correlated %+.2f)\n", s.exponent, s.exponent_sigma, words,
               s.correlation);
 }
@@ -45,30 +42,29 @@ void SayShape(const part::PooledShape& s) {
 // (part/hidden_groove.h: OutlineMisfit).
 void SayMisfits(const part::LayerSummary& l) {
   using part::OutlineMisfit;
-  const auto count = [&](OutlineMisfit m) { return l.misfit[static_cast<std::size_t>(m)]; };
   std::printf(
       "    %zu valid profiles without a corrected area: the bead's outline is none of the model's shapes, so the "
       "hidden groove is not estimated and the area seen stands (",
       l.Misfits());
   const char* sep = "";
-  if (count(OutlineMisfit::kFloats))
-    std::printf("%s%zu: the shape fitting its top would float over the surface it was laid on", sep,
-                count(OutlineMisfit::kFloats)),
-        sep = "; ";
-  if (count(OutlineMisfit::kTopOff) && l.shape)
-    std::printf(
-        "%s%zu: the layer's shape misses its beads' tops by %.1f times the noise (median; over %.0f, it is "
-        "not their shape)",
-        sep, count(OutlineMisfit::kTopOff), l.shape->top_noise, part::kTopOffNoise),
-        sep = "; ";
-  else if (count(OutlineMisfit::kTopOff))
-    std::printf(
-        "%s%zu: too few rows to pool the layer's shape, and each one's own misses its top by over %.0f times "
-        "the noise",
-        sep, count(OutlineMisfit::kTopOff), part::kTopOffNoise),
-        sep = "; ";
-  if (count(OutlineMisfit::kFamilyEdge))
-    std::printf("%s%zu: boxier or more pointed than any of the shapes", sep, count(OutlineMisfit::kFamilyEdge));
+  const auto say = [&](OutlineMisfit m, const std::string& why) {
+    if (const std::size_t n = l.misfit[static_cast<std::size_t>(m)])
+      std::printf("%s%zu: %s", sep, n, why.c_str()), sep = "; ";
+  };
+  char top[160];
+  if (l.shape)
+    std::snprintf(top, sizeof top,
+                  "the layer's shape misses its beads' tops by %.1f times the noise (median; over %.0f, it is not "
+                  "their shape)",
+                  l.shape->top_noise, part::kTopOffNoise);
+  else
+    std::snprintf(top, sizeof top,
+                  "too few rows to pool the layer's shape, and each one's own misses its top by over %.0f times the "
+                  "noise",
+                  part::kTopOffNoise);
+  say(OutlineMisfit::kFloats, "the shape fitting its top would float over the surface it was laid on");
+  say(OutlineMisfit::kTopOff, top);
+  say(OutlineMisfit::kFamilyEdge, "boxier or more pointed than any of the shapes");
   std::printf(")\n");
 }
 
