@@ -61,6 +61,30 @@ def score(directory):
     return out
 
 
+def by_layer(directory):
+    """Per layer, over the rows with a corrected area: how many, their 95 %
+    intervals' coverage, the mean error over sigma (a layer's shared error
+    shows here), the bias over the material, the median sigma and the
+    errors' RMS (mm^2)."""
+    geom = columns(os.path.join(directory, "geom.csv"))
+    truth = columns(os.path.join(directory, "truth.csv"))
+    err = geom["area_corrected_mm2"] - truth["area_mm2"]
+    sigma = geom["area_corrected_sigma_mm2"]
+    has = (geom["valid"] == 1) & np.isfinite(err)
+    out = []
+    for layer in np.unique(geom["layer"]):
+        m = has & (geom["layer"] == layer)
+        if not m.any():
+            continue
+        e, s = err[m], sigma[m]
+        out.append({"layer": int(layer), "rows": int(m.sum()), "covered_95": float(np.mean(np.abs(e) <= 1.96 * s)),
+                    "mean_z": float(np.mean(e / s)), "bias": float(e.sum() / truth["area_mm2"][m].sum()),
+                    "median_sigma_mm2": float(np.median(s)), "rms_error_mm2": float(np.sqrt(np.mean(e * e)))})
+    return out
+
+
 if __name__ == "__main__":
     for key, value in score(sys.argv[1]).items():
         print(f"{key}: {value:.4f}" if isinstance(value, float) else f"{key}: {value}")
+    for row in by_layer(sys.argv[1]):
+        print("  ".join(f"{k} {v:.4f}" if isinstance(v, float) else f"{k} {v}" for k, v in row.items()))

@@ -283,9 +283,12 @@ def main():
     ap.add_argument("--spacing-mm", type=float, default=None, help="the sensor's point spacing (points over 40 mm)")
     ap.add_argument("--contour-mm", type=float, nargs=2, default=None, help="the contour's length and width")
     ap.add_argument("--shape", choices=("tamped", "pressed"), default="tamped")
+    ap.add_argument("--spot-mm", type=float, default=Config.spot_mm,
+                    help="the laser spot each point averages over (a small value: points that do not average)")
     args = ap.parse_args()
     c = Config()
     c.shape = args.shape
+    c.spot_mm = args.spot_mm
     c.layers = args.layers
     if args.contour_mm:
         c.length_mm, c.width_mm = args.contour_mm
