@@ -51,15 +51,27 @@ SuperellipseTable::Value SuperellipseTable::At(double u) const {
 const std::array<double, SuperellipseTable::kNodes>& SuperellipseTable::node_u() const { return Nodes(); }
 
 const SuperellipseTable& SuperellipseOf(double p) {
-  // The grid's tables and a layer's pooled exponent or two; the oldest let
-  // go beyond that.
+  // The grid's tables, each made when first asked for and kept: a free
+  // solve holds five of them at once (silhouette_top.cc). (They shared one
+  // cache of 32 with the layers' pooled exponents, the oldest let go: from
+  // the 13th pool on a grid table could be freed while a solve held it,
+  // which crashed a run of the part tests once the pools' exponents moved.)
+  const std::vector<double>& grid = SuperellipseGrid();
+  thread_local std::vector<std::unique_ptr<SuperellipseTable>> on_grid(grid.size());
+  if (const auto it = std::find(grid.begin(), grid.end(), p); it != grid.end()) {
+    std::unique_ptr<SuperellipseTable>& t = on_grid[static_cast<std::size_t>(it - grid.begin())];
+    if (!t) t = std::make_unique<SuperellipseTable>(p);
+    return *t;
+  }
+  // Any other exponent (a layer's pooled one): the last kKept kept, the
+  // oldest let go beyond that (no caller holds one while asking for others).
   constexpr std::size_t kKept = 32;
-  thread_local std::deque<std::unique_ptr<SuperellipseTable>> tables;
-  for (const auto& t : tables)
+  thread_local std::deque<std::unique_ptr<SuperellipseTable>> others;
+  for (const auto& t : others)
     if (t->p() == p) return *t;
-  if (tables.size() == kKept) tables.pop_front();
-  tables.push_back(std::make_unique<SuperellipseTable>(p));
-  return *tables.back();
+  if (others.size() == kKept) others.pop_front();
+  others.push_back(std::make_unique<SuperellipseTable>(p));
+  return *others.back();
 }
 
 const std::vector<double>& SuperellipseGrid() {

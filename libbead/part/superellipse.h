@@ -67,8 +67,9 @@ class SuperellipseTable {
 // s and its derivatives exactly (|u| < 1).
 SuperellipseTable::Value SuperellipseAt(double u, double p);
 
-// The table of exponent p, made once per thread and exponent (the last
-// few kept: a layer holds one exponent, the search its grid's).
+// The table of exponent p, made once per thread and exponent: the grid's
+// kept (a free solve holds five at once), any other's among the last few
+// asked for (a layer holds one exponent).
 const SuperellipseTable& SuperellipseOf(double p);
 
 // The exponents a free placement tries (part/silhouette.h): from 1.2 (near

@@ -48,5 +48,19 @@ TEST(Superellipse, TheTableHoldsTheValuesBetweenItsEntries) {
   }
 }
 
+// A part of many layers pools as many exponents, each its own table; the
+// grid's tables stay while they come and go (a free solve holds five of
+// them at once: one let go under it was read after it was freed).
+TEST(Superellipse, TheGridsTablesOutliveManyLayersExponents) {
+  const std::vector<double>& grid = SuperellipseGrid();
+  const SuperellipseTable& first = SuperellipseOf(grid.front());
+  const SuperellipseTable& last = SuperellipseOf(grid.back());
+  for (int layer = 0; layer < 100; ++layer) SuperellipseOf(1.95 + 0.001 * layer);
+  EXPECT_EQ(&SuperellipseOf(grid.front()), &first);
+  EXPECT_EQ(&SuperellipseOf(grid.back()), &last);
+  EXPECT_EQ(first.p(), grid.front());
+  EXPECT_EQ(last.p(), grid.back());
+}
+
 }  // namespace
 }  // namespace bead::part
