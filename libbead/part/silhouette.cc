@@ -165,6 +165,7 @@ std::optional<Silhouette> AtSilhouette(const Window& w, double center, const Sil
   if (held) {
     if (gap && !PlaceGappedEnds(w, jl + 1, jr, spacing, *held, gapped, L, R, s)) return std::nullopt;
     if (!SolveHeld(w, jl + 1, jr, L, R, *held, s) || !stands(s, 0.0)) return std::nullopt;
+    OnTheTop(w, jl + 1, jr, s.e.z0, std::sqrt(s.residual_variance), gapped, s.cell);
     for (int side = 0; side < 2; ++side)
       if (gapped[side]) s.seen_adjust += GapSeenChange(w, side ? jr : jl, s.e);
     return s;

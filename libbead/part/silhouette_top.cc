@@ -292,6 +292,31 @@ constexpr double kSettledCell = 1e-2;
 
 }  // namespace
 
+std::pair<std::size_t, std::size_t> OnTheTop(const Window& w, std::size_t first, std::size_t last, double z0,
+                                             double sigma_mm, const bool gapped[2], double cell[4]) {
+  const double off = z0 - 3.0 * sigma_mm;
+  const std::size_t middle = first + (last - first) / 2;
+  std::size_t on[2] = {first, last};
+  for (int side = 0; side < 2; ++side) {
+    if (gapped[side]) continue;
+    std::size_t& k = on[side];
+    while ((side ? k > middle : k < middle) && !(w.z[k] >= off)) k = side ? k - 1 : k + 1;
+    if (!(w.z[k] >= off))
+      k = side ? last : first;  // none on its half of the top: nothing to say where the end is
+    else if (side)
+      cell[2] = std::min(cell[2], w.x[k]);
+    else
+      cell[1] = std::max(cell[1], w.x[k]);
+    // The cell's outer point standing over the surface below (by over
+    // three sigmas): a mix of the wall's foot and the end beyond it, which
+    // then lies out to the point past it.
+    const bool past = side ? last + 2 < w.x.size() : first >= 2;
+    const std::size_t bare = side ? last + 1 : first - 1;
+    if (past && w.z[bare] - w.old[bare] > 3.0 * sigma_mm) cell[side ? 3 : 0] = w.x[side ? bare + 1 : bare - 1];
+  }
+  return {on[0], on[1]};
+}
+
 // The shape held: solved at it.
 bool SolveHeld(const Window& w, std::size_t first, std::size_t last, double L, double R, const PooledShape& held,
                Silhouette& s) {
@@ -407,7 +432,11 @@ void ShapeByTop(const Window& w, std::size_t first, std::size_t last, double L, 
   }
   if (!solved && !ShapeBetween(w, first, last, L, R, found, f))
     return EndsAnywhereInTheirCells(w, first, last, L, R, found, s);
-  EndsPlaced placed = PlaceEnds(w, first, last, s.cell, f);
+  // Each end placed from the outermost point on the top (OnTheTop: one
+  // under its z0 is a mix of the end and the wall's foot, or another wall).
+  constexpr bool kNoGaps[2] = {false, false};
+  const auto [top_first, top_last] = OnTheTop(w, first, last, f.z0, std::sqrt(f.residual_variance), kNoGaps, s.cell);
+  EndsPlaced placed = PlaceEnds(w, top_first, top_last, s.cell, f);
   for (int k = 0; k < kPlacements; ++k) {
     const double moved = std::max(std::abs(placed.end[0] - ends[0]) / (s.cell[1] - s.cell[0]),
                                   std::abs(placed.end[1] - ends[1]) / (s.cell[3] - s.cell[2]));
@@ -415,7 +444,7 @@ void ShapeByTop(const Window& w, std::size_t first, std::size_t last, double L, 
     FreeShape there;
     if (!ShapeBetween(w, first, last, placed.end[0], placed.end[1], found, there)) break;
     ends[0] = placed.end[0], ends[1] = placed.end[1], f = there;
-    placed = PlaceEnds(w, first, last, s.cell, f);
+    placed = PlaceEnds(w, top_first, top_last, s.cell, f);
   }
   for (int side = 0; side < 2; ++side)
     s.end_place[side] = (ends[side] - s.cell[2 * side]) / (s.cell[2 * side + 1] - s.cell[2 * side]);
