@@ -36,6 +36,10 @@ void SayShape(const part::PooledShape& s) {
                                                   : "toward a diamond: narrower at top and bottom";
   std::printf(", exponent %.3f +- %.3f (%s; the two errors correlated %+.2f)\n", s.exponent, s.exponent_sigma, words,
               s.correlation);
+  if (s.footprint)
+    std::printf(
+        "    the profiler's points average over a footprint (most beads' walls hold a point between the surface below "
+        "and the top): the area seen follows each such end, its place in its cell counted whole in the sigma\n");
 }
 
 // The rows whose bead's outline is not one the model knows, by why

@@ -37,6 +37,12 @@ struct PooledShape {
   double aspect = NAN, aspect_sigma = 0.0;
   double exponent = 2.0, exponent_sigma = 0.0;
   double correlation = 0.0;
+  // Whether the profiler averages over a footprint: more than half the
+  // rows placed at their walls had an end whose wall holds a point between
+  // the surface below and the top (a mix; part/silhouette_top.h: OnTheTop).
+  // Its points then integrate a wall wherever it lies, and the area seen
+  // follows a mixed end (part/silhouette.h: SilhouetteVariance).
+  bool footprint = false;
   // false: too few rows were placed at their walls to solve the exponent;
   // the ellipse's is held, by assumption.
   bool exponent_solved = false;

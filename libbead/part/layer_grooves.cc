@@ -68,7 +68,7 @@ void LayerGrooves::Add(PartGeometryRow row, const StoredProfile* points, const S
     }
     if (!pooled_ && g.ok && g.shape_consistent && g.at_silhouette)
       placed_.push_back({g.aspect, g.exponent, g.aspect_end_var, g.exponent_end_var, g.aspect_grid_var,
-                         g.exponent_grid_var, g.left_end_mm, points->spacing_mm});
+                         g.exponent_grid_var, g.left_end_mm, points->spacing_mm, g.end_mixed});
   }
   if (pooled_ && waiting_.empty()) return emit(row);
   waiting_.push_back({std::move(row), points && under ? std::optional(*points) : std::nullopt,
@@ -153,7 +153,9 @@ double ShapeCorrelation(const std::vector<LayerGrooves::Placed>& placed) {
 // places made the aspect's interval 2.4 times too wide on twin walls, its
 // errors' RMS over sigma 0.42; this one 1.07, and 1.00 on an independent
 // generator's 36 pools, with the ends at their cells' middles.) The grid's
-// is the same in every row: counted whole.
+// is the same in every row: counted whole. The profiler averages over a
+// footprint where most rows placed at their walls hold a mixed point at an
+// end (PooledShape::footprint).
 PooledShape LayerGrooves::Pooled() const {
   PooledShape pool;
   std::tie(pool.aspect, pool.aspect_sigma) = MedianAndError(aspects_);
@@ -163,13 +165,16 @@ PooledShape LayerGrooves::Pooled() const {
     std::vector<double> exponents;
     double lo = INFINITY, hi = -INFINITY, aspect_var = 0.0, exponent_var = 0.0, spacing = 0.0;
     double aspect_grid = 0.0, exponent_grid = 0.0;
+    std::size_t mixed = 0;
     for (const Placed& p : placed_) {
+      mixed += p.end_mixed;
       exponents.push_back(p.exponent);
       lo = std::min(lo, p.left_end_mm), hi = std::max(hi, p.left_end_mm), spacing += p.spacing_mm;
       aspect_var += p.aspect_end_var, exponent_var += p.exponent_end_var;
       aspect_grid += p.aspect_grid_var, exponent_grid += p.exponent_grid_var;
     }
     const auto n = static_cast<double>(placed_.size());
+    pool.footprint = 2 * mixed > placed_.size();
     const double cycles = (hi - lo) / (spacing / n);  // K
     const double shared = std::min(1.0, 1.0 / (std::numbers::pi * cycles));
     const auto floor = [&](double ends, double grid) { return std::sqrt(shared * shared * ends / n + grid / n); };

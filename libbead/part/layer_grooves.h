@@ -68,6 +68,7 @@ class LayerGrooves {
   struct Placed {
     double aspect, exponent, aspect_end_var, exponent_end_var, aspect_grid_var, exponent_grid_var, left_end_mm,
         spacing_mm;
+    bool end_mixed;
   };
 
  private:

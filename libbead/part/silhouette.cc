@@ -165,7 +165,12 @@ std::optional<Silhouette> AtSilhouette(const Window& w, double center, const Sil
   if (held) {
     if (gap && !PlaceGappedEnds(w, jl + 1, jr, spacing, *held, gapped, L, R, s)) return std::nullopt;
     if (!SolveHeld(w, jl + 1, jr, L, R, *held, s) || !stands(s, 0.0)) return std::nullopt;
-    OnTheTop(w, jl + 1, jr, s.e.z0, std::sqrt(s.residual_variance), gapped, s.cell);
+    // Where the profiler averages over a footprint, the end lies within its
+    // mixed point's spot: its cell stays the wall's (one spacing), only the
+    // mix is told (the area seen follows the end: SilhouetteVariance).
+    double widened[4] = {s.cell[0], s.cell[1], s.cell[2], s.cell[3]};
+    OnTheTop(w, jl + 1, jr, s.e.z0, std::sqrt(s.residual_variance), gapped, held->footprint ? widened : s.cell,
+             s.end_mixed);
     for (int side = 0; side < 2; ++side)
       if (gapped[side]) s.seen_adjust += GapSeenChange(w, side ? jr : jl, s.e);
     return s;
@@ -195,7 +200,11 @@ double SilhouetteVariance(const Silhouette& s, const PooledShape* held, const do
     Ellipse moved = s.e;
     moved.x0 += 0.5 * step, moved.a += (side ? 0.5 : -0.5) * step;
     moved.z0 += s.z0_by_end[side] * step, moved.b += s.b_by_end[side] * step;
-    const double seen = (side ? s.wall_right : -s.wall_left) * step;
+    // A profiler averaging over a footprint (the layer's pool says so) sees
+    // a mixed end's wall as it lies: the area seen follows the end, and
+    // does not cancel what its place moves the groove by.
+    const bool follows = held && held->footprint && s.end_mixed[side];
+    const double seen = follows ? 0.0 : (side ? s.wall_right : -s.wall_left) * step;
     const double range = GrooveChange(s.e, moved, gradient) - seen;
     ends += range * range / 12.0;
   }

@@ -30,7 +30,10 @@
 // Where an end's place in its cell is unknown, the area seen and the groove
 // move together (the seen area loses the wall's height times the step, the
 // groove about as much; the ellipse itself is thin there): the variance
-// counts their difference, not each.
+// counts their difference, not each. Not where the profiler averages over
+// a footprint (PooledShape::footprint) and the end's wall holds a mixed
+// point: the area seen, integrating the spots, is the same wherever the
+// end lies, and the groove's change is counted whole.
 #pragma once
 
 #include <cmath>
@@ -57,6 +60,9 @@ struct Silhouette {
   // the bead's (the layer below's wall, interpolated across a registration
   // a fraction of a spacing off, rising beside it). Its shape is not pooled.
   bool shape_consistent = true;
+  // Where an end's wall holds a point that is neither the top nor the
+  // surface below (part/silhouette_top.h: OnTheTop).
+  bool end_mixed[2] = {false, false};
   double cell[4] = {};                     // the left end lies in [cell[0], cell[1]], the right in [cell[2], cell[3]]
   double wall_left = 0, wall_right = 0;    // the seen wall at each end: z0 over the surface below there, mm
   double residual_variance = 0.0;          // the top's points', mm^2

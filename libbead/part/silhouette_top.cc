@@ -293,12 +293,13 @@ constexpr double kSettledCell = 1e-2;
 }  // namespace
 
 std::pair<std::size_t, std::size_t> OnTheTop(const Window& w, std::size_t first, std::size_t last, double z0,
-                                             double sigma_mm, const bool gapped[2], double cell[4]) {
+                                             double sigma_mm, const bool gapped[2], double cell[4], bool* mixed) {
   const double off = z0 - 3.0 * sigma_mm;
   const std::size_t middle = first + (last - first) / 2;
   std::size_t on[2] = {first, last};
   for (int side = 0; side < 2; ++side) {
     if (gapped[side]) continue;
+    const double inner = cell[side ? 2 : 1], outer = cell[side ? 3 : 0];
     std::size_t& k = on[side];
     while ((side ? k > middle : k < middle) && !(w.z[k] >= off)) k = side ? k - 1 : k + 1;
     if (!(w.z[k] >= off))
@@ -313,6 +314,7 @@ std::pair<std::size_t, std::size_t> OnTheTop(const Window& w, std::size_t first,
     const bool past = side ? last + 2 < w.x.size() : first >= 2;
     const std::size_t bare = side ? last + 1 : first - 1;
     if (past && w.z[bare] - w.old[bare] > 3.0 * sigma_mm) cell[side ? 3 : 0] = w.x[side ? bare + 1 : bare - 1];
+    if (mixed) mixed[side] = cell[side ? 2 : 1] != inner || cell[side ? 3 : 0] != outer;
   }
   return {on[0], on[1]};
 }
@@ -435,7 +437,8 @@ void ShapeByTop(const Window& w, std::size_t first, std::size_t last, double L, 
   // Each end placed from the outermost point on the top (OnTheTop: one
   // under its z0 is a mix of the end and the wall's foot, or another wall).
   constexpr bool kNoGaps[2] = {false, false};
-  const auto [top_first, top_last] = OnTheTop(w, first, last, f.z0, std::sqrt(f.residual_variance), kNoGaps, s.cell);
+  const auto [top_first, top_last] =
+      OnTheTop(w, first, last, f.z0, std::sqrt(f.residual_variance), kNoGaps, s.cell, s.end_mixed);
   EndsPlaced placed = PlaceEnds(w, top_first, top_last, s.cell, f);
   for (int k = 0; k < kPlacements; ++k) {
     const double moved = std::max(std::abs(placed.end[0] - ends[0]) / (s.cell[1] - s.cell[0]),

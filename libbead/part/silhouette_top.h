@@ -40,15 +40,16 @@ bool SolveHeld(const Window& w, std::size_t first, std::size_t last, double L, d
 // may lie beyond it: the cell is widened outward to the point past it.
 // Returns the outermost points on the top (first, last where they are, or
 // where no point of its half of the top is).
-// (On a generator's wall of pressed ellipses, six layers, whose points
-// average over a spot as wide as their spacing, the groove's 95 %
-// intervals covered 82 % of the rows, 56 % on the sixth layer, and the
-// layers' pooled aspects were 0.495-0.498 for 0.500; now 96 % and 85 %,
-// 0.497-0.501. With points that do not average, 1-14 % of the rows of
-// layers 2-6 had an end outside its cell, their intervals covering 47-86 %
-// of them.)
+// (On a generator's wall of pressed ellipses whose points average over a
+// spot as wide as their spacing, the layers' pooled aspects were
+// 0.495-0.498 for 0.500, now 0.497-0.501. With points that do not
+// average, 1-14 % of the rows of layers 2-6 had an end outside its cell,
+// their intervals covering 47-86 % of them: now widened to where the top
+// is.)
+// mixed (where given): whether each side's cell was widened.
 std::pair<std::size_t, std::size_t> OnTheTop(const Window& w, std::size_t first, std::size_t last, double z0,
-                                             double sigma_mm, const bool gapped[2], double cell[4]);
+                                             double sigma_mm, const bool gapped[2], double cell[4],
+                                             bool* mixed = nullptr);
 
 // The top with the shape free: from grid index `from` downhill to the least
 // residual, the exponent, z0 and b interpolated between the grid's around it.
