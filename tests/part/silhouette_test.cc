@@ -399,10 +399,10 @@ TEST(Silhouette, APointUnderTheTopsWidestPointIsNotOnIt) {
 // ends placed from the points on the top, is printed: over the phases
 // -0.0020 (-0.0031 placed from the mixed points), what is left the spot's
 // averaging of the steep top near the end, which the model does not know.
-Window SeenThroughASpot(const Ellipse& e, double offset) {
+template <class Old>
+Window SeenThroughASpot(const Ellipse& e, Old old, double offset) {
   constexpr int kSub = 50;  // the spot's subsamples
-  const auto below = [&e](double x) { return std::abs(x - e.x0) < e.a - 0.4 ? 0.0 : -1.5; };
-  const Window fine = Seen(e, below, offset - 0.5 * kSpacing + 0.5 * kSpacing / kSub, kSpacing / kSub);
+  const Window fine = Seen(e, old, offset - 0.5 * kSpacing + 0.5 * kSpacing / kSub, kSpacing / kSub);
   Window w;
   for (std::size_t j = 0; j + kSub <= fine.x.size(); j += kSub) {
     double z = 0.0, old = 0.0;
@@ -418,7 +418,8 @@ TEST(Silhouette, APointMixingTheEndAndTheWallsFootIsNotOnTheTop) {
   for (int m = 0; m < phases; ++m) {
     const double offset = kSpacing * m / phases;
     const Ellipse truth{0.13, 0.6, 3.003 + 0.0093 * m, 0.5 * (3.003 + 0.0093 * m)};
-    const Window w = SeenThroughASpot(truth, offset);
+    const auto below = [&truth](double x) { return std::abs(x - truth.x0) < truth.a - 0.4 ? 0.0 : -1.5; };
+    const Window w = SeenThroughASpot(truth, below, offset);
     const auto free = AtSilhouette(w, truth.x0, kScale, nullptr);
     const auto held = AtSilhouette(w, truth.x0, kScale, &kHalf);
     ASSERT_TRUE(free && held) << m;
@@ -448,25 +449,14 @@ TEST(Silhouette, ThroughASpotTheAreaSeenFollowsAMixedEnd) {
   const int phases = 8;
   for (int m = 0; m < phases; ++m) {
     const Ellipse truth{0.13, 0.6, 3.003 + 0.0093 * m, 0.5 * (3.003 + 0.0093 * m)};
-    constexpr int kSub = 50;
-    const Window fine =
-        Seen(truth, kFlat, kSpacing * m / phases - 0.5 * kSpacing + 0.5 * kSpacing / kSub, kSpacing / kSub);
-    Window w;
-    for (std::size_t j = 0; j + kSub <= fine.x.size(); j += kSub) {
-      double z = 0.0;
-      for (std::size_t k = j; k < j + kSub; ++k) z += fine.z[k] / kSub;
-      w.x.push_back(0.5 * (fine.x[j] + fine.x[j + kSub - 1])), w.old.push_back(0.0), w.z.push_back(z);
-    }
+    const Window w = SeenThroughASpot(truth, kFlat, kSpacing * m / phases);
     auto s = AtSilhouette(w, truth.x0, kScale, &footprint);
     ASSERT_TRUE(s) << m;
     mixed += s->end_mixed[0] + s->end_mixed[1];
-    double seen = 0.0;
-    for (std::size_t j = 0; j + 1 < w.x.size(); ++j)
-      seen += 0.5 * (std::max(w.Gain(j), 0.0) + std::max(w.Gain(j + 1), 0.0)) * (w.x[j + 1] - w.x[j]);
     double gradient[4];
     FlatGradient(s->e, gradient);
     s->residual_variance = 0.0;  // noise-free: the ends alone
-    const double error = seen - FlatGroove(s->e) - FlatMaterial(truth);
+    const double error = SeenArea(w) - FlatGroove(s->e) - FlatMaterial(truth);
     const double sigma = std::sqrt(SilhouetteVariance(*s, &footprint, gradient, 0.0));
     const double as_points = std::sqrt(SilhouetteVariance(*s, &kHalf, gradient, 0.0));
     std::printf("phase %d: area less groove %+.4f mm^2, sigma %.4f (as points %.4f)\n", m, error, sigma, as_points);
