@@ -28,14 +28,14 @@ void SayShape(const part::PooledShape& s) {
               s.aspect, s.aspect_sigma);
   if (!s.exponent_solved) {
     std::printf("; an ellipse assumed (too few of its beads overhang to show their walls and solve the exponent)\n");
-    return;
+  } else {
+    const double off = s.exponent - 2.0, two_sigmas = 2.0 * s.exponent_sigma;
+    const char* words = std::abs(off) <= two_sigmas ? "an ellipse, within two sigmas"
+                        : off > 0.0                 ? "toward a box: flatter on top, steeper at the sides"
+                                                    : "toward a diamond: narrower at top and bottom";
+    std::printf(", exponent %.3f +- %.3f (%s; the two errors correlated %+.2f)\n", s.exponent, s.exponent_sigma, words,
+                s.correlation);
   }
-  const double off = s.exponent - 2.0, two_sigmas = 2.0 * s.exponent_sigma;
-  const char* words = std::abs(off) <= two_sigmas ? "an ellipse, within two sigmas"
-                      : off > 0.0                 ? "toward a box: flatter on top, steeper at the sides"
-                                                  : "toward a diamond: narrower at top and bottom";
-  std::printf(", exponent %.3f +- %.3f (%s; the two errors correlated %+.2f)\n", s.exponent, s.exponent_sigma, words,
-              s.correlation);
   if (s.footprint)
     std::printf(
         "    the profiler's points average over a footprint (most beads' walls hold a point between the surface below "

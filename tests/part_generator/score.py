@@ -33,6 +33,11 @@ def fit(estimate, truth):
     return 100.0 * (1.0 - np.linalg.norm(e - t) / np.linalg.norm(t - t.mean()))
 
 
+def covered_95(err, sigma):
+    """The share of errors inside their 95 % interval, +-1.96 sigma."""
+    return float(np.mean(np.abs(err) <= 1.96 * sigma)) if err.size else math.nan
+
+
 def score(directory):
     geom = columns(os.path.join(directory, "geom.csv"))
     truth = columns(os.path.join(directory, "truth.csv"))
@@ -51,7 +56,7 @@ def score(directory):
         out[name + "_median_abs"] = float(np.median(np.abs(rel)))
     sigma = geom["area_corrected_sigma_mm2"][has]
     err = corrected[has] - truth["area_mm2"][has]
-    out["covered_95"] = float(np.mean(np.abs(err) <= 1.96 * sigma)) if has.any() else math.nan
+    out["covered_95"] = covered_95(err, sigma)
     out["height_median_abs_mm"] = float(np.median(np.abs(geom["height_mm"][valid] - truth["height_mm"][valid])))
     # The flow against the melt's true flow at the time the tool gives.
     out["flow_fit"] = fit(np.where(flow["valid"] == 1, flow["flow_mm3_s"], math.nan), truth["flow_mm3_s"])
@@ -77,7 +82,7 @@ def by_layer(directory):
         if not m.any():
             continue
         e, s = err[m], sigma[m]
-        out.append({"layer": int(layer), "rows": int(m.sum()), "covered_95": float(np.mean(np.abs(e) <= 1.96 * s)),
+        out.append({"layer": int(layer), "rows": int(m.sum()), "covered_95": covered_95(e, s),
                     "mean_z": float(np.mean(e / s)), "bias": float(e.sum() / truth["area_mm2"][m].sum()),
                     "median_sigma_mm2": float(np.median(s)), "rms_error_mm2": float(np.sqrt(np.mean(e * e)))})
     return out
