@@ -88,7 +88,40 @@ def by_layer(directory):
     return out
 
 
+def score_roads(directory, measured="roads.csv"):
+    """Roads side by side (bead measure --beads all against truth_roads.csv):
+    the share of profiles with the right number of beads; over those, the
+    beads' centre errors (the largest and the 95th percentile, mm) and the
+    median relative area error by road, beside a vertical cut at the
+    valleys' (the generator's naive_area_mm2)."""
+    got = columns(os.path.join(directory, measured))
+    truth = columns(os.path.join(directory, "truth_roads.csv"))
+    profiles = np.unique(truth["profile"])
+    right, centre, area, naive = 0, [], [], []
+    for k in profiles:
+        g, t = got["profile"] == k, truth["profile"] == k
+        if g.sum() != t.sum():
+            continue
+        right += 1
+        centre.append(got["center_x_mm"][g] - truth["center_x_mm"][t])
+        area.append(got["area_mm2"][g] / truth["area_mm2"][t] - 1.0)
+        naive.append(truth["naive_area_mm2"][t] / truth["area_mm2"][t] - 1.0)
+    out = {"profiles": int(profiles.size), "right_count": right / profiles.size}
+    if right:
+        c, a = np.abs(np.array(centre)), np.array(area)
+        out["centre_max_mm"] = float(np.nanmax(c))
+        out["centre_p95_mm"] = float(np.nanpercentile(c, 95))
+        out["area_median_abs_by_road"] = [float(v) for v in np.nanmedian(np.abs(a), axis=0)]
+        out["area_bias_by_road"] = [float(v) for v in np.nanmean(a, axis=0)]
+        out["naive_median_abs_by_road"] = [float(v) for v in np.nanmedian(np.abs(np.array(naive)), axis=0)]
+    return out
+
+
 if __name__ == "__main__":
+    if os.path.exists(os.path.join(sys.argv[1], "truth_roads.csv")):
+        for key, value in score_roads(sys.argv[1]).items():
+            print(f"{key}: {value}")
+        sys.exit(0)
     for key, value in score(sys.argv[1]).items():
         print(f"{key}: {value:.4f}" if isinstance(value, float) else f"{key}: {value}")
     for row in by_layer(sys.argv[1]):
