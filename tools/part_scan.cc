@@ -150,13 +150,14 @@ PartPlaces OnTheBed(std::size_t n) {
   return p;
 }
 
-void SayRoads(const part::RoadsSummary& s, bool above_bed, std::size_t no_surface) {
+void SayRoads(const part::RoadsSummary& s, bool laid_left_first, bool above_bed, std::size_t no_surface) {
   for (const auto& [count, profiles] : s.profiles_by_count)
     std::printf("  %zu profiles with %zu bead%s\n", profiles, count, count == 1 ? "" : "s");
   if (s.cut_by_edge)
     std::printf("  %zu beads cut by the field of view's end: flagged invalid, their size not given\n", s.cut_by_edge);
   if (s.no_fit) std::printf("  %zu stretches the overlap model could not explain: flagged no_fit\n", s.no_fit);
   if (const std::string words = s.SpacingInWords(); !words.empty()) std::printf("  %s\n", words.c_str());
+  if (const std::string words = s.OrderInWords(laid_left_first); !words.empty()) std::printf("  %s\n", words.c_str());
   if (no_surface)
     std::printf(
         "  %zu profiles have no surface below to measure against (layer 0: no bare bed in the reference areas; "
@@ -212,7 +213,7 @@ int MeasureRoads(const std::string& rig_path, const std::string& run, const std:
   out.Commit();
   std::printf("%s: %zu profiles, %zu beads found (laid %s); wrote %s\n", run.c_str(), total, summary.roads,
               laid_left_first ? "left to right" : "right to left", output.c_str());
-  SayRoads(summary, above_bed, no_surface);
+  SayRoads(summary, laid_left_first, above_bed, no_surface);
   return 0;
 }
 

@@ -81,6 +81,10 @@ struct Road {
   double center_x_mm = kNaN, area_mm2 = kNaN, width_mm = kNaN, height_mm = kNaN;
   double spacing_over_width = kNaN;  // to the road before it in its region; NaN for the first
   double fit_rms_mm = kNaN;          // the region's residual RMS
+  // Its area had the roads been laid in the other order: the profile
+  // cannot tell the two apart (the model's top, the highest cap, is the
+  // same either way), only the split moves.
+  double area_other_order_mm2 = kNaN;
   bool valid() const { return status == RoadStatus::kValid; }
 };
 
@@ -96,11 +100,17 @@ struct RoadsSummary {
   std::map<std::size_t, std::size_t> profiles_by_count;  // roads found -> profiles
   std::size_t roads = 0, cut_by_edge = 0, no_fit = 0;
   std::vector<double> spacing_over_width;  // between valid neighbours
+  // Each valid road's |area in the other order / area - 1|, where it has a
+  // valid neighbour: how much the split rests on the order the user gave.
+  std::vector<double> order_change;
   void Add(const std::vector<Road>& roads);
   double MedianSpacing() const;  // NaN without a pair of valid neighbours
   // The median spacing against the overlap models' critical ratios, in
   // words (empty without a spacing).
   std::string SpacingInWords() const;
+  // What the other laying order would make of the areas, in words (empty
+  // where no road has a neighbour); left_first: the order used.
+  std::string OrderInWords(bool left_first) const;
 };
 
 // The flat-top overlap model's critical centre distance over the width,

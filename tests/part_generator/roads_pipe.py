@@ -46,6 +46,7 @@ class Config:
     standoff_mm = 60.0
     fine_mm = 0.005
     cap = "cosine"  # or "parabola"
+    laid = "left-first"  # or "right-first"
     # The pipe: its radius, how far the bead wanders off the crest, and
     # where the crest lies across the sensor's field.
     radius_mm = 40.0
@@ -112,31 +113,34 @@ def paths(c, rng, count):
 
 
 def generate_roads(c, seed):
-    """Roads laid left to right, each over the surface the ones before left."""
+    """Roads laid in order (c.laid: from the left or the right), each over
+    the surface the ones before left; the truth's rows left to right."""
     rng = np.random.default_rng(seed)
     p, swing, wander = paths(c, rng, c.roads)
     x_fine = np.arange(-c.field_half_mm - 2, c.field_half_mm + 2, c.fine_mm)
     _, unit = cap(c, np.zeros(1))
     lone = unit * 0.5 * c.width_mm * c.aspect * 0.5 * c.width_mm
+    side = 1.0 if c.laid == "left-first" else -1.0
     first = -0.5 * (c.roads - 1) * c.ratio * c.width_mm
     surfaces, truth = np.zeros((p.size, x_fine.size)), []
     for i in range(p.size):
-        surface = np.zeros(x_fine.size)
+        surface, laid = np.zeros(x_fine.size), []
         for k in range(c.roads):
-            centre = first + k * c.ratio * c.width_mm + wander[i, k]
+            centre = side * (first + k * c.ratio * c.width_mm) + wander[i, k]
             area = lone * swing[i, k]
             surface, a, h = grown(c, x_fine, surface, centre, area)
-            truth.append((i, k, area, centre, 2 * a, h))
+            laid.append((area, centre, 2 * a, h))
         surfaces[i] = surface
-        truth[-c.roads:] = [row + (naive,) for row, naive in zip(truth[-c.roads:], cut_at_valleys(x_fine, surface, truth[-c.roads:]))]
+        laid.sort(key=lambda road: road[1])
+        naive = cut_at_valleys(x_fine, surface, [road[1] for road in laid])
+        truth += [(i, k, *road, cut) for k, (road, cut) in enumerate(zip(laid, naive))]
     x_sensor, z = sensed(c, rng, x_fine, surfaces, c.standoff_mm)
     return p, x_sensor, z, truth
 
 
-def cut_at_valleys(x, surface, roads):
+def cut_at_valleys(x, surface, centres):
     """What a vertical cut at the lowest point between each two centres
-    gives each road (the naive split)."""
-    centres = [row[3] for row in roads]
+    (left to right) gives each road (the naive split)."""
     cuts = [x[0]]
     for left, right in zip(centres, centres[1:]):
         between = (x > left) & (x < right)
@@ -193,12 +197,14 @@ def main():
     ap.add_argument("--cap", choices=("cosine", "parabola"), default=Config.cap)
     ap.add_argument("--ratio", type=float, default=Config.ratio, help="roads: centre spacing over a lone road's width")
     ap.add_argument("--roads", type=int, default=Config.roads)
+    ap.add_argument("--laid", choices=("left-first", "right-first"), default=Config.laid, help="roads: the laying order")
     ap.add_argument("--radius-mm", type=float, default=Config.radius_mm, help="pipe: its radius")
     ap.add_argument("--wander-mm", type=float, default=Config.wander_mm, help="pipe: the bead's greatest distance off the crest")
     ap.add_argument("--fit-radius", action="store_true", help="pipe: the rig file leaves the radius out")
     args = ap.parse_args()
     c = Config()
-    c.cap, c.ratio, c.roads, c.radius_mm, c.wander_mm = args.cap, args.ratio, args.roads, args.radius_mm, args.wander_mm
+    c.cap, c.ratio, c.roads, c.laid = args.cap, args.ratio, args.roads, args.laid
+    c.radius_mm, c.wander_mm = args.radius_mm, args.wander_mm
     if args.what == "roads":
         write(args.out_dir, c, *generate_roads(c, args.seed), "  bed: flat\n")
     else:
