@@ -69,6 +69,9 @@ void SayMisfits(const part::LayerSummary& l) {
   say(OutlineMisfit::kFloats, "the shape fitting its top would float over the surface it was laid on");
   say(OutlineMisfit::kTopOff, top);
   say(OutlineMisfit::kFamilyEdge, "boxier or more pointed than any of the shapes");
+  say(OutlineMisfit::kEndsOff,
+      "in most of the layer's rows placed at their walls, the shape solved over the top puts an end off the wall the "
+      "profile shows: no shape of the model's has both those tops and those walls");
   std::printf(")\n");
 }
 

@@ -51,6 +51,9 @@ struct PooledShape {
   // The median over those rows of their tops' RMS about the shape over
   // their noise (part/hidden_groove.h: OutlineMisfit::kTopOff).
   double top_noise = NAN;
+  // Most of the layer's rows placed at their walls had an end the top put
+  // off its wall's cell (part/hidden_groove.h: OutlineMisfit::kEndsOff).
+  bool ends_off = false;
 };
 
 // The points around the bead with the surface below under each.

@@ -292,6 +292,10 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
     out.misfit = OutlineMisfit::kTopOff;  // the layer's shape is not its beads'
     return out;
   }
+  if (pooled && pooled->ends_off) {
+    out.misfit = OutlineMisfit::kEndsOff;  // no shape of the family has their tops and walls
+    return out;
+  }
   // The points within a width of the centre (x increasing: a range).
   thread_local Window w;
   const auto first = static_cast<std::size_t>(std::upper_bound(x.begin(), x.end(), center - width) - x.begin());

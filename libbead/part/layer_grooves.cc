@@ -55,6 +55,7 @@ void LayerGrooves::Add(PartGeometryRow row, const StoredProfile* points, const S
   if (row.layer != layer_) {
     Flush(emit);
     aspects_.clear(), tops_.clear(), placed_.clear(), pooled_.reset(), last_.reset(), layer_ = row.layer;
+    at_walls_ = ends_off_ = 0;
   }
   double top = NAN;
   if (points && under) {
@@ -62,6 +63,7 @@ void LayerGrooves::Add(PartGeometryRow row, const StoredProfile* points, const S
     if (g.ok) last_ = g;
     Apply(g, points->spacing_mm, row);
     top = g.top_rms_mm / row.bead.noise_mm;
+    if (!pooled_ && g.at_silhouette) ++at_walls_, ends_off_ += !g.shape_consistent;
     if (!pooled_ && g.ok && g.shape_consistent) {
       aspects_.push_back(g.aspect);
       if (std::isfinite(top)) tops_.push_back(top);
@@ -88,11 +90,13 @@ void LayerGrooves::Add(PartGeometryRow row, const StoredProfile* points, const S
 void LayerGrooves::Flush(const Emit& emit) {
   if (!pooled_ && aspects_.size() >= kMinPoolProfiles) Hold(Pooled());
   if (!pooled_) {
-    for (Waiting& w : waiting_)
-      if (std::isfinite(w.row.area_corrected_mm2) && w.top_noise > kTopOffNoise) {
-        w.row.area_corrected_mm2 = w.row.area_corrected_sigma_mm2 = PartGeometryRow::kNaN;
-        w.row.outline_misfit = OutlineMisfit::kTopOff;
-      }
+    for (Waiting& w : waiting_) {
+      if (!std::isfinite(w.row.area_corrected_mm2)) continue;
+      const bool top_off = w.top_noise > kTopOffNoise;
+      if (!top_off && !EndsOff()) continue;
+      w.row.area_corrected_mm2 = w.row.area_corrected_sigma_mm2 = PartGeometryRow::kNaN;
+      w.row.outline_misfit = top_off ? OutlineMisfit::kTopOff : OutlineMisfit::kEndsOff;
+    }
   } else {
     std::optional<HiddenGroove> previous;
     for (Waiting& w : waiting_) {
@@ -161,6 +165,7 @@ PooledShape LayerGrooves::Pooled() const {
   std::tie(pool.aspect, pool.aspect_sigma) = MedianAndError(aspects_);
   pool.top_noise = tops_.empty() ? NAN : MedianAndError(tops_).first;
   pool.rows = aspects_.size();
+  pool.ends_off = EndsOff();
   if (!placed_.empty()) {
     std::vector<double> exponents;
     double lo = INFINITY, hi = -INFINITY, aspect_var = 0.0, exponent_var = 0.0, spacing = 0.0;

@@ -89,6 +89,10 @@ class LayerGrooves {
   std::vector<double> aspects_;
   std::vector<double> tops_;  // the same rows' tops' RMS over their noise
   std::vector<Placed> placed_;
+  // The rows placed at their walls so far, and those whose top put an end
+  // off its wall's cell (OutlineMisfit::kEndsOff); the layer's verdict.
+  std::size_t at_walls_ = 0, ends_off_ = 0;
+  bool EndsOff() const { return at_walls_ >= kMinPoolProfiles && 2 * ends_off_ > at_walls_; }
   std::vector<std::pair<int64_t, PooledShape>> pools_;
   std::optional<PooledShape> pooled_;
   std::optional<HiddenGroove> last_;  // the layer's last fit: where the next starts

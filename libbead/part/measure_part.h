@@ -75,8 +75,8 @@ struct LayerSummary {
   std::size_t corrected = 0, loose = 0;
   // The valid rows left without one because the bead's outline is not one
   // the model knows, by OutlineMisfit (kNone's count unused).
-  std::size_t misfit[4] = {};
-  std::size_t Misfits() const { return misfit[1] + misfit[2] + misfit[3]; }
+  std::size_t misfit[5] = {};
+  std::size_t Misfits() const { return misfit[1] + misfit[2] + misfit[3] + misfit[4]; }
   double corrected_sum_mm2 = 0.0;
   double MeanCorrected() const { return corrected ? corrected_sum_mm2 / static_cast<double>(corrected) : kNaN(); }
   double first_path_mm = 0.0, last_path_mm = 0.0;

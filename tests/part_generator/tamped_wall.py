@@ -53,7 +53,8 @@ class Config:
     fine_mm = 0.005  # the generator's own grid across the wall
     # "tamped": the stadium above; "pressed": an ellipse of this aspect
     # (half-height over half-width) whose top the nozzle holds at the layer
-    # height, sunk into what lies under it, wider where more is laid.
+    # height, sunk into what lies under it, wider where more is laid;
+    # "lens": the same with two parabolas for the ellipse.
     shape = "tamped"
     aspect = 0.5
 
@@ -121,12 +122,15 @@ def added_area(x, surface, centre, base, height, width):
     return np.nansum(np.clip(top - lower, 0, None), axis=1) * (x[1] - x[0]), top
 
 
-def pressed(x, surface, centre, top_z, aspect, a):
+def pressed(x, surface, centre, top_z, aspect, a, lens=False):
     """A pressed ellipse's material over `surface` (what it overlaps of the
-    old material stays the old's) and its top (NaN outside it)."""
+    old material stays the old's) and its top (NaN outside it). lens: two
+    parabolas, top and bottom, meeting at a corner at each end (none of
+    the model's superellipses)."""
     b = aspect * a
     u = (x[None, :] - centre[:, None]) / a[:, None]
-    half = b[:, None] * np.sqrt(np.clip(1 - u * u, 0, None))
+    rise = np.clip(1 - u * u, 0, None)
+    half = b[:, None] * (rise if lens else np.sqrt(rise))
     inside = np.abs(u) < 1
     top = np.where(inside, top_z - b[:, None] + half, np.nan)
     bottom = np.where(inside, top_z - b[:, None] - half, np.nan)
@@ -141,10 +145,10 @@ def lay_pressed(c, x, surface, centre, base, area):
     top_z = base + c.layer_height_mm
     a = np.sqrt(area / (math.pi * c.aspect))
     for _ in range(8):
-        got, _ = pressed(xw, sw, centre, top_z, c.aspect, a)
-        more, _ = pressed(xw, sw, centre, top_z, c.aspect, a + 1e-3)
+        got, _ = pressed(xw, sw, centre, top_z, c.aspect, a, c.shape == "lens")
+        more, _ = pressed(xw, sw, centre, top_z, c.aspect, a + 1e-3, c.shape == "lens")
         a = np.clip(a + (area - got) * 1e-3 / np.maximum(more - got, 1e-9), 0.5, 12.0)
-    material, top = pressed(xw, sw, centre, top_z, c.aspect, a)
+    material, top = pressed(xw, sw, centre, top_z, c.aspect, a, c.shape == "lens")
     after = surface.copy()
     after[:, window] = np.where(np.isnan(top), sw, np.fmax(sw, top))
     k = np.searchsorted(x, centre)
@@ -158,7 +162,7 @@ def lay_layer(c, x, surface, centre, base, area):
     adds the layer height per mm while its sides stay clear of the old
     surface, which they nearly do (within the window of x its sides
     reach: beyond it the surface stays as it was)."""
-    if c.shape == "pressed":
+    if c.shape in ("pressed", "lens"):
         return lay_pressed(c, x, surface, centre, base, area)
     h = c.layer_height_mm
     window = np.abs(x) <= 12.0
@@ -282,7 +286,7 @@ def main():
     ap.add_argument("--layers", type=int, default=Config.layers)
     ap.add_argument("--spacing-mm", type=float, default=None, help="the sensor's point spacing (points over 40 mm)")
     ap.add_argument("--contour-mm", type=float, nargs=2, default=None, help="the contour's length and width")
-    ap.add_argument("--shape", choices=("tamped", "pressed"), default="tamped")
+    ap.add_argument("--shape", choices=("tamped", "pressed", "lens"), default="tamped")
     ap.add_argument("--spot-mm", type=float, default=Config.spot_mm,
                     help="the laser spot each point averages over (a small value: points that do not average)")
     args = ap.parse_args()
