@@ -220,6 +220,17 @@ int MeasureRoads(const std::string& rig_path, const std::string& run, const std:
   return 0;
 }
 
+// The valid rows whose flow stands on the area seen (no corrected area).
+void SaySeenFlow(const std::vector<part::LayerSummary>& layers) {
+  std::size_t seen = 0;
+  for (const part::LayerSummary& l : layers) seen += l.valid - l.corrected;
+  if (seen)
+    std::printf(
+        "  %zu valid profiles' flow is from the area seen, having no corrected area (the lines above say why): where "
+        "their beads overhang, it counts the groove they hide as material\n",
+        seen);
+}
+
 Error NoNozzleLog(const std::string& run) {
   if (run.ends_with(".csv"))
     return Error(Located(run, "",
@@ -246,6 +257,7 @@ int FlowPartScan(const std::string& rig_path, const std::string& run, const std:
   for (const auto& [layer, v] : f.volumes_mm3)
     std::printf("  layer %lld: %.1f mm^3 along the path\n", static_cast<long long>(layer), v);
   std::printf("total volume %.1f mm^3 (the area integrated along the path, valid profiles)\n", f.TotalVolume());
+  SaySeenFlow(f.layers);
   if (const part::CornerBulge& b = f.bulge; b.slow)
     std::printf(
         "where the head slowed below 90 %% of its median speed (%zu profiles, %.1f against %.1f mm/s: corners), the "
