@@ -9,7 +9,6 @@ within 0.3 mm, each road's area within 5 % (median) at 0.85 and 1.05; a
 bead wandering 3 mm off the crest of a 40 mm pipe within 2 % per profile
 and 1 % over the run."""
 import os
-import subprocess
 import sys
 
 import numpy as np
@@ -17,16 +16,9 @@ import pytest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
+from cli import run  # noqa: E402
 import roads_pipe  # noqa: E402
 import score  # noqa: E402
-
-CLI = os.environ.get("BEAD_CLI", "bead")
-
-
-def run(*args):
-    done = subprocess.run([CLI, *args], capture_output=True, text=True)
-    assert done.returncode == 0, done.stdout + done.stderr
-    return done.stdout
 
 
 def imported(d):

@@ -11,23 +11,15 @@ A wall of pressed ellipses (the model's shape, laid by other physics: the
 nozzle holds the top at the layer height and more material widens the
 bead): the issue's bars for a six-layer wall on a contour with corners."""
 import os
-import subprocess
 import sys
 
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
+from cli import run  # noqa: E402
 import score  # noqa: E402
 import tamped_wall  # noqa: E402
-
-CLI = os.environ.get("BEAD_CLI", "bead")
-
-
-def run(*args):
-    done = subprocess.run([CLI, *args], capture_output=True, text=True)
-    assert done.returncode == 0, done.stdout + done.stderr
-    return done.stdout
 
 
 def measured(c, seed, d):
