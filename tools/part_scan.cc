@@ -175,6 +175,17 @@ void SayRoads(const part::RoadsSummary& s, bool laid_left_first, bool above_bed,
       "(no occlusion model for several beads yet): area_mm2 is the material seen\n");
 }
 
+// The valid rows whose flow stands on the area seen (no corrected area).
+void SaySeenFlow(const std::vector<part::LayerSummary>& layers) {
+  std::size_t seen = 0;
+  for (const part::LayerSummary& l : layers) seen += l.valid - l.corrected;
+  if (seen)
+    std::printf(
+        "  %zu valid profiles' flow is from the area seen, having no corrected area (the lines above say why): where "
+        "their beads overhang, it counts the groove they hide as material\n",
+        seen);
+}
+
 }  // namespace
 
 int MeasureRoads(const std::string& rig_path, const std::string& run, const std::string& output,
@@ -218,17 +229,6 @@ int MeasureRoads(const std::string& rig_path, const std::string& run, const std:
               laid_left_first ? "left to right" : "right to left", output.c_str());
   SayRoads(summary, laid_left_first, above_bed, no_surface);
   return 0;
-}
-
-// The valid rows whose flow stands on the area seen (no corrected area).
-void SaySeenFlow(const std::vector<part::LayerSummary>& layers) {
-  std::size_t seen = 0;
-  for (const part::LayerSummary& l : layers) seen += l.valid - l.corrected;
-  if (seen)
-    std::printf(
-        "  %zu valid profiles' flow is from the area seen, having no corrected area (the lines above say why): where "
-        "their beads overhang, it counts the groove they hide as material\n",
-        seen);
 }
 
 Error NoNozzleLog(const std::string& run) {
