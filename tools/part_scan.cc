@@ -99,7 +99,12 @@ void SayLayers(const std::vector<part::LayerSummary>& layers) {
           "    %zu profiles' corrected areas are loose (sigma over a tenth of the area): the bead's sides are not "
           "seen steep enough to place its widest point\n",
           l.loose);
-    if (l.shape) SayShape(*l.shape);
+    if (l.shape && !l.shape->exponent_solved && l.corrected && l.hidden_sum_mm2 <= 1e-9 * l.area_sum_mm2)
+      std::printf(
+          "    bead shape: not seen (no bead of the layer overhangs what it was laid on, so nothing is hidden and the "
+          "area seen is the material, whatever the outline under the surface)\n");
+    else if (l.shape)
+      SayShape(*l.shape);
   }
 }
 

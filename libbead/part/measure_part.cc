@@ -218,6 +218,7 @@ void Tally(std::vector<LayerSummary>& layers, const PartGeometryRow& r) {
   if (std::isfinite(r.area_corrected_mm2)) {
     ++l.corrected;
     l.corrected_sum_mm2 += r.area_corrected_mm2;
+    l.hidden_sum_mm2 += r.bead.area_mm2 - r.area_corrected_mm2;
     l.loose += r.area_corrected_sigma_mm2 > 0.1 * r.area_corrected_mm2;
   } else {
     ++l.misfit[static_cast<std::size_t>(r.outline_misfit)];

@@ -78,6 +78,9 @@ struct LayerSummary {
   std::size_t misfit[5] = {};
   std::size_t Misfits() const { return misfit[1] + misfit[2] + misfit[3] + misfit[4]; }
   double corrected_sum_mm2 = 0.0;
+  // Over the same rows, the area seen less the corrected area: 0 where no
+  // bead overhangs what it was laid on (nothing hidden).
+  double hidden_sum_mm2 = 0.0;
   double MeanCorrected() const { return corrected ? corrected_sum_mm2 / static_cast<double>(corrected) : kNaN(); }
   double first_path_mm = 0.0, last_path_mm = 0.0;
   std::vector<double> shifts_mm;  // the shifts found (median: the pass's)
