@@ -43,6 +43,20 @@ AcquisitionLog ReadLogFor(const std::string& path, const ImportedRun& imported) 
   return log;
 }
 
+// A part scan whose file counts its layers from `first` (its number for the
+// layer on the bed): renumbered from 0, the log's layers too.
+void RenumberLayers(const std::string& path, int64_t first, ImportedRun& imported) {
+  if (!imported.run.part || first == 0) return;
+  auto& layers = imported.run.part->layer;
+  if (const auto low = std::min_element(layers.begin(), layers.end()); low != layers.end() && *low < first)
+    throw Error(Located(path, "profile " + std::to_string(low - layers.begin()),
+                        "layer " + std::to_string(*low) + " is below --first-layer " + std::to_string(first) +
+                            ": the first layer, on the bed, is the file's lowest"));
+  for (int64_t& l : layers) l -= first;
+  if (imported.run.log)
+    for (int64_t& l : imported.run.log->layer) l -= first;
+}
+
 void PrintSummary(const std::string& input, const std::string& output, const ImportedRun& imported) {
   const ProfileBlock& b = imported.run.profiles;
   std::size_t fewest = b.points, most = 0;
@@ -67,6 +81,11 @@ void PrintSummary(const std::string& input, const std::string& output, const Imp
     const auto [lo, hi] = std::minmax_element(part->path_mm.begin(), part->path_mm.end());
     std::printf("  a part scan: layers %lld to %lld, path %.1f .. %.1f mm (bead measure measures it layer on layer)\n",
                 static_cast<long long>(part->layer.front()), static_cast<long long>(part->layer.back()), *lo, *hi);
+    if (const int64_t low = *std::min_element(part->layer.begin(), part->layer.end()); low > 0)
+      std::printf(
+          "  no layer 0 (the first layer, on the bed): layer %lld will be measured against layer %lld, which is not "
+          "in the scan; a file that counts its layers from 1 is read with --first-layer 1\n",
+          static_cast<long long>(low), static_cast<long long>(low - 1));
   } else if (EncoderAbsent(imported.run)) {
     std::printf(
         "  no encoder column: /profiles/encoder holds 0, marked encoder=absent (flow needs the wheel's motion)\n");
@@ -79,6 +98,7 @@ Run AddImport(CLI::App& app) {
   struct Args {
     std::string input, output, log;
     ImportColumns columns;
+    int64_t first_layer = 0;
   };
   auto args = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand("import", Summary("import"));
@@ -136,6 +156,10 @@ Run AddImport(CLI::App& app) {
   cmd->add_option("--head-speed-mm-s", c.head_speed_mm_s,
                   "Place each profile at this head speed times its time in its layer, mm/s (part scan)")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--first-layer", args->first_layer,
+                  "The file's number for the first layer, the one on the bed (1 where it counts from 1): the "
+                  "archive numbers it 0 (part scan; the log's layers too)")
+      ->capture_default_str();
   cmd->add_option("--frame-z-column", c.frame_z, "Column of the profile frame's height above the bed, mm (part)");
   cmd->add_option("--frame-x-column", c.frame_x, "Column of the profile frame's lateral offset, mm (part)");
   cmd->add_option("--log", args->log,
@@ -146,6 +170,7 @@ Run AddImport(CLI::App& app) {
   return [args]() {
     ImportedRun imported = ReadForeignRun(args->input, args->columns);
     if (!args->log.empty()) imported.run.log = ReadLogFor(args->log, imported);
+    RenumberLayers(args->input, args->first_layer, imported);
     WriteRunArchive(args->output, imported.run);
     PrintSummary(args->input, args->output, imported);
     if (imported.run.log) std::printf("  /log: %zu samples from %s\n", imported.run.log->size(), args->log.c_str());

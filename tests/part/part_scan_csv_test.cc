@@ -2,10 +2,13 @@
 // log, written by bead export and made into the same part scan again by
 // bead import (the files bead measure and bead flow write on it are the
 // same, byte for byte); a log that is not a part log's, or not on the
-// profiles' clock, is refused by file and line.
+// profiles' clock, is refused by file and line; a file that counts its
+// layers from 1 is read with its first layer.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include "libbead/io/part_scan_csv.h"
@@ -65,6 +68,57 @@ TEST(PartScanCsv, ExportedAndImportedTheScanMeasuresTheSame) {
   EXPECT_EQ(code, 1) << out;
   EXPECT_NE(out.find("never meet the profiles'"), std::string::npos) << out;
   EXPECT_FALSE(std::filesystem::exists(dir / "late.h5"));
+}
+
+// Another tool's file that counts its layers from 1: imported as it is,
+// its first layer has nothing under it, and the import says how to read
+// it; read with --first-layer 1, it is the same scan, measured the same.
+std::string LayersPlusOne(const std::string& text, std::size_t column) {
+  std::istringstream in(text);
+  std::string line, out;
+  std::getline(in, line), out += line + "\n";
+  while (std::getline(in, line)) {
+    std::size_t at = 0;
+    for (std::size_t c = 0; c < column; ++c) at = line.find(',', at) + 1;
+    const std::size_t end = line.find(',', at);
+    out += line.substr(0, at) + std::to_string(std::stoll(line.substr(at, end - at)) + 1) + line.substr(end) + "\n";
+  }
+  return out;
+}
+
+TEST(PartScanCsv, AFileCountingItsLayersFromOneIsReadWithItsFirstLayer) {
+  test::TempDir dir;
+  test::WriteText(dir / "wall.yaml", "seed: 5\npart: {shape: wall, layers: 2, length_mm: 30}\n");
+  auto [code, out] = test::RunCli(dir, "simulate " + (dir / "wall.yaml") + " -o " + (dir / "twin"));
+  ASSERT_EQ(code, 0) << out;
+  const std::string twin = dir / "twin", rig = " --rig " + twin + "/rig.yaml ";
+  ASSERT_EQ(test::RunCli(dir, "export " + twin + "/part.h5 -o " + (dir / "p.csv")).first, 0);
+  ASSERT_EQ(test::RunCli(dir, "export " + twin + "/part.h5 --log -o " + (dir / "log.csv")).first, 0);
+  test::WriteText(dir / "p1.csv", LayersPlusOne(test::ReadText(dir / "p.csv"), 2));
+  test::WriteText(dir / "log1.csv", LayersPlusOne(test::ReadText(dir / "log.csv"), 1));
+  const std::string import = "import " + (dir / "p1.csv") +
+                             " --profile-column profile --time-column t_s --x-column x_mm --z-column z_mm"
+                             " --layer-column layer --path-column path_mm --frame-z-column frame_z_mm"
+                             " --frame-x-column frame_x_mm --log " +
+                             (dir / "log1.csv");
+  std::tie(code, out) = test::RunCli(dir, import + " -o " + (dir / "as_is.h5"));
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("no layer 0 (the first layer, on the bed)"), std::string::npos) << out;
+  EXPECT_NE(out.find("--first-layer 1"), std::string::npos) << out;
+  std::tie(code, out) = test::RunCli(dir, import + " --first-layer 1 -o " + (dir / "back.h5"));
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("a part scan: layers 0 to 1"), std::string::npos) << out;
+  EXPECT_EQ(out.find("no layer 0"), std::string::npos) << out;
+  for (const char* command : {"measure", "flow"}) {
+    ASSERT_EQ(test::RunCli(dir, std::string(command) + rig + twin + "/part.h5 -o " + (dir / "a.csv")).first, 0);
+    ASSERT_EQ(test::RunCli(dir, std::string(command) + rig + (dir / "back.h5") + " -o " + (dir / "b.csv")).first, 0);
+    EXPECT_EQ(test::ReadText(dir / "a.csv"), test::ReadText(dir / "b.csv")) << command;
+  }
+  // A first layer above the file's lowest is refused, naming it; nothing written.
+  std::tie(code, out) = test::RunCli(dir, import + " --first-layer 2 -o " + (dir / "two.h5"));
+  EXPECT_EQ(code, 1) << out;
+  EXPECT_NE(out.find("layer 1 is below --first-layer 2"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "two.h5"));
 }
 
 TEST(PartScanCsv, AProfileWhoseRowsDisagreeOnItsPlaceIsRefusedAtItsLine) {
