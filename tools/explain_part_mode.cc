@@ -63,6 +63,10 @@ int ExplainPartMode(const ExplainArgs& a) {
   if (a.channels.empty() && !a.no_channels) s.channels = {"head_speed_mm_s"};
   s.series_mode = "part";
   s.data_name = a.data + "'s flow along the path";
+  std::printf(
+      "  (read from a scratch copy of its flow, %s, gone when explain ends: its line numbers are those of "
+      "`bead flow` on the scan)\n",
+      s.data.c_str());
   // The series is a scratch file: what is said about it is said of the scan's flow.
   try {
     return ExplainSeriesMode(s);
