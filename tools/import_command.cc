@@ -81,11 +81,16 @@ void PrintSummary(const std::string& input, const std::string& output, const Imp
     const auto [lo, hi] = std::minmax_element(part->path_mm.begin(), part->path_mm.end());
     std::printf("  a part scan: layers %lld to %lld, path %.1f .. %.1f mm (bead measure measures it layer on layer)\n",
                 static_cast<long long>(part->layer.front()), static_cast<long long>(part->layer.back()), *lo, *hi);
-    if (const int64_t low = *std::min_element(part->layer.begin(), part->layer.end()); low > 0)
+    if (const int64_t low = *std::min_element(part->layer.begin(), part->layer.end()); low == 1)
       std::printf(
-          "  no layer 0 (the first layer, on the bed): layer %lld will be measured against layer %lld, which is not "
-          "in the scan; a file that counts its layers from 1 is read with --first-layer 1\n",
-          static_cast<long long>(low), static_cast<long long>(low - 1));
+          "  no layer 0 (the first layer, on the bed): layer 1 will be measured against a layer 0 the scan does not "
+          "hold; a file that counts its layers from 1 is read with --first-layer 1\n");
+    else if (low > 1)
+      std::printf(
+          "  the scan starts at layer %lld: its profiles stand on layer %lld, which it does not hold, and have "
+          "nothing to be measured against (the layers after it are measured on it); --first-layer %lld measures "
+          "them as on a bed, against the rig's reference line over bare surface beside them\n",
+          static_cast<long long>(low), static_cast<long long>(low - 1), static_cast<long long>(low));
   } else if (EncoderAbsent(imported.run)) {
     std::printf(
         "  no encoder column: /profiles/encoder holds 0, marked encoder=absent (flow needs the wheel's motion)\n");
