@@ -284,10 +284,10 @@ void RoadsSummary::Add(const std::vector<Road>& found) {
     cut_by_edge += found[i].status == RoadStatus::kCutByEdge;
     no_fit += found[i].status == RoadStatus::kNoFit;
     if (i > 0 && found[i].valid() && found[i - 1].valid() && std::isfinite(found[i].spacing_over_width))
-      spacing_over_width.push_back(found[i].spacing_over_width);
+      spacing_over_width.Add(found[i].spacing_over_width);
     const bool paired = (i > 0 && found[i - 1].valid()) || (i + 1 < found.size() && found[i + 1].valid());
     if (found[i].valid() && paired && found[i].area_mm2 > 0.0)
-      order_change.push_back(std::abs(found[i].area_other_order_mm2 / found[i].area_mm2 - 1.0));
+      order_change.Add(std::abs(found[i].area_other_order_mm2 / found[i].area_mm2 - 1.0));
   }
 }
 
@@ -298,26 +298,13 @@ namespace {
 // the noise over its points: tests/part_generator/test_roads_pipe.py).
 constexpr double kOrderMatters = 0.005;
 
-// The q-quantile of v (a copy reordered); NaN where empty.
-double Quantile(std::vector<double> v, double q) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  const auto at = v.begin() + static_cast<std::ptrdiff_t>(q * static_cast<double>(v.size() - 1));
-  std::nth_element(v.begin(), at, v.end());
-  return *at;
-}
-
 }  // namespace
 
-double RoadsSummary::MedianSpacing() const {
-  if (spacing_over_width.empty()) return std::numeric_limits<double>::quiet_NaN();
-  std::vector<double> v = spacing_over_width;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
+double RoadsSummary::MedianSpacing() const { return spacing_over_width.Quantile(0.5); }
 
 std::string RoadsSummary::OrderInWords(bool left_first) const {
   if (order_change.empty()) return "";
-  const double median = Quantile(order_change, 0.5), high = Quantile(order_change, 0.95);
+  const double median = order_change.Quantile(0.5), high = order_change.Quantile(0.95);
   char line[400];
   if (high < kOrderMatters)
     std::snprintf(line, sizeof line,
@@ -345,7 +332,7 @@ std::string RoadsSummary::SpacingInWords() const {
                 "centre spacing %.3f of the width (median of %zu pairs); the flat-top overlap model's critical "
                 "spacing is 0.667 w (Suryakumar et al. 2011), the tangent overlapping model's 0.738 w (Ding et al. "
                 "2015): %s",
-                r, spacing_over_width.size(), verdict);
+                r, spacing_over_width.seen(), verdict);
   return line;
 }
 

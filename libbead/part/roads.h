@@ -47,6 +47,8 @@
 #include <string>
 #include <vector>
 
+#include "libbead/core/reservoir.h"
+
 namespace bead::part {
 
 struct RoadOptions {
@@ -99,10 +101,11 @@ std::vector<Road> FindRoads(std::span<const float> x, std::span<const double> ga
 struct RoadsSummary {
   std::map<std::size_t, std::size_t> profiles_by_count;  // roads found -> profiles
   std::size_t roads = 0, cut_by_edge = 0, no_fit = 0;
-  std::vector<double> spacing_over_width;  // between valid neighbours
+  // Between valid neighbours (a bounded sample of them: core/reservoir.h).
+  Reservoir spacing_over_width;
   // Each valid road's |area in the other order / area - 1|, where it has a
   // valid neighbour: how much the split rests on the order the user gave.
-  std::vector<double> order_change;
+  Reservoir order_change;
   void Add(const std::vector<Road>& roads);
   double MedianSpacing() const;  // NaN without a pair of valid neighbours
   // The median spacing against the overlap models' critical ratios, in

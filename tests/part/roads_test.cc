@@ -240,5 +240,27 @@ TEST(Roads, TheOtherOrdersAreaIsWhatThatOrderGivesAndTheSummarySaysIt) {
   EXPECT_NE(apart.OrderInWords(true).find("do not rest on the order"), std::string::npos);
 }
 
+// The scan's summary keeps a bounded sample: at most kSize values however
+// many rows, the quantiles of a long stream within their rank error
+// (1 / sqrt(kSize) = 0.4 %: checked at five of it), the same stream the
+// same sample, and a short stream's quantiles its own exactly.
+TEST(Reservoir, AScansSummaryKeepsABoundedSampleWithTheStreamsQuantiles) {
+  Reservoir a, b, small;
+  const std::size_t n = 1'000'000;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double v = static_cast<double>(i) / static_cast<double>(n);  // in order: the hardest for a first-n sample
+    a.Add(v), b.Add(v);
+  }
+  EXPECT_EQ(a.seen(), n);
+  const double rank_error = 1.0 / std::sqrt(static_cast<double>(Reservoir::kSize));
+  EXPECT_NEAR(a.Quantile(0.5), 0.5, 5 * rank_error);
+  EXPECT_NEAR(a.Quantile(0.95), 0.95, 5 * rank_error);
+  EXPECT_EQ(a.Quantile(0.5), b.Quantile(0.5));
+  for (double v : {3.0, 1.0, 2.0, 5.0, 4.0}) small.Add(v);
+  EXPECT_EQ(small.Quantile(0.5), 3.0);
+  EXPECT_EQ(small.Quantile(0.95), 5.0);
+  EXPECT_TRUE(std::isnan(Reservoir().Quantile(0.5)));
+}
+
 }  // namespace
 }  // namespace bead
