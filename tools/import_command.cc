@@ -45,16 +45,17 @@ AcquisitionLog ReadLogFor(const std::string& path, const ImportedRun& imported) 
 
 // A part scan whose file counts its layers from `first` (its number for the
 // layer on the bed): renumbered from 0, the log's layers too.
-void RenumberLayers(const std::string& path, int64_t first, ImportedRun& imported) {
+void RenumberLayers(const std::string& path, const std::string& log_path, int64_t first, ImportedRun& imported) {
   if (!imported.run.part || first == 0) return;
-  auto& layers = imported.run.part->layer;
-  if (const auto low = std::min_element(layers.begin(), layers.end()); low != layers.end() && *low < first)
-    throw Error(Located(path, "profile " + std::to_string(low - layers.begin()),
-                        "layer " + std::to_string(*low) + " is below --first-layer " + std::to_string(first) +
-                            ": the first layer, on the bed, is the file's lowest"));
-  for (int64_t& l : layers) l -= first;
-  if (imported.run.log)
-    for (int64_t& l : imported.run.log->layer) l -= first;
+  const auto renumber = [&](std::vector<int64_t>& layers, const std::string& file, const std::string& row) {
+    if (const auto low = std::min_element(layers.begin(), layers.end()); low != layers.end() && *low < first)
+      throw Error(Located(file, row + " " + std::to_string(low - layers.begin()),
+                          "layer " + std::to_string(*low) + " is below --first-layer " + std::to_string(first) +
+                              ": the first layer, on the bed, is the file's lowest"));
+    for (int64_t& l : layers) l -= first;
+  };
+  renumber(imported.run.part->layer, path, "profile");
+  if (imported.run.log) renumber(imported.run.log->layer, log_path, "log sample");
 }
 
 void PrintSummary(const std::string& input, const std::string& output, const ImportedRun& imported) {
@@ -175,7 +176,7 @@ Run AddImport(CLI::App& app) {
   return [args]() {
     ImportedRun imported = ReadForeignRun(args->input, args->columns);
     if (!args->log.empty()) imported.run.log = ReadLogFor(args->log, imported);
-    RenumberLayers(args->input, args->first_layer, imported);
+    RenumberLayers(args->input, args->log, args->first_layer, imported);
     WriteRunArchive(args->output, imported.run);
     PrintSummary(args->input, args->output, imported);
     if (imported.run.log) std::printf("  /log: %zu samples from %s\n", imported.run.log->size(), args->log.c_str());
