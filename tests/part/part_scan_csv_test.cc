@@ -119,6 +119,16 @@ TEST(PartScanCsv, AFileCountingItsLayersFromOneIsReadWithItsFirstLayer) {
   EXPECT_EQ(code, 1) << out;
   EXPECT_NE(out.find("layer 1 is below --first-layer 2"), std::string::npos) << out;
   EXPECT_FALSE(std::filesystem::exists(dir / "two.h5"));
+  // So is a log whose layers go below it (a priming pass numbered 0).
+  std::string log = test::ReadText(dir / "log1.csv");
+  const std::size_t row = log.find('\n') + 1, layer = log.find(',', row) + 1;
+  log.replace(layer, log.find(',', layer) - layer, "0");
+  test::WriteText(dir / "log0.csv", log);
+  std::tie(code, out) = test::RunCli(dir, import.substr(0, import.find(" --log ")) + " --log " + (dir / "log0.csv") +
+                                              " --first-layer 1 -o " + (dir / "primed.h5"));
+  EXPECT_EQ(code, 1) << out;
+  EXPECT_NE(out.find("log0.csv: log sample 0: layer 0 is below --first-layer 1"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "primed.h5"));
 }
 
 TEST(PartScanCsv, AProfileWhoseRowsDisagreeOnItsPlaceIsRefusedAtItsLine) {
