@@ -18,16 +18,40 @@
 namespace bead {
 namespace {
 
+// The twin's two-layer wall in dir/twin, its profiles and log exported as
+// dir/p.csv and dir/log.csv; false (and why, in `out`) where a step failed.
+bool ExportedWall(const test::TempDir& dir, std::string& out) {
+  test::WriteText(dir / "wall.yaml", "seed: 5\npart: {shape: wall, layers: 2, length_mm: 30}\n");
+  const std::string twin = dir / "twin";
+  for (const std::string& command :
+       {"simulate " + (dir / "wall.yaml") + " -o " + twin, "export " + twin + "/part.h5 -o " + (dir / "p.csv"),
+        "export " + twin + "/part.h5 --log -o " + (dir / "log.csv")}) {
+    int code = 0;
+    std::tie(code, out) = test::RunCli(dir, command);
+    if (code != 0) return false;
+  }
+  return true;
+}
+
+// bead measure and bead flow on `archive` write what they write on the
+// twin's own part.h5, byte for byte.
+void ExpectMeasuredAsTheTwin(const test::TempDir& dir, const std::string& archive) {
+  const std::string twin = dir / "twin", rig = " --rig " + twin + "/rig.yaml ";
+  for (const char* command : {"measure", "flow"}) {
+    auto [code, out] = test::RunCli(dir, std::string(command) + rig + twin + "/part.h5 -o " + (dir / "a.csv"));
+    ASSERT_EQ(code, 0) << out;
+    std::tie(code, out) = test::RunCli(dir, std::string(command) + rig + archive + " -o " + (dir / "b.csv"));
+    ASSERT_EQ(code, 0) << out;
+    EXPECT_EQ(test::ReadText(dir / "a.csv"), test::ReadText(dir / "b.csv")) << command;
+  }
+}
+
 TEST(PartScanCsv, ExportedAndImportedTheScanMeasuresTheSame) {
   test::TempDir dir;
-  test::WriteText(dir / "wall.yaml", "seed: 5\npart: {shape: wall, layers: 2, length_mm: 30}\n");
-  auto [code, out] = test::RunCli(dir, "simulate " + (dir / "wall.yaml") + " -o " + (dir / "twin"));
-  ASSERT_EQ(code, 0) << out;
+  std::string out;
+  ASSERT_TRUE(ExportedWall(dir, out)) << out;
+  int code = 0;
   const std::string twin = dir / "twin", rig = " --rig " + twin + "/rig.yaml ";
-  std::tie(code, out) = test::RunCli(dir, "export " + twin + "/part.h5 -o " + (dir / "p.csv"));
-  ASSERT_EQ(code, 0) << out;
-  std::tie(code, out) = test::RunCli(dir, "export " + twin + "/part.h5 --log -o " + (dir / "log.csv"));
-  ASSERT_EQ(code, 0) << out;
   EXPECT_EQ(test::ReadText(dir / "p.csv").rfind("profile,t_s,layer,path_mm,frame_z_mm,frame_x_mm,x_mm,z_mm\n", 0), 0u);
   EXPECT_EQ(test::ReadText(dir / "log.csv").rfind("t_s,layer,path_mm,screw_rpm,head_speed_mm_s\n", 0), 0u);
   std::tie(code, out) = test::RunCli(
@@ -38,13 +62,7 @@ TEST(PartScanCsv, ExportedAndImportedTheScanMeasuresTheSame) {
   ASSERT_EQ(code, 0) << out;
   EXPECT_NE(out.find("a part scan: layers 0 to 1"), std::string::npos) << out;
   EXPECT_NE(out.find("/log: "), std::string::npos) << out;
-  for (const char* command : {"measure", "flow"}) {
-    std::tie(code, out) = test::RunCli(dir, std::string(command) + rig + twin + "/part.h5 -o " + (dir / "a.csv"));
-    ASSERT_EQ(code, 0) << out;
-    std::tie(code, out) = test::RunCli(dir, std::string(command) + rig + (dir / "back.h5") + " -o " + (dir / "b.csv"));
-    ASSERT_EQ(code, 0) << out;
-    EXPECT_EQ(test::ReadText(dir / "a.csv"), test::ReadText(dir / "b.csv")) << command;
-  }
+  ExpectMeasuredAsTheTwin(dir, dir / "back.h5");
   // The profiles CSV is a part scan as it stands: measured as the archive is, byte for byte; its flow
   // needs the log it cannot carry, and the tool says how to join them.
   std::tie(code, out) = test::RunCli(dir, "measure" + rig + twin + "/part.h5 -o " + (dir / "a.csv"));
@@ -88,12 +106,9 @@ std::string LayersPlusOne(const std::string& text, std::size_t column) {
 
 TEST(PartScanCsv, AFileCountingItsLayersFromOneIsReadWithItsFirstLayer) {
   test::TempDir dir;
-  test::WriteText(dir / "wall.yaml", "seed: 5\npart: {shape: wall, layers: 2, length_mm: 30}\n");
-  auto [code, out] = test::RunCli(dir, "simulate " + (dir / "wall.yaml") + " -o " + (dir / "twin"));
-  ASSERT_EQ(code, 0) << out;
-  const std::string twin = dir / "twin", rig = " --rig " + twin + "/rig.yaml ";
-  ASSERT_EQ(test::RunCli(dir, "export " + twin + "/part.h5 -o " + (dir / "p.csv")).first, 0);
-  ASSERT_EQ(test::RunCli(dir, "export " + twin + "/part.h5 --log -o " + (dir / "log.csv")).first, 0);
+  std::string out;
+  ASSERT_TRUE(ExportedWall(dir, out)) << out;
+  int code = 0;
   test::WriteText(dir / "p1.csv", LayersPlusOne(test::ReadText(dir / "p.csv"), 2));
   test::WriteText(dir / "log1.csv", LayersPlusOne(test::ReadText(dir / "log.csv"), 1));
   const std::string import = "import " + (dir / "p1.csv") +
@@ -109,11 +124,7 @@ TEST(PartScanCsv, AFileCountingItsLayersFromOneIsReadWithItsFirstLayer) {
   ASSERT_EQ(code, 0) << out;
   EXPECT_NE(out.find("a part scan: layers 0 to 1"), std::string::npos) << out;
   EXPECT_EQ(out.find("no layer 0"), std::string::npos) << out;
-  for (const char* command : {"measure", "flow"}) {
-    ASSERT_EQ(test::RunCli(dir, std::string(command) + rig + twin + "/part.h5 -o " + (dir / "a.csv")).first, 0);
-    ASSERT_EQ(test::RunCli(dir, std::string(command) + rig + (dir / "back.h5") + " -o " + (dir / "b.csv")).first, 0);
-    EXPECT_EQ(test::ReadText(dir / "a.csv"), test::ReadText(dir / "b.csv")) << command;
-  }
+  ExpectMeasuredAsTheTwin(dir, dir / "back.h5");
   // A first layer above the file's lowest is refused, naming it; nothing written.
   std::tie(code, out) = test::RunCli(dir, import + " --first-layer 2 -o " + (dir / "two.h5"));
   EXPECT_EQ(code, 1) << out;
