@@ -72,14 +72,16 @@ TEST(PartCommand, SimulateThenMeasureWritesThePartGeometryCsv) {
 }
 
 // Beads sunk so deep that their sides meet the surface below show no walls
-// to solve their exponent on: the shape line says the ellipse is assumed,
-// not that it was found within two sigmas.
-TEST(PartCommand, AShapeNotSolvedIsSaidToBeAssumed) {
+// to solve their exponent on, and overhang nothing: no shape is claimed
+// (not one found within two sigmas, nor the fits' aspect), and nothing is
+// hidden, so the area seen stands as the corrected one.
+TEST(PartCommand, AShapeNotSeenIsNotDescribed) {
   test::TempDir dir;
   const std::string out =
       SimulatedAndMeasured(dir, "seed: 4\npart:\n  layers: 1\n  length_mm: 20\n  area_mm2: 6\n  area_wave_mm2: 1\n");
   ASSERT_FALSE(out.empty());
-  EXPECT_NE(out.find("an ellipse assumed"), std::string::npos) << out;
+  EXPECT_NE(out.find("bead shape: not seen (no bead of the layer overhangs"), std::string::npos) << out;
+  EXPECT_EQ(out.find("half-height over half-width"), std::string::npos) << out;
   EXPECT_EQ(out.find("within two sigmas"), std::string::npos) << out;
 }
 
