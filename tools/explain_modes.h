@@ -29,12 +29,17 @@ struct ExplainArgs {
   int max_effects = 5;
   std::size_t profiles_per_sample = 0;
   bool keep_off = false, no_channels = false;
-  std::string series_mode = "csv";
-  std::string
-      data_name;  // what the model's source names the data by (empty: the data's path)  // the JSON's mode: csv, or part (a part scan's flow as the series)
+  std::string series_mode = "csv";  // the JSON's mode: csv, or part (a part scan's flow as the series)
+  // What the terminal and the model's source name the data and the
+  // validation run by (empty: their paths; part mode reads scratch copies).
+  std::string data_name, validate_name;
   std::vector<std::string> channels;
 
   explain::ExplainOptions Explain() const;
+  const std::string& Shown(const std::string& path) const {
+    const std::string& name = path == data ? data_name : path == validate ? validate_name : path;
+    return name.empty() ? path : name;
+  }
   SeriesNames Names() const { return {data, time, output, input_file, input_time, validate_input_file, inputs}; }
   model::IdentifyOptions Identify() const;
 };

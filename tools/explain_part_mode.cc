@@ -62,19 +62,19 @@ int ExplainPartMode(const ExplainArgs& a) {
   s.time = "t_s", s.inputs = {"screw_rpm"}, s.output = "flow_mm3_s";
   if (a.channels.empty() && !a.no_channels) s.channels = {"head_speed_mm_s"};
   s.series_mode = "part";
+  // The series are scratch files: what is said about them is said of the
+  // scans' flows (an error from a reader below, naming the scratch path,
+  // too; its line numbers are those of `bead flow` on the scan).
   s.data_name = a.data + "'s flow along the path";
-  std::printf(
-      "  (read from a scratch copy of its flow, %s, gone when explain ends: its line numbers are those of "
-      "`bead flow` on the scan)\n",
-      s.data.c_str());
-  // The series is a scratch file: what is said about it is said of the scan's flow.
+  if (!a.validate.empty()) s.validate_name = a.validate + "'s flow along the path";
   try {
     return ExplainSeriesMode(s);
   } catch (const Error& e) {
     std::string what = e.what();
-    const std::string& name = s.data_name;
-    for (std::size_t at = what.find(s.data); at != std::string::npos; at = what.find(s.data, at + name.size()))
-      what.replace(at, s.data.size(), name);
+    for (const auto& [path, name] : {std::pair{s.data, s.data_name}, std::pair{s.validate, s.validate_name}})
+      for (std::size_t at = what.find(path); !path.empty() && at != std::string::npos;
+           at = what.find(path, at + name.size()))
+        what.replace(at, path.size(), name);
     throw Error(what);
   }
 }

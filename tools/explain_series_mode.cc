@@ -27,10 +27,10 @@ ReadData Read(const ExplainArgs& a, const std::string& path) {
     d.s = std::move(m.s);
     d.u = std::move(m.u);
     PrintFileNote(d.s.file_note);
-    std::printf("%s: %zu rows where every input and the output are numbers\n", path.c_str(), d.s.t.size());
+    std::printf("%s: %zu rows where every input and the output are numbers\n", a.Shown(path).c_str(), d.s.t.size());
     return d;
   }
-  d.s = ReadOneInputSeries(a.Names(), path);
+  d.s = ReadOneInputSeries(a.Names(), path, a.Shown(path));
   d.u = {d.s.u};
   return d;
 }
@@ -59,16 +59,15 @@ int ExplainSeriesMode(const ExplainArgs& a) {
   CheckInputClocks(a.Names(), a.validate);
   explain::ExplainOptions options = a.Explain();
   const ReadData r = Read(a, a.data);
-  const ProcessOn on = SeriesStretches(r.s, a.data, a.keep_off, "explain");
-  const explain::BaseModel mdl =
-      ModelFor(a, r.s.t, r.u, r.s.y, on.segments, a.data_name.empty() ? a.data : a.data_name);
+  const ProcessOn on = SeriesStretches(r.s, a.Shown(a.data), a.keep_off, "explain");
+  const explain::BaseModel mdl = ModelFor(a, r.s.t, r.u, r.s.y, on.segments, a.Shown(a.data));
   const explain::SeriesData data = Against(a, r, on, mdl, a.data);
   std::optional<explain::SeriesData> other;
   if (!a.validate.empty()) {
     const ReadData v = Read(a, a.validate);
-    other = Against(a, v, SeriesStretches(v.s, a.validate, a.keep_off, "explain"), mdl, a.validate);
+    other = Against(a, v, SeriesStretches(v.s, a.Shown(a.validate), a.keep_off, "explain"), mdl, a.validate);
     options.validation = &*other;
-    std::printf("held-out data: %s (%zu rows)\n", a.validate.c_str(), v.s.t.size());
+    std::printf("held-out data: %s (%zu rows)\n", a.Shown(a.validate).c_str(), v.s.t.size());
   }
   const explain::ExplainReport rep = explain::Explain(data, options);
   PrintReport(rep, a.output);

@@ -165,6 +165,7 @@ Run AddImport(CLI::App& app) {
   cmd->add_option("--first-layer", args->first_layer,
                   "The file's number for the first layer, the one on the bed (1 where it counts from 1): the "
                   "archive numbers it 0 (part scan; the log's layers too)")
+      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_option("--frame-z-column", c.frame_z, "Column of the profile frame's height above the bed, mm (part)");
   cmd->add_option("--frame-x-column", c.frame_x, "Column of the profile frame's lateral offset, mm (part)");

@@ -41,12 +41,12 @@ void CheckInputClocks(const SeriesNames& n, const std::string& validate) {
   CheckValidationInput(n.input_file, validate, n.validate_input_file);
 }
 
-Series ReadOneInputSeries(const SeriesNames& n, const std::string& path) {
+Series ReadOneInputSeries(const SeriesNames& n, const std::string& path, const std::string& shown) {
   const std::string in_file = path == n.data ? n.input_file : n.validate_input_file;
   const std::string in_time = !n.input_time.empty() ? n.input_time : in_file.empty() ? "" : n.time;
   Series s = ReadSeries({path, n.time, n.inputs.at(0), n.output, in_file, in_time});
   PrintFileNote(s.file_note);
-  std::printf("%s: %zu rows (%d skipped as gaps%s%s)\n", path.c_str(), s.t.size(), s.skipped,
+  std::printf("%s: %zu rows (%d skipped as gaps%s%s)\n", (shown.empty() ? path : shown).c_str(), s.t.size(), s.skipped,
               s.skipped ? "; the first at " : "", s.first_skip.c_str());
   if (!s.note.empty()) std::printf("%s\n", s.note.c_str());
   return s;

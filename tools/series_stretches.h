@@ -39,7 +39,8 @@ void CheckInputClocks(const SeriesNames& names, const std::string& validate);
 // The series of the one input from `path` (DATA, or the validation run),
 // the input on its own clock when one is named (--input-time, else --time's
 // name in --input-file; the validation run's in --validate-input-file);
-// its file note and the rows read printed.
-Series ReadOneInputSeries(const SeriesNames& names, const std::string& path);
+// its file note and the rows read printed, the file named `shown` (empty:
+// its path).
+Series ReadOneInputSeries(const SeriesNames& names, const std::string& path, const std::string& shown = "");
 
 }  // namespace bead::tools

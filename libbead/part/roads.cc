@@ -305,18 +305,19 @@ double RoadsSummary::MedianSpacing() const { return spacing_over_width.Quantile(
 std::string RoadsSummary::OrderInWords(bool left_first) const {
   if (order_change.empty()) return "";
   const double median = order_change.Quantile(0.5), high = order_change.Quantile(0.95);
+  const char* other = left_first ? "right to left" : "left to right";
   char line[400];
   if (high < kOrderMatters)
     std::snprintf(line, sizeof line,
                   "the roads' areas do not rest on the order they were laid in (laid %s, 95 %% of them would move "
                   "by under %.1f %%)",
-                  left_first ? "right to left" : "left to right", 100.0 * kOrderMatters);
+                  other, 100.0 * kOrderMatters);
   else
     std::snprintf(line, sizeof line,
                   "the profiles cannot show the order the roads were laid in (the model's top, the highest cap, is "
                   "the same either way); laid %s, each road's area would be %.1f %% apart (median; %.1f %% at the "
                   "95th percentile): --laid gives the order",
-                  left_first ? "right to left" : "left to right", 100.0 * median, 100.0 * high);
+                  other, 100.0 * median, 100.0 * high);
   return line;
 }
 

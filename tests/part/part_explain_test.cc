@@ -21,6 +21,9 @@ TEST(PartExplain, APartScansFlowAlongThePathIsExplainedAsASeries) {
   std::tie(code, out) = test::RunCli(dir, "explain" + rig + twin + "/part.h5 -o " + (dir / "part.json"));
   ASSERT_EQ(code, 0) << out;
   EXPECT_NE(out.find("the flow along the path (bead flow's) is the series"), std::string::npos) << out;
+  // The flow is read from a scratch copy, but what is said is said of the scan.
+  EXPECT_NE(out.find("part.h5's flow along the path: "), std::string::npos) << out;
+  EXPECT_EQ(out.find("_flow.csv"), std::string::npos) << out;
   std::tie(code, out) = test::RunCli(dir, "flow" + rig + twin + "/part.h5 -o " + (dir / "flow.csv"));
   ASSERT_EQ(code, 0) << out;
   std::tie(code, out) = test::RunCli(dir, "explain " + (dir / "flow.csv") +

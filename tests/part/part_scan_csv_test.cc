@@ -140,6 +140,11 @@ TEST(PartScanCsv, AFileCountingItsLayersFromOneIsReadWithItsFirstLayer) {
   EXPECT_EQ(code, 1) << out;
   EXPECT_NE(out.find("log0.csv: log sample 0: layer 0 is below --first-layer 1"), std::string::npos) << out;
   EXPECT_FALSE(std::filesystem::exists(dir / "primed.h5"));
+  // A negative first layer is a usage error (it would number the bed's layer above 0).
+  std::tie(code, out) = test::RunCli(dir, import + " --first-layer -1 -o " + (dir / "neg.h5"));
+  EXPECT_EQ(code, 2) << out;
+  EXPECT_NE(out.find("--first-layer"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "neg.h5"));
 }
 
 TEST(PartScanCsv, AProfileWhoseRowsDisagreeOnItsPlaceIsRefusedAtItsLine) {
