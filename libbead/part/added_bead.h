@@ -100,6 +100,11 @@ struct AddedBead {
   double noise_mm = kNaN;
   int outside_points = 0;  // points where the two surfaces agree (|gain| under the threshold)
   bool valid() const { return status == AddedStatus::kValid; }
+  // The area's own noise variance, mm^4: its trapezoids over the bead's
+  // width / spacing points, each a spacing times a gain of the point's noise
+  // and the surface below's (as much again: a layer below's point, or the
+  // bed line's offset over the bead), width spacing 2 noise^2.
+  double AreaNoiseVar(double spacing_mm) const { return 2.0 * width_mm * spacing_mm * noise_mm * noise_mm; }
 };
 
 // A profile's noise from its second differences (the definition above).

@@ -155,6 +155,8 @@ class PartMeasurer {
     // registration found (its truncated cost holds any number of beads).
     if (under && options_.several_beads) row.roads = RoadsOver(mine, *under, row.bead.shift_mm, options_.roads);
     mine.center_x_mm = row.bead.valid() ? row.bead.center_x_mm : std::nan("");
+    mine.area_mm2 = row.bead.valid() ? row.bead.area_mm2 : std::nan("");
+    if (row.layer > 0 && row.bead.valid()) row.below_change_var_mm4 = below_.ChangeAt(row.path_mm).Variance();
     if (row.layer > 0 && row.bead.valid() && (row.bead.shift_constrained || !options_.register_layers))
       row.offset_below_mm = row.bead.center_x_mm - (below_.CenterAt(row.path_mm) + row.bead.shift_mm);
     const bool groove = under && row.bead.valid() && options_.correct_hidden;
@@ -220,6 +222,8 @@ void Tally(std::vector<LayerSummary>& layers, const PartGeometryRow& r) {
     l.corrected_sum_mm2 += r.area_corrected_mm2;
     l.hidden_sum_mm2 += r.bead.area_mm2 - r.area_corrected_mm2;
     l.loose += r.area_corrected_sigma_mm2 > 0.1 * r.area_corrected_mm2;
+    l.below_steps += r.below_change_var_mm4 > 0.0;
+    l.below_step_sigma_mm2 = std::max(l.below_step_sigma_mm2, std::sqrt(r.below_change_var_mm4));
   } else {
     ++l.misfit[static_cast<std::size_t>(r.outline_misfit)];
   }

@@ -41,6 +41,9 @@ struct PartGeometryRow {
   // The area less the groove the bead hides under its overhangs
   // (part/hidden_groove.h), and its 1-sigma.
   double area_corrected_mm2 = kNaN, area_corrected_sigma_mm2 = kNaN;
+  // The variance the layer below's blend along the path leaves in the
+  // corrected area (part/surface_below.h BelowChange), mm^4; in its sigma.
+  double below_change_var_mm4 = 0.0;
   // Where there is none on a valid row because the bead's outline is not
   // one the model knows (part/hidden_groove.h), why.
   OutlineMisfit outline_misfit = OutlineMisfit::kNone;
@@ -73,6 +76,11 @@ struct LayerSummary {
   // area's sigma exceeds a tenth of it (the bead's sides not seen well
   // enough to place its widest point).
   std::size_t corrected = 0, loose = 0;
+  // Of those, the rows where the layer below steps between its two profiles
+  // around them (PartGeometryRow::below_change_var_mm4 above 0), and the
+  // largest sigma that adds.
+  std::size_t below_steps = 0;
+  double below_step_sigma_mm2 = 0.0;
   // The valid rows left without one because the bead's outline is not one
   // the model knows, by OutlineMisfit (kNone's count unused).
   std::size_t misfit[5] = {};

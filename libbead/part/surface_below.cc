@@ -204,8 +204,9 @@ void SurfaceBelow::BeginLayer(int64_t layer) {
       else
         row = std::move(retired.back()), retired.pop_back();
       RowOf(p, options_.max_x_gap_mm, *row);
-      below_.push_back({p.path_mm, p.center_x_mm, std::move(row)});
+      below_.push_back({p.path_mm, p.center_x_mm, p.area_mm2, false, std::move(row)});
     }
+    Steps();
   }
   // The profiles' buffers, for the next layer's profiles.
   spare_.clear();
@@ -257,6 +258,46 @@ std::optional<SurfaceGrid> SurfaceBelow::At(double path, std::string* why) const
   if (!blended_ || blended_.use_count() > 1) blended_ = std::make_shared<SurfaceRow>();
   if (Blend(*a.row, *b.row, w, *blended_)) return SurfaceGrid(blended_, nullptr, 0.0);
   return SurfaceGrid(a.row, b.row, w);
+}
+
+// A pair lies where the layer steps where its change, or its neighbour's,
+// leaves the trend by over three sigmas: a change less the trend beside it
+// (the mean of the changes into the first and out of the second, where
+// there are such), those sigmas 1.4826 times the median of the layer's (a
+// normal's, from what most pairs, making no step, show). A change the
+// layer makes steadily along the path, or curving, is followed by the
+// blend; a step is not, nor is a ramp over a few profiles (a corner's bulge
+// beginning over a millimetre: its middle pair follows the trend of its
+// ends, and its edges move, which no blend of surfaces does). (The
+// profiles' own noise as the sigma left a twin wall's overhanging beads,
+// whose areas move with where the walls' cells place their ends, full of
+// steps.)
+void SurfaceBelow::Steps() {
+  const auto area = [&](std::size_t k) { return below_[k].area_mm2; };
+  const std::size_t pairs = below_.empty() ? 0 : below_.size() - 1;
+  std::vector<double> off(pairs, NAN), sizes;
+  for (std::size_t k = 0; k < pairs; ++k) {
+    const bool before = k > 0, after = k + 2 < below_.size();
+    const double into = before ? area(k) - area(k - 1) : NAN, out = after ? area(k + 2) - area(k + 1) : NAN;
+    const double trend = before && after ? 0.5 * (into + out) : before ? into : after ? out : 0.0;
+    off[k] = std::abs(area(k + 1) - area(k) - trend);
+    if (std::isfinite(off[k])) sizes.push_back(off[k]);
+  }
+  if (sizes.empty()) return;
+  std::nth_element(sizes.begin(), sizes.begin() + static_cast<std::ptrdiff_t>(sizes.size() / 2), sizes.end());
+  const double beyond = 3.0 * 1.4826 * sizes[sizes.size() / 2];
+  for (std::size_t k = 0; k < pairs; ++k)
+    if (off[k] > beyond)
+      for (std::size_t n = k > 0 ? k - 1 : 0; n <= std::min(k + 1, pairs - 1); ++n) below_[n].step = true;
+}
+
+BelowChange SurfaceBelow::ChangeAt(double path) const {
+  std::size_t i = 0, j = 0;
+  BelowChange c;
+  if (!Neighbours(path, i, j, c.w, nullptr) || i == j) return c;
+  c.change_mm2 = below_[j].area_mm2 - below_[i].area_mm2;
+  c.step = below_[i].step;
+  return c;
 }
 
 double SurfaceBelow::CenterAt(double path) const {

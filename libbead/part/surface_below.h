@@ -133,7 +133,26 @@ struct StoredProfile {
   double path_mm = 0.0;
   double center_x_mm = std::numeric_limits<double>::quiet_NaN();
   double spacing_mm = 0.05;  // the points' median spacing (part/added_bead.h PointSpacingMm)
+  // Its bead's area seen over its own surface below (NaN: not found).
+  double area_mm2 = std::numeric_limits<double>::quiet_NaN();
   std::vector<float> x_mm, z_mm;
+};
+
+// How the layer below changes between its two profiles around a place
+// along the path (the surface there is their blend, SurfaceGrid): the
+// second's weight w, the difference of their beads' areas (second less
+// first; NaN where either bead is unknown, 0 where one profile stands for
+// both), and whether the pair lies where the layer steps (SurfaceBelow:
+// Steps).
+struct BelowChange {
+  double w = 0.0, change_mm2 = 0.0;
+  bool step = false;
+  // The variance the blend leaves in an area measured on it where the
+  // layer steps: the change between the two profiles happens somewhere
+  // between them, not spread over them as the blend spreads it. Where it
+  // lies before the place (chance w) the surface is the second's, after it
+  // (1 - w) the first's; the blend is off by (1 - w) D or w D: w (1 - w) D^2.
+  double Variance() const { return step && std::isfinite(change_mm2) ? w * (1.0 - w) * change_mm2 * change_mm2 : 0.0; }
 };
 
 struct SurfaceBelowOptions {
@@ -166,14 +185,20 @@ class SurfaceBelow {
   std::optional<SurfaceGrid> At(double path_mm, std::string* why) const;
   // The bead centre of the layer below at `path_mm` (its own frame).
   double CenterAt(double path_mm) const;
+  // How the layer below changes between its two profiles around `path_mm`
+  // (a zero change where it is unknown there).
+  BelowChange ChangeAt(double path_mm) const;
 
  private:
   // The two stored profiles around `path_mm` and the weight of the second.
   bool Neighbours(double path_mm, std::size_t& i, std::size_t& j, double& w, std::string* why) const;
 
+  // Whether each profile and the next lie where the layer steps (ChangeAt).
+  void Steps();
   // A profile of the layer below, on its grid.
   struct Below {
-    double path_mm = 0.0, center_x_mm = 0.0;
+    double path_mm = 0.0, center_x_mm = 0.0, area_mm2 = 0.0;
+    bool step = false;  // it and the next
     std::shared_ptr<SurfaceRow> row;
   };
   SurfaceBelowOptions options_;

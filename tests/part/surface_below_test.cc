@@ -170,5 +170,47 @@ TEST(SurfaceBelow, ASurfaceHandedOutOutlivesTheLayersThatReuseTheirMemory) {
   EXPECT_NEAR(held_blend->At(0.0), 1.0, 1e-6);
 }
 
+// A layer whose beads' areas follow a trend along the path (a ramp, with a
+// profile's noise on it) and step once, between profiles 19 and 20 (a
+// corner's bulge beginning). The blend between two profiles follows a
+// trend; where the step lies between them it cannot see: a place a share w
+// of the way from the first to the second has the second's surface with
+// chance w, the first's with 1 - w, and the blend is off by w (1 - w) D^2
+// in variance. Nothing at a profile's own place, and nothing between two
+// that only follow the trend away from the step: the noise alone makes
+// none.
+TEST(SurfaceBelow, AStepInTheLayerBelowBetweenItsProfilesIsAVarianceWhereItsTrendIsNone) {
+  const auto flat = [](double z) { return [z](double) { return z; }; };
+  const auto area = [](int k, double step) {
+    return 10.0 + 0.02 * k + 0.01 * std::sin(2.3 * k) + (k >= 20 ? step : 0.0);
+  };
+  for (const double step : {0.0, 2.0}) {
+    SurfaceBelow below;
+    below.BeginLayer(0);
+    for (int k = 0; k < 40; ++k) {
+      StoredProfile p = Profile(0.5 * k, -10.0, 41, flat(1.0));
+      p.area_mm2 = area(k, step);
+      below.Keep(std::move(p));
+    }
+    below.BeginLayer(1);
+    const BelowChange across = below.ChangeAt(0.5 * 19 + 0.3 * 0.5);
+    EXPECT_NEAR(across.w, 0.3, 1e-9);
+    EXPECT_NEAR(across.change_mm2, area(20, step) - area(19, step), 1e-12);
+    const double d = area(20, step) - area(19, step);
+    EXPECT_NEAR(across.Variance(), step > 0.0 ? 0.3 * 0.7 * d * d : 0.0, 1e-12) << step;
+    EXPECT_EQ(below.ChangeAt(0.5 * 10).Variance(), 0.0) << "at a profile's own place";
+    // Away from the step, none; beside it, what the pair's own change (the
+    // trend's, 0.02 mm^2 a profile) leaves: under a thousandth of the step's.
+    for (int k = 0; k + 1 < 40; ++k) {
+      const double v = below.ChangeAt(0.5 * k + 0.25).Variance();
+      if (step == 0.0 || k < 17 || k > 21) {
+        EXPECT_EQ(v, 0.0) << step << " " << k;
+      } else if (k != 19) {
+        EXPECT_LT(v, 1e-3 * 0.25 * d * d) << k;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace bead::part
