@@ -103,7 +103,7 @@ void SayLayers(const std::vector<part::LayerSummary>& layers) {
       std::printf(
           "    %zu profiles stand where layer %lld steps between its two profiles around them (its bead's area "
           "changes there beyond its trend along the path, as where a corner's bulge begins or ends): where between "
-          "them is not seen, and their sigmas hold it (up to %.3f mm^2)\n",
+          "them the step lies is not seen, and their sigmas hold it (up to %.3f mm^2)\n",
           l.below_steps, static_cast<long long>(l.layer - 1), l.below_step_sigma_mm2);
     if (l.shape && !l.shape->exponent_solved && l.corrected && l.hidden_sum_mm2 <= 1e-9 * l.area_sum_mm2)
       std::printf(
