@@ -75,6 +75,24 @@ void SayMisfits(const part::LayerSummary& l) {
   std::printf(")\n");
 }
 
+// Layer 0's profiles whose reference areas hold no bare flat bed (a bead
+// standing in them; no line to the noise).
+void SayNoBareBed(std::size_t in_reference, std::size_t not_a_line, const char* indent) {
+  if (in_reference)
+    std::printf(
+        "%s%zu profiles of layer 0 have a bead standing in the rig's reference areas (sensor.reference_areas_mm): "
+        "they hold no bare bed to measure against, and those profiles are not measured (status "
+        "bead_in_reference_area): set the areas where the bed is bare\n",
+        indent, in_reference);
+  if (not_a_line)
+    std::printf(
+        "%s%zu profiles of layer 0 have reference areas that are no line to the profile's noise (status "
+        "reference_not_a_line; over %.0f times it): a bead fills them, or the bed is not flat there (a pipe: part: "
+        "{bed: cylinder}); those profiles are not measured: set the areas where the bed is bare and flat, or the "
+        "bed's shape\n",
+        indent, not_a_line, part::kReferenceNoises);
+}
+
 void SayLayers(const std::vector<part::LayerSummary>& layers) {
   for (const part::LayerSummary& l : layers) {
     std::printf("  layer %lld: %zu profiles over path %.1f to %.1f mm, %zu valid", static_cast<long long>(l.layer),
@@ -90,6 +108,7 @@ void SayLayers(const std::vector<part::LayerSummary>& layers) {
       std::printf("; pass shift %+.3f mm (median; found in %zu profiles)\n", l.MedianShift(), l.shift_found);
     else
       std::printf("; pass shift not found (the layer below shows nowhere beside the new bead): no offset\n");
+    SayNoBareBed(l.bead_in_reference, l.reference_not_a_line, "    ");
     if (l.Misfits()) SayMisfits(l);
     if (l.valid > l.corrected + l.Misfits())
       std::printf("    %zu valid profiles without a corrected area: the bead's outline could not be fitted\n",
@@ -164,7 +183,8 @@ PartPlaces OnTheBed(std::size_t n) {
   return p;
 }
 
-void SayRoads(const part::RoadsSummary& s, bool laid_left_first, bool above_bed, std::size_t no_surface) {
+void SayRoads(const part::RoadsSummary& s, bool laid_left_first, bool above_bed, std::size_t no_surface,
+              std::size_t in_reference, std::size_t not_a_line) {
   for (const auto& [count, profiles] : s.profiles_by_count)
     std::printf("  %zu profiles with %zu bead%s\n", profiles, count, count == 1 ? "" : "s");
   if (s.cut_by_edge)
@@ -172,6 +192,7 @@ void SayRoads(const part::RoadsSummary& s, bool laid_left_first, bool above_bed,
   if (s.no_fit) std::printf("  %zu stretches the overlap model could not explain: flagged no_fit\n", s.no_fit);
   if (const std::string words = s.SpacingInWords(); !words.empty()) std::printf("  %s\n", words.c_str());
   if (const std::string words = s.OrderInWords(laid_left_first); !words.empty()) std::printf("  %s\n", words.c_str());
+  SayNoBareBed(in_reference, not_a_line, "  ");
   if (no_surface)
     std::printf(
         "  %zu profiles have no surface below to measure against (layer 0: no bare bed in the reference areas; "
@@ -221,7 +242,7 @@ int MeasureRoads(const std::string& rig_path, const std::string& run, const std:
   part::RoadsCsvWriter out(output);
   part::RoadsSummary summary;
   bool above_bed = false;
-  std::size_t no_surface = 0;
+  std::size_t no_surface = 0, in_reference = 0, not_a_line = 0;
   const auto tty = TtyProgress("measured");
   const std::size_t total = stream->size();
   part::MeasurePart(
@@ -231,6 +252,8 @@ int MeasureRoads(const std::string& rig_path, const std::string& run, const std:
         summary.Add(r.roads);
         above_bed |= r.layer > 0;
         no_surface += r.bead.status == part::AddedStatus::kNoSurfaceBelow;
+        in_reference += r.bead.status == part::AddedStatus::kBeadInReferenceArea;
+        not_a_line += r.bead.status == part::AddedStatus::kReferenceNotALine;
       },
       [&](std::size_t done) {
         if (tty) tty(done, total);
@@ -238,7 +261,7 @@ int MeasureRoads(const std::string& rig_path, const std::string& run, const std:
   out.Commit();
   std::printf("%s: %zu profiles, %zu beads found (laid %s); wrote %s\n", run.c_str(), total, summary.roads,
               laid_left_first ? "left to right" : "right to left", output.c_str());
-  SayRoads(summary, laid_left_first, above_bed, no_surface);
+  SayRoads(summary, laid_left_first, above_bed, no_surface, in_reference, not_a_line);
   return 0;
 }
 

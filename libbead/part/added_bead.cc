@@ -261,6 +261,10 @@ const char* AddedStatusName(AddedStatus s) {
       return "no_bead";
     case AddedStatus::kBeadEdgeNotSeen:
       return "bead_edge_not_seen";
+    case AddedStatus::kBeadInReferenceArea:
+      return "bead_in_reference_area";
+    case AddedStatus::kReferenceNotALine:
+      return "reference_not_a_line";
   }
   return "unknown";
 }

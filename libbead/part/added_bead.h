@@ -79,6 +79,11 @@ enum class AddedStatus : uint8_t {
   kNoSurfaceBelow,   // the layer below (the bed, on layer 0) is not known here
   kNoBead,           // nothing stands above the threshold over the surface below
   kBeadEdgeNotSeen,  // the bead runs to the end of what both scans saw
+  // On layer 0, the rig's reference areas hold no bare flat bed to measure
+  // against: a bead stands in them, or they are no line to the profile's
+  // noise (a bead filling them, or a curved bed).
+  kBeadInReferenceArea,
+  kReferenceNotALine,
 };
 const char* AddedStatusName(AddedStatus status);
 

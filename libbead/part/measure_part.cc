@@ -90,13 +90,44 @@ std::optional<SurfaceGrid> SampledBed(const StoredProfile& p, double step, doubl
   return SurfaceGrid(std::move(row));
 }
 
+// Why the rig's reference areas hold no bare flat bed, if they do not
+// (kValid where they do):
+//  - kBeadInReferenceArea: a run of min_bead_points points there stands
+//    over the line by the bead's threshold (the wheel's test,
+//    profile/bead_geometry.cc, put to every run, not only the largest);
+//  - kReferenceNotALine: the line leaves the areas' points over
+//    kReferenceNoises times the profile's noise (p's points) about it: it
+//    is laid on a bead that fills an area, or on a bed that is not flat
+//    there (a pipe). On a bare bed that ratio is 0.8-1.2 (twin walls,
+//    contours and roads, a generator's walls and roads; 4.5 on one profile
+//    whose noise sat at its 2 um floor); with the tops of the outer ones of
+//    eight roads at 0.8 of their width in the areas, 35-47: their bed line
+//    was laid on them, and every road came out 83 % small, said nothing of.
+AddedStatus ReferenceAreas(const ProfileView& v, const StoredProfile& p, const BeadGeometry& g, const Rig& rig,
+                           int min_points) {
+  if (g.reference.residual_rms_mm > kReferenceNoises * ProfileNoiseMm(p.z_mm)) return AddedStatus::kReferenceNotALine;
+  int run = 0;
+  for (std::size_t j = 0; j < v.x_mm.size(); ++j) {
+    const double x = v.x_mm[j];
+    const bool in_area = rig.reference_left.Contains(x) || rig.reference_right.Contains(x);
+    run = in_area && g.reference.HeightAt(x, v.z_mm[j]) > g.threshold_mm ? run + 1 : 0;
+    if (run >= min_points) return AddedStatus::kBeadInReferenceArea;
+  }
+  return AddedStatus::kValid;
+}
+
 // The bed under layer 0 on a flat bed: the profile's reference line (a
 // line: exact between any two of its values, so sampled at the points'
-// own spacing).
-std::optional<SurfaceGrid> BedLine(ProfileProcessor& processor, const ProfileView& v, const StoredProfile& p,
-                                   double frame_x, double frame_z) {
+// own spacing); nullopt where none is found (`why`: kNoSurfaceBelow), or
+// the reference areas hold no bare flat bed (`why`: ReferenceAreas').
+std::optional<SurfaceGrid> BedLine(ProfileProcessor& processor, const Rig& rig, int min_points, const ProfileView& v,
+                                   const StoredProfile& p, double frame_x, double frame_z, AddedStatus& why) {
   const BeadGeometry& g = processor.Process(v);
+  why = AddedStatus::kNoSurfaceBelow;
   if (!g.reference.ok) return std::nullopt;
+  why = ReferenceAreas(v, p, g, rig, min_points);
+  if (why != AddedStatus::kValid) return std::nullopt;
+  why = AddedStatus::kNoSurfaceBelow;  // where the grid below cannot be made
   const ReferenceLine line = g.reference;
   return SampledBed(p, std::max(p.spacing_mm, 1e-4), frame_x, frame_z, true,
                     [&line](double x) { return line.intercept_mm + line.slope * x; });
@@ -134,15 +165,18 @@ class PartMeasurer {
     below_.BeginLayer(row.layer);
     StoredProfile mine = InBedFrame(v, row.path_mm, places.frame_x_mm[i], places.frame_z_mm[i], below_);
     std::optional<SurfaceGrid> under;
+    AddedStatus no_bed = AddedStatus::kNoSurfaceBelow;
     const bool pipe = rig_.part && rig_.part->shape == PartBed::Shape::kCylinder;
     if (row.layer == 0 && pipe)
       under = BedArcGrid(rig_, v, mine, places.frame_x_mm[i], places.frame_z_mm[i]);
     else if (row.layer == 0)
-      under = BedLine(processor_, v, mine, places.frame_x_mm[i], places.frame_z_mm[i]);
+      under = BedLine(processor_, rig_, options_.bed.bead.min_bead_points, v, mine, places.frame_x_mm[i],
+                      places.frame_z_mm[i], no_bed);
     else
       under = below_.At(row.path_mm, nullptr);
     if (!under) {
-      row.bead.status = AddedStatus::kNoSurfaceBelow;  // on layer 0: no bed found either side of the bead
+      // (on layer 0: no bed found either side of the bead)
+      row.bead.status = no_bed;
     } else {
       const bool shift = row.layer > 0 && options_.register_layers;
       if (row.layer != warm_layer_) recent_shifts_.clear(), hidden_ = 0.0, warm_layer_ = row.layer;
@@ -214,6 +248,8 @@ void Tally(std::vector<LayerSummary>& layers, const PartGeometryRow& r) {
   l.first_path_mm = std::min(l.first_path_mm, r.path_mm);
   l.last_path_mm = std::max(l.last_path_mm, r.path_mm);
   l.no_surface_below += r.bead.status == AddedStatus::kNoSurfaceBelow;
+  l.bead_in_reference += r.bead.status == AddedStatus::kBeadInReferenceArea;
+  l.reference_not_a_line += r.bead.status == AddedStatus::kReferenceNotALine;
   if (!r.bead.valid()) return;
   ++l.valid;
   l.area_sum_mm2 += r.bead.area_mm2;

@@ -52,6 +52,11 @@ struct PartGeometryRow {
   std::vector<Road> roads;
 };
 
+// On layer 0, the rig's reference areas are no line where their line
+// leaves their points over this many times the profile's noise about it
+// (AddedStatus::kReferenceNotALine; measure_part.cc says what it was set on).
+inline constexpr double kReferenceNoises = 10.0;
+
 struct MeasurePartOptions {
   ProfileOptions bed;  // the reference line of layer 0's bed
   AddedBeadOptions added;
@@ -71,6 +76,8 @@ struct MeasurePartOptions {
 struct LayerSummary {
   int64_t layer = 0;
   std::size_t profiles = 0, valid = 0, shift_found = 0, no_surface_below = 0;
+  // On layer 0: AddedStatus::kBeadInReferenceArea, kReferenceNotALine.
+  std::size_t bead_in_reference = 0, reference_not_a_line = 0;
   double area_sum_mm2 = 0.0;  // over the valid rows
   // Over the rows with a corrected area; `loose`: those whose corrected
   // area's sigma exceeds a tenth of it (the bead's sides not seen well

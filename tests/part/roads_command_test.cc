@@ -2,6 +2,7 @@
 // roads the twin printed and on the bundled wheel run (one bead each).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -43,6 +44,43 @@ TEST(RoadsCommand, ALayerOfRoadsGetsOneRowPerRoadNearItsTruth) {
     EXPECT_EQ(beads[i][8], "1");
     EXPECT_NEAR(std::stod(beads[i][3]), std::stod(truth[i][3]), 0.3) << i;
     EXPECT_NEAR(std::stod(beads[i][4]) / std::stod(truth[i][2]), 1.0, 0.05) << i;
+  }
+}
+
+// The same roads with the rig's reference areas laid over them: a line
+// laid there stands on the roads, not on the bed, and every road measured
+// over it would be a fraction of itself. Over the outer roads' tops, the
+// areas are no line to the noise; over an outer road's flank, its points
+// stand over the line the bare rest gives. No profile is measured either
+// way; the status and the tool say why and what to set.
+TEST(RoadsCommand, ReferenceAreasOnTheRoadsAreRefusedNotMeasuredAsTheBed) {
+  test::TempDir dir;
+  auto [code, out] = test::RunCli(
+      dir, "simulate " + std::string(BEAD_SOURCE_DIR) + "/testdata/configs/part_roads.yaml -o " + (dir / "sim"));
+  ASSERT_EQ(code, 0) << out;
+  std::string rig = test::ReadText(dir / "sim/rig.yaml");
+  const std::size_t at = rig.find("reference_areas_mm:");
+  ASSERT_NE(at, std::string::npos) << rig;
+  const struct {
+    std::string areas, status, said;
+  } cases[] = {{"[[-9, -5], [5, 9]]", "reference_not_a_line", "are no line to the profile's noise"},
+               {"[[-15, -10.2], [10.2, 15]]", "bead_in_reference_area", "have a bead standing in the rig's reference"}};
+  for (const auto& c : cases) {
+    test::WriteText(dir / "on_roads.yaml", rig.substr(0, at) + "reference_areas_mm: " + c.areas + "\n");
+    for (const std::string beads : {" --beads all", ""}) {
+      std::tie(code, out) = test::RunCli(dir, "measure --rig " + (dir / "on_roads.yaml") + " " + (dir / "sim/part.h5") +
+                                                  beads + " -o " + (dir / "out.csv"));
+      ASSERT_EQ(code, 0) << out;
+      EXPECT_NE(out.find(c.said), std::string::npos) << out;
+      const auto rows = CsvRows(dir / "out.csv");
+      if (!beads.empty()) {
+        EXPECT_EQ(rows.size(), 1u) << "no road is measured over a bed line laid on the roads";
+        continue;
+      }
+      ASSERT_GT(rows.size(), 1u);
+      const auto status = std::find(rows[0].begin(), rows[0].end(), "status") - rows[0].begin();
+      for (std::size_t i = 1; i < rows.size(); ++i) EXPECT_EQ(rows[i][status], c.status) << c.areas << " " << i;
+    }
   }
 }
 
