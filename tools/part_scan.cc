@@ -14,6 +14,7 @@
 #include "libbead/part/measure_part.h"
 #include "libbead/core/error.h"
 #include "libbead/part/part_csv.h"
+#include "libbead/part/flow_hampel.h"
 #include "libbead/part/part_flow.h"
 #include "tools/rig_input.h"
 #include "tools/tty_progress.h"
@@ -300,6 +301,11 @@ int FlowPartScan(const std::string& rig_path, const std::string& run, const std:
         std::abs(b.flow_excess) < 0.5 * std::abs(b.area_excess)
             ? "the extruder did not follow the head (the corner bulge, thesis 1.3.2)"
             : "the extruder's flow followed the head's speed");
+  if (f.replaced)
+    std::printf(
+        "  %zu profiles' flows stood apart from their neighbours' along the layer's path (over %.0f sigmas; a Hampel "
+        "filter of +-%d profiles, as the wheel's area): each took its window's median\n",
+        f.replaced, part::FlowHampel::kSigmas, part::FlowHampel::kHalfWindow);
   if (f.unplaced)
     std::printf("  %zu %s where the log never had the nozzle pass in the layer's printing direction: no time\n",
                 f.unplaced, f.unplaced == 1 ? "profile stands" : "profiles stand");

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "libbead/core/error.h"
+#include "libbead/part/flow_hampel.h"
 
 namespace bead::part {
 
@@ -122,6 +123,7 @@ PartFlowRow FlowOf(const PartGeometryRow& g, const NozzleClock& clock) {
   r.area_mm2 = g.bead.area_mm2;
   r.area_corrected_mm2 = g.area_corrected_mm2;
   r.flow_mm3_s = p->head_speed_mm_s * r.Area();
+  r.flow_sigma_mm3_s = p->head_speed_mm_s * g.area_corrected_sigma_mm2;
   r.valid = true;
   return r;
 }
@@ -189,19 +191,23 @@ PartScanFlow MeasurePartScanFlow(const std::string& path, const PartPlaces& plac
   out.has_flow = clock.has_value();
   LayerVolumes volumes;
   SpeedAndArea speeds;
+  FlowHampel filter;
+  const FlowHampel::Emit emit = [&](const PartFlowRow& row) {
+    out.flow_samples += row.valid;
+    out.unplaced += std::isnan(row.t_s);
+    volumes.Add(row);
+    speeds.Add(row);
+    if (on_flow) on_flow(row);
+  };
   out.layers = MeasurePartFile(
       path, places, rig, options, threads,
       [&](const PartGeometryRow& g) {
         if (on_geometry) on_geometry(g);
-        if (!clock) return;
-        const PartFlowRow row = FlowOf(g, *clock);
-        out.flow_samples += row.valid;
-        out.unplaced += std::isnan(row.t_s);
-        volumes.Add(row);
-        speeds.Add(row);
-        if (on_flow) on_flow(row);
+        if (clock) filter.Add(FlowOf(g, *clock), emit);
       },
       progress);
+  filter.Flush(emit);
+  out.replaced = filter.replaced();
   out.volumes_mm3 = volumes.volumes_mm3();
   out.bulge = speeds.Bulge();
   return out;

@@ -65,6 +65,10 @@ struct PartFlowRow {
   double area_mm2 = kNaN;
   double area_corrected_mm2 = kNaN;
   double flow_mm3_s = kNaN;  // v_head times the corrected area where there is one, else the area
+  // Its sigma, v_head times the corrected area's (NaN without one), and
+  // whether a filter along the path replaced it (part/flow_hampel.h).
+  double flow_sigma_mm3_s = kNaN;
+  bool flow_replaced = false;
   double screw_rpm = kNaN;
   int64_t profile = 0;
   bool valid = false;
@@ -127,6 +131,7 @@ struct PartScanFlow {
   CornerBulge bulge;
   std::size_t flow_samples = 0;  // valid flow rows
   std::size_t unplaced = 0;      // rows whose place the log never had the nozzle pass
+  std::size_t replaced = 0;      // rows whose flow the filter along the path replaced (part/flow_hampel.h)
   double TotalVolume() const;
 };
 PartScanFlow MeasurePartScanFlow(const std::string& path, const PartPlaces& places, const AcquisitionLog* log,
