@@ -100,9 +100,15 @@ void SayLayers(const std::vector<part::LayerSummary>& layers) {
                 l.profiles, l.first_path_mm, l.last_path_mm, l.valid);
     if (l.valid) std::printf(", mean area %.3f mm^2 seen", l.MeanArea());
     if (l.corrected) std::printf(", %.3f less the groove hidden under its overhangs", l.MeanCorrected());
-    if (l.layer == 0)
+    if (l.layer == 0) {
       std::printf(" (on the bed)\n");
-    else if (l.no_surface_below == l.profiles)
+      if (l.no_surface_below)
+        std::printf(
+            "    %zu profiles of layer 0 have no bed to measure against (status no_surface_below): the rig's reference "
+            "areas (sensor.reference_areas_mm) hold too few of their points (at least 5 each, on the bare bed, within "
+            "the profiles' x range), or no line (an arc, for bed: cylinder) fits them\n",
+            l.no_surface_below);
+    } else if (l.no_surface_below == l.profiles)
       std::printf("; layer %lld is not in the scan: nothing to measure it against\n",
                   static_cast<long long>(l.layer - 1));
     else if (l.shift_found)

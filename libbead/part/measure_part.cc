@@ -175,8 +175,7 @@ class PartMeasurer {
     else
       under = below_.At(row.path_mm, nullptr);
     if (!under) {
-      // (on layer 0: no bed found either side of the bead)
-      row.bead.status = no_bed;
+      row.bead.status = no_bed;  // on layer 0: no bed, or reference areas that hold no bare flat bed
     } else {
       const bool shift = row.layer > 0 && options_.register_layers;
       if (row.layer != warm_layer_) recent_shifts_.clear(), hidden_ = 0.0, warm_layer_ = row.layer;

@@ -182,6 +182,16 @@ TEST(PartCommand, AnotherLabsLayerScanIsImportedAndSaysWhatItLacks) {
   ASSERT_EQ(code, 0) << out;
   EXPECT_NE(out.find("399 profiles have no surface below"), std::string::npos) << out;
   EXPECT_EQ(CsvRows(dir / "beads.csv").size(), 1u);
+  // Read with --first-layer 25 it is a first layer: its reference areas,
+  // outside the 2.8-6.6 mm its points span, hold none of them, and the
+  // tool says so rather than "0 valid" alone.
+  std::tie(code, out) = test::RunCli(
+      dir, "import " + csv + " -o " + (dir / "l0.h5") + columns + " --head-speed-mm-s 10 --first-layer 25");
+  ASSERT_EQ(code, 0) << out;
+  std::tie(code, out) =
+      test::RunCli(dir, "measure --rig " + (dir / "rig.yaml") + " " + (dir / "l0.h5") + " -o " + (dir / "l0.csv"));
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("399 profiles of layer 0 have no bed to measure against"), std::string::npos) << out;
   // A place is needed, one way only.
   std::tie(code, out) = test::RunCli(dir, "import " + csv + " -o " + (dir / "x.h5") + columns);
   EXPECT_EQ(code, 1) << out;
