@@ -56,17 +56,17 @@ void SayMisfits(const part::LayerSummary& l) {
     if (const std::size_t n = l.misfit[static_cast<std::size_t>(m)])
       std::printf("%s%zu: %s", sep, n, why.c_str()), sep = "; ";
   };
-  char top[160];
+  char top[256];
   if (l.shape)
     std::snprintf(top, sizeof top,
-                  "the layer's shape misses its beads' tops by %.1f times the noise (median; over %.0f, it is not "
-                  "their shape)",
-                  l.shape->top_noise, part::kTopOffNoise);
+                  "the layer's shape misses its beads' tops by %.1f times what a top may leave (the noise and %.1f "
+                  "%% of the height, in quadrature; median; over %.0f, it is not their shape)",
+                  l.shape->top_noise, 100.0 * part::kTopShapeHeights, part::kTopOffNoise);
   else
     std::snprintf(top, sizeof top,
                   "too few rows to pool the layer's shape, and each one's own misses its top by over %.0f times the "
-                  "noise",
-                  part::kTopOffNoise);
+                  "noise and %.1f %% of its height, in quadrature",
+                  part::kTopOffNoise, 100.0 * part::kTopShapeHeights);
   say(OutlineMisfit::kFloats, "the shape fitting its top would float over the surface it was laid on");
   say(OutlineMisfit::kTopOff, top);
   say(OutlineMisfit::kFamilyEdge, "boxier or more pointed than any of the shapes");

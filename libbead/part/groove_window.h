@@ -49,7 +49,8 @@ struct PooledShape {
   // The rows whose aspects were pooled.
   std::size_t rows = 0;
   // The median over those rows of their tops' RMS about the shape over
-  // their noise (part/hidden_groove.h: OutlineMisfit::kTopOff).
+  // their tolerance, the noise and a share of the height
+  // (part/hidden_groove.h: TopTolerance, OutlineMisfit::kTopOff).
   double top_noise = NAN;
   // Most of the layer's rows placed at their walls had an end the top put
   // off its wall's cell (part/hidden_groove.h: OutlineMisfit::kEndsOff).

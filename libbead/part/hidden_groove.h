@@ -22,6 +22,7 @@
 // widest point, the sigma says so.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <span>
@@ -38,9 +39,11 @@ namespace bead::part {
 //    what it was laid on; a flat-topped bead with rounded sides, a tamped
 //    bead, gets an ellipse that floats);
 //  - top_off: the layer's shape (its pool: part/layer_grooves.h) misses
-//    its beads' seen tops by over kTopOffNoise times their noise (the
-//    median over the pooled rows of each top's RMS; the right shape leaves
-//    the noise: 1.0-1.1 times it on the twin's walls and contours, while
+//    its beads' seen tops by over kTopOffNoise times their tolerance
+//    (TopTolerance: their noise, and kTopShapeHeights of their height that
+//    a bead's top may leave any shape of the family; the median over the
+//    pooled rows of each top's RMS; the right shape leaves the noise:
+//    1.0-1.1 times it on the twin's walls and contours, while
 //    single rows reach 8-18 times it at mixed points and lost points'
 //    edges, one in a thousand: a row alone is not judged by it);
 //  - family_edge: its exponent is the family's last (or first): the bead
@@ -56,6 +59,21 @@ namespace bead::part {
 //    corrected areas came out 11 % high, at 17-85 of their sigmas.
 enum class OutlineMisfit : uint8_t { kNone = 0, kFloats, kTopOff, kFamilyEdge, kEndsOff };
 inline constexpr double kTopOffNoise = 3.0;
+// What the model's shapes leave on a bead's top whatever the noise: 4-7 um
+// on the twin's 2.4 mm beads and a second generator's pressed ellipses
+// (the pooled shape's aspect held over a layer whose sizes vary, the
+// exponent's grid, the points' footprint), 0.2-0.3 % of the height. Judged
+// against the noise alone, a sensor of 1 um (its noise read at the 2 um
+// floor) saw the twin's own ellipses miss by 2.6-3.6 times it, and four of
+// six layers went uncorrected, 15-30 % high. A top's miss of a small share
+// of the height moves the groove under it by that share of the groove,
+// a few thousandths of the area: 0.5 % is allowed beside the noise. A
+// tamped bead's flat top misses by 120-210 um (8-14 % of its height), a
+// lens's by 65-77 um at a 10 um noise: still told apart.
+inline constexpr double kTopShapeHeights = 0.005;
+inline double TopTolerance(double noise_mm, double height_mm) {
+  return std::hypot(noise_mm, kTopShapeHeights * height_mm);
+}
 inline constexpr double kFloatsHeights = 0.1;
 
 struct HiddenGroove {

@@ -65,7 +65,7 @@ void LayerGrooves::Add(PartGeometryRow row, const StoredProfile* points, const S
     const HiddenGroove g = Estimate(*points, *under, row, last_ ? &*last_ : nullptr, pooled_ ? &*pooled_ : nullptr);
     if (g.ok) last_ = g;
     Apply(g, points->spacing_mm, row);
-    top = g.top_rms_mm / row.bead.noise_mm;
+    top = g.top_rms_mm / TopTolerance(row.bead.noise_mm, row.bead.height_mm);
     if (!pooled_ && g.at_silhouette) ++at_walls_, ends_off_ += !g.shape_consistent;
     if (!pooled_ && g.ok && g.shape_consistent) {
       aspects_.push_back(g.aspect);
