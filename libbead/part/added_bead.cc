@@ -271,9 +271,9 @@ const char* AddedStatusName(AddedStatus s) {
 
 AddedBead MeasureAddedBead(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
                            bool register_shift, const AddedBeadOptions& o, const double* start_shift, double spacing_mm,
-                           double start_hidden_sigma) {
+                           double start_hidden_sigma, double noise_mm) {
   AddedBead out;
-  out.noise_mm = NoiseOf(z);
+  out.noise_mm = std::isfinite(noise_mm) ? noise_mm : NoiseOf(z);
   const double tau = std::max(o.min_threshold_mm, o.threshold_sigmas * out.noise_mm);
   const double floor = std::max(o.min_edge_floor_mm, o.edge_floor_sigmas * out.noise_mm);
   Registration reg;

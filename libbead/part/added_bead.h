@@ -125,10 +125,11 @@ double PointSpacingMm(std::span<const float> x);
 // register_shift = false: s = 0 (the bed's line, fitted on this profile).
 // start_shift: where the pass's shift was last found (nullptr: nowhere
 // yet), start_hidden_sigma: its hidden sigma (part/registration.h);
-// spacing_mm: PointSpacingMm(x) where known (NaN: found here).
+// spacing_mm: PointSpacingMm(x), noise_mm: ProfileNoiseMm(z), where the
+// caller has them (NaN: found here).
 AddedBead MeasureAddedBead(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
                            bool register_shift, const AddedBeadOptions& options = {},
                            const double* start_shift = nullptr, double spacing_mm = AddedBead::kNaN,
-                           double start_hidden_sigma = 0.0);
+                           double start_hidden_sigma = 0.0, double noise_mm = AddedBead::kNaN);
 
 }  // namespace bead::part

@@ -96,16 +96,17 @@ std::optional<SurfaceGrid> SampledBed(const StoredProfile& p, double step, doubl
 //    over the line by the bead's threshold (the wheel's test,
 //    profile/bead_geometry.cc, put to every run, not only the largest);
 //  - kReferenceNotALine: the line leaves the areas' points over
-//    kReferenceNoises times the profile's noise (p's points) about it: it
+//    kReferenceNoises times the profile's noise (ProfileNoiseMm of its
+//    points in the bed frame) about it: it
 //    is laid on a bead that fills an area, or on a bed that is not flat
 //    there (a pipe). On a bare bed that ratio is 0.8-1.2 (twin walls,
 //    contours and roads, a generator's walls and roads; 4.5 on one profile
 //    whose noise sat at its 2 um floor); with the tops of the outer ones of
 //    eight roads at 0.8 of their width in the areas, 35-47: their bed line
 //    was laid on them, and every road came out 83 % small, said nothing of.
-AddedStatus ReferenceAreas(const ProfileView& v, const StoredProfile& p, const BeadGeometry& g, const Rig& rig,
+AddedStatus ReferenceAreas(const ProfileView& v, double noise_mm, const BeadGeometry& g, const Rig& rig,
                            int min_points) {
-  if (g.reference.residual_rms_mm > kReferenceNoises * ProfileNoiseMm(p.z_mm)) return AddedStatus::kReferenceNotALine;
+  if (g.reference.residual_rms_mm > kReferenceNoises * noise_mm) return AddedStatus::kReferenceNotALine;
   int run = 0;
   for (std::size_t j = 0; j < v.x_mm.size(); ++j) {
     const double x = v.x_mm[j];
@@ -121,11 +122,12 @@ AddedStatus ReferenceAreas(const ProfileView& v, const StoredProfile& p, const B
 // own spacing); nullopt where none is found (`why`: kNoSurfaceBelow), or
 // the reference areas hold no bare flat bed (`why`: ReferenceAreas').
 std::optional<SurfaceGrid> BedLine(ProfileProcessor& processor, const Rig& rig, int min_points, const ProfileView& v,
-                                   const StoredProfile& p, double frame_x, double frame_z, AddedStatus& why) {
+                                   const StoredProfile& p, double noise_mm, double frame_x, double frame_z,
+                                   AddedStatus& why) {
   const BeadGeometry& g = processor.Process(v);
   why = AddedStatus::kNoSurfaceBelow;
   if (!g.reference.ok) return std::nullopt;
-  why = ReferenceAreas(v, p, g, rig, min_points);
+  why = ReferenceAreas(v, noise_mm, g, rig, min_points);
   if (why != AddedStatus::kValid) return std::nullopt;
   why = AddedStatus::kNoSurfaceBelow;  // where the grid below cannot be made
   const ReferenceLine line = g.reference;
@@ -143,10 +145,11 @@ std::optional<SurfaceGrid> BedArcGrid(const Rig& rig, const ProfileView& v, cons
 }
 
 // Each bead of the profile over the surface below, moved by `shift`.
-std::vector<Road> RoadsOver(const StoredProfile& p, const SurfaceGrid& under, double shift, const RoadOptions& o) {
+std::vector<Road> RoadsOver(const StoredProfile& p, double noise_mm, const SurfaceGrid& under, double shift,
+                            const RoadOptions& o) {
   std::vector<double> gain(p.x_mm.size());
   for (std::size_t j = 0; j < gain.size(); ++j) gain[j] = p.z_mm[j] - under.At(p.x_mm[j] - shift);
-  return FindRoads(p.x_mm, gain, ProfileNoiseMm(p.z_mm), o);
+  return FindRoads(p.x_mm, gain, noise_mm, o);
 }
 
 class PartMeasurer {
@@ -164,13 +167,14 @@ class PartMeasurer {
     row.path_mm = places.path_mm[i];
     below_.BeginLayer(row.layer);
     StoredProfile mine = InBedFrame(v, row.path_mm, places.frame_x_mm[i], places.frame_z_mm[i], below_);
+    const double noise = ProfileNoiseMm(mine.z_mm);  // (once: the bed's test, the bead, the roads)
     std::optional<SurfaceGrid> under;
     AddedStatus no_bed = AddedStatus::kNoSurfaceBelow;
     const bool pipe = rig_.part && rig_.part->shape == PartBed::Shape::kCylinder;
     if (row.layer == 0 && pipe)
       under = BedArcGrid(rig_, v, mine, places.frame_x_mm[i], places.frame_z_mm[i]);
     else if (row.layer == 0)
-      under = BedLine(processor_, rig_, options_.bed.bead.min_bead_points, v, mine, places.frame_x_mm[i],
+      under = BedLine(processor_, rig_, options_.bed.bead.min_bead_points, v, mine, noise, places.frame_x_mm[i],
                       places.frame_z_mm[i], no_bed);
     else
       under = below_.At(row.path_mm, nullptr);
@@ -181,12 +185,12 @@ class PartMeasurer {
       if (row.layer != warm_layer_) recent_shifts_.clear(), hidden_ = 0.0, warm_layer_ = row.layer;
       const double warm = RecentShift();
       row.bead = MeasureAddedBead(mine.x_mm, mine.z_mm, *under, shift, options_.added,
-                                  std::isfinite(warm) ? &warm : nullptr, mine.spacing_mm, hidden_);
+                                  std::isfinite(warm) ? &warm : nullptr, mine.spacing_mm, hidden_, noise);
       if (row.bead.shift_constrained) KeepShift(row.bead.shift_mm), hidden_ = row.bead.shift_hidden_sigma_mm;
     }
     // Several beads over the surface below, at the shift the layer's
     // registration found (its truncated cost holds any number of beads).
-    if (under && options_.several_beads) row.roads = RoadsOver(mine, *under, row.bead.shift_mm, options_.roads);
+    if (under && options_.several_beads) row.roads = RoadsOver(mine, noise, *under, row.bead.shift_mm, options_.roads);
     mine.center_x_mm = row.bead.valid() ? row.bead.center_x_mm : std::nan("");
     mine.area_mm2 = row.bead.valid() ? row.bead.area_mm2 : std::nan("");
     if (row.layer > 0 && row.bead.valid()) row.below_change_var_mm4 = below_.ChangeAt(row.path_mm).Variance();
