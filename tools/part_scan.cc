@@ -192,8 +192,15 @@ PartPlaces OnTheBed(std::size_t n) {
 
 void SayRoads(const part::RoadsSummary& s, bool laid_left_first, bool above_bed, std::size_t no_surface,
               std::size_t in_reference, std::size_t not_a_line) {
-  for (const auto& [count, profiles] : s.profiles_by_count)
-    std::printf("  %zu profiles with %zu bead%s\n", profiles, count, count == 1 ? "" : "s");
+  // Profiles with no surface below (said below, with why) hold no beads:
+  // the count of none is of those measured that showed none.
+  const std::size_t unmeasured = no_surface + in_reference + not_a_line;
+  for (const auto& [count, profiles] : s.profiles_by_count) {
+    if (count > 0)
+      std::printf("  %zu profiles with %zu bead%s\n", profiles, count, count == 1 ? "" : "s");
+    else if (profiles > unmeasured)
+      std::printf("  %zu profiles measured with no bead over the surface below\n", profiles - unmeasured);
+  }
   if (s.cut_by_edge)
     std::printf("  %zu beads cut by the field of view's end: flagged invalid, their size not given\n", s.cut_by_edge);
   if (s.no_fit) std::printf("  %zu stretches the overlap model could not explain: flagged no_fit\n", s.no_fit);

@@ -75,6 +75,9 @@ TEST(RoadsCommand, ReferenceAreasOnTheRoadsAreRefusedNotMeasuredAsTheBed) {
       const auto rows = CsvRows(dir / "out.csv");
       if (!beads.empty()) {
         EXPECT_EQ(rows.size(), 1u) << "no road is measured over a bed line laid on the roads";
+        // Those profiles were not measured: not counted as showing no bead.
+        EXPECT_EQ(out.find("with 0 beads"), std::string::npos) << out;
+        EXPECT_EQ(out.find("measured with no bead"), std::string::npos) << out;
         continue;
       }
       ASSERT_GT(rows.size(), 1u);
