@@ -78,12 +78,28 @@ int NozzleClock::Direction(int64_t layer) const {
   return it == printing_.end() ? 0 : it->second.front().forward ? 1 : -1;
 }
 
-double NozzleClock::SpeedAt(std::size_t i, double t) const {
-  if (log_.head_speed_mm_s.size() == log_.size()) {
-    const double w = (t - log_.t_s[i]) / (log_.t_s[i + 1] - log_.t_s[i]);
-    return std::abs((1 - w) * log_.head_speed_mm_s[i] + w * log_.head_speed_mm_s[i + 1]);
+std::pair<double, double> NozzleClock::Within(std::size_t i, double w) const {
+  const double dt = log_.t_s[i + 1] - log_.t_s[i];
+  const double mean = std::abs(log_.path_mm[i + 1] - log_.path_mm[i]) / dt;
+  if (log_.head_speed_mm_s.size() != log_.size()) return {w, mean};
+  // v(u) = v0 + (v1 - v0) u + c u (1 - u) over the fraction u of the time,
+  // its mean over the interval v0 / 2 + v1 / 2 + c / 6 the path's.
+  const double v0 = std::abs(log_.head_speed_mm_s[i]), v1 = std::abs(log_.head_speed_mm_s[i + 1]);
+  const double c = 6.0 * (mean - 0.5 * (v0 + v1));
+  const auto v = [&](double u) { return v0 + (v1 - v0) * u + c * u * (1.0 - u); };
+  const double vertex = c != 0.0 ? 0.5 + 0.5 * (v1 - v0) / c : 0.0;
+  const bool moving = v0 > 0.0 && v1 > 0.0 && (c >= 0.0 || vertex <= 0.0 || vertex >= 1.0 || v(vertex) > 0.0);
+  if (!moving || !std::isfinite(c)) return {w, (1 - w) * v0 + w * v1};
+  // The time u where the path walked, v0 u + (v1 - v0) u^2 / 2 + c (u^2 / 2
+  // - u^3 / 3), reaches w of the interval's (mean): Newton's steps from w,
+  // kept in [0, 1] (the path increasing in u: a few steps).
+  const double goal = w * mean;
+  double u = w;
+  for (int k = 0; k < 8; ++k) {
+    const double walked = v0 * u + 0.5 * (v1 - v0) * u * u + c * (0.5 * u * u - u * u * u / 3.0);
+    u = std::clamp(u - (walked - goal) / v(u), 0.0, 1.0);
   }
-  return std::abs(log_.path_mm[i + 1] - log_.path_mm[i]) / (log_.t_s[i + 1] - log_.t_s[i]);
+  return {u, v(u)};
 }
 
 std::optional<NozzleClock::Passing> NozzleClock::At(int64_t layer, double path) const {
@@ -99,10 +115,11 @@ std::optional<NozzleClock::Passing> NozzleClock::At(int64_t layer, double path) 
         s.forward ? std::upper_bound(begin, end, path) : std::upper_bound(begin, end, path, std::greater<>());
     const std::size_t i = std::min<std::size_t>(s.first + static_cast<std::size_t>(up - begin), s.last) - 1;
     const double w = (path - log_.path_mm[i]) / (log_.path_mm[i + 1] - log_.path_mm[i]);
+    const auto [u, speed] = Within(i, w);
     Passing p;
-    p.t_s = log_.t_s[i] + w * (log_.t_s[i + 1] - log_.t_s[i]);
-    p.head_speed_mm_s = SpeedAt(i, p.t_s);
-    p.screw_rpm = log_.screw_rpm.size() == log_.size() ? (1 - w) * log_.screw_rpm[i] + w * log_.screw_rpm[i + 1] : NAN;
+    p.t_s = log_.t_s[i] + u * (log_.t_s[i + 1] - log_.t_s[i]);
+    p.head_speed_mm_s = speed;
+    p.screw_rpm = log_.screw_rpm.size() == log_.size() ? (1 - u) * log_.screw_rpm[i] + u * log_.screw_rpm[i + 1] : NAN;
     return p;
   }
   return std::nullopt;
