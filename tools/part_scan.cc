@@ -88,7 +88,8 @@ void SayNoBareBed(std::size_t in_reference, std::size_t not_a_line, const char* 
   if (not_a_line)
     std::printf(
         "%s%zu profiles of layer 0 have reference areas that are no line to the profile's noise (status "
-        "reference_not_a_line; over %.0f times it): a bead fills them, or the bed is not flat there (a pipe: part: "
+        "reference_not_a_line; over %.0f times it, and over the least bead threshold): a bead fills them, or the bed "
+        "is not flat there (a pipe: part: "
         "{bed: cylinder}); those profiles are not measured: set the areas where the bed is bare and flat, or the "
         "bed's shape\n",
         indent, not_a_line, part::kReferenceNoises);

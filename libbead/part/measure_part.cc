@@ -97,16 +97,22 @@ std::optional<SurfaceGrid> SampledBed(const StoredProfile& p, double step, doubl
 //    profile/bead_geometry.cc, put to every run, not only the largest);
 //  - kReferenceNotALine: the line leaves the areas' points over
 //    kReferenceNoises times the profile's noise (ProfileNoiseMm of its
-//    points in the bed frame) about it: it
-//    is laid on a bead that fills an area, or on a bed that is not flat
-//    there (a pipe). On a bare bed that ratio is 0.8-1.2 (twin walls,
-//    contours and roads, a generator's walls and roads; 4.5 on one profile
-//    whose noise sat at its 2 um floor); with the tops of the outer ones of
-//    eight roads at 0.8 of their width in the areas, 35-47: their bed line
-//    was laid on them, and every road came out 83 % small, said nothing of.
+//    points in the bed frame) about it, and over the least bead threshold
+//    (BeadOptions::min_threshold_mm): it is laid on a bead that fills an
+//    area, or on a bed that is not flat there (a pipe). On a bare bed that
+//    ratio is 0.8-1.2 (twin walls, contours and roads, a generator's walls
+//    and roads; 4.5 on one profile whose noise sat at its 2 um floor); with
+//    the tops of the outer ones of eight roads at 0.8 of their width in the
+//    areas, 35-47 (0.35-0.47 mm): their bed line was laid on them, and every
+//    road came out 83 % small, said nothing of. A bed rougher than a fine
+//    sensor's noise (a textured sheet, 20-50 um about its line, under a
+//    sensor of 1-2 um) stays under the threshold: nothing a bead's
+//    threshold would see fills the areas, and it is measured on.
 AddedStatus ReferenceAreas(const ProfileView& v, double noise_mm, const BeadGeometry& g, const Rig& rig,
-                           int min_points) {
-  if (g.reference.residual_rms_mm > kReferenceNoises * noise_mm) return AddedStatus::kReferenceNotALine;
+                           const BeadOptions& bead) {
+  const double not_a_line = std::max(kReferenceNoises * noise_mm, bead.min_threshold_mm);
+  if (g.reference.residual_rms_mm > not_a_line) return AddedStatus::kReferenceNotALine;
+  const int min_points = bead.min_bead_points;
   int run = 0;
   for (std::size_t j = 0; j < v.x_mm.size(); ++j) {
     const double x = v.x_mm[j];
@@ -121,13 +127,13 @@ AddedStatus ReferenceAreas(const ProfileView& v, double noise_mm, const BeadGeom
 // line: exact between any two of its values, so sampled at the points'
 // own spacing); nullopt where none is found (`why`: kNoSurfaceBelow), or
 // the reference areas hold no bare flat bed (`why`: ReferenceAreas').
-std::optional<SurfaceGrid> BedLine(ProfileProcessor& processor, const Rig& rig, int min_points, const ProfileView& v,
-                                   const StoredProfile& p, double noise_mm, double frame_x, double frame_z,
-                                   AddedStatus& why) {
+std::optional<SurfaceGrid> BedLine(ProfileProcessor& processor, const Rig& rig, const BeadOptions& bead,
+                                   const ProfileView& v, const StoredProfile& p, double noise_mm, double frame_x,
+                                   double frame_z, AddedStatus& why) {
   const BeadGeometry& g = processor.Process(v);
   why = AddedStatus::kNoSurfaceBelow;
   if (!g.reference.ok) return std::nullopt;
-  why = ReferenceAreas(v, noise_mm, g, rig, min_points);
+  why = ReferenceAreas(v, noise_mm, g, rig, bead);
   if (why != AddedStatus::kValid) return std::nullopt;
   why = AddedStatus::kNoSurfaceBelow;  // where the grid below cannot be made
   const ReferenceLine line = g.reference;
@@ -174,8 +180,8 @@ class PartMeasurer {
     if (row.layer == 0 && pipe)
       under = BedArcGrid(rig_, v, mine, places.frame_x_mm[i], places.frame_z_mm[i]);
     else if (row.layer == 0)
-      under = BedLine(processor_, rig_, options_.bed.bead.min_bead_points, v, mine, noise, places.frame_x_mm[i],
-                      places.frame_z_mm[i], no_bed);
+      under = BedLine(processor_, rig_, options_.bed.bead, v, mine, noise, places.frame_x_mm[i], places.frame_z_mm[i],
+                      no_bed);
     else
       under = below_.At(row.path_mm, nullptr);
     if (!under) {

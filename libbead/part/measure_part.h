@@ -53,8 +53,9 @@ struct PartGeometryRow {
 };
 
 // On layer 0, the rig's reference areas are no line where their line
-// leaves their points over this many times the profile's noise about it
-// (AddedStatus::kReferenceNotALine; measure_part.cc says what it was set on).
+// leaves their points over this many times the profile's noise about it,
+// and over the least bead threshold (AddedStatus::kReferenceNotALine;
+// measure_part.cc says what it was set on).
 inline constexpr double kReferenceNoises = 10.0;
 
 struct MeasurePartOptions {

@@ -135,6 +135,36 @@ TEST(PartWall, AProfilerFrameMovingSidewaysOffTheGridMeasuresAsWell) {
   EXPECT_GE(e.shift_covered, static_cast<int>(0.9 * e.shift_found));
 }
 
+// A fine sensor (1 um of noise, read at the 2 um floor) over a textured
+// bed: a ripple of 35 um (25 um RMS) at 1.7 mm on the bare bed, rougher
+// than 10 noises, smoother than a bead's threshold (0.05 mm). The bed line
+// through the reference areas is still the bed: every profile of the first
+// layer is measured (each was refused as no line before the threshold
+// bounded the test), its area within the walls' sampling bound, the
+// ripple's own share of the trapezoid beside each foot (under 35 um over
+// a spacing on each side) well inside it.
+TEST(PartWall, AFineSensorOverATexturedBedMeasuresTheFirstLayer) {
+  sim::PartTwinConfig config;
+  config.seed = 3;
+  config.layers = 1;
+  config.noise_mm = 0.001;
+  sim::PartTwin twin = sim::SimulatePartWall(config);
+  ProfileBlock& b = twin.scan.profiles;
+  const PartPlaces& places = *twin.scan.part;
+  for (std::size_t i = 0; i < b.size(); ++i)
+    for (std::size_t j = 0; j < b.points; ++j) {
+      float& z = b.z_mm[i * b.points + j];
+      const double x_bed = b.view(i).x_mm[j] + places.frame_x_mm[i];
+      if (z + places.frame_z_mm[i] < 0.005) z += static_cast<float>(0.035 * std::sin(2.0 * M_PI * x_bed / 1.7));
+    }
+  Errors e;
+  Collect(twin, Measure(twin.scan, twin.rig, true), e);
+  std::printf("textured bed: %d of %zu valid, area %+.4f rms %.4f mm^2\n", e.valid, b.size(), Mean(e.area),
+              Rms(e.area));
+  EXPECT_EQ(e.valid, static_cast<int>(b.size()));
+  EXPECT_LT(Rms(e.area), kAreaBound);
+}
+
 TEST(PartWall, AStreamedArchiveMeasuresAsTheScanInMemory) {
   test::TempDir dir;
   sim::PartTwinConfig config;
