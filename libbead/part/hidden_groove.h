@@ -60,9 +60,10 @@ namespace bead::part {
 enum class OutlineMisfit : uint8_t { kNone = 0, kFloats, kTopOff, kFamilyEdge, kEndsOff };
 inline constexpr double kTopOffNoise = 3.0;
 // What the model's shapes leave on a bead's top whatever the noise: 4-7 um
-// on the twin's 2.4 mm beads and a second generator's pressed ellipses
-// (the pooled shape's aspect held over a layer whose sizes vary, the
-// exponent's grid, the points' footprint), 0.2-0.3 % of the height. Judged
+// on the twin's 2.4 mm beads and a second generator's pressed ellipses,
+// 0.2-0.3 % of the height (not traced further; the pooled aspect held over
+// a layer whose sizes vary, the exponent's grid and the points' footprint
+// are what the shapes cannot follow). Judged
 // against the noise alone, a sensor of 1 um (its noise read at the 2 um
 // floor) saw the twin's own ellipses miss by 2.6-3.6 times it, and four of
 // six layers went uncorrected, 15-30 % high. A top's miss of a small share
