@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <optional>
+#include <vector>
 
 #include "libbead/core/error.h"
 #include "libbead/part/flow_hampel.h"
@@ -71,6 +73,31 @@ NozzleClock::NozzleClock(const AcquisitionLog& log, const std::string& file) : l
       if (way == 1 ? !(mine >= other) : !(mine > other)) continue;
       for (const auto& [first, last] : stretches) printing_[layer].push_back({first, last, way == 1});
     }
+  CheckLoggedSpeed(file);
+}
+
+void NozzleClock::CheckLoggedSpeed(const std::string& file) const {
+  if (log_.head_speed_mm_s.size() != log_.size()) return;
+  std::vector<double> ratio;
+  for (const auto& [layer, stretches] : printing_)
+    for (const Stretch& s : stretches)
+      for (std::size_t i = s.first; i < s.last; ++i) {
+        const double moved = std::abs(log_.path_mm[i + 1] - log_.path_mm[i]) / (log_.t_s[i + 1] - log_.t_s[i]);
+        const double logged = 0.5 * (std::abs(log_.head_speed_mm_s[i]) + std::abs(log_.head_speed_mm_s[i + 1]));
+        if (moved > 0.0 && std::isfinite(logged / moved)) ratio.push_back(logged / moved);
+      }
+  if (ratio.empty()) return;
+  const auto mid = ratio.begin() + static_cast<std::ptrdiff_t>(ratio.size() / 2);
+  std::nth_element(ratio.begin(), mid, ratio.end());
+  if (*mid >= kLoggedSpeedLow && *mid <= 1.0 / kLoggedSpeedLow) return;
+  char what[400];
+  std::snprintf(what, sizeof what,
+                "is %.3g times the speed /log/path_mm moves at while printing (the median over %zu log intervals): "
+                "a speed in other units (mm/min is 60 times mm/s), of another axis, or a commanded feed rate the "
+                "head did not reach; the flow would be off by as much. Convert it to mm/s along the path, or write "
+                "the log without it (the speed is then taken from the path)",
+                *mid, ratio.size());
+  throw Error(Located(file, "/log/head_speed_mm_s", what));
 }
 
 int NozzleClock::Direction(int64_t layer) const {

@@ -31,7 +31,13 @@ namespace bead::part {
 // spent each way); forward on a tie.
 class NozzleClock {
  public:
-  // Throws (naming `file`) when the log is not a part scan's.
+  // Throws (naming `file`) when the log is not a part scan's, or where it
+  // logs the head's speed, when that speed is not the path's: its median
+  // over the printing intervals' path speeds outside [kLoggedSpeedLow,
+  // 1 / kLoggedSpeedLow] (a speed in mm/min, a commanded feed rate the
+  // head did not reach: every flow off by that factor, unsaid). Braking
+  // at corners moves a few intervals, not the median.
+  static constexpr double kLoggedSpeedLow = 0.8;
   NozzleClock(const AcquisitionLog& log, const std::string& file);
 
   struct Passing {
@@ -71,6 +77,9 @@ class NozzleClock {
   // between them: when (the fraction of the time between them) and at what
   // speed the head passed it.
   std::pair<double, double> Within(std::size_t i, double w) const;
+  // Throws where the logged head speed is not the path's (the constructor's
+  // check).
+  void CheckLoggedSpeed(const std::string& file) const;
 };
 
 struct PartFlowRow {

@@ -187,6 +187,39 @@ TEST(PartFlow, BetweenTheLogsSamplesTheHeadMovesAsThePathBetweenThemSays) {
   }
 }
 
+// A head speed logged in mm/min (a printer's feed rate, F) is 60 times the
+// speed the path moves at: every flow would be 60 times too large. The
+// clock refuses it, naming the file, the dataset and the factor; a
+// commanded feed rate logged where the head brakes through a few corners
+// (most of the layer at it) is the path's speed where it counts, and taken.
+TEST(PartFlow, AHeadSpeedThatIsNotThePathsIsRefused) {
+  sim::PartTwinConfig config;
+  config.layers = 2;
+  config.length_mm = 40.0;
+  config.seed = 23;
+  const sim::PartTwin twin = sim::SimulatePartWall(config);
+  AcquisitionLog log = *twin.scan.log;
+  ASSERT_EQ(log.head_speed_mm_s.size(), log.size());
+  for (double& v : log.head_speed_mm_s) v *= 60.0;
+  try {
+    part::NozzleClock clock(log, "part.h5");
+    FAIL() << "a head speed in mm/min was taken";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("part.h5"), std::string::npos) << what;
+    EXPECT_NE(what.find("/log/head_speed_mm_s"), std::string::npos) << what;
+    EXPECT_NE(what.find("is 60 times"), std::string::npos) << what;
+  }
+  // The twin's own (its path's speed), and one logged at twice the head's
+  // speed at every fifth sample (two intervals in five 1.5 times the
+  // path's: a feed rate the head fell short of through corners).
+  EXPECT_NO_THROW(part::NozzleClock(*twin.scan.log, "part.h5"));
+  log = *twin.scan.log;
+  for (std::size_t i = 0; i < log.size(); ++i)
+    if (i % 5 == 0) log.head_speed_mm_s[i] *= 2.0;
+  EXPECT_NO_THROW(part::NozzleClock(log, "part.h5"));
+}
+
 // A layer's volume is integrated the way it went along its path, whatever
 // its first step: a place scanned again just behind the last (a sensor's
 // jitter at the start) takes nothing away and does not turn the layer round.
