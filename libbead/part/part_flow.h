@@ -52,8 +52,9 @@ class NozzleClock {
   // within the interval, the path says by how much the speed dipped: at a
   // 10 Hz log of a generator's contour, the speed's RMS error 0.24 mm/s
   // linear, 0.08 this way; at 100 Hz, 0.007 and 0.002), the time where its
-  // integral reaches the place. Linear in time (the path's mean speed) where
-  // the log holds no speed, or that quadratic would stop the head. (Speeds
+  // integral reaches the place. Where the log holds no speed, the path's
+  // mean speed over the interval, the time linear; where that quadratic
+  // would stop the head, linear between the logged speeds. (Speeds
   // at the samples from the path's differences, quadratic between, were
   // closer on average, 0.20 mm/s against the means' 0.31 at 10 Hz, but
   // spread a corner's braking over two intervals, which the flow's filter
