@@ -22,39 +22,45 @@ struct TopPoints {
   std::vector<int> k;
 };
 
+// Each of the top's points within kInner of the half-width of the bead
+// with ends L and R, to keep(j, u) in order.
+template <class Keep>
+void ForEachTopPoint(const Window& w, std::size_t first, std::size_t last, double L, double R, Keep keep) {
+  const double x0 = 0.5 * (L + R), per_a = 2.0 / (R - L);
+  const auto u_at = [&](std::size_t j) { return (w.x[j] - x0) * per_a; };
+  if (!(per_a > 0.0)) {
+    for (std::size_t j = first; j <= last; ++j)
+      if (const double u = u_at(j); std::abs(u) <= kInner) keep(j, u);
+    return;
+  }
+  // x increases, and u with it: the points within kInner are one range,
+  // its ends found by the test each point would be put to.
+  const auto first_where = [&](std::size_t a, auto above) {
+    std::size_t b = last + 1;
+    while (a < b) {
+      const std::size_t m = a + (b - a) / 2;
+      if (above(u_at(m)))
+        b = m;
+      else
+        a = m + 1;
+    }
+    return a;
+  };
+  const std::size_t lo = first_where(first, [](double u) { return u >= -kInner; });
+  const std::size_t hi = first_where(lo, [](double u) { return u > kInner; });
+  for (std::size_t j = lo; j < hi; ++j) keep(j, u_at(j));
+}
+
 const TopPoints& TopOf(const Window& w, std::size_t first, std::size_t last, double L, double R) {
   thread_local TopPoints p;
   const std::size_t most = last >= first ? last - first + 1 : 0;
   p.u.resize(most), p.z.resize(most), p.t.resize(most), p.k.resize(most);
-  const double x0 = 0.5 * (L + R);
   p.per_a = 2.0 / (R - L);
-  const auto u_at = [&](std::size_t j) { return (w.x[j] - x0) * p.per_a; };
   std::size_t n = 0;
-  const auto keep = [&](std::size_t j, double u) {
+  ForEachTopPoint(w, first, last, L, R, [&](std::size_t j, double u) {
     SuperellipseTable::Locate(u, p.k[n], p.t[n]);
     p.u[n] = u, p.z[n] = w.z[j], ++n;
-  };
-  if (!(p.per_a > 0.0)) {
-    for (std::size_t j = first; j <= last; ++j)
-      if (const double u = u_at(j); std::abs(u) <= kInner) keep(j, u);
-  } else {
-    // x increases, and u with it: the points within kInner are one range,
-    // its ends found by the test each point would be put to.
-    const auto first_where = [&](std::size_t a, auto above) {
-      std::size_t b = last + 1;
-      while (a < b) {
-        const std::size_t m = a + (b - a) / 2;
-        if (above(u_at(m)))
-          b = m;
-        else
-          a = m + 1;
-      }
-      return a;
-    };
-    const std::size_t lo = first_where(first, [](double u) { return u >= -kInner; });
-    const std::size_t hi = first_where(lo, [](double u) { return u > kInner; });
-    for (std::size_t j = lo; j < hi; ++j) keep(j, u_at(j));
-  }
+  });
   p.u.resize(n), p.z.resize(n), p.t.resize(n), p.k.resize(n);
   return p;
 }
@@ -327,6 +333,24 @@ bool SolveHeld(const Window& w, std::size_t first, std::size_t last, double L, d
   s.e.p = held.exponent, s.exponent = held.exponent;
   s.aspect = std::isfinite(held.aspect) ? held.aspect : s.e.b / s.e.a;
   return true;
+}
+
+double HeldTopVariance(const Window& w, std::size_t first, std::size_t last, double L, double R,
+                       const PooledShape& held, std::size_t& points) {
+  // The sums SumTop(..., false) takes, from the points as they are found.
+  const SuperellipseTable& table = SuperellipseOf(held.exponent);
+  TopSums t;
+  ForEachTopPoint(w, first, last, L, R, [&](std::size_t j, double u) {
+    int k = 0;
+    double f = 0.0;
+    SuperellipseTable::Locate(u, k, f);
+    const double z = w.z[j], sv = table.S(k, f);
+    t.m += 1.0, t.z1 += z, t.zz += z * z, t.s1 += sv, t.s2 += sv * sv, t.zs += z * sv;
+  });
+  points = static_cast<std::size_t>(t.m);
+  const double b = held.aspect * 0.5 * (R - L), z0 = (t.z1 - b * t.s1) / t.m;
+  if (t.m < 5.0 || !(b > 0.0) || !std::isfinite(z0)) return INFINITY;
+  return std::max(ResidualSum(t, z0, b), 0.0) / (t.m - 1.0);
 }
 
 // The shape free: solved at the exponents of the grid, from grid index

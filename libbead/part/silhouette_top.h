@@ -25,6 +25,10 @@ namespace bead::part {
 // is NaN), their covariance and derivatives in the ends' places.
 bool SolveHeld(const Window& w, std::size_t first, std::size_t last, double L, double R, const PooledShape& held,
                Silhouette& s);
+// What SolveHeld leaves of the top alone, where the aspect is held: its
+// residual variance (INFINITY where it does not solve) over `points` points.
+double HeldTopVariance(const Window& w, std::size_t first, std::size_t last, double L, double R,
+                       const PooledShape& held, std::size_t& points);
 
 // The outermost points of a top (first..last) that stand under its z0 by
 // more than three residual sigmas (sigma_mm) are not on it: no point of a
