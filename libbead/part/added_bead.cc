@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "libbead/core/float_bits.h"
+#include "libbead/core/median.h"
 #include "libbead/part/grid_costs.h"
 #include "libbead/part/part_kernel.h"
 #include "libbead/part/registration.h"
@@ -55,18 +56,8 @@ const Gains& GainsAt(std::span<const float> x, std::span<const float> z, const S
   return g;
 }
 
-template <class T>
-T Median3(T a, T b, T c) {
-  return std::max(std::min(a, b), std::min(std::max(a, b), c));
-}
-
-// The median of v (reordered).
-double MedianOf(std::vector<float>& v) {
-  if (v.empty()) return kNaN;
-  auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
-}
+// The median of v (reordered; NaN where empty).
+double MedianOf(std::vector<float>& v) { return v.empty() ? kNaN : MiddleInPlace(v); }
 
 // The same median, first looked for among the values near `guess` (the
 // profile before's: a sensor's noise changes little from one profile to

@@ -6,6 +6,8 @@
 #include <limits>
 #include <vector>
 
+#include "libbead/core/median.h"
+
 namespace bead::part {
 namespace {
 
@@ -85,8 +87,7 @@ BedArc FitBedArc(std::span<const float> x, std::span<const float> z, const Refer
     std::vector<double> a;
     for (std::size_t i = 0; i < p.x.size(); ++i) a.push_back(std::abs(Residual(p, i, xc, zc, r)));
     std::vector<double> sorted = a;
-    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-    const double cut = std::max(3.5 * 1.4826 * sorted[sorted.size() / 2], 1e-4);
+    const double cut = std::max(3.5 * 1.4826 * MiddleInPlace(sorted), 1e-4);
     Points kept;
     for (std::size_t i = 0; i < p.x.size(); ++i)
       if (a[i] <= cut) kept.x.push_back(p.x[i]), kept.z.push_back(p.z[i]);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "libbead/core/median.h"
 #include "libbead/series/hampel.h"
 
 namespace bead::part {
@@ -16,11 +17,7 @@ void FlowHampel::EmitNext(const Emit& emit) {
       if (r.valid && std::isfinite(r.flow_sigma_mm3_s)) sigmas_.push_back(r.flow_sigma_mm3_s);
     }
     double floor = 0.0;
-    if (!sigmas_.empty()) {
-      std::nth_element(sigmas_.begin(), sigmas_.begin() + static_cast<std::ptrdiff_t>(sigmas_.size() / 2),
-                       sigmas_.end());
-      floor = sigmas_[sigmas_.size() / 2];
-    }
+    if (!sigmas_.empty()) floor = MiddleInPlace(sigmas_);
     bool outlier = false;
     const double flow = HampelAt(flows_.data(), flows_.size(), next_, kHalfWindow, kSigmas, &outlier, scratch_, floor);
     if (outlier) row.flow_mm3_s = flow, row.flow_replaced = true, ++replaced_;

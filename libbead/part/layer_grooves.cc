@@ -6,6 +6,8 @@
 #include <tuple>
 #include <utility>
 
+#include "libbead/core/median.h"
+
 namespace bead::part {
 namespace {
 
@@ -119,11 +121,9 @@ namespace {
 // The median of v and its standard error: sqrt(pi / 2) sigma /
 // sqrt(n), sigma from the median absolute deviation.
 std::pair<double, double> MedianAndError(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-  const double median = v[v.size() / 2];
+  const double median = MiddleInPlace(v);
   for (double& a : v) a = std::abs(a - median);
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-  return {median, 1.2533 * 1.4826 * v[v.size() / 2] / std::sqrt(static_cast<double>(v.size()))};
+  return {median, 1.2533 * 1.4826 * MiddleInPlace(v) / std::sqrt(static_cast<double>(v.size()))};
 }
 
 // The correlation of the rows' aspects and exponents (0 where either does

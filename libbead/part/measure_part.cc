@@ -9,6 +9,7 @@
 #include <string>
 
 #include "libbead/core/error.h"
+#include "libbead/core/median.h"
 #include "libbead/core/worker_pool.h"
 #include "libbead/io/part_scan_csv.h"
 #include "libbead/part/bed_arc.h"
@@ -221,9 +222,7 @@ class PartMeasurer {
     if (recent_shifts_.empty()) return std::nan("");
     std::array<double, kRecentShifts> v{};
     std::copy(recent_shifts_.begin(), recent_shifts_.end(), v.begin());
-    const auto end = v.begin() + static_cast<std::ptrdiff_t>(recent_shifts_.size());
-    std::nth_element(v.begin(), v.begin() + (end - v.begin()) / 2, end);
-    return v[static_cast<std::size_t>(end - v.begin()) / 2];
+    return MiddleInPlace(v.data(), recent_shifts_.size());
   }
   void KeepShift(double shift) {
     if (recent_shifts_.size() == kRecentShifts) recent_shifts_.erase(recent_shifts_.begin());
@@ -240,8 +239,7 @@ class PartMeasurer {
 double LayerSummary::MedianShift() const {
   if (shifts_mm.empty()) return kNaN();
   std::vector<double> v = shifts_mm;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
+  return MiddleInPlace(v);
 }
 
 namespace {

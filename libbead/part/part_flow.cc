@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "libbead/core/error.h"
+#include "libbead/core/median.h"
 #include "libbead/part/flow_hampel.h"
 
 namespace bead::part {
@@ -87,16 +88,15 @@ void NozzleClock::CheckLoggedSpeed(const std::string& file) const {
         if (moved > 0.0 && std::isfinite(logged / moved)) ratio.push_back(logged / moved);
       }
   if (ratio.empty()) return;
-  const auto mid = ratio.begin() + static_cast<std::ptrdiff_t>(ratio.size() / 2);
-  std::nth_element(ratio.begin(), mid, ratio.end());
-  if (*mid >= kLoggedSpeedLow && *mid <= 1.0 / kLoggedSpeedLow) return;
+  const double middle = MiddleInPlace(ratio);
+  if (middle >= kLoggedSpeedLow && middle <= 1.0 / kLoggedSpeedLow) return;
   char what[400];
   std::snprintf(what, sizeof what,
                 "is %.3g times the speed /log/path_mm moves at while printing (the median over %zu log intervals): "
                 "a speed in other units (mm/min is 60 times mm/s), of another axis, or a commanded feed rate the "
                 "head did not reach; the flow would be off by as much. Convert it to mm/s along the path, or write "
                 "the log without it (the speed is then taken from the path)",
-                *mid, ratio.size());
+                middle, ratio.size());
   throw Error(Located(file, "/log/head_speed_mm_s", what));
 }
 
@@ -202,8 +202,7 @@ CornerBulge SpeedAndArea::Bulge(double fraction) const {
   CornerBulge b;
   if (speed_.empty()) return b;
   std::vector<double> v = speed_;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  const double limit = fraction * v[v.size() / 2];
+  const double limit = fraction * MiddleInPlace(v);
   double area[2] = {0, 0}, flow[2] = {0, 0}, speed[2] = {0, 0};
   std::size_t n[2] = {0, 0};
   for (std::size_t i = 0; i < speed_.size(); ++i) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "libbead/core/median.h"
 #include "libbead/part/road_arcs.h"
 
 namespace bead::part {
@@ -89,8 +90,8 @@ std::vector<Arc> StartArcs(std::span<const double> x, const std::vector<double>&
   std::vector<double> k;
   for (const Arc& a : out) k.push_back(a.k);
   if (!k.empty()) {
-    std::nth_element(k.begin(), k.begin() + k.size() / 2, k.end());
-    for (Arc& a : out) a.k = k[k.size() / 2];
+    const double middle = MiddleInPlace(k);
+    for (Arc& a : out) a.k = middle;
   }
   return out;
 }
@@ -113,8 +114,7 @@ double MedianNear(std::span<const double> x, std::span<const double> d, double a
   const std::size_t k = static_cast<std::size_t>(std::lower_bound(x.begin(), x.end(), at) - x.begin());
   const std::size_t a = k > 1 ? k - 1 : 0, b = std::min(x.size() - 1, a + 2);
   std::vector<double> v(d.begin() + static_cast<std::ptrdiff_t>(a), d.begin() + static_cast<std::ptrdiff_t>(b) + 1);
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
+  return MiddleInPlace(v);
 }
 
 // Each arc's share of the measured gain at x (laid in the arcs' order): the
@@ -219,8 +219,7 @@ void Despiked(std::span<const float> xf, std::span<const double> gain, double sp
     const std::size_t a = j >= 2 ? j - 2 : 0, b = std::min(da.size() - 1, j + 2);
     std::vector<double> near(da.begin() + static_cast<std::ptrdiff_t>(a),
                              da.begin() + static_cast<std::ptrdiff_t>(b) + 1);
-    std::nth_element(near.begin(), near.begin() + near.size() / 2, near.end());
-    if (std::abs(da[j] - near[near.size() / 2]) <= spike_mm) x.push_back(xa[j]), d.push_back(da[j]);
+    if (std::abs(da[j] - MiddleInPlace(near)) <= spike_mm) x.push_back(xa[j]), d.push_back(da[j]);
   }
 }
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "libbead/core/float_bits.h"
+#include "libbead/core/median.h"
 
 namespace bead::part {
 namespace {
@@ -284,8 +285,7 @@ void SurfaceBelow::Steps() {
     if (std::isfinite(off[k])) sizes.push_back(off[k]);
   }
   if (sizes.empty()) return;
-  std::nth_element(sizes.begin(), sizes.begin() + static_cast<std::ptrdiff_t>(sizes.size() / 2), sizes.end());
-  const double beyond = 3.0 * 1.4826 * sizes[sizes.size() / 2];
+  const double beyond = 3.0 * 1.4826 * MiddleInPlace(sizes);
   for (std::size_t k = 0; k < pairs; ++k)
     if (off[k] > beyond)
       for (std::size_t n = k > 0 ? k - 1 : 0; n <= std::min(k + 1, pairs - 1); ++n) below_[n].step = true;
