@@ -18,7 +18,7 @@ struct Ellipse {
   // Half its height at x (0 off it).
   double Half(double x) const {
     const double u = (x - x0) / a;
-    return std::abs(u) < 1.0 ? b * SuperellipseAt(u, p).s : 0.0;
+    return std::abs(u) < 1.0 ? b * SuperellipseS(u, p) : 0.0;
   }
   double& operator[](std::size_t i) { return i == 0 ? x0 : i == 1 ? z0 : i == 2 ? a : b; }
   double operator[](std::size_t i) const { return i == 0 ? x0 : i == 1 ? z0 : i == 2 ? a : b; }

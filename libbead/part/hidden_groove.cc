@@ -33,22 +33,39 @@ struct GrooveSum {
   double variance_under = 0.0;  // mm
 };
 
-// The surface below, moved by the shift, sampled at many places: one
-// row's (a blend's, a layer's on its grid) with its step's inverse taken
-// once; two rows as SurfaceGrid blends them.
+// The surface below, moved by the shift, sampled at many places: each
+// row's step's inverse taken once (no division per place), two rows
+// blended as SurfaceGrid blends them.
 class BelowSampler {
  public:
-  BelowSampler(const SurfaceGrid& grid, double shift)
-      : grid_(grid), row_(grid.single_row()), shift_(shift), per_mm_(row_ ? 1.0 / row_->dx_mm : 0.0) {}
-  SurfaceGrid::Sample At(double x) const {
-    return row_ ? row_->SampleAtIndex((x - shift_ - row_->x0_mm) * per_mm_, per_mm_) : grid_.SampleAt(x - shift_);
+  BelowSampler(const SurfaceGrid& grid, double shift) : shift_(shift), w_(grid.weight()) {
+    for (int r = 0; r < 2; ++r) row_[r] = grid.row(r), per_mm_[r] = row_[r] ? 1.0 / row_[r]->dx_mm : 0.0;
   }
-  double Z(double x) const { return row_ ? row_->AtIndex((x - shift_ - row_->x0_mm) * per_mm_) : grid_.At(x - shift_); }
+  SurfaceGrid::Sample At(double x) const {
+    if (!row_[0]) return {NAN, 0.0, NAN};
+    const SurfaceGrid::Sample a = row_[0]->SampleAtIndex(Index(0, x), per_mm_[0]);
+    if (!row_[1]) return a;
+    const SurfaceGrid::Sample b = row_[1]->SampleAtIndex(Index(1, x), per_mm_[1]);
+    if (std::isnan(b.z)) return a;
+    if (std::isnan(a.z)) return b;
+    return {(1 - w_) * a.z + w_ * b.z, (1 - w_) * (1 - w_) * a.variance + w_ * w_ * b.variance,
+            (1 - w_) * a.slope + w_ * b.slope};
+  }
+  double Z(double x) const {
+    if (!row_[0]) return NAN;
+    const double a = row_[0]->AtIndex(Index(0, x));
+    if (!row_[1]) return a;
+    const double b = row_[1]->AtIndex(Index(1, x));
+    if (std::isnan(b)) return a;
+    if (std::isnan(a)) return b;
+    return (1 - w_) * a + w_ * b;
+  }
 
  private:
-  const SurfaceGrid& grid_;
-  const SurfaceRow* row_;
-  double shift_, per_mm_;
+  double Index(int r, double x) const { return (x - shift_ - row_[r]->x0_mm) * per_mm_[r]; }
+  const SurfaceRow* row_[2] = {};
+  double per_mm_[2] = {};
+  double shift_, w_;
 };
 
 GrooveSum GrooveWithGradient(const Ellipse& e, const SurfaceGrid& below, double shift) {

@@ -307,10 +307,54 @@ bool ToBed(const float* x, const float* z, std::size_t n, double frame_x, double
   return off != 0;
 }
 
+// One top point's (or four points') s(u) from the table: |u| capped at its
+// reach, the entry below and the fraction to the next.
+template <class T>
+struct TopLanes {
+  T z1{}, zz{}, s1{}, s2{}, zs{};
+};
+inline void AddTop(double x, double z, double x0, double per_a, const TopTable& t, double per_u, TopLanes<double>& s) {
+  const double u = (x - x0) * per_a, f = std::min(u < 0.0 ? -u : u, t.reach) * per_u;
+  const int k = std::min(static_cast<int>(f), t.last_entry - 1);
+  const double frac = f - k, sv = t.s[k] + frac * (t.s[k + 1] - t.s[k]);
+  s.z1 += z, s.zz += z * z, s.s1 += sv, s.s2 += sv * sv, s.zs += z * sv;
+}
+
+TopSums5 Top(const double* x, const double* z, std::size_t lo, std::size_t hi, double x0, double per_a,
+             const TopTable& t) {
+  // (The scalar's Locate: its scale a double constant, entries / reach.)
+  const double per_u = t.last_entry / t.reach;
+  TopLanes<V4D> wide;
+  std::size_t i = lo;
+  const V4D vx0 = SplatD(x0), vper_a = SplatD(per_a), reach = SplatD(t.reach), vper_u = SplatD(per_u);
+  typedef int V4I __attribute__((vector_size(16)));
+  const V4I most = V4I{} + (t.last_entry - 1);
+  for (; i + 4 <= hi; i += 4) {
+    const V4D u = (LoadD(x + i) - vx0) * vper_a, zv = LoadD(z + i);
+    const V4D a = u < SplatD(0.0) ? -u : u, f = (a < reach ? a : reach) * vper_u;
+    V4I k = __builtin_convertvector(f, V4I);
+    k = k < most ? k : most;
+    const V4D frac = f - __builtin_convertvector(k, V4D);
+#if defined(__AVX2__)
+    const V4D s0 = __builtin_ia32_gathersiv4df(V4D{}, t.s, k, V4D{} - 1.0, 8);
+    const V4D s1 = __builtin_ia32_gathersiv4df(V4D{}, t.s + 1, k, V4D{} - 1.0, 8);
+#else
+    const V4D s0{t.s[k[0]], t.s[k[1]], t.s[k[2]], t.s[k[3]]};
+    const V4D s1{t.s[k[0] + 1], t.s[k[1] + 1], t.s[k[2] + 1], t.s[k[3] + 1]};
+#endif
+    const V4D sv = s0 + frac * (s1 - s0);
+    wide.z1 += zv, wide.zz += zv * zv, wide.s1 += sv, wide.s2 += sv * sv, wide.zs += zv * sv;
+  }
+  TopLanes<double> narrow;
+  for (; i < hi; ++i) AddTop(x[i], z[i], x0, per_a, t, per_u, narrow);
+  return {SumD(wide.z1) + narrow.z1, SumD(wide.zz) + narrow.zz, SumD(wide.s1) + narrow.s1, SumD(wide.s2) + narrow.s2,
+          SumD(wide.zs) + narrow.zs};
+}
+
 #define BEAD_STRINGIFY_(x) #x
 #define BEAD_STRINGIFY(x) BEAD_STRINGIFY_(x)
-constexpr PartKernel kPartKernel{BEAD_STRINGIFY(BEAD_KERNEL), Truncated, Local, Agree,   BelowAt,
-                                 SecondDifferences,           Band,      Kth,   Ellipse, ToBed};
+constexpr PartKernel kPartKernel{
+    BEAD_STRINGIFY(BEAD_KERNEL), Truncated, Local, Agree, BelowAt, SecondDifferences, Band, Kth, Ellipse, ToBed, Top};
 
 }  // namespace
 

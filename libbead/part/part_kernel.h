@@ -10,6 +10,8 @@
 //  - The hidden groove's ellipse: its residuals' sums over the points under
 //    it (part/hidden_groove.cc), in doubles, four a register.
 //  - A profile's points moved into the bed frame (part/measure_part.cc).
+//  - The held top's sums over a bead's top (part/silhouette_top.cc), in
+//    doubles, four a register.
 #pragma once
 
 #include <cstddef>
@@ -50,6 +52,21 @@ struct EllipseSums {
   double jtr[4] = {};
 };
 
+// A superellipse's table as the held top reads it (part/superellipse.h
+// SuperellipseTable): s at |u| = k reach / last_entry for k = 0 ..
+// last_entry, linear between, |u| beyond reach read at it.
+struct TopTable {
+  const double* s;
+  double reach;
+  int last_entry;
+};
+
+// The held top's sums over its points (part/silhouette_top.cc): of z, z^2,
+// s(u), s(u)^2 and z s(u), u = (x - x0) per_a.
+struct TopSums5 {
+  double z1 = 0.0, zz = 0.0, s1 = 0.0, s2 = 0.0, zs = 0.0;
+};
+
 // Three sums, named by the loop that fills them.
 struct GridSums {
   double first = 0.0, second = 0.0, third = 0.0;
@@ -87,6 +104,10 @@ struct PartKernel {
   // oz[i] = z[i] + frame_z, each sum in doubles rounded once to a float
   // (the same in both builds); whether any moved value is NaN or infinite.
   bool (*to_bed)(const float* x, const float* z, std::size_t n, double frame_x, double frame_z, float* ox, float* oz);
+  // The held top's sums over points [lo, hi) of x, z (every u within the
+  // table's reach), four points a register.
+  TopSums5 (*top)(const double* x, const double* z, std::size_t lo, std::size_t hi, double x0, double per_a,
+                  const TopTable& table);
 };
 
 // The build this processor runs.

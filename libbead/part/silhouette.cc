@@ -53,15 +53,21 @@ bool PlaceByTop(const Window& w, std::size_t first, std::size_t last, double spa
   const double lo = s.cell[2 * side], hi = s.cell[2 * side + 1];
   const int steps = std::max(3, static_cast<int>(std::ceil((hi - lo) / (0.25 * spacing))));
   const double step = (hi - lo) / steps;
-  std::vector<double> var(static_cast<std::size_t>(steps), INFINITY);
-  std::vector<std::size_t> points(var.size(), 0);
-  Silhouette trial = s;
+  // (Reused call after call: four of them a row.)
+  thread_local std::vector<double> var;
+  thread_local std::vector<std::size_t> points;
+  var.assign(static_cast<std::size_t>(steps), INFINITY), points.assign(var.size(), 0);
   for (int k = 0; k < steps; ++k) {
     const auto i = static_cast<std::size_t>(k);
     end = lo + (k + 0.5) * step;
-    if (std::isfinite(held.aspect))
+    if (std::isfinite(held.aspect)) {
       var[i] = HeldTopVariance(w, first, last, L, R, held, points[i]);
-    else if (SolveHeld(w, first, last, L, R, held, trial))
+      continue;
+    }
+    // (A layer's pool always holds a finite aspect: b is solved here only
+    // for a shape that holds its exponent alone.)
+    Silhouette trial = s;
+    if (SolveHeld(w, first, last, L, R, held, trial))
       var[i] = trial.residual_variance, points[i] = TopPointCount(w, first, last, L, R);
   }
   const auto best = static_cast<std::size_t>(std::min_element(var.begin(), var.end()) - var.begin());

@@ -19,6 +19,11 @@ const std::array<double, SuperellipseTable::kNodes>& Nodes() {
 
 }  // namespace
 
+double SuperellipseS(double u, double p) {
+  const double v = std::min(std::abs(u), 1.0 - 1e-12);
+  return v == 0.0 ? 1.0 : std::pow(1.0 - std::pow(v, p), 1.0 / p);
+}
+
 SuperellipseTable::Value SuperellipseAt(double u, double p) {
   const double v = std::min(std::abs(u), 1.0 - 1e-12);
   if (v == 0.0) return {1.0, 0.0, 0.0};

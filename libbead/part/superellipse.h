@@ -48,6 +48,8 @@ class SuperellipseTable {
     t = f - k;
   }
   double S(int k, double t) const { return s_[k] + t * (s_[k + 1] - s_[k]); }
+  // s at the kEntries + 1 entries.
+  const double* entries() const { return s_.data(); }
   Value At(int k, double t, bool negative) const {
     const double slope = ds_du_[k] + t * (ds_du_[k + 1] - ds_du_[k]);
     return {S(k, t), negative ? -slope : slope, ds_dp_[k] + t * (ds_dp_[k + 1] - ds_dp_[k])};
@@ -66,6 +68,8 @@ class SuperellipseTable {
 
 // s and its derivatives exactly (|u| < 1).
 SuperellipseTable::Value SuperellipseAt(double u, double p);
+// s alone, as SuperellipseAt computes it (without its derivatives' logs).
+double SuperellipseS(double u, double p);
 
 // The table of exponent p, made once per thread and exponent: the grid's
 // kept (a free solve holds five at once), any other's among the last few

@@ -1,6 +1,7 @@
 // The hidden groove's ellipse sums four points a register
 // (part/part_kernel.h) against their definition written point by point
 // (part/hidden_groove.cc), in both builds, with the aspect fitted and held;
+// the held top's sums against the superellipse's table read point by point;
 // the points moved into the bed frame; the bits' NaN and finite tests
 // (core/float_bits.h) the loops use.
 #include "libbead/part/part_kernel.h"
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "libbead/core/float_bits.h"
+#include "libbead/part/superellipse.h"
 
 namespace bead::part {
 namespace {
@@ -73,6 +75,47 @@ TEST(PartKernel, TheEllipsesSumsAreTheDefinitionsInBothBuilds) {
       for (int k = 0; k < 4; ++k) EXPECT_NEAR(got.jtr[k], want.jtr[k], eps * size.jtr[k]) << k;
       EXPECT_GT(want.jtj[4], 10.0);  // points under the top counted
     }
+}
+
+// The held top's sums four points a register against the table read point
+// by point (SuperellipseTable::Locate and S, as part/silhouette_top.cc
+// defined them), in both builds: a pressed ellipse's top, 0.05 mm apart,
+// noisy, at an exponent off the grid (a pooled one), 113 points (a partial
+// last register), the outermost at u = -+0.9 (the table's last entries).
+TEST(PartKernel, TheHeldTopsSumsAreTheTablesReadPointByPointInBothBuilds) {
+  std::mt19937 rng(11);
+  std::normal_distribution<double> noise(0.0, 0.01);
+  const double x0 = 0.13, a = 2.6, per_a = 1.0 / a;
+  const SuperellipseTable& table = SuperellipseOf(2.37);
+  std::vector<double> x, z;
+  for (int j = 0; j < 113; ++j) {
+    x.push_back(x0 - 0.9 * a + 0.05 * j * (1.8 * a / (0.05 * 112)));
+    z.push_back(0.4 + 1.3 * table.At((x.back() - x0) * per_a).s + noise(rng));
+  }
+  const std::size_t lo = 0, hi = x.size();
+  TopSums5 want, size;
+  for (std::size_t j = lo; j < hi; ++j) {
+    int k = 0;
+    double t = 0.0;
+    SuperellipseTable::Locate((x[j] - x0) * per_a, k, t);
+    const double sv = table.S(k, t);
+    want.z1 += z[j], want.zz += z[j] * z[j], want.s1 += sv, want.s2 += sv * sv, want.zs += z[j] * sv;
+    size.z1 += std::abs(z[j]), size.zs += std::abs(z[j] * sv);
+  }
+  for (const PartKernel* kernel : {&BaselinePartKernel(), &ActivePartKernel()}) {
+    SCOPED_TRACE(kernel->name);
+    const TopSums5 got = kernel->top(x.data(), z.data(), lo, hi, x0, per_a,
+                                     {table.entries(), SuperellipseTable::kTabulatedU, SuperellipseTable::kEntries});
+    // The same terms (s: one product fused or not), added in another order:
+    // within (113 + 8) 2.2e-16 of the terms' sizes.
+    const double eps = 121 * 2.2e-16;
+    EXPECT_NEAR(got.z1, want.z1, eps * size.z1);
+    EXPECT_NEAR(got.zz, want.zz, eps * want.zz);
+    EXPECT_NEAR(got.s1, want.s1, eps * want.s1);
+    EXPECT_NEAR(got.s2, want.s2, eps * want.s2);
+    EXPECT_NEAR(got.zs, want.zs, eps * size.zs);
+    EXPECT_GT(want.s1, 0.5 * static_cast<double>(hi - lo));  // the top's s, not zeros
+  }
 }
 
 }  // namespace
