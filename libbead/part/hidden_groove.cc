@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 #include <vector>
@@ -60,6 +61,16 @@ class BelowSampler {
     if (std::isnan(a)) return b;
     return (1 - w_) * a + w_ * b;
   }
+  // The same rows as the part kernel reads them (part_kernel.h).
+  RowsAt Rows() const {
+    RowsAt r;
+    r.count = row_[1] ? 2 : row_[0] ? 1 : 0;
+    for (int i = 0; i < r.count; ++i)
+      r.z[i] = row_[i]->z_mm.data(), r.size[i] = row_[i]->z_mm.size(), r.x0[i] = row_[i]->x0_mm,
+      r.per_mm[i] = per_mm_[i];
+    r.shift = shift_, r.w = w_;
+    return r;
+  }
 
  private:
   double Index(int r, double x) const { return (x - shift_ - row_[r]->x0_mm) * per_mm_[r]; }
@@ -76,9 +87,13 @@ GrooveSum GrooveWithGradient(const Ellipse& e, const SurfaceGrid& below, double 
   const auto &node_u = shape.node_u(), &node_s = shape.node_s(), &node_ds_dp = shape.node_ds_dp();
   double sum = 0.0, on = 0.0, s_on = 0.0, slope_on = 0.0, slope_u_on = 0.0, variance = 0.0, dp_on = 0.0;
   double lowest = INFINITY;
+  // The surface below at every node first, four a register.
+  std::array<double, kNodes> xs, zs;
+  for (int k = 0; k < kNodes; ++k) xs[k] = e.x0 + e.a * node_u[k];
+  ActivePartKernel().rows_at(xs.data(), kNodes, under.Rows(), zs.data());
   for (int k = 0; k < kNodes; ++k) {
     const double u = node_u[k], s = node_s[k];
-    const double x = e.x0 + e.a * u, f = e.z0 - e.b * s - under.Z(x);
+    const double x = xs[k], f = e.z0 - e.b * s - zs[k];
     lowest = f < lowest ? f : lowest;             // (NaN where not known: left out)
     if (!(f > 0.0)) continue;                     // the surface below above the outline, or not known
     const SurfaceGrid::Sample old = under.At(x);  // its slope and variance, where they count
@@ -321,13 +336,15 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   // next overwrites one that is not).
   const std::size_t span = std::max(first, end) - first;
   w.x.resize(span), w.z.resize(span), w.old.resize(span);
+  for (std::size_t j = 0; j < span; ++j) w.x[j] = x[first + j];
+  ActivePartKernel().rows_at(w.x.data(), span, BelowSampler(below, shift).Rows(), w.old.data());
   std::size_t n = 0;
-  const BelowSampler under(below, shift);
-  for (std::size_t j = first; j < first + span; ++j) {
-    const double old = under.Z(x[j]);
-    w.x[n] = x[j], w.z[n] = z[j], w.old[n] = old;
+  for (std::size_t j = 0; j < span; ++j) {
+    const double old = w.old[j];
+    const float zj = z[first + j];
+    w.x[n] = w.x[j], w.z[n] = zj, w.old[n] = old;
     // (By the bits, core/float_bits.h: std::isfinite was a fifth of this loop.)
-    n += static_cast<std::size_t>(IsFiniteBits(old)) & static_cast<std::size_t>(IsFiniteBits(z[j]));
+    n += static_cast<std::size_t>(IsFiniteBits(old)) & static_cast<std::size_t>(IsFiniteBits(zj));
   }
   w.x.resize(n), w.z.resize(n), w.old.resize(n);
   if (w.x.size() < 12) return out;

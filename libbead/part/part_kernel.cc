@@ -351,10 +351,68 @@ TopSums5 Top(const double* x, const double* z, std::size_t lo, std::size_t hi, d
           SumD(wide.zs) + narrow.zs};
 }
 
+// One row's value at x (four places): linear between the values around
+// its index, NaN off the row (a NaN value stands for itself).
+double RowAt(double x, const RowsAt& r, int i) {
+  const double u = (x - r.shift - r.x0[i]) * r.per_mm[i];
+  if (!(u >= 0.0) || !(u <= static_cast<double>(r.size[i]) - 1.0) || r.size[i] < 2) return NAN;
+  const std::size_t k = std::min(static_cast<std::size_t>(u), r.size[i] - 2);
+  const double t = u - static_cast<double>(k);
+  return r.z[i][k] + t * (static_cast<double>(r.z[i][k + 1]) - r.z[i][k]);
+}
+V4D RowAt(V4D x, const RowsAt& r, int i) {
+  const V4D u = (x - r.shift - r.x0[i]) * r.per_mm[i];
+  const auto on = (u >= 0.0) & (u <= static_cast<double>(r.size[i]) - 1.0);
+  const V4D last = V4D{} + (static_cast<double>(r.size[i]) - 2.0);
+  const V4D within = on ? (u < last ? u : last) : V4D{};
+  typedef int V4I __attribute__((vector_size(16)));
+  const V4I k = __builtin_convertvector(within, V4I);
+  const V4D t = u - __builtin_convertvector(k, V4D);
+  const float* z = r.z[i];
+  const V4D a{z[k[0]], z[k[1]], z[k[2]], z[k[3]]}, b{z[k[0] + 1], z[k[1] + 1], z[k[2] + 1], z[k[3] + 1]};
+  return on ? a + t * (b - a) : V4D{} + NAN;
+}
+
+// The rows blended: both known, (1 - w) a + w b; one, that one.
+template <class T>
+T Blend(T a, T b, double w) {
+  const auto a_known = a == a;
+  const auto b_known = b == b;
+  return (a_known & b_known) ? (1 - w) * a + w * b : (b_known ? b : a);
+}
+
+void RowsAtPlaces(const double* x, std::size_t n, const RowsAt& r, double* out) {
+  if (r.count == 0 || r.size[0] < 2) {
+    for (std::size_t i = 0; i < n; ++i) out[i] = NAN;
+    return;
+  }
+  const bool two = r.count == 2 && r.size[1] >= 2;  // (a second row of one value is never known)
+  std::size_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    const V4D xs = LoadD(x + i), a = RowAt(xs, r, 0);
+    const V4D v = two ? Blend(a, RowAt(xs, r, 1), r.w) : a;
+    std::memcpy(out + i, &v, sizeof v);
+  }
+  for (; i < n; ++i) {
+    const double a = RowAt(x[i], r, 0);
+    out[i] = two ? Blend(a, RowAt(x[i], r, 1), r.w) : a;
+  }
+}
+
 #define BEAD_STRINGIFY_(x) #x
 #define BEAD_STRINGIFY(x) BEAD_STRINGIFY_(x)
-constexpr PartKernel kPartKernel{
-    BEAD_STRINGIFY(BEAD_KERNEL), Truncated, Local, Agree, BelowAt, SecondDifferences, Band, Kth, Ellipse, ToBed, Top};
+constexpr PartKernel kPartKernel{BEAD_STRINGIFY(BEAD_KERNEL),
+                                 Truncated,
+                                 Local,
+                                 Agree,
+                                 BelowAt,
+                                 SecondDifferences,
+                                 Band,
+                                 Kth,
+                                 Ellipse,
+                                 ToBed,
+                                 Top,
+                                 RowsAtPlaces};
 
 }  // namespace
 

@@ -10,8 +10,9 @@
 //  - The hidden groove's ellipse: its residuals' sums over the points under
 //    it (part/hidden_groove.cc), in doubles, four a register.
 //  - A profile's points moved into the bed frame (part/measure_part.cc).
-//  - The held top's sums over a bead's top (part/silhouette_top.cc), in
-//    doubles, four a register.
+//  - The held top's sums over a bead's top (part/silhouette_top.cc), and
+//    the surface below at the points around a bead (part/hidden_groove.cc),
+//    in doubles, four a register.
 #pragma once
 
 #include <cstddef>
@@ -50,6 +51,19 @@ struct EllipseSums {
   double rss = 0.0;
   double jtj[10] = {};
   double jtr[4] = {};
+};
+
+// The surface below as one or two rows on their own grids (SurfaceRow),
+// moved by a shift: row r's value at x is linear between its values k and
+// k + 1 around the index (x - shift - x0[r]) per_mm[r] (NaN off the row);
+// two blended as SurfaceGrid blends them, the second weighed w (where one
+// is not known, the other stands for both).
+struct RowsAt {
+  const float* z[2] = {};
+  std::size_t size[2] = {};
+  double x0[2] = {}, per_mm[2] = {};
+  double shift = 0.0, w = 0.0;
+  int count = 1;
 };
 
 // A superellipse's table as the held top reads it (part/superellipse.h
@@ -108,6 +122,9 @@ struct PartKernel {
   // table's reach), four points a register.
   TopSums5 (*top)(const double* x, const double* z, std::size_t lo, std::size_t hi, double x0, double per_a,
                   const TopTable& table);
+  // The surface below at x[0, n) to out (NaN where not known), four places
+  // a register.
+  void (*rows_at)(const double* x, std::size_t n, const RowsAt& rows, double* out);
 };
 
 // The build this processor runs.

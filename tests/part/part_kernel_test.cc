@@ -1,7 +1,8 @@
 // The hidden groove's ellipse sums four points a register
 // (part/part_kernel.h) against their definition written point by point
 // (part/hidden_groove.cc), in both builds, with the aspect fitted and held;
-// the held top's sums against the superellipse's table read point by point;
+// the held top's sums against the superellipse's table read point by point,
+// and the surface below at many places against the grid's;
 // the points moved into the bed frame; the bits' NaN and finite tests
 // (core/float_bits.h) the loops use.
 #include "libbead/part/part_kernel.h"
@@ -15,6 +16,7 @@
 
 #include "libbead/core/float_bits.h"
 #include "libbead/part/superellipse.h"
+#include "libbead/part/surface_below.h"
 
 namespace bead::part {
 namespace {
@@ -115,6 +117,54 @@ TEST(PartKernel, TheHeldTopsSumsAreTheTablesReadPointByPointInBothBuilds) {
     EXPECT_NEAR(got.s2, want.s2, eps * want.s2);
     EXPECT_NEAR(got.zs, want.zs, eps * size.zs);
     EXPECT_GT(want.s1, 0.5 * static_cast<double>(hi - lo));  // the top's s, not zeros
+  }
+}
+
+// The surface below at many places four a register is SurfaceGrid's own
+// (the definition: SampleAt's z), in both builds: one row, and two on
+// different grids blended, each with unknown values inside and places off
+// either end (NaN there; where one row is unknown, the other stands).
+TEST(PartKernel, TheSurfaceBelowAtPlacesIsTheGridsInBothBuilds) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> across(-6.0, 6.0);
+  const auto row = [](double x0, double dx, std::size_t n, double phase) {
+    SurfaceRow r;
+    r.x0_mm = x0, r.dx_mm = dx;
+    for (std::size_t k = 0; k < n; ++k) r.z_mm.push_back(static_cast<float>(std::sin(phase + 0.7 * (x0 + dx * k))));
+    r.z_mm[n / 3] = NAN;  // a point the sensor lost
+    return r;
+  };
+  const double shift = 0.137;
+  std::vector<double> x(203);
+  for (double& v : x) v = across(rng);
+  x[0] = -40.0, x[7] = 40.0;  // off both rows
+  const auto a = std::make_shared<const SurfaceRow>(row(-5.0, 0.05, 190, 0.0));
+  const auto b = std::make_shared<const SurfaceRow>(row(-4.02, 0.049, 170, 0.3));
+  for (const SurfaceGrid& grid : {SurfaceGrid(*a), SurfaceGrid(a, b, 0.35)}) {
+    RowsAt rows;
+    rows.count = grid.row(1) ? 2 : 1;
+    for (int r = 0; r < rows.count; ++r)
+      rows.z[r] = grid.row(r)->z_mm.data(), rows.size[r] = grid.row(r)->z_mm.size(), rows.x0[r] = grid.row(r)->x0_mm,
+      rows.per_mm[r] = 1.0 / grid.row(r)->dx_mm;
+    rows.shift = shift, rows.w = grid.weight();
+    std::size_t unknown = 0;
+    for (const PartKernel* kernel : {&BaselinePartKernel(), &ActivePartKernel()}) {
+      SCOPED_TRACE(kernel->name);
+      std::vector<double> got(x.size());
+      kernel->rows_at(x.data(), x.size(), rows, got.data());
+      unknown = 0;
+      for (std::size_t i = 0; i < x.size(); ++i) {
+        const double want = grid.At(x[i] - shift);
+        unknown += std::isnan(want);
+        if (std::isnan(want)) {
+          EXPECT_TRUE(std::isnan(got[i])) << i;
+          continue;
+        }
+        // The index by 1 / dx, not by dx: a few roundings of values of 1.
+        EXPECT_NEAR(got[i], want, 1e-12) << i << " at " << x[i];
+      }
+    }
+    EXPECT_GE(unknown, 2u);  // off the rows, and beside the lost point
   }
 }
 
