@@ -50,27 +50,14 @@ bool Interpolate(const FreeTop f[3], const FreeTop* beyond, int side, Between& o
   return true;
 }
 
-// The free solves at the grid's exponents k - 2 .. k + 2, in one pass over
-// the top's points.
-std::array<FreeTop, 5> FiveSolves(const TopPoints& top, std::size_t k) {
+// The free solves at the grid's exponents k - 2 .. k + 2 (the top's points
+// of the bead with ends L and R).
+std::array<FreeTop, 5> FiveSolves(const Window& w, std::size_t first, std::size_t last, double L, double R,
+                                  std::size_t k) {
   const std::vector<double>& grid = SuperellipseGrid();
-  const SuperellipseTable* t[5];
-  for (std::size_t i = 0; i < 5; ++i) t[i] = &SuperellipseOf(grid[k + i - 2]);
-  TopSums m[5];
-  double z1 = 0.0, zz = 0.0;
-  for (std::size_t j = 0; j < top.u.size(); ++j) {
-    const double z = top.z[j];
-    z1 += z, zz += z * z;
-    for (std::size_t i = 0; i < 5; ++i) {
-      const double sv = t[i]->S(top.k[j], top.t[j]);
-      m[i].s1 += sv, m[i].s2 += sv * sv, m[i].zs += z * sv;
-    }
-  }
   std::array<FreeTop, 5> out;
-  for (std::size_t i = 0; i < 5; ++i) {
-    m[i].m = static_cast<double>(top.u.size()), m[i].z1 = z1, m[i].zz = zz;
-    out[i] = FreeResidual(m[i]);
-  }
+  for (std::size_t i = 0; i < 5; ++i)
+    out[i] = FreeResidual(TableSums(w, first, last, L, R, SuperellipseOf(grid[k + i - 2])));
   return out;
 }
 
@@ -87,11 +74,10 @@ struct FreeShape {
 bool ShapeBetween(const Window& w, std::size_t first, std::size_t last, double L, double R, std::ptrdiff_t& found,
                   FreeShape& out) {
   const std::vector<double>& grid = SuperellipseGrid();
-  const TopPoints& top = TopOf(w, first, last, L, R);
   for (int moves = 0; moves < 3; ++moves) {
     if (found < 2 || found + 2 >= std::ssize(grid)) return false;
     const auto k = static_cast<std::size_t>(found);
-    const std::array<FreeTop, 5> f5 = FiveSolves(top, k);
+    const std::array<FreeTop, 5> f5 = FiveSolves(w, first, last, L, R, k);
     const FreeTop f[3] = {f5[1], f5[2], f5[3]};
     Between there;
     if (!Interpolate(f, nullptr, 0, there)) return false;
@@ -162,21 +148,22 @@ std::ptrdiff_t SolveFree(const Window& w, std::size_t first, std::size_t last, d
                          std::ptrdiff_t from) {
   const std::vector<double>& grid = SuperellipseGrid();
   const auto n = static_cast<std::ptrdiff_t>(grid.size());
-  const TopPoints& top = TopOf(w, first, last, L, R);
   std::vector<FreeTop> solved(grid.size(), FreeTop{NAN});
   // The solve at grid index k (its residual INFINITY off the grid or unsolved).
   const auto at = [&](std::ptrdiff_t k) -> const FreeTop& {
     static const FreeTop none;
     if (k < 0 || k >= n) return none;
     const auto i = static_cast<std::size_t>(k);
-    if (std::isnan(solved[i].rss)) solved[i] = FreeResidual(SumTop(top, SuperellipseOf(grid[i]), false));
+    if (std::isnan(solved[i].rss)) solved[i] = FreeResidual(TableSums(w, first, last, L, R, SuperellipseOf(grid[i])));
     return solved[i];
   };
   std::ptrdiff_t best = std::clamp<std::ptrdiff_t>(from, 0, n - 1);
   const std::ptrdiff_t way = at(best + 1).rss < at(best).rss ? 1 : -1;
   while (at(best + way).rss < at(best).rss) best += way;
   const auto b = static_cast<std::size_t>(best);
-  if (!std::isfinite(at(best).rss) || !SolveTop(SumTop(top, SuperellipseOf(grid[b])), L, R, NAN, s)) return -1;
+  if (!std::isfinite(at(best).rss) ||
+      !SolveTop(SumTop(TopOf(w, first, last, L, R), SuperellipseOf(grid[b])), L, R, NAN, s))
+    return -1;
   const double a = 0.5 * (R - L);
   s.e.p = s.exponent = grid[b], s.aspect = solved[b].b / a;
   const FreeTop around[3] = {at(best - 1), solved[b], at(best + 1)};

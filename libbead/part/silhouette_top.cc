@@ -187,20 +187,24 @@ bool SolveHeld(const Window& w, std::size_t first, std::size_t last, double L, d
   return true;
 }
 
-double HeldTopVariance(const Window& w, std::size_t first, std::size_t last, double L, double R,
-                       const PooledShape& held, std::size_t& points) {
-  // The sums SumTop(..., false) takes, four points a register
-  // (part/part_kernel.h).
-  points = 0;
-  const double b = held.aspect * 0.5 * (R - L);
-  if (!(b > 0.0)) return INFINITY;  // (R > L: the top's points one range)
+TopSums TableSums(const Window& w, std::size_t first, std::size_t last, double L, double R,
+                  const SuperellipseTable& table) {
+  TopSums t;
+  if (!(R > L)) return t;  // (R > L: the top's points one range)
   const auto [lo, hi] = TopRange(w, first, last, L, R);
-  const SuperellipseTable& table = SuperellipseOf(held.exponent);
   const TopSums5 sums = ActivePartKernel().top(w.x.data(), w.z.data(), lo, hi, 0.5 * (L + R), 2.0 / (R - L),
                                                {table.entries(), kInner, SuperellipseTable::kEntries});
-  TopSums t;
   t.m = static_cast<double>(hi - lo), t.z1 = sums.z1, t.zz = sums.zz, t.s1 = sums.s1, t.s2 = sums.s2, t.zs = sums.zs;
-  points = hi - lo;
+  return t;
+}
+
+double HeldTopVariance(const Window& w, std::size_t first, std::size_t last, double L, double R,
+                       const PooledShape& held, std::size_t& points) {
+  points = 0;
+  const double b = held.aspect * 0.5 * (R - L);
+  if (!(b > 0.0)) return INFINITY;
+  const TopSums t = TableSums(w, first, last, L, R, SuperellipseOf(held.exponent));
+  points = static_cast<std::size_t>(t.m);
   const double z0 = HeldZ0(t, b);
   if (t.m < 5.0 || !std::isfinite(z0)) return INFINITY;
   return std::max(ResidualSum(t, z0, b), 0.0) / (t.m - 1.0);

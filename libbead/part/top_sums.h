@@ -34,6 +34,11 @@ struct TopSums {
 };
 
 TopSums SumTop(const TopPoints& p, const SuperellipseTable& t, bool full = true);
+// What SumTop(TopOf(w, first, last, L, R), table, false) holds, found four
+// points a register (part/part_kernel.h) without the points written out;
+// nothing (m = 0) where R is not right of L.
+TopSums TableSums(const Window& w, std::size_t first, std::size_t last, double L, double R,
+                  const SuperellipseTable& table);
 
 // The free solve from the sums: its residual variance (INFINITY where b
 // is not positive or too few points are), z0 and b.
