@@ -6,6 +6,9 @@
 #include <cstdint>
 #include <cstring>
 #include <type_traits>
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
 
 #include "libbead/core/float_bits.h"
 #include "libbead/profile/vec8.h"
@@ -336,8 +339,10 @@ TopSums5 Top(const double* x, const double* z, std::size_t lo, std::size_t hi, d
     k = k < most ? k : most;
     const V4D frac = f - __builtin_convertvector(k, V4D);
 #if defined(__AVX2__)
-    const V4D s0 = __builtin_ia32_gathersiv4df(V4D{}, t.s, k, V4D{} - 1.0, 8);
-    const V4D s1 = __builtin_ia32_gathersiv4df(V4D{}, t.s + 1, k, V4D{} - 1.0, 8);
+    // (The masked form: the plain one's undefined start warns in GCC 12.)
+    const __m256d all = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
+    const V4D s0 = (V4D)_mm256_mask_i32gather_pd(_mm256_setzero_pd(), t.s, (__m128i)k, all, 8);
+    const V4D s1 = (V4D)_mm256_mask_i32gather_pd(_mm256_setzero_pd(), t.s + 1, (__m128i)k, all, 8);
 #else
     const V4D s0{t.s[k[0]], t.s[k[1]], t.s[k[2]], t.s[k[3]]};
     const V4D s1{t.s[k[0] + 1], t.s[k[1] + 1], t.s[k[2] + 1], t.s[k[3] + 1]};
