@@ -52,15 +52,6 @@ class BelowSampler {
     return {(1 - w_) * a.z + w_ * b.z, (1 - w_) * (1 - w_) * a.variance + w_ * w_ * b.variance,
             (1 - w_) * a.slope + w_ * b.slope};
   }
-  double Z(double x) const {
-    if (!row_[0]) return NAN;
-    const double a = row_[0]->AtIndex(Index(0, x));
-    if (!row_[1]) return a;
-    const double b = row_[1]->AtIndex(Index(1, x));
-    if (std::isnan(b)) return a;
-    if (std::isnan(a)) return b;
-    return (1 - w_) * a + w_ * b;
-  }
   // The same rows as the part kernel reads them (part_kernel.h).
   RowsAt Rows() const {
     RowsAt r;

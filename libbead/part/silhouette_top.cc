@@ -68,17 +68,12 @@ const TopPoints& TopOf(const Window& w, std::size_t first, std::size_t last, dou
   return p;
 }
 
-TopSums SumTop(const TopPoints& p, const SuperellipseTable& t, bool full) {
+TopSums SumTop(const TopPoints& p, const SuperellipseTable& t) {
   TopSums m;
   m.m = static_cast<double>(p.u.size());
   for (std::size_t j = 0; j < p.u.size(); ++j) {
     const double z = p.z[j];
     m.z1 += z, m.zz += z * z;
-    if (!full) {
-      const double sv = t.S(p.k[j], p.t[j]);
-      m.s1 += sv, m.s2 += sv * sv, m.zs += z * sv;
-      continue;
-    }
     const SuperellipseTable::Value v = t.At(p.k[j], p.t[j], p.u[j] < 0.0);
     const double sv = v.s;
     m.s1 += sv, m.s2 += sv * sv, m.zs += z * sv, m.sp += v.ds_dp;

@@ -15,7 +15,8 @@
 namespace bead::part {
 
 // The top's points within 0.9 of the half-width of the bead with ends L
-// and R (SuperellipseTable::kTabulatedU: where the tables hold s): u, z, and where u falls in the exponents' tables (the same in all).
+// and R (SuperellipseTable::kTabulatedU: where the tables hold s): u, z,
+// and where u falls in the exponents' tables (the same in all).
 struct TopPoints {
   double per_a = 0.0;
   std::vector<double> u, z, t;
@@ -25,18 +26,19 @@ struct TopPoints {
 const TopPoints& TopOf(const Window& w, std::size_t first, std::size_t last, double L, double R);
 
 // The least squares' sums over the top's points at exponent t: of 1, s,
-// s^2, z, z s, z^2 and ds/dp, and (full) the derivatives of s, s^2 and z s
-// in x0 and a (through u = (x - x0) / a: ds/dx0 = -s'(u) / a, ds/da = u
+// s^2, z, z s, z^2 and ds/dp, and the derivatives of s, s^2 and z s in x0
+// and a (through u = (x - x0) / a: ds/dx0 = -s'(u) / a, ds/da = u
 // ds/dx0).
 struct TopSums {
   double m = 0, s1 = 0, s2 = 0, z1 = 0, zs = 0, zz = 0, sp = 0;
   double d1[2] = {}, d2[2] = {}, dz[2] = {};
 };
 
-TopSums SumTop(const TopPoints& p, const SuperellipseTable& t, bool full = true);
-// What SumTop(TopOf(w, first, last, L, R), table, false) holds, found four
-// points a register (part/part_kernel.h) without the points written out;
-// nothing (m = 0) where R is not right of L.
+TopSums SumTop(const TopPoints& p, const SuperellipseTable& t);
+// SumTop(TopOf(w, first, last, L, R), table)'s sums of 1, s, s^2, z, z s
+// and z^2 alone (not ds/dp nor the derivatives), four points a register
+// (part/part_kernel.h) without the points written out; nothing (m = 0)
+// where R is not right of L.
 TopSums TableSums(const Window& w, std::size_t first, std::size_t last, double L, double R,
                   const SuperellipseTable& table);
 
