@@ -34,44 +34,8 @@ struct GrooveSum {
   double variance_under = 0.0;  // mm
 };
 
-// The surface below, moved by the shift, sampled at many places: each
-// row's step's inverse taken once (no division per place), two rows
-// blended as SurfaceGrid blends them.
-class BelowSampler {
- public:
-  BelowSampler(const SurfaceGrid& grid, double shift) : shift_(shift), w_(grid.weight()) {
-    for (int r = 0; r < 2; ++r) row_[r] = grid.row(r), per_mm_[r] = row_[r] ? 1.0 / row_[r]->dx_mm : 0.0;
-  }
-  SurfaceGrid::Sample At(double x) const {
-    if (!row_[0]) return {NAN, 0.0, NAN};
-    const SurfaceGrid::Sample a = row_[0]->SampleAtIndex(Index(0, x), per_mm_[0]);
-    if (!row_[1]) return a;
-    const SurfaceGrid::Sample b = row_[1]->SampleAtIndex(Index(1, x), per_mm_[1]);
-    if (std::isnan(b.z)) return a;
-    if (std::isnan(a.z)) return b;
-    return {(1 - w_) * a.z + w_ * b.z, (1 - w_) * (1 - w_) * a.variance + w_ * w_ * b.variance,
-            (1 - w_) * a.slope + w_ * b.slope};
-  }
-  // The same rows as the part kernel reads them (part_kernel.h).
-  RowsAt Rows() const {
-    RowsAt r;
-    r.count = row_[1] ? 2 : row_[0] ? 1 : 0;
-    for (int i = 0; i < r.count; ++i)
-      r.z[i] = row_[i]->z_mm.data(), r.size[i] = row_[i]->z_mm.size(), r.x0[i] = row_[i]->x0_mm,
-      r.per_mm[i] = per_mm_[i];
-    r.shift = shift_, r.w = w_;
-    return r;
-  }
-
- private:
-  double Index(int r, double x) const { return (x - shift_ - row_[r]->x0_mm) * per_mm_[r]; }
-  const SurfaceRow* row_[2] = {};
-  double per_mm_[2] = {};
-  double shift_, w_;
-};
-
 GrooveSum GrooveWithGradient(const Ellipse& e, const SurfaceGrid& below, double shift) {
-  const BelowSampler under(below, shift);
+  const SurfaceGrid::Shifted under(below, shift);
   const SuperellipseTable& shape = SuperellipseOf(e.p);
   constexpr int kNodes = SuperellipseTable::kNodes;
   constexpr double kDu = 2.0 / kNodes;
@@ -328,7 +292,7 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   const std::size_t span = std::max(first, end) - first;
   w.x.resize(span), w.z.resize(span), w.old.resize(span);
   for (std::size_t j = 0; j < span; ++j) w.x[j] = x[first + j];
-  ActivePartKernel().rows_at(w.x.data(), span, BelowSampler(below, shift).Rows(), w.old.data());
+  ActivePartKernel().rows_at(w.x.data(), span, SurfaceGrid::Shifted(below, shift).Rows(), w.old.data());
   std::size_t n = 0;
   for (std::size_t j = 0; j < span; ++j) {
     const double old = w.old[j];

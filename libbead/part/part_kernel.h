@@ -7,12 +7,12 @@
 //    over the surface below's rows (GridRows).
 //  - The noise's second differences and the band its median is looked for
 //    in (part/added_bead.cc).
-//  - The hidden groove's ellipse: its residuals' sums over the points under
-//    it (part/hidden_groove.cc), in doubles, four a register.
 //  - A profile's points moved into the bed frame (part/measure_part.cc).
-//  - The held top's sums over a bead's top (part/silhouette_top.cc), and
-//    the surface below at the points around a bead (part/hidden_groove.cc),
-//    in doubles, four a register.
+//  - In doubles, four a register (part_kernel_doubles.cc): the hidden
+//    groove's ellipse, its residuals' sums over the points under it
+//    (part/hidden_groove.cc); the held top's sums over a bead's top
+//    (part/silhouette_top.cc); the surface below at the points around a
+//    bead (part/hidden_groove.cc).
 #pragma once
 
 #include <cstddef>

@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include "libbead/part/part_kernel.h"
+
 namespace bead::part {
 
 // A surface on a uniform x grid (bed frame): z_k at x0 + k dx, NaN where
@@ -85,24 +87,50 @@ class SurfaceGrid {
 
   Sample SampleAt(double x_mm) const {
     if (!a_) return {SurfaceRow::NaN(), 0.0, SurfaceRow::NaN()};
-    const Sample sa = a_->SampleAt(x_mm);
-    if (!b_) return sa;
-    const Sample sb = b_->SampleAt(x_mm);
-    if (std::isnan(sb.z)) return sa;
-    if (std::isnan(sa.z)) return sb;
-    return {(1 - w_) * sa.z + w_ * sb.z, (1 - w_) * (1 - w_) * sa.variance + w_ * w_ * sb.variance,
-            (1 - w_) * sa.slope + w_ * sb.slope};
+    return b_ ? Blend(a_->SampleAt(x_mm), b_->SampleAt(x_mm), w_) : a_->SampleAt(x_mm);
   }
   // SampleAt's z alone (NaN where unknown), and its variance alone.
   double At(double x_mm) const {
     if (!a_) return SurfaceRow::NaN();
-    const double za = a_->At(x_mm);
-    if (!b_) return za;
-    const double zb = b_->At(x_mm);
-    if (std::isnan(zb)) return za;
-    if (std::isnan(za)) return zb;
-    return (1 - w_) * za + w_ * zb;
+    return b_ ? Blend({a_->At(x_mm), 0.0, 0.0}, {b_->At(x_mm), 0.0, 0.0}, w_).z : a_->At(x_mm);
   }
+  // The rule two rows are blended by (the part kernel's Blend is its
+  // vector form): both known, (1 - w) a + w b, the variance (1 - w)^2 va +
+  // w^2 vb; one known, that one.
+  static Sample Blend(const Sample& a, const Sample& b, double w) {
+    if (std::isnan(b.z)) return a;
+    if (std::isnan(a.z)) return b;
+    return {(1 - w) * a.z + w * b.z, (1 - w) * (1 - w) * a.variance + w * w * b.variance,
+            (1 - w) * a.slope + w * b.slope};
+  }
+  // The surface moved by `shift`, sampled at many places (the rows' 1 / dx
+  // taken once), and the same rows as the part kernel reads them.
+  class Shifted {
+   public:
+    Shifted(const SurfaceGrid& grid, double shift) : shift_(shift), w_(grid.w_) {
+      for (int r = 0; r < 2; ++r) row_[r] = grid.row(r), per_mm_[r] = row_[r] ? 1.0 / row_[r]->dx_mm : 0.0;
+    }
+    Sample At(double x) const {
+      if (!row_[0]) return {SurfaceRow::NaN(), 0.0, SurfaceRow::NaN()};
+      const Sample a = row_[0]->SampleAtIndex(Index(0, x), per_mm_[0]);
+      return row_[1] ? Blend(a, row_[1]->SampleAtIndex(Index(1, x), per_mm_[1]), w_) : a;
+    }
+    RowsAt Rows() const {
+      RowsAt r;
+      r.count = row_[1] ? 2 : row_[0] ? 1 : 0;
+      for (int i = 0; i < r.count; ++i)
+        r.z[i] = row_[i]->z_mm.data(), r.size[i] = row_[i]->z_mm.size(), r.x0[i] = row_[i]->x0_mm,
+        r.per_mm[i] = per_mm_[i];
+      r.shift = shift_, r.w = w_;
+      return r;
+    }
+
+   private:
+    double Index(int r, double x) const { return (x - shift_ - row_[r]->x0_mm) * per_mm_[r]; }
+    const SurfaceRow* row_[2] = {};
+    double per_mm_[2] = {};
+    double shift_, w_;
+  };
   double VarianceAt(double x_mm) const { return SampleAt(x_mm).variance; }
   // The one row this surface is (nullptr where it blends two).
   const SurfaceRow* single_row() const { return b_ ? nullptr : a_.get(); }
