@@ -186,11 +186,13 @@ namespace {
 
 // What the free shape owes to where its ends lie: solved again (solve(l,
 // r, aspect, exponent)) with each end moved by half its cell, the aspect's
-// and exponent's changes over that step times the end's sigma.
+// and exponent's changes over that step times the end's sigma; and times
+// the width its mixed points widened the cell by over sqrt 12 (mixed[side]:
+// 0 where none; part/silhouette.h: Silhouette::aspect_mixed_var).
 template <class Solve>
-void EndsVariance(const double ends[2], const double sigma[2], double aspect, double exponent, Solve solve,
-                  Silhouette& s) {
-  s.aspect_end_var = s.exponent_end_var = 0.0;
+void EndsVariance(const double ends[2], const double sigma[2], const double mixed[2], double aspect, double exponent,
+                  Solve solve, Silhouette& s) {
+  s.aspect_end_var = s.exponent_end_var = s.aspect_mixed_var = s.exponent_mixed_var = 0.0;
   for (int side = 0; side < 2; ++side) {
     const double half = 0.5 * (s.cell[2 * side + 1] - s.cell[2 * side]);
     double moved[2] = {ends[0], ends[1]}, moved_aspect = NAN, moved_exponent = NAN;
@@ -199,6 +201,8 @@ void EndsVariance(const double ends[2], const double sigma[2], double aspect, do
     const double da = (moved_aspect - aspect) / half, dp = (moved_exponent - exponent) / half;
     const double v = sigma[side] * sigma[side];
     s.aspect_end_var += da * da * v, s.exponent_end_var += dp * dp * v;
+    const double spot = mixed[side] * mixed[side] / 12.0;
+    s.aspect_mixed_var += da * da * spot, s.exponent_mixed_var += dp * dp * spot;
   }
 }
 
@@ -207,11 +211,11 @@ void EndsVariance(const double ends[2], const double sigma[2], double aspect, do
 // its cell (uniform: sigma half / sqrt 3).
 void EndsAnywhereInTheirCells(const Window& w, std::size_t first, std::size_t last, double L, double R,
                               std::ptrdiff_t from, Silhouette& s) {
-  const double ends[2] = {L, R};
+  const double ends[2] = {L, R}, unmixed[2] = {0.0, 0.0};
   const double sigma[2] = {0.5 * (s.cell[1] - s.cell[0]) / std::sqrt(3.0),
                            0.5 * (s.cell[3] - s.cell[2]) / std::sqrt(3.0)};
   EndsVariance(
-      ends, sigma, s.aspect, s.exponent,
+      ends, sigma, unmixed, s.aspect, s.exponent,
       [&](double l, double r, double& aspect, double& exponent) {
         Silhouette moved = s;
         if (SolveFree(w, first, last, l, r, moved, from) < 0) return false;
@@ -249,8 +253,11 @@ void ShapeByTop(const Window& w, std::size_t first, std::size_t last, double L, 
   // Each end placed from the outermost point on the top (OnTheTop: one
   // under its z0 is a mix of the end and the wall's foot, or another wall).
   constexpr bool kNoGaps[2] = {false, false};
+  const double wall_cell[2] = {s.cell[1] - s.cell[0], s.cell[3] - s.cell[2]};
   const auto [top_first, top_last] =
       OnTheTop(w, first, last, f.z0, std::sqrt(f.residual_variance), kNoGaps, s.cell, s.end_mixed);
+  // What the mixed points widened each cell by: the spot's reach there.
+  const double mixed[2] = {s.cell[1] - s.cell[0] - wall_cell[0], s.cell[3] - s.cell[2] - wall_cell[1]};
   EndsPlaced placed = PlaceEnds(w, top_first, top_last, s.cell, f);
   for (int k = 0; k < kPlacements; ++k) {
     const double moved = std::max(std::abs(placed.end[0] - ends[0]) / (s.cell[1] - s.cell[0]),
@@ -268,7 +275,7 @@ void ShapeByTop(const Window& w, std::size_t first, std::size_t last, double L, 
   s.end_sigma[0] = placed.sigma[0], s.end_sigma[1] = placed.sigma[1];
   s.shape_consistent = placed.consistent;
   EndsVariance(
-      ends, placed.sigma, f.aspect, f.exponent,
+      ends, placed.sigma, mixed, f.aspect, f.exponent,
       [&](double l, double r, double& aspect, double& exponent) {
         std::ptrdiff_t at = found;
         FreeShape m;

@@ -75,14 +75,18 @@ void LayerGrooves::Add(PartGeometryRow row, const StoredProfile* points, const S
     }
     if (!pooled_ && g.ok && g.shape_consistent && g.at_silhouette)
       placed_.push_back({g.aspect, g.exponent, g.aspect_end_var, g.exponent_end_var, g.aspect_grid_var,
-                         g.exponent_grid_var, g.left_end_mm, points->spacing_mm, g.end_mixed});
+                         g.exponent_grid_var, g.left_end_mm, points->spacing_mm, g.end_mixed, g.aspect_mixed_var,
+                         g.exponent_mixed_var});
   }
   if (pooled_ && waiting_.empty()) return emit(row);
   waiting_.push_back({std::move(row), points && under ? std::optional(*points) : std::nullopt,
                       points && under ? std::optional(*under) : std::nullopt, top});
   if (!pooled_ && aspects_.size() >= kPoolProfiles && aspects_.size() % kLooseStep == 0) {
     const PooledShape pool = Pooled();
-    const bool loose = pool.aspect_sigma > kLoosePool * pool.aspect && waiting_.size() < kMaxWaiting;
+    // (What a footprint leaves, more rows do not shrink.)
+    const double rows_sigma = std::sqrt(std::max(
+        0.0, pool.aspect_sigma * pool.aspect_sigma - pool.aspect_footprint_sigma * pool.aspect_footprint_sigma));
+    const bool loose = rows_sigma > kLoosePool * pool.aspect && waiting_.size() < kMaxWaiting;
     if (!loose) Hold(pool);  // loose: more rows first
   }
   if (pooled_ || waiting_.size() >= kMaxWaiting) Flush(emit);
@@ -172,7 +176,7 @@ PooledShape LayerGrooves::Pooled() const {
   if (!placed_.empty()) {
     std::vector<double> exponents;
     double lo = INFINITY, hi = -INFINITY, aspect_var = 0.0, exponent_var = 0.0, spacing = 0.0;
-    double aspect_grid = 0.0, exponent_grid = 0.0;
+    double aspect_grid = 0.0, exponent_grid = 0.0, aspect_mixed = 0.0, exponent_mixed = 0.0;
     std::size_t mixed = 0;
     for (const Placed& p : placed_) {
       mixed += p.end_mixed;
@@ -180,16 +184,23 @@ PooledShape LayerGrooves::Pooled() const {
       lo = std::min(lo, p.left_end_mm), hi = std::max(hi, p.left_end_mm), spacing += p.spacing_mm;
       aspect_var += p.aspect_end_var, exponent_var += p.exponent_end_var;
       aspect_grid += p.aspect_grid_var, exponent_grid += p.exponent_grid_var;
+      aspect_mixed += p.aspect_mixed_var, exponent_mixed += p.exponent_mixed_var;
     }
     const auto n = static_cast<double>(placed_.size());
     pool.footprint = 2 * mixed > placed_.size();
     const double cycles = (hi - lo) / (spacing / n);  // K
     const double shared = std::min(1.0, 1.0 / (std::numbers::pi * cycles));
     const auto floor = [&](double ends, double grid) { return std::sqrt(shared * shared * ends / n + grid / n); };
-    pool.aspect_sigma = std::max(pool.aspect_sigma, floor(aspect_var, aspect_grid));
+    // A footprint's bias is in no row's spread: beside it, whole.
+    const auto with_footprint = [&](double sigma, double mixed_ends) {
+      return pool.footprint ? std::hypot(sigma, std::sqrt(mixed_ends / n)) : sigma;
+    };
+    pool.aspect_footprint_sigma = pool.footprint ? std::sqrt(aspect_mixed / n) : 0.0;
+    pool.aspect_sigma = with_footprint(std::max(pool.aspect_sigma, floor(aspect_var, aspect_grid)), aspect_mixed);
     if (placed_.size() >= kMinExponents) {
       std::tie(pool.exponent, pool.exponent_sigma) = MedianAndError(exponents);
-      pool.exponent_sigma = std::max(pool.exponent_sigma, floor(exponent_var, exponent_grid));
+      pool.exponent_sigma =
+          with_footprint(std::max(pool.exponent_sigma, floor(exponent_var, exponent_grid)), exponent_mixed);
       pool.correlation = ShapeCorrelation(placed_);
       pool.exponent_solved = true;
     }

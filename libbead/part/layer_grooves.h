@@ -8,7 +8,8 @@
 // ten of a layer's first rows was 4.5 % or more off, a few 8-10 %), so the
 // rows measured before the pool is formed wait for it: kPoolProfiles rows
 // with a shape of their own, more (every kLooseStep, up to kMaxWaiting)
-// while the pooled aspect's sigma exceeds kLoosePool of it; or, at a
+// while the pooled aspect's sigma (less what a footprint leaves, which more
+// rows do not shrink) exceeds kLoosePool of it; or, at a
 // layer's end, the scan's end or kMaxWaiting rows, kMinPoolProfiles of them
 // (a short layer is pooled on what it has); with fewer, the rows go out with
 // their own shapes.
@@ -69,6 +70,7 @@ class LayerGrooves {
     double aspect, exponent, aspect_end_var, exponent_end_var, aspect_grid_var, exponent_grid_var, left_end_mm,
         spacing_mm;
     bool end_mixed;
+    double aspect_mixed_var, exponent_mixed_var;
   };
 
  private:

@@ -89,6 +89,13 @@ struct Silhouette {
   // cells (a bead whose width changes by less than a cell) share what the
   // places leave: a layer's pool does not average it away.
   double aspect_end_var = 0.0, exponent_end_var = 0.0;
+  // The same with each end whose wall holds mixed points (end_mixed)
+  // anywhere over the width they widened its cell by (uniform), whatever
+  // the top says: the top places it as if each point were the surface at
+  // its x, which a point averaged over a spot of unknown shape is not; what
+  // that leaves is the same in every row (one profiler, one bead shape): a
+  // pool does not average it.
+  double aspect_mixed_var = 0.0, exponent_mixed_var = 0.0;
   // What the exponent grid's steps leave in them (the same in every row of
   // a shape: a pool does not average it).
   double aspect_grid_var = 0.0, exponent_grid_var = 0.0;
