@@ -28,7 +28,9 @@ void SayShape(const part::PooledShape& s) {
   std::printf("    bead shape (its first %zu profiles pooled): half-height over half-width %.3f +- %.3f", s.rows,
               s.aspect, s.aspect_sigma);
   if (!s.exponent_solved) {
-    std::printf("; an ellipse assumed (too few of its beads overhang to show their walls and solve the exponent)\n");
+    std::printf(
+        "; an ellipse assumed (too few of its beads overhang to show their walls and solve the exponent): the sigma "
+        "is the fitted beads' spread alone, not what a shape other than the ellipse would leave\n");
   } else {
     const double off = s.exponent - 2.0, two_sigmas = 2.0 * s.exponent_sigma;
     const char* words = std::abs(off) <= two_sigmas ? "an ellipse, within two sigmas"

@@ -206,7 +206,9 @@ double HeldTopVariance(const Window& w, std::size_t first, std::size_t last, dou
 }
 
 std::size_t TopPointCount(const Window& w, std::size_t first, std::size_t last, double L, double R) {
-  return TopOf(w, first, last, L, R).u.size();
+  std::size_t n = 0;  // (counted, not written out: TopOf)
+  ForEachTopPoint(w, first, last, L, R, [&n](std::size_t, double) { ++n; });
+  return n;
 }
 
 }  // namespace bead::part
