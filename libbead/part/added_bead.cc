@@ -16,10 +16,15 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// The points with a known gain, and the gain there.
+// The points with a known gain (x and z: the profile's own where every
+// point from the first with a surface below to the last has one, else
+// those points copied out), and the gain there.
 struct Gains {
-  std::vector<std::size_t> index;  // into the profile's points
-  std::vector<double> x, d;
+  const float* x = nullptr;
+  const float* z = nullptr;
+  std::vector<double> d;
+  std::vector<float> x_kept, z_kept;              // the copies, where needed
+  double X(std::size_t k) const { return x[k]; }  // (in doubles: differences exact)
 };
 
 // grid: the new points on the surface below's grid (nullptr: not on it).
@@ -39,20 +44,21 @@ const Gains& GainsAt(std::span<const float> x, std::span<const float> z, const S
     uint32_t unknown = 0;  // (by the bits: core/float_bits.h)
     for (std::size_t i = a; i < b; ++i) unknown |= static_cast<uint32_t>(IsNanBits(under[i]));
     if (!unknown) {
-      g.index.resize(b - a), g.x.resize(b - a), g.d.resize(b - a);
-      for (std::size_t i = a; i < b; ++i)
-        g.index[i - a] = i, g.x[i - a] = x[i], g.d[i - a] = z[i] - static_cast<double>(under[i]);
+      g.x = x.data() + a, g.z = z.data() + a;
+      g.d.resize(b - a);
+      for (std::size_t i = a; i < b; ++i) g.d[i - a] = z[i] - static_cast<double>(under[i]);
       return g;
     }
   }
-  g.index.resize(x.size()), g.x.resize(x.size()), g.d.resize(x.size());
+  g.x_kept.resize(x.size()), g.z_kept.resize(x.size()), g.d.resize(x.size());
   std::size_t n = 0;
   for (std::size_t i = 0; i < x.size(); ++i) {
     const double b = grid ? under[i] : below.At(x[i] - s);
-    g.index[n] = i, g.x[n] = x[i], g.d[n] = z[i] - b;
+    g.x_kept[n] = x[i], g.z_kept[n] = z[i], g.d[n] = z[i] - b;
     n += !std::isnan(b);
   }
-  g.index.resize(n), g.x.resize(n), g.d.resize(n);
+  g.d.resize(n);
+  g.x = g.x_kept.data(), g.z = g.z_kept.data();
   return g;
 }
 
@@ -93,15 +99,20 @@ struct Span {
 // of min_points points.
 bool BestRun(const Gains& g, double tau, double max_gap, int min_points, Span& best) {
   double best_score = 0.0;
-  for (std::size_t i = 0; i < g.d.size();) {
-    if (!(g.d[i] > tau)) {
+  const std::size_t n = g.d.size();
+  const double* d = g.d.data();
+  for (std::size_t i = 0; i < n;) {
+    // (The bare points skipped four at a time: most of a profile.)
+    while (i + 4 <= n && !((d[i] > tau) | (d[i + 1] > tau) | (d[i + 2] > tau) | (d[i + 3] > tau))) i += 4;
+    if (i == n) break;
+    if (!(d[i] > tau)) {
       ++i;
       continue;
     }
     std::size_t j = i;
     double score = 0.0;
-    while (j + 1 < g.d.size() && g.d[j + 1] > tau && g.x[j + 1] - g.x[j] <= max_gap) {
-      score += 0.5 * (g.d[j] + g.d[j + 1]) * (g.x[j + 1] - g.x[j]);
+    while (j + 1 < g.d.size() && g.d[j + 1] > tau && g.X(j + 1) - g.X(j) <= max_gap) {
+      score += 0.5 * (g.d[j] + g.d[j + 1]) * (g.X(j + 1) - g.X(j));
       ++j;
     }
     if (static_cast<int>(j - i + 1) >= min_points && score > best_score) {
@@ -117,36 +128,36 @@ bool BestRun(const Gains& g, double tau, double max_gap, int min_points, Span& b
 // The feet carried out to the edge floor; false when a foot reaches the
 // end of what is known or a long dropout.
 bool Feet(const Gains& g, double floor, double max_gap, Span& s) {
-  while (s.foot_left > 0 && g.d[s.foot_left - 1] > floor && g.x[s.foot_left] - g.x[s.foot_left - 1] <= max_gap)
+  while (s.foot_left > 0 && g.d[s.foot_left - 1] > floor && g.X(s.foot_left) - g.X(s.foot_left - 1) <= max_gap)
     --s.foot_left;
   while (s.foot_right + 1 < g.d.size() && g.d[s.foot_right + 1] > floor &&
-         g.x[s.foot_right + 1] - g.x[s.foot_right] <= max_gap)
+         g.X(s.foot_right + 1) - g.X(s.foot_right) <= max_gap)
     ++s.foot_right;
   if (s.foot_left == 0 || s.foot_right + 1 >= g.d.size()) return false;
   s.bare_left = s.foot_left - 1;
   s.bare_right = s.foot_right + 1;
-  return g.x[s.foot_left] - g.x[s.bare_left] <= max_gap && g.x[s.bare_right] - g.x[s.foot_right] <= max_gap;
+  return g.X(s.foot_left) - g.X(s.bare_left) <= max_gap && g.X(s.bare_right) - g.X(s.foot_right) <= max_gap;
 }
 
 // x where the gain crosses `level` between positions a and b.
 double Crossing(const Gains& g, std::size_t a, std::size_t b, double level) {
   const double da = g.d[a], db = g.d[b];
   const double t = da == db ? 0.5 : std::clamp((level - da) / (db - da), 0.0, 1.0);
-  return g.x[a] + t * (g.x[b] - g.x[a]);
+  return g.X(a) + t * (g.X(b) - g.X(a));
 }
 
 // The bead's centre: the vertex of the parabola through the new surface
 // within `half` of its highest point (the top of the bead, whatever it
 // overhangs; the gain's centroid leans toward an overhanging side). The
 // highest point itself when the top is not curved downward there.
-double CrestVertex(const Gains& g, std::span<const float> z, const Span& s, std::size_t crest, double half) {
-  const double xc = g.x[crest];
+double CrestVertex(const Gains& g, const Span& s, std::size_t crest, double half) {
+  const double xc = g.X(crest);
   double m[3][3] = {}, r[3] = {};
   int n = 0;
   for (std::size_t k = s.foot_left; k <= s.foot_right; ++k) {
-    const double u = g.x[k] - xc;
+    const double u = g.X(k) - xc;
     if (std::abs(u) > half) continue;
-    const double f[3] = {1.0, u, u * u}, zk = z[g.index[k]];
+    const double f[3] = {1.0, u, u * u}, zk = g.z[k];
     for (int i = 0; i < 3; ++i) {
       r[i] += f[i] * zk;
       for (int j = 0; j < 3; ++j) m[i][j] += f[i] * f[j];
@@ -175,14 +186,11 @@ double CrestVertex(const Gains& g, std::span<const float> z, const Span& s, std:
 
 // The crest: the first of the run's points whose median of three new
 // heights (itself and its neighbours in the run, an end its own twice) is
-// highest, as an offset from the left foot. The run's heights copied
-// first (its points are the gains', not the profile's), then read in
-// place: floats, whose medians and order are their doubles'.
-std::size_t CrestOf(const Gains& g, std::span<const float> z, const Span& s) {
-  thread_local std::vector<float> run;
+// highest, as an offset from the left foot: floats, whose medians and
+// order are their doubles'.
+std::size_t CrestOf(const Gains& g, const Span& s) {
+  const float* run = g.z + s.foot_left;
   const std::size_t n = s.foot_right - s.foot_left + 1;
-  run.resize(n);
-  for (std::size_t k = 0; k < n; ++k) run[k] = z[g.index[s.foot_left + k]];
   std::size_t crest = 0;
   float top = Median3(run[0], run[0], run[n > 1 ? 1 : 0]);
   for (std::size_t k = 1; k + 1 < n; ++k)
@@ -191,19 +199,19 @@ std::size_t CrestOf(const Gains& g, std::span<const float> z, const Span& s) {
   return crest;
 }
 
-void Geometry(const Gains& g, std::span<const float> z, const Span& s, double floor, AddedBead& out) {
+void Geometry(const Gains& g, const Span& s, double floor, AddedBead& out) {
   double area = 0.0;
   for (std::size_t k = s.bare_left; k < s.bare_right; ++k) {
-    const double a = std::max(g.d[k], 0.0), b = std::max(g.d[k + 1], 0.0), dx = g.x[k + 1] - g.x[k];
+    const double a = std::max(g.d[k], 0.0), b = std::max(g.d[k + 1], 0.0), dx = g.X(k + 1) - g.X(k);
     area += 0.5 * (a + b) * dx;
   }
   out.area_mm2 = area;
   out.width_mm = Crossing(g, s.foot_right, s.bare_right, floor) - Crossing(g, s.bare_left, s.foot_left, floor);
   out.edge_left_mm = g.d[s.foot_left], out.edge_right_mm = g.d[s.foot_right];
-  const std::size_t crest = s.foot_left + CrestOf(g, z, s);
+  const std::size_t crest = s.foot_left + CrestOf(g, s);
   const std::size_t lo = crest > s.foot_left ? crest - 1 : crest, hi = std::min(crest + 1, s.foot_right);
   out.height_mm = Median3(g.d[lo], g.d[crest], g.d[hi]);
-  out.center_x_mm = CrestVertex(g, z, s, crest, 0.2 * out.width_mm);
+  out.center_x_mm = CrestVertex(g, s, crest, 0.2 * out.width_mm);
 }
 
 // Where more than half the steps lie within a thousandth of one step's
@@ -290,7 +298,7 @@ AddedBead MeasureAddedBead(std::span<const float> x, std::span<const float> z, c
   }
   const bool seen = Feet(g, floor, o.max_gap_mm, s);
   out.status = seen ? AddedStatus::kValid : AddedStatus::kBeadEdgeNotSeen;
-  if (seen) Geometry(g, z, s, floor, out);
+  if (seen) Geometry(g, s, floor, out);
   out.shift_mm = reg.shift;
   out.shift_sigma_mm = reg.sigma;
   out.shift_hidden_sigma_mm = reg.hidden_sigma;
