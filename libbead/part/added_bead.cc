@@ -111,8 +111,8 @@ bool BestRun(const Gains& g, double tau, double max_gap, int min_points, Span& b
     }
     std::size_t j = i;
     double score = 0.0;
-    while (j + 1 < g.d.size() && g.d[j + 1] > tau && g.X(j + 1) - g.X(j) <= max_gap) {
-      score += 0.5 * (g.d[j] + g.d[j + 1]) * (g.X(j + 1) - g.X(j));
+    while (j + 1 < n && d[j + 1] > tau && g.X(j + 1) - g.X(j) <= max_gap) {
+      score += 0.5 * (d[j] + d[j + 1]) * (g.X(j + 1) - g.X(j));
       ++j;
     }
     if (static_cast<int>(j - i + 1) >= min_points && score > best_score) {

@@ -94,8 +94,8 @@ struct HiddenGroove {
   // exponent's variances from where the ends lie in their cells
   // (part/silhouette.h), and the left end's place (bed frame).
   double aspect_end_var = 0.0, exponent_end_var = 0.0, left_end_mm = kNaN;
-  // The same with each end whose wall holds a mixed point anywhere in its
-  // cell (Silhouette::aspect_mixed_var).
+  // The same with each end whose wall holds mixed points anywhere over the
+  // width they widened its cell by (Silhouette::aspect_mixed_var).
   double aspect_mixed_var = 0.0, exponent_mixed_var = 0.0;
   // What the exponent grid's steps leave in them, and whether the top
   // agrees with the walls' cells (part/silhouette.h: else not pooled).

@@ -198,15 +198,14 @@ PooledShape LayerGrooves::Pooled() const {
     const double shared = std::min(1.0, 1.0 / (std::numbers::pi * cycles));
     const auto floor = [&](double ends, double grid) { return std::sqrt(shared * shared * ends / n + grid / n); };
     // A footprint's bias is in no row's spread: beside it, whole.
-    const auto with_footprint = [&](double sigma, double mixed_ends) {
-      return pool.footprint ? std::hypot(sigma, std::sqrt(mixed_ends / n)) : sigma;
-    };
-    pool.aspect_footprint_sigma = pool.footprint ? std::sqrt(aspect_mixed / n) : 0.0;
-    pool.aspect_sigma = with_footprint(std::max(pool.aspect_sigma, floor(aspect_var, aspect_grid)), aspect_mixed);
+    const double aspect_spot = pool.footprint ? std::sqrt(aspect_mixed / n) : 0.0;
+    const double exponent_spot = pool.footprint ? std::sqrt(exponent_mixed / n) : 0.0;
+    pool.aspect_footprint_sigma = aspect_spot;
+    pool.aspect_sigma = std::hypot(std::max(pool.aspect_sigma, floor(aspect_var, aspect_grid)), aspect_spot);
     if (placed_.size() >= kMinExponents) {
       std::tie(pool.exponent, pool.exponent_sigma) = MedianAndError(exponents);
       pool.exponent_sigma =
-          with_footprint(std::max(pool.exponent_sigma, floor(exponent_var, exponent_grid)), exponent_mixed);
+          std::hypot(std::max(pool.exponent_sigma, floor(exponent_var, exponent_grid)), exponent_spot);
       pool.correlation = ShapeCorrelation(placed_);
       pool.exponent_solved = true;
     }

@@ -94,6 +94,7 @@ class SurfaceGrid {
     if (!a_) return SurfaceRow::NaN();
     return b_ ? Blend({a_->At(x_mm), 0.0, 0.0}, {b_->At(x_mm), 0.0, 0.0}, w_).z : a_->At(x_mm);
   }
+  double VarianceAt(double x_mm) const { return SampleAt(x_mm).variance; }
   // The rule two rows are blended by (the part kernel's Blend is its
   // vector form): both known, (1 - w) a + w b, the variance (1 - w)^2 va +
   // w^2 vb; one known, that one.
@@ -131,7 +132,6 @@ class SurfaceGrid {
     double per_mm_[2] = {};
     double shift_, w_;
   };
-  double VarianceAt(double x_mm) const { return SampleAt(x_mm).variance; }
   // The one row this surface is (nullptr where it blends two).
   const SurfaceRow* single_row() const { return b_ ? nullptr : a_.get(); }
   // Its rows (the second nullptr where there is one) and the second's weight.
