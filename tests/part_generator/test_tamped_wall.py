@@ -95,10 +95,9 @@ def test_a_pressed_wall_from_another_generator(tmp_path):
     # second layer's rows, which share it, were covered 89 % (0.8 sigmas
     # low on average; 53 % at seed 1). Held as the spot leaves it (+-0.004-
     # 0.005), every pool holds the truth within two sigmas and every layer's
-    # intervals at least 90 % of its rows (seed 4: 99.5-100 %). (The first
-    # layer's beads, on the bed, are fitted, not placed at walls: its pool
-    # says 0.498 +- 0.000, the fits' spread alone; its rows are covered
-    # 97 %.)
+    # intervals at least 90 % of its rows (seed 4: 99.5-100 %, the first
+    # layer's 96.7 %). (The first layer's beads, on the bed, are fitted, not
+    # placed at walls: its pool says 0.498 +- 0.000, the fits' spread alone.)
     pools = [line for line in said.splitlines() if "half-height over half-width" in line and ", exponent " in line]
     assert len(pools) == c.layers - 1, said
     for line in pools:
