@@ -9,10 +9,15 @@
 //  - the bead: the connected run of points (dropouts up to max_gap_mm
 //    bridged) with d above the detection threshold max(min_threshold_mm,
 //    threshold_sigmas * noise) whose integral is largest, extended outward
-//    while d stays above the edge floor; the first point beyond each foot
-//    is where the new surface meets the old;
+//    while d stays above the edge floor and does not rise outward by more
+//    than kFootRiseNoises noises (a bead's side falls toward its foot; a
+//    gain rising again beyond it is something else: the layer below's
+//    wall beside the end, interpolated across its cell by a registration a
+//    fraction of a spacing off, a wall's height off at one point); the
+//    first point beyond each foot is where the new surface meets the old;
 //  - area: the trapezoid integral of max(d, 0) from the bare point left of
-//    the bead to the bare point right of it; width: between the edges,
+//    the bead to the bare point right of it, a bare point's d at most the
+//    edge floor (it is not the bead's); width: between the edges,
 //    where d crosses the edge floor (linear between the foot and the bare
 //    point); height: d at the crest (the median of three around the
 //    highest new point); centre: the top of the bead, the vertex of the

@@ -138,5 +138,36 @@ TEST(AddedBead, PointsOverALostSurfaceBelowMeasureAsThePointsLeftOut) {
   EXPECT_NEAR(left_out.area_mm2, 0.5 * M_PI * 3.0 * 0.8, 0.05);
 }
 
+// A bead's side falls toward its foot; a gain that rises again past a bare
+// point beside it is something else: the layer below's wall beside the
+// bead's end, interpolated across its cell by a registration a fraction of
+// a spacing off, a wall's height off at one point. The bead measures as if
+// that point were bare: its area to the floor's sliver (the point counted
+// at the floor, 0.02 mm, over half a spacing), its width to a spacing.
+TEST(AddedBead, AGainRisingAgainBesideTheBeadIsNotTheBeads) {
+  constexpr int kPoints = 401;
+  constexpr double kDx = 0.05, kX0 = -10.0, kNoise = 0.01;  // floor max(0.01, 2 noises) = 0.02 mm
+  SurfaceRow flat;
+  flat.x0_mm = kX0, flat.dx_mm = kDx, flat.at_points = true;
+  std::vector<float> x, z;
+  for (int j = 0; j < kPoints; ++j) {
+    const double xj = kX0 + kDx * j, u = xj / 3.0;
+    flat.z_mm.push_back(1.0f), flat.variance.push_back(1.0f);
+    x.push_back(static_cast<float>(xj));
+    z.push_back(static_cast<float>(1.0 + (std::abs(u) < 1.0 ? 0.8 * std::sqrt(1.0 - u * u) : 0.0)));
+  }
+  const int end = 260;  // x = 3.00: the bead's right end, its gain 0 ...
+  z[end] += 0.03f;      // ... raised over the floor, under the threshold (0.06)
+  SurfaceRow walled = flat;
+  walled.z_mm[end + 1] = -1.0f;  // the next point's gain 2 mm: the wall beside it
+  const AddedBead bare = MeasureAddedBead(x, z, SurfaceGrid(flat), false, {}, nullptr, kDx, 0.0, kNoise);
+  const AddedBead walled_off = MeasureAddedBead(x, z, SurfaceGrid(walled), false, {}, nullptr, kDx, 0.0, kNoise);
+  ASSERT_EQ(bare.status, AddedStatus::kValid);
+  ASSERT_EQ(walled_off.status, AddedStatus::kValid);
+  EXPECT_NEAR(walled_off.area_mm2, bare.area_mm2, 0.5 * 0.02 * kDx + 1e-9);
+  EXPECT_NEAR(walled_off.width_mm, bare.width_mm, kDx);
+  EXPECT_EQ(walled_off.height_mm, bare.height_mm);
+}
+
 }  // namespace
 }  // namespace bead::part
