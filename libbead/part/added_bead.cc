@@ -41,12 +41,17 @@ const Gains& GainsAt(std::span<const float> x, std::span<const float> z, const S
     std::size_t a = 0, b = x.size();
     while (a < b && std::isnan(under[a])) ++a;
     while (b > a && std::isnan(under[b - 1])) --b;
-    uint32_t unknown = 0;  // (by the bits: core/float_bits.h)
-    for (std::size_t i = a; i < b; ++i) unknown |= static_cast<uint32_t>(IsNanBits(under[i]));
+    // The gains and whether any is unknown in one pass (by the bits:
+    // core/float_bits.h); where one is, the copying path below writes
+    // them again.
+    g.d.resize(b - a);
+    uint32_t unknown = 0;
+    for (std::size_t i = a; i < b; ++i) {
+      unknown |= static_cast<uint32_t>(IsNanBits(under[i]));
+      g.d[i - a] = z[i] - static_cast<double>(under[i]);
+    }
     if (!unknown) {
       g.x = x.data() + a, g.z = z.data() + a;
-      g.d.resize(b - a);
-      for (std::size_t i = a; i < b; ++i) g.d[i - a] = z[i] - static_cast<double>(under[i]);
       return g;
     }
   }

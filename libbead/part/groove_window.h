@@ -43,9 +43,11 @@ struct PooledShape {
   // Its points then integrate a wall wherever it lies, and the area seen
   // follows a mixed end (part/silhouette.h: SilhouetteVariance).
   bool footprint = false;
-  // Of aspect_sigma, what the footprint leaves (Silhouette::aspect_mixed_var,
-  // the same in every row: more rows do not shrink it).
-  double aspect_footprint_sigma = 0.0;
+  // aspect_sigma's two parts, in quadrature: what the rows' spread (or the
+  // floor their ends and grid set) leaves, and what the footprint leaves
+  // (Silhouette::aspect_mixed_var, the same in every row: more rows do not
+  // shrink it).
+  double aspect_rows_sigma = 0.0, aspect_footprint_sigma = 0.0;
   // false: too few rows were placed at their walls to solve the exponent;
   // the ellipse's is held, by assumption.
   bool exponent_solved = false;

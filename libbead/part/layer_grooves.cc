@@ -84,9 +84,7 @@ void LayerGrooves::Add(PartGeometryRow row, const StoredProfile* points, const S
   if (!pooled_ && aspects_.size() >= kPoolProfiles && aspects_.size() % kLooseStep == 0) {
     const PooledShape pool = Pooled();
     // (What a footprint leaves, more rows do not shrink.)
-    const double rows_sigma = std::sqrt(std::max(
-        0.0, pool.aspect_sigma * pool.aspect_sigma - pool.aspect_footprint_sigma * pool.aspect_footprint_sigma));
-    const bool loose = rows_sigma > kLoosePool * pool.aspect && waiting_.size() < kMaxWaiting;
+    const bool loose = pool.aspect_rows_sigma > kLoosePool * pool.aspect && waiting_.size() < kMaxWaiting;
     if (!loose) Hold(pool);  // loose: more rows first
   }
   if (pooled_ || waiting_.size() >= kMaxWaiting) Flush(emit);
@@ -176,6 +174,7 @@ double ShapeCorrelation(const std::vector<LayerGrooves::Placed>& placed) {
 PooledShape LayerGrooves::Pooled() const {
   PooledShape pool;
   std::tie(pool.aspect, pool.aspect_sigma) = MedianAndError(aspects_);
+  pool.aspect_rows_sigma = pool.aspect_sigma;
   pool.top_noise = tops_.empty() ? NAN : MedianAndError(tops_).first;
   pool.rows = aspects_.size();
   pool.ends_off = EndsOff();
@@ -200,8 +199,9 @@ PooledShape LayerGrooves::Pooled() const {
     // A footprint's bias is in no row's spread: beside it, whole.
     const double aspect_spot = pool.footprint ? std::sqrt(aspect_mixed / n) : 0.0;
     const double exponent_spot = pool.footprint ? std::sqrt(exponent_mixed / n) : 0.0;
+    pool.aspect_rows_sigma = std::max(pool.aspect_sigma, floor(aspect_var, aspect_grid));
     pool.aspect_footprint_sigma = aspect_spot;
-    pool.aspect_sigma = std::hypot(std::max(pool.aspect_sigma, floor(aspect_var, aspect_grid)), aspect_spot);
+    pool.aspect_sigma = std::hypot(pool.aspect_rows_sigma, aspect_spot);
     if (placed_.size() >= kMinExponents) {
       std::tie(pool.exponent, pool.exponent_sigma) = MedianAndError(exponents);
       pool.exponent_sigma =

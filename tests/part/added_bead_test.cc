@@ -92,28 +92,45 @@ TEST(AddedBead, TheSpacingIsTheMedianStepWithOrWithoutSorting) {
   EXPECT_NEAR(PointSpacingMm(uneven), 0.15, 1e-6);
 }
 
-// A bead of 0.8 mm over a bare line on the grid of 0.05 mm: its points'
-// gains read in place where the surface below is known at every point
-// between the first and the last that have it, and copied out where it is
-// lost under some (part/added_bead.cc: GainsAt). The profile over a
-// surface below lost under some of its points measures as the profile
-// without them over the surface known everywhere: the same points, the
-// same gains, the same bead.
-TEST(AddedBead, PointsOverALostSurfaceBelowMeasureAsThePointsLeftOut) {
-  constexpr int kPoints = 401;
-  constexpr double kDx = 0.05, kX0 = -10.0;
-  std::mt19937 rng(7);
-  std::normal_distribution<double> noise(0.0, 0.01);
-  SurfaceRow full;
-  full.x0_mm = kX0, full.dx_mm = kDx, full.at_points = true;
+// A bead of 0.8 mm high and 6 mm wide (an ellipse) at x = 0 over a row
+// of the layer below on the grid of 0.05 mm from -10 to 10 mm, the row's
+// height at x `below`, the row's values and the bead's points each with
+// the normal noise `sigma` (none where 0).
+constexpr int kPoints = 401;
+constexpr double kDx = 0.05, kX0 = -10.0;
+
+struct BeadOverRow {
+  SurfaceRow row;
   std::vector<float> x, z;
+};
+
+template <class Below>
+BeadOverRow EllipseOver(Below below, double sigma, std::mt19937& rng) {
+  std::normal_distribution<double> noise(0.0, std::max(sigma, 1e-300));
+  const auto draw = [&] { return sigma > 0.0 ? noise(rng) : 0.0; };
+  BeadOverRow b;
+  b.row.x0_mm = kX0, b.row.dx_mm = kDx, b.row.at_points = true;
   for (int j = 0; j < kPoints; ++j) {
-    const double xj = kX0 + kDx * j, below = 1.0 + 0.01 * xj;
-    const double u = xj / 3.0, bead = std::abs(u) < 1.0 ? 0.8 * std::sqrt(1.0 - u * u) : 0.0;
-    full.z_mm.push_back(static_cast<float>(below + noise(rng)));
-    full.variance.push_back(1.0f);
-    x.push_back(static_cast<float>(xj)), z.push_back(static_cast<float>(below + bead + noise(rng)));
+    const double xj = kX0 + kDx * j, u = xj / 3.0, bead = std::abs(u) < 1.0 ? 0.8 * std::sqrt(1.0 - u * u) : 0.0;
+    b.row.z_mm.push_back(static_cast<float>(below(xj) + draw()));
+    b.row.variance.push_back(1.0f);
+    b.x.push_back(static_cast<float>(xj)), b.z.push_back(static_cast<float>(below(xj) + bead + draw()));
   }
+  return b;
+}
+
+// The bead over a sloped line: its points' gains read in place where the
+// surface below is known at every point between the first and the last
+// that have it, and copied out where it is lost under some
+// (part/added_bead.cc: GainsAt). The profile over a surface below lost
+// under some of its points measures as the profile without them over the
+// surface known everywhere: the same points, the same gains, the same bead.
+TEST(AddedBead, PointsOverALostSurfaceBelowMeasureAsThePointsLeftOut) {
+  std::mt19937 rng(7);
+  const BeadOverRow b = EllipseOver([](double x) { return 1.0 + 0.01 * x; }, 0.01, rng);
+  const SurfaceRow& full = b.row;
+  const std::vector<float>& x = b.x;
+  const std::vector<float>& z = b.z;
   SurfaceRow holed = full;
   std::vector<float> x_left, z_left;
   for (int j = 0; j < kPoints; ++j) {
@@ -145,17 +162,12 @@ TEST(AddedBead, PointsOverALostSurfaceBelowMeasureAsThePointsLeftOut) {
 // that point were bare: its area to the floor's sliver (the point counted
 // at the floor, 0.02 mm, over half a spacing), its width to a spacing.
 TEST(AddedBead, AGainRisingAgainBesideTheBeadIsNotTheBeads) {
-  constexpr int kPoints = 401;
-  constexpr double kDx = 0.05, kX0 = -10.0, kNoise = 0.01;  // floor max(0.01, 2 noises) = 0.02 mm
-  SurfaceRow flat;
-  flat.x0_mm = kX0, flat.dx_mm = kDx, flat.at_points = true;
-  std::vector<float> x, z;
-  for (int j = 0; j < kPoints; ++j) {
-    const double xj = kX0 + kDx * j, u = xj / 3.0;
-    flat.z_mm.push_back(1.0f), flat.variance.push_back(1.0f);
-    x.push_back(static_cast<float>(xj));
-    z.push_back(static_cast<float>(1.0 + (std::abs(u) < 1.0 ? 0.8 * std::sqrt(1.0 - u * u) : 0.0)));
-  }
+  constexpr double kNoise = 0.01;  // floor max(0.01, 2 noises) = 0.02 mm
+  std::mt19937 rng(1);
+  BeadOverRow b = EllipseOver([](double) { return 1.0; }, 0.0, rng);
+  const SurfaceRow& flat = b.row;
+  const std::vector<float>& x = b.x;
+  std::vector<float>& z = b.z;
   const int end = 260;  // x = 3.00: the bead's right end, its gain 0 ...
   z[end] += 0.03f;      // ... raised over the floor, under the threshold (0.06)
   SurfaceRow walled = flat;
