@@ -293,7 +293,7 @@ const char* AddedStatusName(AddedStatus s) {
 
 AddedBead MeasureAddedBead(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
                            bool register_shift, const AddedBeadOptions& o, const double* start_shift, double spacing_mm,
-                           double start_hidden_sigma, double noise_mm) {
+                           double start_hidden_sigma, double noise_mm, bool search_wide) {
   AddedBead out;
   out.noise_mm = std::isfinite(noise_mm) ? noise_mm : NoiseOf(z);
   const double tau = std::max(o.min_threshold_mm, o.threshold_sigmas * out.noise_mm);
@@ -310,7 +310,7 @@ AddedBead MeasureAddedBead(std::span<const float> x, std::span<const float> z, c
   if (x.size() < 10) return out;  // kTooFewPoints: fewer gains still
   if (register_shift) {
     const double spacing = std::isfinite(spacing_mm) ? spacing_mm : PointSpacingMm(x);
-    reg = Register(x, z, below, {tau, out.noise_mm, spacing}, o, start_shift, grid, start_hidden_sigma);
+    reg = Register(x, z, below, {tau, out.noise_mm, spacing}, o, start_shift, grid, start_hidden_sigma, search_wide);
   }
   const Gains& g = GainsAt(x, z, below, reg.shift, grid);
   if (g.d.size() < 10) return out;  // kTooFewPoints

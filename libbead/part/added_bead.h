@@ -29,7 +29,10 @@
 //    minimises the truncated squared gain over all points (each in its
 //    noise variance, capped at the threshold's: a point inside the new bead
 //    costs the same at every shift), on a grid of a quarter point spacing
-//    over +-max_shift_mm, averaged over one spacing. s is the middle of the
+//    over +-max_shift_mm (doubled while the least lies within warm_half_mm
+//    of the range's end, up to a quarter of the surface below's span; the
+//    pass's first profiles also look over that whole span for a least
+//    beyond the range), averaged over one spacing. s is the middle of the
 //    shifts within 1 of the least cost, its sigma a quarter of the range
 //    within 4, at least spacing / sqrt 12, and at least the uniform sigma
 //    of the range within the cap (one point's disagreement: where the
@@ -63,7 +66,8 @@ struct AddedBeadOptions {
   double min_edge_floor_mm = 0.01;
   double edge_floor_sigmas = 2.0;
   double max_gap_mm = 1.0;
-  // The lateral registration's search range, mm either way ...
+  // The lateral registration's search range, mm either way (widened
+  // where the least lies at its end: part/registration.cc) ...
   double max_shift_mm = 3.0;
   // ... and the largest sigma at which its shift is used, mm.
   double max_shift_sigma_mm = 0.05;
@@ -131,10 +135,11 @@ double PointSpacingMm(std::span<const float> x);
 // start_shift: where the pass's shift was last found (nullptr: nowhere
 // yet), start_hidden_sigma: its hidden sigma (part/registration.h);
 // spacing_mm: PointSpacingMm(x), noise_mm: ProfileNoiseMm(z), where the
-// caller has them (NaN: found here).
+// caller has them (NaN: found here); search_wide: part/registration.h.
 AddedBead MeasureAddedBead(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
                            bool register_shift, const AddedBeadOptions& options = {},
                            const double* start_shift = nullptr, double spacing_mm = AddedBead::kNaN,
-                           double start_hidden_sigma = 0.0, double noise_mm = AddedBead::kNaN);
+                           double start_hidden_sigma = 0.0, double noise_mm = AddedBead::kNaN,
+                           bool search_wide = false);
 
 }  // namespace bead::part

@@ -189,10 +189,13 @@ class PartMeasurer {
       row.bead.status = no_bed;  // on layer 0: no bed, or reference areas that hold no bare flat bed
     } else {
       const bool shift = row.layer > 0 && options_.register_layers;
-      if (row.layer != warm_layer_) recent_shifts_.clear(), hidden_ = 0.0, warm_layer_ = row.layer;
+      if (row.layer != warm_layer_)
+        recent_shifts_.clear(), hidden_ = 0.0, warm_layer_ = row.layer, wide_searches_ = kWideSearches;
       const double warm = RecentShift();
+      const bool wide = shift && !std::isfinite(warm) && wide_searches_ > 0;
+      wide_searches_ -= wide;
       row.bead = MeasureAddedBead(mine.x_mm, mine.z_mm, *under, shift, options_.added,
-                                  std::isfinite(warm) ? &warm : nullptr, mine.spacing_mm, hidden_, noise);
+                                  std::isfinite(warm) ? &warm : nullptr, mine.spacing_mm, hidden_, noise, wide);
       if (row.bead.shift_constrained) KeepShift(row.bead.shift_mm), hidden_ = row.bead.shift_hidden_sigma_mm;
     }
     // Several beads over the surface below, at the shift the layer's
@@ -231,6 +234,11 @@ class PartMeasurer {
   static constexpr std::size_t kRecentShifts = 9;
   std::vector<double> recent_shifts_;
   double hidden_ = 0.0;  // the last shift kept's hidden sigma (part/registration.h), carried by a track
+  // The pass's first registrations with no shift found yet look over the
+  // whole span for a least beyond the first range (part/registration.h):
+  // this many a pass (a layer whose shift is never found pays no more).
+  static constexpr int kWideSearches = 4;
+  int wide_searches_ = 0;
   int64_t warm_layer_ = -1;
 };
 

@@ -187,16 +187,64 @@ bool Track(std::span<const float> x, std::span<const float> z, const SurfaceGrid
   return false;
 }
 
+// The widest range searched: a quarter of the surface below's span (each
+// shift's cost then counts at least its middle half: the points compared
+// are those every shift keeps over the surface below), at least
+// +-max_shift_mm.
+double WidestSearch(const SurfaceGrid& below, const AddedBeadOptions& o) {
+  return std::max(o.max_shift_mm, 0.25 * (below.last_mm() - below.first_mm()));
+}
+
+// The range searched about `centre`: +-max_shift_mm, doubled while the
+// least lies within the warm window of its end (the cost may fall further
+// beyond it), up to the widest. A least still within the window of the
+// widest range's end is not trusted (at_end: not constrained).
+Registration Searched(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
+                      const RegistrationScale& k, const AddedBeadOptions& o, const PointsOnGrid* grid, double centre) {
+  const double widest = WidestSearch(below, o);
+  double half = o.max_shift_mm;
+  Registration r = FromCurve(Scan(x, z, below, centre, half, k, grid), k);
+  while (std::abs(r.shift - centre) > half - o.warm_half_mm && std::abs(centre) + 2.0 * half <= widest) {
+    half *= 2.0;
+    r = FromCurve(Scan(x, z, below, centre, half, k, grid), k);
+  }
+  r.at_end = r.at_end || std::abs(r.shift - centre) > half - o.warm_half_mm;
+  Settle(x, z, below, k, o, grid, r);
+  return r;
+}
+
+// Whether the pass's shift may lie beyond the first range: over the widest
+// at one point spacing (a coarse look; the fine search decides), the least
+// cost outside +-(max_shift_mm - warm_half_mm) is under the least inside
+// by more than one point's disagreement (the cap). A bead laid 4-6 mm off
+// the one below shows a false least inside +-3 mm, its sigma 0.02 (the
+// layer below's bead hidden under the new one, its own visible beside it
+// counted as disagreeing), which the doubling about the range's end does
+// not see.
+bool FarLeast(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, const RegistrationScale& k,
+              const AddedBeadOptions& o, const PointsOnGrid* grid) {
+  const double widest = WidestSearch(below, o), inner = o.max_shift_mm - o.warm_half_mm;
+  if (widest <= o.max_shift_mm) return false;
+  double least_in = INFINITY, least_out = INFINITY;
+  const double step = std::max(k.spacing, 1e-3);
+  for (double s = -widest; s <= widest + 1e-12; s += step) {
+    const double c = TruncatedCost(x, z, below, s, k, widest, grid);
+    double& least = std::abs(s) > inner ? least_out : least_in;
+    least = std::min(least, c);
+  }
+  return least_out + k.tau * k.tau / (k.noise * k.noise) < least_in;
+}
+
 }  // namespace
 
 Registration Register(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
                       const RegistrationScale& k, const AddedBeadOptions& o, const double* start,
-                      const PointsOnGrid* grid, double start_hidden_sigma) {
+                      const PointsOnGrid* grid, double start_hidden_sigma, bool search_wide) {
   // The new points on the surface below's grid, where they lie on it: the
   // costs eight points at a time (part/grid_costs.h).
   thread_local PointsOnGrid on_grid;
   if (!grid && on_grid.Make(x, z, below)) grid = &on_grid;
-  if (start && std::abs(*start) + o.warm_half_mm < o.max_shift_mm) {
+  if (start && std::abs(*start) + o.warm_half_mm < WidestSearch(below, o)) {
     Registration r;
     r.hidden_sigma = start_hidden_sigma;
     if (Track(x, z, below, k, o, *start, grid, r)) {
@@ -207,9 +255,17 @@ Registration Register(std::span<const float> x, std::span<const float> z, const 
     Settle(x, z, below, k, o, grid, r);
     if (!r.at_end) return r;
   }
-  Registration r = FromCurve(Scan(x, z, below, 0.0, o.max_shift_mm, k, grid), k);
-  Settle(x, z, below, k, o, grid, r);
-  return r;
+  // A pass found beyond the first range is searched about its shift; one
+  // not found yet, over the widest where asked and a least lies there.
+  if (start && std::abs(*start) > o.max_shift_mm - o.warm_half_mm) return Searched(x, z, below, k, o, grid, *start);
+  if (!start && search_wide && FarLeast(x, z, below, k, o, grid)) {
+    const double widest = WidestSearch(below, o);
+    Registration r = FromCurve(Scan(x, z, below, 0.0, widest, k, grid), k);
+    r.at_end = r.at_end || std::abs(r.shift) > widest - o.warm_half_mm;
+    Settle(x, z, below, k, o, grid, r);
+    return r;
+  }
+  return Searched(x, z, below, k, o, grid, 0.0);
 }
 
 }  // namespace bead::part

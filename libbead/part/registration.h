@@ -53,9 +53,13 @@ class PointsOnGrid;
 // shift found for the profile before in the same pass (nullptr: none);
 // grid: the points on the surface below's grid (part/grid_costs.h), where
 // the caller made it (nullptr: made here where they lie on it);
-// start_hidden_sigma: the pass's last hidden_sigma, which a track carries.
+// start_hidden_sigma: the pass's last hidden_sigma, which a track carries;
+// search_wide: with no start, first look over the widest range (a quarter
+// of the surface below's span) for a least beyond +-max_shift_mm: the
+// pass's first searches (a coarse scan over that range: the caller asks a
+// few times a pass, not every profile).
 Registration Register(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
                       const RegistrationScale& scale, const AddedBeadOptions& options, const double* start,
-                      const PointsOnGrid* grid = nullptr, double start_hidden_sigma = 0.0);
+                      const PointsOnGrid* grid = nullptr, double start_hidden_sigma = 0.0, bool search_wide = false);
 
 }  // namespace bead::part

@@ -135,6 +135,33 @@ TEST(PartWall, AProfilerFrameMovingSidewaysOffTheGridMeasuresAsWell) {
   EXPECT_GE(e.shift_covered, static_cast<int>(0.9 * e.shift_found));
 }
 
+// A head that misses its line by millimetres from pass to pass (2 mm
+// sigma; at this seed layer 1 lies 5.6 mm off layer 0 in the profiler's
+// frame and layer 2 3.7 mm off layer 1, both beyond the registration's
+// first range of +-3 mm). Each is found where it is (part/registration.cc:
+// a pass's first searches look over the whole span; a least at a range's
+// end widens it), not at a false least inside the range (layer 1's at
+// -0.08 mm, its sigma 0.02, constrained: the areas 0.7 mm^2 off), and the
+// walls' bounds hold.
+TEST(PartWall, APassShiftedBeyondTheFirstSearchRangeIsFoundWhereItIs) {
+  sim::PartTwinConfig config;
+  config.seed = 3;
+  config.layers = 3;
+  config.length_mm = 30.0;
+  config.pass_shift_sigma_mm = 2.0;
+  const sim::PartTwin twin = sim::SimulatePartWall(config);
+  Errors e;
+  Collect(twin, Measure(twin.scan, twin.rig, true), e);
+  const std::size_t n = e.area.size();
+  std::printf("far shift: area %+.4f rms %.4f mm^2, offset rms %.4f mm in %d, shift within 2 sigma %d\n", Mean(e.area),
+              Rms(e.area), Rms(e.offset), e.shift_found, e.shift_covered);
+  EXPECT_EQ(n, twin.truth.size()) << "every profile of the wall is measured";
+  EXPECT_LT(Rms(e.area), kAreaBound);
+  EXPECT_LT(Rms(e.width), kWidthBound);
+  EXPECT_GT(e.shift_found, static_cast<int>(0.8 * 2 * 60));  // of layers 1 and 2's 60 profiles each
+  EXPECT_GE(e.shift_covered, static_cast<int>(0.9 * e.shift_found));
+}
+
 // A fine sensor (1 um of noise, read at the 2 um floor) over a textured
 // bed: a ripple of 35 um (25 um RMS) at 1.7 mm on the bare bed, rougher
 // than 10 noises, smoother than a bead's threshold (0.05 mm). The bed line
