@@ -214,7 +214,10 @@ Registration Searched(std::span<const float> x, std::span<const float> z, const 
 }
 
 // Whether the pass's shift may lie beyond the first range: over the widest
-// at one point spacing (a coarse look; the fine search decides), the least
+// at four point spacings (a coarse look: a lower bead's top, the most of
+// what shows beside a bead laid far off it, agrees within the threshold
+// where its slope is under tau / (2 spacings), most of an ellipse's top at
+// the twin's 0.06 mm and 0.05 mm; the fine search decides), the least
 // cost outside +-(max_shift_mm - warm_half_mm) is under the least inside
 // by more than one point's disagreement (the cap). A bead laid 4-6 mm off
 // the one below shows a false least inside +-3 mm, its sigma 0.02 (the
@@ -226,7 +229,7 @@ bool FarLeast(std::span<const float> x, std::span<const float> z, const SurfaceG
   const double widest = WidestSearch(below, o), inner = o.max_shift_mm - o.warm_half_mm;
   if (widest <= o.max_shift_mm) return false;
   double least_in = INFINITY, least_out = INFINITY;
-  const double step = std::max(k.spacing, 1e-3);
+  const double step = std::max(4.0 * k.spacing, 1e-3);
   for (double s = -widest; s <= widest + 1e-12; s += step) {
     const double c = TruncatedCost(x, z, below, s, k, widest, grid);
     double& least = std::abs(s) > inner ? least_out : least_in;
