@@ -7,7 +7,9 @@
 //    1 / sqrt(sum g^2 / variance) with g the slope of the surface below,
 //    at least a wall's sampling, spacing / sqrt 12;
 //  - scanned: the cost on a grid of shifts over a window (or the whole
-//    range), its sigma from the range within 4 of the least.
+//    range, widened where its least lies at its end; a pass's first
+//    searches also look over the widest, a quarter of the surface below's
+//    span), its sigma from the range within 4 of the least.
 // A profile is tracked where a start is given and the track converges
 // inside the warm window with the shift constrained (the layer below
 // showing beside the new bead: part/added_bead.h); scanned otherwise (the
