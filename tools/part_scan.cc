@@ -1,5 +1,6 @@
 #include "tools/part_scan.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -22,11 +23,22 @@
 namespace bead::tools {
 namespace {
 
+// "v +- sigma" to the sigma's second significant digit, at least three
+// decimals (a sigma under half a thousandth printed as +- 0.000 read as
+// none at all).
+std::string WithSigma(double v, double sigma) {
+  const int decimals =
+      std::isfinite(sigma) && sigma > 0.0 ? std::clamp(1 - static_cast<int>(std::floor(std::log10(sigma))), 3, 6) : 3;
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f +- %.*f", decimals, v, decimals, sigma);
+  return buf;
+}
+
 // The layer's pooled bead shape, and in words how far from an ellipse (or
 // that an ellipse is assumed).
 void SayShape(const part::PooledShape& s) {
-  std::printf("    bead shape (its first %zu profiles pooled): half-height over half-width %.3f +- %.3f", s.rows,
-              s.aspect, s.aspect_sigma);
+  std::printf("    bead shape (its first %zu profiles pooled): half-height over half-width %s", s.rows,
+              WithSigma(s.aspect, s.aspect_sigma).c_str());
   if (!s.exponent_solved) {
     std::printf(
         "; an ellipse assumed (too few of its beads overhang to show their walls and solve the exponent): the sigma "
@@ -36,8 +48,8 @@ void SayShape(const part::PooledShape& s) {
     const char* words = std::abs(off) <= two_sigmas ? "an ellipse, within two sigmas"
                         : off > 0.0                 ? "toward a box: flatter on top, steeper at the sides"
                                                     : "toward a diamond: narrower at top and bottom";
-    std::printf(", exponent %.3f +- %.3f (%s; the two errors correlated %+.2f)\n", s.exponent, s.exponent_sigma, words,
-                s.correlation);
+    std::printf(", exponent %s (%s; the two errors correlated %+.2f)\n",
+                WithSigma(s.exponent, s.exponent_sigma).c_str(), words, s.correlation);
   }
   if (s.footprint)
     std::printf(
