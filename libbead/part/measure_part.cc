@@ -236,9 +236,7 @@ class PartMeasurer {
   double hidden_ = 0.0;  // the last shift kept's hidden sigma (part/registration.h), carried by a track
   // The pass's first registrations with no shift found yet look over the
   // whole span for a least beyond the first range (part/registration.h):
-  // this many a pass (a layer whose shift is never found pays no more;
-  // the first profile of a pass often shows no bead yet, the layer below
-  // bare, which registers all the better).
+  // this many a pass (a layer whose shift is never found pays no more).
   static constexpr int kWideSearches = 2;
   int wide_searches_ = 0;
   int64_t warm_layer_ = -1;

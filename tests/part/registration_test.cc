@@ -76,6 +76,25 @@ TEST(Registration, OnABareBedNothingIsTrackedOrConstrained) {
   EXPECT_FALSE(r.constrained);
 }
 
+// A pass laid 4.2 mm off the one below, beyond the first range of +-3 mm
+// (the surface below 24 mm wide: the widest range +-6). Found where it is
+// whether the range widens because its least lies at its end or because
+// the pass's first search looks over the widest; and tracked from there
+// (part/registration.cc).
+TEST(Registration, AShiftBeyondTheFirstRangeIsFoundWhereItIs) {
+  const double truth = 4.2;
+  const Scene s = MakeScene(truth);
+  for (bool wide : {false, true}) {
+    const Registration r = Register(s.x, s.z, s.below, kScale, {}, nullptr, nullptr, 0.0, wide);
+    ASSERT_TRUE(r.constrained) << wide;
+    EXPECT_NEAR(r.shift, truth, 2.0 * r.sigma) << wide;
+  }
+  const double start = truth - 0.1;
+  const Registration tracked = Register(s.x, s.z, s.below, kScale, {}, &start);
+  EXPECT_TRUE(tracked.tracked && tracked.constrained);
+  EXPECT_NEAR(tracked.shift, truth, 2.0 * tracked.sigma);
+}
+
 // A new bead that covers the one below, its walls beyond the old walls by
 // 0.1 mm either side (a straight wall's beads, stacked): only the bare bed
 // beside it speaks, and it says the old bead lies anywhere it stays hidden,
