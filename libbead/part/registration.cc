@@ -16,7 +16,7 @@ namespace {
 // the most points agree.
 double TruncatedCost(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, double s,
                      const RegistrationScale& k, double margin, const PointsOnGrid* grid) {
-  const double noise2 = k.noise * k.noise, cap = k.tau * k.tau / noise2;
+  const double noise2 = k.noise * k.noise, cap = k.Cap();
   const double lo = below.first_mm() + margin, hi = below.last_mm() - margin;
   if (grid) return grid->TruncatedCost(s, noise2, cap, lo, hi);
   double sum = 0.0;
@@ -104,7 +104,7 @@ void Settle(std::span<const float> x, std::span<const float> z, const SurfaceGri
 // (nothing outside the bead to register on: a bare bed).
 Registration FromCurve(const CostCurve& curve, const RegistrationScale& k) {
   const std::vector<double> cost = Smoothed(curve, 2);
-  const double least = *std::min_element(cost.begin(), cost.end()), cap = k.tau * k.tau / (k.noise * k.noise);
+  const double least = *std::min_element(cost.begin(), cost.end()), cap = k.Cap();
   double lo1 = 1e300, hi1 = -1e300, lo4 = 1e300, hi4 = -1e300, lo_cap = 1e300, hi_cap = -1e300;
   Registration r;
   for (std::size_t i = 0; i < cost.size(); ++i) {
@@ -128,7 +128,7 @@ using Local = PointsOnGrid::Local;
 
 Local LocalCost(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, double s,
                 const RegistrationScale& k, const PointsOnGrid* grid) {
-  const double noise2 = k.noise * k.noise, cap = k.tau * k.tau / noise2;
+  const double noise2 = k.noise * k.noise, cap = k.Cap();
   if (grid) return grid->LocalCost(s, noise2, cap);
   Local l;
   for (std::size_t i = 0; i < x.size(); ++i) {
@@ -195,14 +195,15 @@ double WidestSearch(const SurfaceGrid& below, const AddedBeadOptions& o) {
   return std::max(o.max_shift_mm, 0.25 * (below.last_mm() - below.first_mm()));
 }
 
-// The range searched about `centre`: +-max_shift_mm, doubled while the
+// The range searched about `centre`: +-first_half, doubled while the
 // least lies within the warm window of its end (the cost may fall further
 // beyond it), up to the widest. A least still within the window of the
-// widest range's end is not trusted (at_end: not constrained).
+// range's end is not trusted (at_end: not constrained).
 Registration Searched(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
-                      const RegistrationScale& k, const AddedBeadOptions& o, const PointsOnGrid* grid, double centre) {
+                      const RegistrationScale& k, const AddedBeadOptions& o, const PointsOnGrid* grid, double centre,
+                      double first_half) {
   const double widest = WidestSearch(below, o);
-  double half = o.max_shift_mm;
+  double half = first_half;
   Registration r = FromCurve(Scan(x, z, below, centre, half, k, grid), k);
   while (std::abs(r.shift - centre) > half - o.warm_half_mm && std::abs(centre) + 2.0 * half <= widest) {
     half *= 2.0;
@@ -235,7 +236,7 @@ bool FarLeast(std::span<const float> x, std::span<const float> z, const SurfaceG
     double& least = std::abs(s) > inner ? least_out : least_in;
     least = std::min(least, c);
   }
-  return least_out + k.tau * k.tau / (k.noise * k.noise) < least_in;
+  return least_out + k.Cap() < least_in;
 }
 
 }  // namespace
@@ -260,15 +261,11 @@ Registration Register(std::span<const float> x, std::span<const float> z, const 
   }
   // A pass found beyond the first range is searched about its shift; one
   // not found yet, over the widest where asked and a least lies there.
-  if (start && std::abs(*start) > o.max_shift_mm - o.warm_half_mm) return Searched(x, z, below, k, o, grid, *start);
-  if (!start && search_wide && FarLeast(x, z, below, k, o, grid)) {
-    const double widest = WidestSearch(below, o);
-    Registration r = FromCurve(Scan(x, z, below, 0.0, widest, k, grid), k);
-    r.at_end = r.at_end || std::abs(r.shift) > widest - o.warm_half_mm;
-    Settle(x, z, below, k, o, grid, r);
-    return r;
-  }
-  return Searched(x, z, below, k, o, grid, 0.0);
+  if (start && std::abs(*start) > o.max_shift_mm - o.warm_half_mm)
+    return Searched(x, z, below, k, o, grid, *start, o.max_shift_mm);
+  if (!start && search_wide && FarLeast(x, z, below, k, o, grid))
+    return Searched(x, z, below, k, o, grid, 0.0, WidestSearch(below, o));
+  return Searched(x, z, below, k, o, grid, 0.0, o.max_shift_mm);
 }
 
 }  // namespace bead::part

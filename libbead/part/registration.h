@@ -47,6 +47,8 @@ struct RegistrationScale {
   double tau = 0.0;      // the detection threshold (the cap: tau^2 in noise variances)
   double noise = 0.0;    // one point's noise, mm
   double spacing = 0.0;  // the points' median spacing, mm
+  // One point's disagreement at most: tau^2 in noise variances.
+  double Cap() const { return tau * tau / (noise * noise); }
 };
 
 class PointsOnGrid;
