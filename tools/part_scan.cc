@@ -37,7 +37,10 @@ std::string WithSigma(double v, double sigma) {
 // The layer's pooled bead shape, and in words how far from an ellipse (or
 // that an ellipse is assumed).
 void SayShape(const part::PooledShape& s) {
-  std::printf("    bead shape (its first %zu profiles pooled): half-height over half-width %s", s.rows,
+  // Not an ellipse: the aspect is pooled over the rows placed at their
+  // walls alone (part/layer_grooves.cc).
+  std::printf("    bead shape (%s%zu %s pooled): half-height over half-width %s", s.NotAnEllipse() ? "" : "its first ",
+              s.rows, s.NotAnEllipse() ? "of its first profiles, those placed at their walls," : "profiles",
               WithSigma(s.aspect, s.aspect_sigma).c_str());
   if (!s.exponent_solved) {
     std::printf(

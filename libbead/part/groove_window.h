@@ -28,8 +28,8 @@ struct Ellipse {
 // b / a and exponent of the free placements and fits on its first profiles,
 // each with its median's standard error (one material, one process: the
 // wheel's pooled occlusion carried over). Held, it leaves each profile its
-// bead's place, depth and size. A fit (no silhouette) holds the aspect and
-// is an ellipse. correlation: between the aspect's and the exponent's
+// bead's place, depth and size. A fit (no silhouette) holds the aspect,
+// and the exponent where it is not an ellipse's. correlation: between the aspect's and the exponent's
 // errors, as the rows placed at their silhouettes vary together (a bead
 // solved boxier is solved taller or flatter with it: the two pooled errors
 // move the groove together, not apart).
@@ -60,6 +60,10 @@ struct PooledShape {
   // Most of the layer's rows placed at their walls had an end the top put
   // off its wall's cell (part/hidden_groove.h: OutlineMisfit::kEndsOff).
   bool ends_off = false;
+  // Whether the exponent solved is not an ellipse's: beyond two of its
+  // sigmas from 2 (`bead measure` says "an ellipse, within two sigmas"
+  // otherwise). Fits (no silhouette) then hold it; else an ellipse's.
+  bool NotAnEllipse() const { return exponent_solved && std::abs(exponent - 2.0) > 2.0 * exponent_sigma; }
 };
 
 // The points around the bead with the surface below under each.

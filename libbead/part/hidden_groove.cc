@@ -11,6 +11,7 @@
 #include "libbead/part/part_kernel.h"
 #include "libbead/part/silhouette.h"
 #include "libbead/part/superellipse.h"
+#include "libbead/part/superellipse_sums.h"
 
 namespace bead::part {
 namespace {
@@ -110,8 +111,10 @@ Normal Residuals(const Window& w, const Ellipse& e, const Shape& shape) {
   // (part/part_kernel.h).
   const auto lo = static_cast<std::size_t>(std::lower_bound(w.x.begin(), w.x.end(), e.x0 - e.a) - w.x.begin());
   const auto hi = static_cast<std::size_t>(std::upper_bound(w.x.begin(), w.x.end(), e.x0 + e.a) - w.x.begin());
-  const EllipseSums sums = ActivePartKernel().ellipse(w.x.data(), w.z.data(), w.old.data(), lo, std::max(lo, hi),
-                                                      {e.x0, e.z0, e.a, e.b, shape.aspect});
+  const EllipseSums sums = e.p == 2.0
+                               ? ActivePartKernel().ellipse(w.x.data(), w.z.data(), w.old.data(), lo, std::max(lo, hi),
+                                                            {e.x0, e.z0, e.a, e.b, shape.aspect})
+                               : SuperellipseSums(w, lo, std::max(lo, hi), e, shape.aspect);
   n.rss = w.bare[lo] + (w.bare.back() - w.bare[std::max(lo, hi)]) + sums.rss;
   for (int i = 0, k = 0; i < 4; ++i) {
     for (int j = i; j < 4; ++j, ++k) n.JtJ(i, j) = n.JtJ(j, i) = sums.jtj[k];
@@ -180,6 +183,9 @@ struct Around {
   const SurfaceGrid& below;
   double shift, shift_sigma, spacing, aspect_sigma;
   double noise_mm;  // one point's noise (the grid's variance is in its square)
+  // A held exponent's sigma (0: an ellipse's, by assumption) and its
+  // errors' correlation with the aspect's (PooledShape).
+  double exponent_sigma = 0.0, correlation = 0.0;
 };
 
 // The groove's variance from what lies around the ellipse: the surface
@@ -221,7 +227,12 @@ double GrooveSigma(const Ellipse& e, const Shape& shape, const Eigen::Matrix4d& 
   // plus a sigma gave the same coverage, 4726 of 4800).
   const double by_aspect =
       std::isfinite(shape.aspect) && o.aspect_sigma > 0.0 ? sum.gradient[3] * e.a * o.aspect_sigma : 0.0;
-  return std::sqrt(std::max(0.0, grad.dot(cov * grad)) + AroundVariance(sum, o) + by_aspect * by_aspect);
+  // A held exponent a sigma off, the same way, with the aspect's error
+  // correlated.
+  const double by_exponent = sum.by_exponent * o.exponent_sigma;
+  const double shape_var =
+      by_aspect * by_aspect + by_exponent * by_exponent + 2.0 * o.correlation * by_aspect * by_exponent;
+  return std::sqrt(std::max(0.0, grad.dot(cov * grad)) + AroundVariance(sum, o) + std::max(0.0, shape_var));
 }
 
 // The RMS of the seen top's points about the fitted ellipse's top: those
@@ -306,7 +317,17 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   if (w.x.size() < 12) return out;
   const double spacing = (w.x.back() - w.x.front()) / static_cast<double>(w.x.size() - 1);
   const double base = below.At(center - shift);
-  const Around around{below, shift, shift_sigma, spacing, pooled ? pooled->aspect_sigma : 0.0, noise_mm};
+  // A fit holds the pooled exponent where it is not an ellipse's (else 2).
+  const bool superellipse = pooled && pooled->NotAnEllipse();
+  const double exponent = superellipse ? pooled->exponent : 2.0;
+  const Around around{below,
+                      shift,
+                      shift_sigma,
+                      spacing,
+                      pooled ? pooled->aspect_sigma : 0.0,
+                      noise_mm,
+                      superellipse ? pooled->exponent_sigma : 0.0,
+                      superellipse ? pooled->correlation : 0.0};
   // Placed at its silhouette where the bead shows one (part/silhouette.h):
   // its run over 3 sigmas of a point's noise and 2 % of its height; each
   // end's wall rising over 6 sigmas (a difference of two points' noise at
@@ -316,7 +337,8 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   const double* start_place = previous && previous->ok ? previous->end_place : nullptr;
   if (const std::optional<Silhouette> s = AtSilhouette(w, center, scale, pooled, start_place))
     return AtTheSilhouette(*s, around, pooled, center, base, height);
-  // Otherwise fitted: an ellipse, its aspect the layer's where held.
+  // Otherwise fitted: an ellipse, its aspect the layer's where held (and
+  // its exponent, where that is not an ellipse's).
   const double held = pooled ? pooled->aspect : NAN;
   w.Close();
   Shape shape{2.0 * spacing, held};
@@ -334,11 +356,11 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   // tenth better either).
   bool warm = false;
   if (pooled && previous && previous->ok && std::isfinite(previous->fit_rms_mm)) {
-    Ellipse e{center + previous->dx0, base + previous->dz0, previous->a, previous->b};
+    Ellipse e{center + previous->dx0, base + previous->dz0, previous->a, previous->b, exponent};
     best_rss = Fit(w, e, shape, best_JtJ), best = e;
     warm = std::sqrt(best_rss / static_cast<double>(w.x.size())) <= 1.2 * previous->fit_rms_mm;
     if (!warm) {
-      Ellipse probe{center, base + 0.5 * height, 0.6 * width, 0.5 * height};
+      Ellipse probe{center, base + 0.5 * height, 0.6 * width, 0.5 * height, exponent};
       const double rss = Fit(w, probe, shape, JtJ);
       warm = !(rss < 0.9 * best_rss);
       if (rss < best_rss) best_rss = rss, best = probe, best_JtJ = JtJ;
@@ -354,19 +376,19 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   for (double lift : {0.0, 0.25, 0.5, 0.75})
     for (double across : {0.5, 0.6}) {
       if (warm) break;
-      Ellipse e{center, base + lift * height, across * width, height * (1.0 - lift)};
+      Ellipse e{center, base + lift * height, across * width, height * (1.0 - lift), exponent};
       const double rss = Fit(w, e, shape, JtJ);
       if (rss < best_rss) best_rss = rss, best = e, best_JtJ = JtJ;
     }
   out.fit_rms_mm = std::sqrt(best_rss / static_cast<double>(w.x.size()));
-  out.aspect = best.b / best.a, out.exponent = 2.0;
+  out.aspect = best.b / best.a, out.exponent = exponent;
   out.dx0 = best.x0 - center, out.dz0 = best.z0 - base, out.a = best.a, out.b = best.b;
   const GrooveSum groove = GrooveWithGradient(best, below, shift);
   out.hidden_mm2 = groove.groove;
   const double dof = static_cast<double>(w.x.size()) - static_cast<double>(shape.Params());
   out.sigma_mm2 = GrooveSigma(best, shape, best_JtJ, best_rss / dof, groove, around);
   out.top_rms_mm = TopRms(w, best);
-  out.misfit = MisfitOf(groove, height, 2.0);
+  out.misfit = MisfitOf(groove, height, exponent);
   out.ok = std::isfinite(out.hidden_mm2) && std::isfinite(out.sigma_mm2) && out.misfit == OutlineMisfit::kNone;
   return out;
 }

@@ -12,7 +12,8 @@
 // bead overhangs, its ends show as walls in the seen profile and the bead
 // is placed there, its height solved over its top, and its shape (aspect
 // and exponent) with it until the layer's is pooled (part/silhouette.h);
-// where they do not, an ellipse is fitted to the profile's points around
+// where they do not, an ellipse (the layer's pooled superellipse, where it
+// is not an ellipse) is fitted to the profile's points around
 // the bead by Levenberg-Marquardt (the surface below known, moved by the
 // registration's shift; its sigma the fit's covariance, residual variance
 // times (J^T J)^-1, carried through the groove's gradient). The groove is

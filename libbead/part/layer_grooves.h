@@ -71,6 +71,7 @@ class LayerGrooves {
         spacing_mm;
     bool end_mixed;
     double aspect_mixed_var, exponent_mixed_var;
+    double top;  // its top's RMS over its tolerance (NaN: none)
   };
 
  private:

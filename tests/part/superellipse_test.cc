@@ -7,6 +7,9 @@
 #include <cmath>
 #include <utility>
 
+#include "libbead/part/part_kernel.h"
+#include "libbead/part/superellipse_sums.h"
+
 namespace bead::part {
 namespace {
 
@@ -60,6 +63,52 @@ TEST(Superellipse, TheGridsTablesOutliveManyLayersExponents) {
   EXPECT_EQ(&SuperellipseOf(grid.back()), &last);
   EXPECT_EQ(first.p(), grid.front());
   EXPECT_EQ(last.p(), grid.back());
+}
+
+// A window over a bead on a sloping surface below (points 0.05 mm apart,
+// the top seen where it stands over the surface).
+Window BeadWindow(const Ellipse& bead) {
+  Window w;
+  for (double x = -5.0; x <= 5.0; x += 0.05) {
+    const double old = 0.1 * x + 0.2;
+    w.x.push_back(x), w.old.push_back(old);
+    w.z.push_back(std::max(old, bead.z0 + bead.Half(x)) + 0.01 * std::sin(37.0 * x));
+  }
+  return w;
+}
+
+// A fit's sums at p = 2 are the kernel's ellipse's (the table holds s to
+// 6e-6 of b; the slope is held at 50 where the kernel holds s at 0.02:
+// the same but within 2e-4 of u of the ends), with the aspect free and held.
+TEST(Superellipse, AFitsSumsAtTwoAreTheKernelsEllipse) {
+  const Ellipse bead{0.2, 0.5, 3.0, 1.5, 2.0}, at{0.25, 0.45, 2.9, 1.55, 2.0};
+  const Window w = BeadWindow(bead);
+  for (double aspect : {std::nan(""), 0.5}) {
+    const EllipseSums mine = SuperellipseSums(w, 0, w.x.size(), at, aspect);
+    const EllipseSums kernel = ActivePartKernel().ellipse(w.x.data(), w.z.data(), w.old.data(), 0, w.x.size(),
+                                                          {at.x0, at.z0, at.a, at.b, aspect});
+    EXPECT_NEAR(mine.rss, kernel.rss, 1e-4 * kernel.rss) << aspect;
+    for (int k = 0; k < 10; ++k) EXPECT_NEAR(mine.jtj[k], kernel.jtj[k], 1e-4 * (1.0 + std::abs(kernel.jtj[k]))) << k;
+    for (int k = 0; k < 4; ++k) EXPECT_NEAR(mine.jtr[k], kernel.jtr[k], 1e-4 * (1.0 + std::abs(kernel.jtr[k]))) << k;
+  }
+}
+
+// At another exponent, J^T r is half the gradient of the residuals' sum of
+// squares: the central differences' in x0, z0, a and b (h = 1e-6 mm; the
+// points where the top meets the surface below, a kink, move by less; the
+// ends, where the side drops to the surface below, lie off the points).
+TEST(Superellipse, AFitsSumsAreTheResidualsGradient) {
+  const Ellipse bead{0.2, 0.5, 3.0, 1.4, 2.6}, at{0.3137, 0.42, 2.8512, 1.5, 2.6};
+  const Window w = BeadWindow(bead);
+  const EllipseSums sums = SuperellipseSums(w, 0, w.x.size(), at, NAN);
+  const double h = 1e-6;
+  for (std::size_t i = 0; i < 4; ++i) {
+    Ellipse up = at, down = at;
+    up[i] += h, down[i] -= h;
+    const double by_i =
+        (SuperellipseSums(w, 0, w.x.size(), up, NAN).rss - SuperellipseSums(w, 0, w.x.size(), down, NAN).rss) / (4 * h);
+    EXPECT_NEAR(sums.jtr[i], by_i, 1e-3 * (1.0 + std::abs(by_i))) << i;
+  }
 }
 
 }  // namespace
