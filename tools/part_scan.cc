@@ -37,10 +37,8 @@ std::string WithSigma(double v, double sigma) {
 // The layer's pooled bead shape, and in words how far from an ellipse (or
 // that an ellipse is assumed).
 void SayShape(const part::PooledShape& s) {
-  // Not an ellipse: the aspect is pooled over the rows placed at their
-  // walls alone (part/layer_grooves.cc).
-  std::printf("    bead shape (%s%zu %s pooled): half-height over half-width %s", s.NotAnEllipse() ? "" : "its first ",
-              s.rows, s.NotAnEllipse() ? "of its first profiles, those placed at their walls," : "profiles",
+  std::printf("    bead shape (%s%zu %s pooled): half-height over half-width %s", s.AspectAtWalls() ? "" : "its first ",
+              s.rows, s.AspectAtWalls() ? "of its first profiles, those placed at their walls," : "profiles",
               WithSigma(s.aspect, s.aspect_sigma).c_str());
   if (!s.exponent_solved) {
     std::printf(
@@ -51,8 +49,14 @@ void SayShape(const part::PooledShape& s) {
     const char* words = std::abs(off) <= two_sigmas ? "an ellipse, within two sigmas"
                         : off > 0.0                 ? "toward a box: flatter on top, steeper at the sides"
                                                     : "toward a diamond: narrower at top and bottom";
-    std::printf(", exponent %s (%s; the two errors correlated %+.2f)\n",
-                WithSigma(s.exponent, s.exponent_sigma).c_str(), words, s.correlation);
+    if (s.exponent_layer >= 0)
+      std::printf(
+          ", exponent %s carried from layer %lld (%s; too few of this layer's beads overhang to show their walls and "
+          "solve it: one material, one process; its profiles fitted with it)\n",
+          WithSigma(s.exponent, s.exponent_sigma).c_str(), static_cast<long long>(s.exponent_layer), words);
+    else
+      std::printf(", exponent %s (%s; the two errors correlated %+.2f)\n",
+                  WithSigma(s.exponent, s.exponent_sigma).c_str(), words, s.correlation);
   }
   if (s.footprint)
     std::printf(

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "libbead/part/superellipse.h"
@@ -51,6 +52,9 @@ struct PooledShape {
   // false: too few rows were placed at their walls to solve the exponent;
   // the ellipse's is held, by assumption.
   bool exponent_solved = false;
+  // Where not -1: too few were, and the exponent is that earlier layer's,
+  // the last one solved (one material, one process), carried.
+  int64_t exponent_layer = -1;
   // The rows whose aspects were pooled.
   std::size_t rows = 0;
   // The median over those rows of their tops' RMS about the shape over
@@ -64,6 +68,10 @@ struct PooledShape {
   // sigmas from 2 (`bead measure` says "an ellipse, within two sigmas"
   // otherwise). Fits (no silhouette) then hold it; else an ellipse's.
   bool NotAnEllipse() const { return exponent_solved && std::abs(exponent - 2.0) > 2.0 * exponent_sigma; }
+  // Whether the aspect (and the tops' miss) is pooled over the rows placed
+  // at their walls alone: the layer's own exponent is not an ellipse's (a
+  // fit's aspect is an ellipse's, not that shape's, until it is pooled).
+  bool AspectAtWalls() const { return NotAnEllipse() && exponent_layer < 0; }
 };
 
 // The points around the bead with the surface below under each.

@@ -284,7 +284,8 @@ HiddenGroove AtTheSilhouette(const Silhouette& s, const Around& o, const PooledS
 
 HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
                                   double shift, double shift_sigma, double noise_mm, double center, double width,
-                                  double height, const PooledShape* pooled, const HiddenGroove* previous) {
+                                  double height, const PooledShape* pooled, const HiddenGroove* previous,
+                                  double free_exponent) {
   HiddenGroove out;
   if (!(width > 0.0) || !(height > 0.0)) return out;
   if (pooled && pooled->top_noise > kTopOffNoise) {
@@ -317,9 +318,10 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   if (w.x.size() < 12) return out;
   const double spacing = (w.x.back() - w.x.front()) / static_cast<double>(w.x.size() - 1);
   const double base = below.At(center - shift);
-  // A fit holds the pooled exponent where it is not an ellipse's (else 2).
+  // A fit holds the pooled exponent where it is not an ellipse's (else 2;
+  // with none pooled, the one it is given).
   const bool superellipse = pooled && pooled->NotAnEllipse();
-  const double exponent = superellipse ? pooled->exponent : 2.0;
+  const double exponent = superellipse ? pooled->exponent : pooled ? 2.0 : free_exponent;
   const Around around{below,
                       shift,
                       shift_sigma,

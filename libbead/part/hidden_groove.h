@@ -120,10 +120,11 @@ struct HiddenGroove {
 // known to shift_sigma (0 where not registered), its variance in units of
 // noise_mm^2 (surface_below.h); center, width, height:
 // the bead as part/added_bead.h measured it; pooled: the layer's shape to
-// hold (nullptr: solved here).
+// hold (nullptr: solved here); free_exponent: with none held, a fit's
+// (an earlier layer's that is not an ellipse's, carried; else 2).
 HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
                                   double shift, double shift_sigma, double noise_mm, double center, double width,
                                   double height, const PooledShape* pooled = nullptr,
-                                  const HiddenGroove* previous = nullptr);
+                                  const HiddenGroove* previous = nullptr, double free_exponent = 2.0);
 
 }  // namespace bead::part

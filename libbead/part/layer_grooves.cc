@@ -66,8 +66,10 @@ void Apply(const HiddenGroove& g, double spacing, PartGeometryRow& row) {
 HiddenGroove LayerGrooves::Estimate(const StoredProfile& p, const SurfaceGrid& under, const PartGeometryRow& row,
                                     const HiddenGroove* previous, const PooledShape* shape) const {
   const double shift_sigma = std::isfinite(row.bead.shift_sigma_mm) ? row.bead.shift_sigma_mm : 0.0;
+  const auto* carried = shape ? nullptr : Carried();
   return EstimateHiddenGroove(p.x_mm, p.z_mm, under, row.bead.shift_mm, shift_sigma, row.bead.noise_mm,
-                              row.bead.center_x_mm, row.bead.width_mm, row.bead.height_mm, shape, previous);
+                              row.bead.center_x_mm, row.bead.width_mm, row.bead.height_mm, shape, previous,
+                              carried ? carried->second.exponent : 2.0);
 }
 
 void LayerGrooves::Add(PartGeometryRow row, const StoredProfile* points, const SurfaceGrid* under, const Emit& emit) {
@@ -230,7 +232,7 @@ PooledShape LayerGrooves::Pooled() const {
     // intervals covering), and its top misses the bead's (at exponent 3.5,
     // by 3.3-4.0 tolerances over the pool: the layers refused): the aspect
     // and the tops over the rows placed at their walls.
-    if (pool.NotAnEllipse()) {
+    if (pool.AspectAtWalls()) {
       std::vector<double> aspects, tops;
       for (const Placed& p : placed_) {
         aspects.push_back(p.aspect);
@@ -243,7 +245,26 @@ PooledShape LayerGrooves::Pooled() const {
       pool.rows = placed_.size();
     }
   }
+  // Too few rows placed at their walls, after layers that solved a shape
+  // other than the ellipse: that shape's exponent, its rows fitted with it
+  // (their aspects its own). (The ellipse assumed, a wall of exponent 1.6
+  // whose last layer showed under 10 rows' walls pooled an ellipse's
+  // aspect, 0.58 for 0.50, and corrected that layer 13 % high, none of its
+  // intervals covering.) The aspect's error is the rows' alone: its correlation with
+  // the carried exponent's is not known, and left at 0.
+  if (!pool.exponent_solved)
+    if (const auto* carried = Carried()) {
+      pool.exponent = carried->second.exponent, pool.exponent_sigma = carried->second.exponent_sigma;
+      pool.correlation = 0.0, pool.exponent_solved = true;
+      pool.exponent_layer = carried->second.exponent_layer >= 0 ? carried->second.exponent_layer : carried->first;
+    }
   return pool;
+}
+
+const std::pair<int64_t, PooledShape>* LayerGrooves::Carried() const {
+  for (auto it = pools_.rbegin(); it != pools_.rend(); ++it)
+    if (it->first != layer_ && it->second.exponent_solved) return it->second.NotAnEllipse() ? &*it : nullptr;
+  return nullptr;
 }
 
 void LayerGrooves::Hold(const PooledShape& pool) {

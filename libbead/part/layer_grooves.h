@@ -87,6 +87,10 @@ class LayerGrooves {
   // for the layer's rows.
   PooledShape Pooled() const;
   void Hold(const PooledShape& pool);
+  // The last earlier layer's pool whose exponent was solved, where that is
+  // not an ellipse's (nullptr: none): a layer whose own rows do not solve
+  // one holds it.
+  const std::pair<int64_t, PooledShape>* Carried() const;
 
   int64_t layer_ = -1;
   std::vector<double> aspects_;
