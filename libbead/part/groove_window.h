@@ -16,10 +16,12 @@ namespace bead::part {
 // (part/superellipse.h: 2 the ellipse).
 struct Ellipse {
   double x0 = 0.0, z0 = 0.0, a = 1.0, b = 1.0, p = 2.0;
-  // Half its height at x (0 off it).
+  // Half its height at x (0 off it; the ellipse's by its square root, two
+  // powers' time).
   double Half(double x) const {
     const double u = (x - x0) / a;
-    return std::abs(u) < 1.0 ? b * SuperellipseS(u, p) : 0.0;
+    if (!(std::abs(u) < 1.0)) return 0.0;
+    return b * (p == 2.0 ? std::sqrt(1.0 - u * u) : SuperellipseS(u, p));
   }
   double& operator[](std::size_t i) { return i == 0 ? x0 : i == 1 ? z0 : i == 2 ? a : b; }
   double operator[](std::size_t i) const { return i == 0 ? x0 : i == 1 ? z0 : i == 2 ? a : b; }

@@ -348,8 +348,8 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   // quarter, half and three quarters of its height above) and two widths:
   // the least residual kept.
   Ellipse best;
-  Eigen::Matrix4d JtJ, best_JtJ;  // the fits' J^T J (the fitted parameters' top left)
-  double best_rss = INFINITY;
+  Eigen::Matrix4d JtJ, best_JtJ;               // the fits' J^T J (the fitted parameters' top left)
+  double best_rss = INFINITY, best_top = NAN;  // best's TopRms, where taken
   // With the shape held, the neighbour's ellipse first: kept where it
   // fits as well as the neighbour's did; or where it does not, but the
   // start sunk half its height, 0.6 of the width across, fits no tenth
@@ -373,14 +373,15 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
     // one below) stayed 0.6 mm too wide and 0.5 mm aside over 17 rows, its
     // top 10-15 tolerances off theirs (0.3-0.5 mm), their areas 1-4 mm^2
     // high at sigmas of 0.25; the eight starts found each row's bead.
-    warm = warm && TopRms(w, best) <= kTopOffNoise * TopTolerance(noise_mm, height);
+    best_top = TopRms(w, best);
+    warm = warm && best_top <= kTopOffNoise * TopTolerance(noise_mm, height);
   }
   for (double lift : {0.0, 0.25, 0.5, 0.75})
     for (double across : {0.5, 0.6}) {
       if (warm) break;
       Ellipse e{center, base + lift * height, across * width, height * (1.0 - lift), exponent};
       const double rss = Fit(w, e, shape, JtJ);
-      if (rss < best_rss) best_rss = rss, best = e, best_JtJ = JtJ;
+      if (rss < best_rss) best_rss = rss, best = e, best_JtJ = JtJ, best_top = NAN;
     }
   out.fit_rms_mm = std::sqrt(best_rss / static_cast<double>(w.x.size()));
   out.aspect = best.b / best.a, out.exponent = exponent;
@@ -389,7 +390,7 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   out.hidden_mm2 = groove.groove;
   const double dof = static_cast<double>(w.x.size()) - static_cast<double>(shape.Params());
   out.sigma_mm2 = GrooveSigma(best, shape, best_JtJ, best_rss / dof, groove, around);
-  out.top_rms_mm = TopRms(w, best);
+  out.top_rms_mm = std::isnan(best_top) ? TopRms(w, best) : best_top;
   out.misfit = MisfitOf(groove, height, exponent);
   out.ok = std::isfinite(out.hidden_mm2) && std::isfinite(out.sigma_mm2) && out.misfit == OutlineMisfit::kNone;
   return out;
