@@ -81,8 +81,9 @@ class LayerGrooves {
     std::optional<SurfaceGrid> under;
     double top_noise = NAN;  // its own shape's top RMS over its noise
   };
+  // free_exponent: a free fit's (NaN: the carried one's, else 2).
   HiddenGroove Estimate(const StoredProfile& points, const SurfaceGrid& under, const PartGeometryRow& row,
-                        const HiddenGroove* previous, const PooledShape* shape) const;
+                        const HiddenGroove* previous, const PooledShape* shape, double free_exponent = NAN) const;
   // The pool of the rows' shapes so far (layer_grooves.cc), and it held
   // for the layer's rows.
   PooledShape Pooled() const;
@@ -91,6 +92,8 @@ class LayerGrooves {
   // not an ellipse's (nullptr: none): a layer whose own rows do not solve
   // one holds it.
   const std::pair<int64_t, PooledShape>* Carried() const;
+  // How the waiting rows' fitted aspects move with their exponent at p.
+  double AspectByExponent(double p) const;
 
   int64_t layer_ = -1;
   std::vector<double> aspects_;
