@@ -210,7 +210,7 @@ double AroundVariance(const GrooveSum& sum, const Around& o, double seen_by_shif
 // own error does. NaN where the fit cannot place the bead's sides (J^T J
 // singular).
 double GrooveSigma(const Ellipse& e, const Shape& shape, const Eigen::Matrix4d& JtJ, double s2, const GrooveSum& sum,
-                   const Around& o) {
+                   const Around& o, double seen_by_shift) {
   const auto k = static_cast<Eigen::Index>(shape.Params());
   Eigen::FullPivLU<Eigen::MatrixXd> lu(JtJ.topLeftCorner(k, k));
   if (!lu.isInvertible()) return NAN;
@@ -232,7 +232,8 @@ double GrooveSigma(const Ellipse& e, const Shape& shape, const Eigen::Matrix4d& 
   const double by_exponent = sum.by_exponent * o.exponent_sigma;
   const double shape_var =
       by_aspect * by_aspect + by_exponent * by_exponent + 2.0 * o.correlation * by_aspect * by_exponent;
-  return std::sqrt(std::max(0.0, grad.dot(cov * grad)) + AroundVariance(sum, o) + std::max(0.0, shape_var));
+  return std::sqrt(std::max(0.0, grad.dot(cov * grad)) + AroundVariance(sum, o, seen_by_shift) +
+                   std::max(0.0, shape_var));
 }
 
 // The RMS of the seen top's points about the fitted ellipse's top: those
@@ -249,6 +250,23 @@ double TopRms(const Window& w, const Ellipse& e) {
     sum += (w.z[j] - top) * (w.z[j] - top), ++n;
   }
   return n ? std::sqrt(sum / n) : NAN;
+}
+
+// The area seen's derivative in the shift where the bead is fitted: the
+// surface below's rise under it, from its left end to its right one (the
+// outermost points of the run of gains over `run` around its centre), as
+// at the silhouette (its walls' heights over the surface below). (Left
+// out, a twin contour's layer whose beads lay on the bed beside the one
+// below and on its shoulder, the surface below rising 2.4 mm under them,
+// registered 0.022 mm off at a sigma of 0.014, had its areas seen 0.06
+// mm^2 low at sigmas of 0.01: 40 % covered.)
+double SeenByShift(const Window& w, double center, double run) {
+  const auto mid = static_cast<std::size_t>(std::lower_bound(w.x.begin(), w.x.end(), center) - w.x.begin());
+  if (mid >= w.x.size() || !(w.Gain(mid) > run)) return 0.0;
+  std::size_t left = mid, right = mid;
+  while (left > 0 && w.Gain(left - 1) > run) --left;
+  while (right + 1 < w.x.size() && w.Gain(right + 1) > run) ++right;
+  return w.old[right] - w.old[left];
 }
 
 // The groove of the ellipse placed at the bead's silhouette (no fit).
@@ -389,7 +407,8 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   const GrooveSum groove = GrooveWithGradient(best, below, shift);
   out.hidden_mm2 = groove.groove;
   const double dof = static_cast<double>(w.x.size()) - static_cast<double>(shape.Params());
-  out.sigma_mm2 = GrooveSigma(best, shape, best_JtJ, best_rss / dof, groove, around);
+  out.sigma_mm2 =
+      GrooveSigma(best, shape, best_JtJ, best_rss / dof, groove, around, SeenByShift(w, center, scale.floor));
   out.top_rms_mm = std::isnan(best_top) ? TopRms(w, best) : best_top;
   out.misfit = MisfitOf(groove, height, exponent);
   out.ok = std::isfinite(out.hidden_mm2) && std::isfinite(out.sigma_mm2) && out.misfit == OutlineMisfit::kNone;
