@@ -32,10 +32,11 @@ struct Ellipse {
 // each with its median's standard error (one material, one process: the
 // wheel's pooled occlusion carried over). Held, it leaves each profile its
 // bead's place, depth and size. A fit (no silhouette) holds the aspect,
-// and the exponent where it is not an ellipse's. correlation: between the aspect's and the exponent's
-// errors, as the rows placed at their silhouettes vary together (a bead
-// solved boxier is solved taller or flatter with it: the two pooled errors
-// move the groove together, not apart).
+// and the exponent where it is not an ellipse's. correlation: between the
+// aspect's and the exponent's errors, as the rows placed at their
+// silhouettes vary together (a bead solved boxier is solved taller or
+// flatter with it: the two pooled errors move the groove together, not
+// apart).
 struct PooledShape {
   double aspect = NAN, aspect_sigma = 0.0;
   double exponent = 2.0, exponent_sigma = 0.0;

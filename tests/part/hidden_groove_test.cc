@@ -49,6 +49,18 @@ GrooveFigures Figures(uint64_t seed, double exponent = 2.0, double area_mm2 = 12
   return f;
 }
 
+// The rows whose 95 % interval covers the material laid, and the fewest
+// of n that calibrated intervals leave: 95 % less three binomial sigmas.
+int Covered(const GrooveFigures& f) {
+  int covered = 0;
+  for (double z : f.z) covered += std::abs(z) < 1.96;
+  return covered;
+}
+double CoverageFloor(std::size_t rows) {
+  const double n = static_cast<double>(rows);
+  return n * (0.95 - 3.0 * std::sqrt(0.05 * 0.95 / n));
+}
+
 double MedianAbs(std::vector<double> v) {
   for (double& x : v) x = std::abs(x);
   std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
@@ -135,9 +147,7 @@ TEST(HiddenGroove, WallsOfAnotherShapeAreCorrectedWithTheirExponent) {
 // none of layer 3's.)
 TEST(HiddenGroove, BoxierBeadsHangingOffTheOneBelowAreFittedWithTheirExponent) {
   const GrooveFigures f = Figures(33, 2.6, 12.0, 0.0, 0.01, 1.0);
-  int covered = 0;
-  for (double z : f.z) covered += std::abs(z) < 1.96;
-  const double n = static_cast<double>(f.z.size());
+  const int covered = Covered(f);
   std::printf(
       "boxier beads off the one below: over the run seen %+.2f %%, corrected %+.2f %%; 95 %% intervals "
       "covering %d of %zu\n",
@@ -145,7 +155,7 @@ TEST(HiddenGroove, BoxierBeadsHangingOffTheOneBelowAreFittedWithTheirExponent) {
   EXPECT_EQ(f.corrected_rows, f.rows);
   EXPECT_LT(std::abs(f.corrected / f.laid - 1), 0.01);
   EXPECT_LT(MedianAbs(f.corrected_rel), 0.03);
-  EXPECT_GE(covered, n * (0.95 - 3.0 * std::sqrt(0.05 * 0.95 / n)));
+  EXPECT_GE(covered, CoverageFloor(f.z.size()));
 }
 
 // Beads toward a diamond (exponent 1.6, 10 mm^2) laid off the one below
@@ -156,16 +166,14 @@ TEST(HiddenGroove, BoxierBeadsHangingOffTheOneBelowAreFittedWithTheirExponent) {
 // none of its intervals covering: the wall +2.3 %, 998 of 1200.)
 TEST(HiddenGroove, ALayerShowingTooFewWallsHoldsTheShapeOfTheLayersBelow) {
   const GrooveFigures f = Figures(41, 1.6, 10.0, 0.0, 0.01, 1.0);
-  int covered = 0;
-  for (double z : f.z) covered += std::abs(z) < 1.96;
-  const double n = static_cast<double>(f.z.size());
+  const int covered = Covered(f);
   std::printf(
       "diamonds, the last layer's exponent carried: over the run seen %+.2f %%, corrected %+.2f %%; 95 %% "
       "intervals covering %d of %zu\n",
       100 * (f.visible / f.laid - 1), 100 * (f.corrected / f.laid - 1), covered, f.z.size());
   EXPECT_EQ(f.corrected_rows, f.rows);
   EXPECT_LT(std::abs(f.corrected / f.laid - 1), 0.01);
-  EXPECT_GE(covered, n * (0.95 - 3.0 * std::sqrt(0.05 * 0.95 / n)));
+  EXPECT_GE(covered, CoverageFloor(f.z.size()));
 }
 
 // Beads sunk deep (6 mm^2 of a 14.1 mm^2 ellipse): on the bed their sides

@@ -78,6 +78,22 @@ double FitPercent(const std::vector<double>& y, const std::vector<double>& yhat)
   return 100.0 * (1.0 - std::sqrt(err / spread));
 }
 
+// Each corrected row's layer and its error over its sigma (the corrected
+// area's), the default options.
+struct RowZ {
+  int64_t layer;
+  double z;
+};
+std::vector<RowZ> CorrectedZ(const sim::PartTwin& twin) {
+  ProfileStream stream("twin", twin.scan.profiles);
+  std::vector<RowZ> rows;
+  part::MeasurePart(stream, *twin.scan.part, twin.rig, {}, [&](const part::PartGeometryRow& g) {
+    if (!g.bead.valid() || std::isnan(g.area_corrected_mm2)) return;
+    rows.push_back({g.layer, (g.area_corrected_mm2 - twin.truth[g.profile].area_mm2) / g.area_corrected_sigma_mm2});
+  });
+  return rows;
+}
+
 TEST(PartContour, TheMaterialTheHeightAndTheFlowAlongACornersPath) {
   for (uint64_t seed : {11u, 12u}) {
     sim::PartTwinConfig c;
@@ -129,14 +145,14 @@ TEST(PartContour, ABeadHangingHalfOffTheOneBelowIsFittedRowByRowThroughACornersE
   c.area_wave_mm2 = 1.0;
   c.pass_shift_sigma_mm = 1.5;
   const sim::PartTwin twin = sim::SimulatePartWall(c);
-  ProfileStream stream("twin", twin.scan.profiles);
-  std::size_t corrected = 0, covered = 0, beyond_five = 0;
+  const std::vector<RowZ> rows = CorrectedZ(twin);
+  const std::size_t corrected = rows.size();
+  std::size_t covered = 0, beyond_five = 0;
   double worst = 0.0;
-  part::MeasurePart(stream, *twin.scan.part, twin.rig, {}, [&](const part::PartGeometryRow& g) {
-    if (!g.bead.valid() || std::isnan(g.area_corrected_mm2)) return;
-    const double z = std::abs(g.area_corrected_mm2 - twin.truth[g.profile].area_mm2) / g.area_corrected_sigma_mm2;
-    ++corrected, covered += z <= 1.96, beyond_five += z > 5.0, worst = std::max(worst, z);
-  });
+  for (const RowZ& r : rows) {
+    const double z = std::abs(r.z);
+    covered += z <= 1.96, beyond_five += z > 5.0, worst = std::max(worst, z);
+  }
   std::printf(
       "half off the one below: %zu rows corrected of %zu, %.1f %% within 1.96 sigma, %zu beyond 5 (worst %.1f)\n",
       corrected, twin.truth.size(), 100.0 * static_cast<double>(covered) / static_cast<double>(corrected), beyond_five,
@@ -163,15 +179,12 @@ TEST(PartContour, ABeadBesideTheOneBelowCountsTheShiftsErrorInItsAreaSeen) {
   c.wander_sigma_mm = 1.0;
   c.exponent = 2.6;
   const sim::PartTwin twin = sim::SimulatePartWall(c);
-  ProfileStream stream("twin", twin.scan.profiles);
+  const std::vector<RowZ> all = CorrectedZ(twin);
+  const std::size_t corrected = all.size();
   std::vector<double> z2(c.layers, 0.0);
   std::vector<std::size_t> rows(c.layers, 0);
-  std::size_t beyond_five = 0, corrected = 0;
-  part::MeasurePart(stream, *twin.scan.part, twin.rig, {}, [&](const part::PartGeometryRow& g) {
-    if (!g.bead.valid() || std::isnan(g.area_corrected_mm2)) return;
-    const double z = (g.area_corrected_mm2 - twin.truth[g.profile].area_mm2) / g.area_corrected_sigma_mm2;
-    z2[g.layer] += z * z, ++rows[g.layer], ++corrected, beyond_five += std::abs(z) > 5.0;
-  });
+  std::size_t beyond_five = 0;
+  for (const RowZ& r : all) z2[r.layer] += r.z * r.z, ++rows[r.layer], beyond_five += std::abs(r.z) > 5.0;
   std::printf("beside the one below: %zu rows corrected, %zu beyond 5 sigmas; RMS z by layer:", corrected, beyond_five);
   for (int l = 0; l < c.layers; ++l) std::printf(" %.2f", std::sqrt(z2[l] / static_cast<double>(rows[l])));
   std::printf("\n");
