@@ -45,10 +45,10 @@ void SayShape(const part::PooledShape& s) {
         "; an ellipse assumed (too few of its beads overhang to show their walls and solve the exponent): the sigma "
         "is the fitted beads' spread alone, not what a shape other than the ellipse would leave\n");
   } else {
-    const double off = s.exponent - 2.0, two_sigmas = 2.0 * s.exponent_sigma;
-    const char* words = std::abs(off) <= two_sigmas ? "an ellipse, within two sigmas"
-                        : off > 0.0                 ? "toward a box: flatter on top, steeper at the sides"
-                                                    : "toward a diamond: narrower at top and bottom";
+    // The words follow the model: a shape not an ellipse is fitted as itself.
+    const char* words = !s.NotAnEllipse()  ? "an ellipse, within two sigmas"
+                        : s.exponent > 2.0 ? "toward a box: flatter on top, steeper at the sides"
+                                           : "toward a diamond: narrower at top and bottom";
     if (s.exponent_layer >= 0)
       std::printf(
           ", exponent %s carried from layer %lld (%s; too few of this layer's beads overhang to show their walls and "
