@@ -42,7 +42,8 @@
 //    where that does not settle constrained. Where the layer below shows
 //    nowhere beside the new bead (fewer than min_feature_points sloped
 //    points agree), or the range reaches the search's end, or its sigma
-//    exceeds max_shift_sigma_mm, s is not constrained: the layer below may
+//    exceeds max_shift_sigma_mm (or one point spacing, if larger: the
+//    sigma's floor is spacing / sqrt 12), s is not constrained: the layer below may
 //    lie anywhere it stays hidden. The area is still measured at the least
 //    cost (a hidden bead's place hardly moves it), but the bead's offset
 //    from the one below is not reported: the pass's shift and the wall's
@@ -69,7 +70,8 @@ struct AddedBeadOptions {
   // The lateral registration's search range, mm either way (widened
   // where the least lies at its end: part/registration.cc) ...
   double max_shift_mm = 3.0;
-  // ... and the largest sigma at which its shift is used, mm.
+  // ... and the largest sigma at which its shift is used, mm (at least
+  // one point spacing: a coarser sensor places a lone wall no closer).
   double max_shift_sigma_mm = 0.05;
   // Given the shift of the profile before in the same pass, the search
   // looks this far either side of it first (the whole range when the best

@@ -239,11 +239,26 @@ bool FarLeast(std::span<const float> x, std::span<const float> z, const SurfaceG
   return least_out + k.Cap() < least_in;
 }
 
+// The options' bounds in mm, at least as wide as the sensor's sampling
+// sets them at the twin's 0.05 mm: a shift's sigma is never under
+// spacing / sqrt 12 (a lone wall's sampling), so one spacing bounds it;
+// the warm window holds six spacings. (Fixed in mm, a sensor's points
+// 0.2 mm apart on a 24 mm bead had every shift refused, its sigma's floor
+// 0.058 mm over the 0.05 allowed: no wander reported on any layer, and a
+// layer whose search then went astray measured 1.7 times its area.)
+AddedBeadOptions AtSampling(const AddedBeadOptions& o, double spacing) {
+  AddedBeadOptions at = o;
+  at.max_shift_sigma_mm = std::max(o.max_shift_sigma_mm, spacing);
+  at.warm_half_mm = std::max(o.warm_half_mm, 6.0 * spacing);
+  return at;
+}
+
 }  // namespace
 
 Registration Register(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
-                      const RegistrationScale& k, const AddedBeadOptions& o, const double* start,
+                      const RegistrationScale& k, const AddedBeadOptions& options, const double* start,
                       const PointsOnGrid* grid, double start_hidden_sigma, bool search_wide) {
+  const AddedBeadOptions o = AtSampling(options, k.spacing);
   // The new points on the surface below's grid, where they lie on it: the
   // costs eight points at a time (part/grid_costs.h).
   thread_local PointsOnGrid on_grid;

@@ -162,6 +162,45 @@ TEST(PartWall, APassShiftedBeyondTheFirstSearchRangeIsFoundWhereItIs) {
   EXPECT_GE(e.shift_covered, static_cast<int>(0.9 * e.shift_found));
 }
 
+// The default wall at a scale: every length (and the noise) k times.
+sim::PartTwin ScaledWall(double k) {
+  sim::PartTwinConfig c;
+  c.seed = 1;
+  c.layers = 3;
+  c.length_mm *= k, c.width_mm *= k, c.area_mm2 *= k * k, c.area_wave_mm2 *= k * k;
+  c.wave_period_mm *= k, c.wander_sigma_mm *= k, c.pass_shift_sigma_mm *= k;
+  c.point_spacing_mm *= k, c.field_half_mm *= k, c.noise_mm *= k;
+  c.profile_spacing_mm *= k, c.trail_mm *= k, c.standoff_mm *= k, c.head_speed_mm_s *= k;
+  return sim::SimulatePartWall(c);
+}
+
+// The default wall four times larger (a large-scale printer's 24 mm bead
+// seen by a profiler whose points lie 0.2 mm apart, its noise 0.04 mm) is
+// measured as the wall itself: its shifts found in as many profiles (where
+// a layer lies straight over the one below, nothing of that one shows and
+// no shift is found, at either scale), its areas, widths and offsets off
+// by k^2, k and k times the wall's. A wall's sampling places a shift no
+// closer than spacing / sqrt 12 = 0.058 mm here, beyond the 0.05 mm a
+// shift's sigma was held to: no shift was found on any layer ("the layer
+// below shows nowhere beside the new bead"), no wander reported.
+TEST(PartWall, AWallFourTimesLargerSeenByACoarserSensorIsMeasuredAsTheWall) {
+  constexpr double k = 4.0;
+  Errors e1, ek;
+  const sim::PartTwin wall = ScaledWall(1.0), large = ScaledWall(k);
+  Collect(wall, Measure(wall.scan, wall.rig, true), e1);
+  Collect(large, Measure(large.scan, large.rig, true), ek);
+  std::printf("wall / %g times larger: area rms %.4f / %.4f mm^2, offset rms %.4f / %.4f mm in %d / %d\n", k,
+              Rms(e1.area), Rms(ek.area), Rms(e1.offset), Rms(ek.offset), e1.shift_found, ek.shift_found);
+  EXPECT_EQ(ek.area.size(), large.truth.size()) << "every profile of the wall is measured";
+  EXPECT_LT(Rms(ek.area), k * k * kAreaBound);
+  EXPECT_LT(Rms(ek.width), k * kWidthBound);
+  // As many shifts found, within a tenth (the search's own steps are not
+  // all in spacings), and each to its sampling.
+  EXPECT_GE(ek.shift_found, static_cast<int>(0.9 * e1.shift_found));
+  EXPECT_LT(Rms(ek.offset), k * (2.0 * 0.05 / std::sqrt(12.0) * std::sqrt(2.0) + 0.01));
+  EXPECT_GE(ek.shift_covered, static_cast<int>(0.9 * ek.shift_found));
+}
+
 // A fine sensor (1 um of noise, read at the 2 um floor) over a textured
 // bed: a ripple of 35 um (25 um RMS) at 1.7 mm on the bare bed, rougher
 // than 10 noises, smoother than a bead's threshold (0.05 mm). The bed line
