@@ -67,15 +67,17 @@ struct AddedBeadOptions {
   double min_edge_floor_mm = 0.01;
   double edge_floor_sigmas = 2.0;
   double max_gap_mm = 1.0;
-  // The lateral registration's search range, mm either way (widened
-  // where the least lies at its end: part/registration.cc) ...
+  // The lateral registration's search range, mm either way (at most a
+  // quarter of the surface below's span; widened where the least lies at
+  // its end: part/registration.cc) ...
   double max_shift_mm = 3.0;
   // ... and the largest sigma at which its shift is used, mm (at least
   // one point spacing: a coarser sensor places a lone wall no closer).
   double max_shift_sigma_mm = 0.05;
   // Given the shift of the profile before in the same pass, the search
   // looks this far either side of it first (the whole range when the best
-  // lies at that window's end), mm.
+  // lies at that window's end), mm (at least six point spacings, at most
+  // half the range).
   double warm_half_mm = 0.3;
   int min_bead_points = 3;
   // Fewest points outside the bead where the surface below slopes (three

@@ -239,17 +239,24 @@ bool FarLeast(std::span<const float> x, std::span<const float> z, const SurfaceG
   return least_out + k.Cap() < least_in;
 }
 
-// The options' bounds in mm, at least as wide as the sensor's sampling
-// sets them at the twin's 0.05 mm: a shift's sigma is never under
-// spacing / sqrt 12 (a lone wall's sampling), so one spacing bounds it;
-// the warm window holds six spacings. (Fixed in mm, a sensor's points
-// 0.2 mm apart on a 24 mm bead had every shift refused, its sigma's floor
-// 0.058 mm over the 0.05 allowed: no wander reported on any layer, and a
-// layer whose search then went astray measured 1.7 times its area.)
-AddedBeadOptions AtSampling(const AddedBeadOptions& o, double spacing) {
+// The options' bounds in mm, set for the twin's sensor (points 0.05 mm
+// apart over 40 mm), fitted to this one's:
+//  - a shift's sigma is never under spacing / sqrt 12 (a lone wall's
+//    sampling): one spacing at least bounds it, and the warm window holds
+//    six. (Fixed in mm, a sensor's points 0.2 mm apart on a 24 mm bead had
+//    every shift refused, its sigma's floor 0.058 mm over the 0.05
+//    allowed: no wander reported on any layer, and a layer whose search
+//    then went astray measured 1.7 times its area.)
+//  - the first range is at most the widest (a quarter of the surface
+//    below's span). (Over a field of +-2 mm, a glue bead's, +-3 mm left no
+//    point that every shift keeps over the surface below: every cost 0,
+//    every shift refused.)
+AddedBeadOptions AtSampling(const AddedBeadOptions& o, double spacing, const SurfaceGrid& below) {
   AddedBeadOptions at = o;
   at.max_shift_sigma_mm = std::max(o.max_shift_sigma_mm, spacing);
   at.warm_half_mm = std::max(o.warm_half_mm, 6.0 * spacing);
+  at.max_shift_mm = std::min(o.max_shift_mm, 0.25 * (below.last_mm() - below.first_mm()));
+  at.warm_half_mm = std::min(at.warm_half_mm, 0.5 * at.max_shift_mm);
   return at;
 }
 
@@ -258,7 +265,7 @@ AddedBeadOptions AtSampling(const AddedBeadOptions& o, double spacing) {
 Registration Register(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
                       const RegistrationScale& k, const AddedBeadOptions& options, const double* start,
                       const PointsOnGrid* grid, double start_hidden_sigma, bool search_wide) {
-  const AddedBeadOptions o = AtSampling(options, k.spacing);
+  const AddedBeadOptions o = AtSampling(options, k.spacing, below);
   // The new points on the surface below's grid, where they lie on it: the
   // costs eight points at a time (part/grid_costs.h).
   thread_local PointsOnGrid on_grid;

@@ -21,9 +21,9 @@ struct Column {
 
 std::vector<Column> Columns(const Surface& below, double c, double a, double b, double p) {
   std::vector<Column> columns;
-  const std::size_t k0 = static_cast<std::size_t>(std::max(0.0, (c - a - below.x0) / kGridMm));
+  const std::size_t k0 = static_cast<std::size_t>(std::max(0.0, (c - a - below.x0) / below.dx));
   for (std::size_t k = k0; k < below.z.size(); ++k) {
-    const double x = below.x0 + (static_cast<double>(k) + 0.5) * kGridMm;
+    const double x = below.x0 + (static_cast<double>(k) + 0.5) * below.dx;
     const double u = (x - c) / a;
     if (u > 1.0) break;
     if (u >= -1.0) columns.push_back({below.At(x), b * Half(u, p)});
@@ -33,11 +33,11 @@ std::vector<Column> Columns(const Surface& below, double c, double a, double b, 
 
 // The bead's material with its centre at height zc: the part of it above
 // the old surface.
-double MaterialArea(const std::vector<Column>& columns, double zc, bool fill_under) {
+double MaterialArea(const std::vector<Column>& columns, double dx, double zc, bool fill_under) {
   double area = 0.0;
   for (const Column& col : columns) {
     const double bottom = fill_under ? col.below : std::max(zc - col.h, col.below);
-    area += std::max(0.0, zc + col.h - bottom) * kGridMm;
+    area += std::max(0.0, zc + col.h - bottom) * dx;
   }
   return area;
 }
@@ -53,13 +53,13 @@ Surface Lay(const Surface& below, const Layer& layer, double a, double b, double
   const std::vector<Column> columns = Columns(below, layer.center, a, b, exponent);
   for (int it = 0; it < 60; ++it) {
     const double mid = 0.5 * (lo + hi);
-    (MaterialArea(columns, mid, fill_under) < layer.area ? lo : hi) = mid;
+    (MaterialArea(columns, below.dx, mid, fill_under) < layer.area ? lo : hi) = mid;
   }
   const double zc = 0.5 * (lo + hi);
   if (zc_out) *zc_out = zc;
   Surface top = below;
   for (std::size_t k = 0; k < top.z.size(); ++k) {
-    const double u = (below.x0 + static_cast<double>(k) * kGridMm - layer.center) / a;
+    const double u = (below.x0 + static_cast<double>(k) * below.dx - layer.center) / a;
     if (std::abs(u) <= 1.0) top.z[k] = std::max(top.z[k], zc + b * Half(u, exponent));
   }
   return top;

@@ -43,7 +43,8 @@ Surface LayRoads(const PartTwinConfig& c, const RoadPrinter& printer, double p, 
                  std::vector<PartRoadTruth>& truth) {
   Surface s;
   s.x0 = -c.field_half_mm - 6.0;
-  s.z.assign(static_cast<std::size_t>(2.0 * (c.field_half_mm + 6.0) / kGridMm) + 1, 0.0);
+  s.dx = TruthGridMm(c.point_spacing_mm);
+  s.z.assign(static_cast<std::size_t>(2.0 * (c.field_half_mm + 6.0) / s.dx) + 1, 0.0);
   const double a = 0.5 * c.width_mm, b = c.aspect * a;
   const std::size_t first = truth.size();
   for (int k = 0; k < c.roads; ++k) {
@@ -62,13 +63,13 @@ Surface LayRoads(const PartTwinConfig& c, const RoadPrinter& printer, double p, 
   std::vector<double> cuts{s.x0};
   for (int k = 0; k + 1 < c.roads; ++k) {
     double at = truth[first + k].center_x_mm, low = 1e300;
-    for (double x = truth[first + k].center_x_mm; x <= truth[first + k + 1].center_x_mm; x += kGridMm)
+    for (double x = truth[first + k].center_x_mm; x <= truth[first + k + 1].center_x_mm; x += s.dx)
       if (s.At(x) < low) low = s.At(x), at = x;
     cuts.push_back(at);
   }
-  cuts.push_back(s.x0 + static_cast<double>(s.z.size() - 1) * kGridMm);
+  cuts.push_back(s.x0 + static_cast<double>(s.z.size() - 1) * s.dx);
   for (int k = 0; k < c.roads; ++k)
-    for (double x = cuts[k]; x < cuts[k + 1]; x += kGridMm) truth[first + k].naive_area_mm2 += s.At(x) * kGridMm;
+    for (double x = cuts[k]; x < cuts[k + 1]; x += s.dx) truth[first + k].naive_area_mm2 += s.At(x) * s.dx;
   return s;
 }
 

@@ -52,11 +52,12 @@ class WallPrinter {
   std::vector<Surface> Stack(int n, double p) const {
     Surface bed;
     bed.x0 = -c_.field_half_mm - 6.0;
-    bed.z.assign(static_cast<std::size_t>(2.0 * (c_.field_half_mm + 6.0) / kGridMm) + 1, 0.0);
+    bed.dx = TruthGridMm(c_.point_spacing_mm);
+    bed.z.assign(static_cast<std::size_t>(2.0 * (c_.field_half_mm + 6.0) / bed.dx) + 1, 0.0);
     // A pipe's top, its crest at x = 0, z = 0, when the bed is a cylinder.
     const double r = c_.bed_radius_mm;
     for (std::size_t k = 0; k < bed.z.size() && r > 0; ++k) {
-      const double x = bed.x0 + static_cast<double>(k) * kGridMm;
+      const double x = bed.x0 + static_cast<double>(k) * bed.dx;
       bed.z[k] = std::sqrt(std::max(r * r - x * x, 0.0)) - r;
     }
     std::vector<Surface> stack{bed};
@@ -92,8 +93,8 @@ PartTruthRow Truth(const WallPrinter& printer, const std::vector<Surface>& stack
   double first = 1e300, last = -1e300;
   for (std::size_t k = 0; k < now.z.size(); ++k) {
     const double gain = now.z[k] - before.z[k];
-    t.visible_area_mm2 += gain * kGridMm;
-    if (gain > 1e-9) first = std::min(first, now.x0 + k * kGridMm), last = std::max(last, now.x0 + k * kGridMm);
+    t.visible_area_mm2 += gain * now.dx;
+    if (gain > 1e-9) first = std::min(first, now.x0 + k * now.dx), last = std::max(last, now.x0 + k * now.dx);
   }
   t.width_mm = last - first;
   t.height_mm = now.At(layer.center) - before.At(layer.center);

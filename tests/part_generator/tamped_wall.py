@@ -57,11 +57,29 @@ class Config:
     # "lens": the same with two parabolas for the ellipse.
     shape = "tamped"
     aspect = 0.5
+    # Every length (and the noise) this many times the above, the times
+    # kept: speeds and accelerations scaled with the lengths, flows with
+    # their cubes (a glue bead at 0.1, a large-scale printer's at 4).
+    scale = 1.0
 
 
-def contour(c, step=0.01):
+def scaled(c, k):
+    """c with every length k times (Config.scale)."""
+    for name in ("length_mm", "width_mm", "corner_radius_mm", "layer_height_mm", "speed_mm_s",
+                 "lateral_accel_mm_s2", "tangential_accel_mm_s2", "profile_spacing_mm", "trail_mm",
+                 "field_half_mm", "spot_mm", "noise_mm", "pass_shift_sigma_mm", "wander_sigma_mm",
+                 "standoff_mm", "fine_mm"):
+        setattr(c, name, getattr(c, name) * k)
+    c.flow_mm3_s *= k**3
+    c.displacement_mm3_per_rev *= k**3
+    c.scale *= k
+    return c
+
+
+def contour(c, step=None):
     """The rounded rectangle's path length and curvature radius at each
     step (inf on the straights); the path starts midway along a long side."""
+    step = 0.01 * c.scale if step is None else step
     straight_l, straight_w = c.length_mm - 2 * c.corner_radius_mm, c.width_mm - 2 * c.corner_radius_mm
     arc = 0.5 * math.pi * c.corner_radius_mm
     pieces = [0.5 * straight_l, arc, straight_w, arc, straight_l, arc, straight_w, arc, 0.5 * straight_l]
@@ -140,14 +158,15 @@ def pressed(x, surface, centre, top_z, aspect, a, lens=False):
 def lay_pressed(c, x, surface, centre, base, area):
     """Each profile's pressed ellipse of the given area: its half-width by
     Newton's steps on a difference quotient."""
-    window = np.abs(x) <= 11.0
+    window = np.abs(x) <= 11.0 * c.scale
     xw, sw = x[window], surface[:, window]
     top_z = base + c.layer_height_mm
     a = np.sqrt(area / (math.pi * c.aspect))
     for _ in range(8):
         got, _ = pressed(xw, sw, centre, top_z, c.aspect, a, c.shape == "lens")
-        more, _ = pressed(xw, sw, centre, top_z, c.aspect, a + 1e-3, c.shape == "lens")
-        a = np.clip(a + (area - got) * 1e-3 / np.maximum(more - got, 1e-9), 0.5, 12.0)
+        da = 1e-3 * c.scale
+        more, _ = pressed(xw, sw, centre, top_z, c.aspect, a + da, c.shape == "lens")
+        a = np.clip(a + (area - got) * da / np.maximum(more - got, 1e-9 * c.scale**2), 0.5 * c.scale, 12.0 * c.scale)
     material, top = pressed(xw, sw, centre, top_z, c.aspect, a, c.shape == "lens")
     after = surface.copy()
     after[:, window] = np.where(np.isnan(top), sw, np.fmax(sw, top))
@@ -165,7 +184,7 @@ def lay_layer(c, x, surface, centre, base, area):
     if c.shape in ("pressed", "lens"):
         return lay_pressed(c, x, surface, centre, base, area)
     h = c.layer_height_mm
-    window = np.abs(x) <= 12.0
+    window = np.abs(x) <= 12.0 * c.scale
     xw, sw = x[window], surface[:, window]
     width = np.maximum(area / h + (1 - math.pi / 4) * h, 1.5 * h)
     for _ in range(12):
@@ -205,7 +224,7 @@ def generate(c, seed):
     shifts = rng.normal(0, c.pass_shift_sigma_mm, c.layers)
     wander = rng.normal(0, c.wander_sigma_mm, c.layers)
     centre_bed = shifts + wander  # each layer's bead in the bed frame
-    x_fine = np.arange(-c.field_half_mm - 2, c.field_half_mm + 2, c.fine_mm)
+    x_fine = np.arange(-c.field_half_mm - 2 * c.scale, c.field_half_mm + 2 * c.scale, c.fine_mm)
     x_sensor = np.linspace(-c.field_half_mm, c.field_half_mm, c.points)
 
     def nozzle_time(layer, p):
@@ -271,11 +290,11 @@ def write(out_dir, c, profiles, truth, log, x_sensor):
                     f"{n},{p[i]:.5f},{t[i]:.6f},{area[i]:.6f},{height[i]:.6f},{width[i]:.6f},"
                     f"{centre:.6f},{offset:.6f},{melt[i]:.6f}\n"
                 )
-    edge = c.field_half_mm
+    edge, area = c.field_half_mm, 7 * c.scale
     with open(os.path.join(out_dir, "rig.yaml"), "w") as f:
         f.write(
             "name: tamped-wall\npart:\n  bed: flat\nsensor:\n"
-            f"  reference_areas_mm: [[{-edge}, {-edge + 7}], [{edge - 7}, {edge}]]\n"
+            f"  reference_areas_mm: [[{-edge}, {-edge + area}], [{edge - area}, {edge}]]\n"
         )
 
 
@@ -284,9 +303,10 @@ def main():
     ap.add_argument("out_dir")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--layers", type=int, default=Config.layers)
-    ap.add_argument("--spacing-mm", type=float, default=None, help="the sensor's point spacing (points over 40 mm)")
+    ap.add_argument("--spacing-mm", type=float, default=None, help="the sensor's point spacing (points over the field, 40 mm times the scale)")
     ap.add_argument("--contour-mm", type=float, nargs=2, default=None, help="the contour's length and width")
     ap.add_argument("--shape", choices=("tamped", "pressed", "lens"), default="tamped")
+    ap.add_argument("--scale", type=float, default=1.0, help="every length (and the noise) this many times")
     ap.add_argument("--spot-mm", type=float, default=Config.spot_mm,
                     help="the laser spot each point averages over (a small value: points that do not average)")
     args = ap.parse_args()
@@ -296,6 +316,7 @@ def main():
     c.layers = args.layers
     if args.contour_mm:
         c.length_mm, c.width_mm = args.contour_mm
+    scaled(c, args.scale)
     if args.spacing_mm:
         c.points = int(round(2 * c.field_half_mm / args.spacing_mm)) + 1
     write(args.out_dir, c, *generate(c, args.seed))
