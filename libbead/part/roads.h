@@ -27,8 +27,9 @@
 //    width the overlap models' spacing is over); centre: its arc's apex;
 //    height: its arc's apex over the surface below;
 //  - the number of roads: the crests of the smoothed gain that stand out
-//    of the valleys beside them by the detection threshold and by
-//    min_valley_fraction of their height (a flat top whose valleys have
+//    of the valleys beside them by threshold_sigmas noise sigmas (not the
+//    threshold's floor in mm) and by min_valley_fraction of their height
+//    (a flat top whose valleys have
 //    filled, below the overlap models' critical spacing, shows one road
 //    where there were more: the data cannot tell them apart);
 //  - spacing: a road's centre less the centre of the road before it, over
