@@ -190,8 +190,7 @@ int MeasurePartScan(const std::string& rig_path, const std::string& run, const s
   const RunArchive scan = ReadPartScan(run, false, false);
   const Rig rig = PartRigSaying(rig_path);
   part::PartGeometryCsvWriter out(output);
-  part::MeasurePartOptions options;
-  options.bed = bed;
+  part::MeasurePartOptions options = part::PartOptionsFor(bed);
   const auto start = std::chrono::steady_clock::now();
   const auto layers = part::MeasurePartFile(
       run, *scan.part, rig, options, threads, [&](const part::PartGeometryRow& r) { out.Append(r); },
@@ -262,12 +261,10 @@ void SaySeenFlow(const std::vector<part::LayerSummary>& layers) {
 int MeasureRoads(const std::string& rig_path, const std::string& run, const std::string& output,
                  const ProfileOptions& bed, bool laid_left_first, unsigned threads) {
   const Rig rig = PartRigSaying(rig_path);
-  part::MeasurePartOptions options;
-  options.bed = bed;
+  part::MeasurePartOptions options = part::PartOptionsFor(bed);
   options.several_beads = true;
   options.correct_hidden = false;  // the roads' rows carry no corrected area: its fit would be thrown away
   options.roads.laid_left_first = laid_left_first;
-  options.roads.spike_mm = bed.bead.spike_mm;
   WorkerPool pool(threads);
   std::unique_ptr<ProfileStream> stream;
   PartPlaces places;
@@ -318,8 +315,7 @@ int FlowPartScan(const std::string& rig_path, const std::string& run, const std:
   if (!scan.log) throw NoNozzleLog(run);
   const Rig rig = PartRigSaying(rig_path);
   part::PartFlowCsvWriter out(output);
-  part::MeasurePartOptions options;
-  options.bed = bed;
+  part::MeasurePartOptions options = part::PartOptionsFor(bed);
   const auto start = std::chrono::steady_clock::now();
   const part::PartScanFlow f = part::MeasurePartScanFlow(
       run, *scan.part, &*scan.log, rig, options, 0, nullptr, [&](const part::PartFlowRow& row) { out.Append(row); },

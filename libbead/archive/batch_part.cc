@@ -16,8 +16,7 @@ void ProcessPartScan(const BatchRun& job, const std::string& dir, const BatchOpt
   const RigFile rig = ReadPartRigFile(job.rig);
   r.warnings.insert(r.warnings.end(), rig.warnings.begin(), rig.warnings.end());
   const RunArchive scan = ReadPartScan(job.run, /*with_profiles=*/false, /*with_log=*/true);
-  part::MeasurePartOptions measure;
-  measure.bed = options.profile;
+  const part::MeasurePartOptions measure = part::PartOptionsFor(options.profile);
   part::PartGeometryCsvWriter geometry(dir + "/geometry.csv");
   std::optional<part::PartFlowCsvWriter> flow;
   if (scan.log) flow.emplace(dir + "/flow.csv");

@@ -244,6 +244,17 @@ class PartMeasurer {
 
 }  // namespace
 
+MeasurePartOptions PartOptionsFor(const ProfileOptions& profile) {
+  MeasurePartOptions o;
+  o.bed = profile;
+  const BeadOptions& b = profile.bead;
+  o.added.min_threshold_mm = o.roads.min_threshold_mm = b.min_threshold_mm;
+  o.added.threshold_sigmas = o.roads.threshold_sigmas = b.threshold_sigmas;
+  o.added.max_gap_mm = o.roads.max_gap_mm = b.max_gap_mm;
+  o.roads.spike_mm = b.spike_mm;
+  return o;
+}
+
 double LayerSummary::MedianShift() const {
   if (shifts_mm.empty()) return kNaN();
   std::vector<double> v = shifts_mm;

@@ -73,6 +73,13 @@ struct MeasurePartOptions {
   RoadOptions roads;
 };
 
+// The options a profile is measured with (the user's threshold, its noise
+// sigmas, the longest dropout bridged, the spike rule), carried to every
+// layer: layer 0's bed, the bead added over the layer below, and the roads.
+// (Given only to the processor that fits layer 0's bed line, a part's
+// --threshold-mm changed no layer's bead.)
+MeasurePartOptions PartOptionsFor(const ProfileOptions& profile);
+
 // A layer's rows in brief, for the tools' report.
 struct LayerSummary {
   int64_t layer = 0;

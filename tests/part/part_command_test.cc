@@ -71,6 +71,30 @@ TEST(PartCommand, SimulateThenMeasureWritesThePartGeometryCsv) {
   for (std::size_t k = 0; k < flow_spec.size(); ++k) EXPECT_EQ(flow[0][k], flow_spec[k]);
 }
 
+// The profile options a user gives hold on every layer, not only on the
+// bed's: a threshold over every bead's height (the twin's gain 2-3 mm a
+// layer) finds no bead on any layer. (Given only to the processor that
+// fits the bed's line, it changed no layer's bead: each was measured as if
+// the threshold were 0.05 mm.)
+TEST(PartCommand, AUsersThresholdHoldsOnEveryLayer) {
+  test::TempDir dir;
+  ASSERT_FALSE(SimulatedAndMeasured(dir, "seed: 4\npart:\n  layers: 3\n  length_mm: 20\n").empty());
+  auto [code, out] = test::RunCli(dir, "measure --threshold-mm 10 --rig " + (dir / "sim/rig.yaml") + " " +
+                                           (dir / "sim/part.h5") + " -o " + (dir / "high.csv"));
+  ASSERT_EQ(code, 0) << out;
+  const auto geo = CsvRows(dir / "geo.csv"), high = CsvRows(dir / "high.csv");
+  ASSERT_EQ(geo.size(), high.size());
+  std::vector<int> valid(3, 0), valid_high(3, 0);
+  for (std::size_t i = 1; i < geo.size(); ++i) {
+    const int layer = std::stoi(geo[i][2]);
+    valid[layer] += geo[i][8] == "1", valid_high[layer] += high[i][8] == "1";
+  }
+  for (int layer = 0; layer < 3; ++layer) {
+    EXPECT_GT(valid[layer], 0) << layer;
+    EXPECT_EQ(valid_high[layer], 0) << "layer " << layer << ": a bead found under a 10 mm threshold";
+  }
+}
+
 // Beads sunk so deep that their sides meet the surface below show no walls
 // to solve their exponent on, and overhang nothing: no shape is claimed
 // (not one found within two sigmas, nor the fits' aspect), and nothing is
