@@ -179,13 +179,16 @@ void SetProfilerPoints(const PartTwinConfig& c, ProfileBlock& b) {
     b.x_mm.push_back(static_cast<float>(-c.field_half_mm + static_cast<double>(j) * c.point_spacing_mm));
 }
 
+double ReferenceWidthMm(const PartTwinConfig& c) { return std::min(5.0, 0.25 * c.field_half_mm); }
+
 Rig PartTwinRig(const PartTwinConfig& c, const std::string& name) {
   Rig rig;
   rig.name = name;
   rig.has_wheel = false;
   rig.part = PartBed{};
-  rig.reference_left = {-c.field_half_mm, -c.field_half_mm + 5.0};
-  rig.reference_right = {c.field_half_mm - 5.0, c.field_half_mm};
+  const double w = ReferenceWidthMm(c);
+  rig.reference_left = {-c.field_half_mm, -c.field_half_mm + w};
+  rig.reference_right = {c.field_half_mm - w, c.field_half_mm};
   return rig;
 }
 

@@ -109,7 +109,10 @@ struct PartTwin {
 
 // What every part twin shares: the profiler's points across the part
 // (field_half_mm either side, point_spacing_mm apart), and the rig (no
-// wheel; the bed's reference areas the field's outer 5 mm either side).
+// wheel; the bed's reference areas the field's outer ReferenceWidthMm
+// either side: 5 mm, or a quarter of field_half_mm where that is less, a
+// glue bead's field of +-2 mm).
+double ReferenceWidthMm(const PartTwinConfig& config);
 void SetProfilerPoints(const PartTwinConfig& config, ProfileBlock& profiles);
 Rig PartTwinRig(const PartTwinConfig& config, const std::string& name);
 

@@ -92,10 +92,11 @@ void ParsePart(const YAML::Node& root, const Reader& r, PartTwinConfig& c) {
   r.Get(p, at, "road_spacing_mm", c.road_spacing_mm, 0.01, 1e3);
   if (c.roads > 1 && (c.layers != 1 || c.bed_radius_mm > 0))
     r.Fail(p["roads"], at + "roads", "above 1 is one layer of roads on a flat bed: set layers: 1 and no bed_radius_mm");
-  const double span = 0.5 * (c.roads - 1) * c.road_spacing_mm;
-  if (c.roads > 1 && c.field_half_mm <= span + 0.5 * c.width_mm + 5.0)
+  const double span = 0.5 * (c.roads - 1) * c.road_spacing_mm, bare = ReferenceWidthMm(c);
+  if (c.roads > 1 && c.field_half_mm <= span + 0.5 * c.width_mm + bare)
     r.Fail(p["field_half_mm"], at + "field_half_mm",
-           "must leave 5 mm of bare bed beside the outer roads (more than (roads - 1) spacing / 2 + width / 2 + 5)");
+           "must leave the reference areas' bare bed (5 mm, or a quarter of field_half_mm if less) beside the outer "
+           "roads: more than (roads - 1) spacing / 2 + width / 2 + that");
   if (c.bed_radius_mm > 0 && c.bed_radius_mm <= c.field_half_mm)
     r.Fail(p["bed_radius_mm"], at + "bed_radius_mm", "must exceed field_half_mm: the pipe spans the profile");
   if (c.area_wave_mm2 >= c.area_mm2) r.Fail(p["area_wave_mm2"], at + "area_wave_mm2", "must be less than area_mm2");
@@ -110,9 +111,10 @@ void ParsePart(const YAML::Node& root, const Reader& r, PartTwinConfig& c) {
          << " mm^2: it would float off the surface below; lower the area or widen the bead";
     r.Fail(p["area_mm2"], at + "area_mm2", what.str());
   }
-  if (c.field_half_mm <= 0.5 * c.width_mm + 5.0)
+  if (c.field_half_mm <= 0.5 * c.width_mm + bare)
     r.Fail(p["field_half_mm"], at + "field_half_mm",
-           "must leave 5 mm of bare bed beside the bead (more than width/2 + 5)");
+           "must leave the reference areas' bare bed (5 mm, or a quarter of field_half_mm if less) beside the bead: "
+           "more than width / 2 + that");
 }
 
 void WriteTruth(const std::string& path, const std::vector<PartTruthRow>& rows) {

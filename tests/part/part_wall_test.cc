@@ -175,30 +175,36 @@ sim::PartTwin ScaledWall(double k) {
 }
 
 // The default wall four times larger (a large-scale printer's 24 mm bead
-// seen by a profiler whose points lie 0.2 mm apart, its noise 0.04 mm) is
-// measured as the wall itself: its shifts found in as many profiles (where
-// a layer lies straight over the one below, nothing of that one shows and
-// no shift is found, at either scale), its areas, widths and offsets off
-// by k^2, k and k times the wall's. A wall's sampling places a shift no
-// closer than spacing / sqrt 12 = 0.058 mm here, beyond the 0.05 mm a
-// shift's sigma was held to: no shift was found on any layer ("the layer
-// below shows nowhere beside the new bead"), no wander reported.
-TEST(PartWall, AWallFourTimesLargerSeenByACoarserSensorIsMeasuredAsTheWall) {
-  constexpr double k = 4.0;
-  Errors e1, ek;
-  const sim::PartTwin wall = ScaledWall(1.0), large = ScaledWall(k);
+// seen by a profiler whose points lie 0.2 mm apart, its noise 0.04 mm) and
+// a tenth its size (a glue bead 0.6 mm wide over a field of +-2 mm, points
+// 5 um apart) is measured as the wall itself: its shifts found in as many
+// profiles (where a layer lies straight over the one below, nothing of
+// that one shows and no shift is found, at any scale), its areas, widths
+// and offsets off by k^2, k and k times the wall's. Four times larger, a
+// wall's sampling placed a shift no closer than spacing / sqrt 12 =
+// 0.058 mm, beyond the 0.05 mm a shift's sigma was held to: no shift was
+// found on any layer ("the layer below shows nowhere beside the new
+// bead"), no wander reported. A tenth the size, the shift was searched
+// over +-3 mm, wider than the field: every cost 0, no shift found.
+TEST(PartWall, AWallFourTimesLargerOrATenthTheSizeIsMeasuredAsTheWall) {
+  Errors e1;
+  const sim::PartTwin wall = ScaledWall(1.0);
   Collect(wall, Measure(wall.scan, wall.rig, true), e1);
-  Collect(large, Measure(large.scan, large.rig, true), ek);
-  std::printf("wall / %g times larger: area rms %.4f / %.4f mm^2, offset rms %.4f / %.4f mm in %d / %d\n", k,
-              Rms(e1.area), Rms(ek.area), Rms(e1.offset), Rms(ek.offset), e1.shift_found, ek.shift_found);
-  EXPECT_EQ(ek.area.size(), large.truth.size()) << "every profile of the wall is measured";
-  EXPECT_LT(Rms(ek.area), k * k * kAreaBound);
-  EXPECT_LT(Rms(ek.width), k * kWidthBound);
-  // As many shifts found, within a tenth (the search's own steps are not
-  // all in spacings), and each to its sampling.
-  EXPECT_GE(ek.shift_found, static_cast<int>(0.9 * e1.shift_found));
-  EXPECT_LT(Rms(ek.offset), k * (2.0 * 0.05 / std::sqrt(12.0) * std::sqrt(2.0) + 0.01));
-  EXPECT_GE(ek.shift_covered, static_cast<int>(0.9 * ek.shift_found));
+  for (double k : {4.0, 0.1}) {
+    Errors ek;
+    const sim::PartTwin scaled = ScaledWall(k);
+    Collect(scaled, Measure(scaled.scan, scaled.rig, true), ek);
+    std::printf("wall / %g times the size: area rms %.4f / %.6f mm^2, offset rms %.4f / %.5f mm in %d / %d\n", k,
+                Rms(e1.area), Rms(ek.area), Rms(e1.offset), Rms(ek.offset), e1.shift_found, ek.shift_found);
+    EXPECT_EQ(ek.area.size(), scaled.truth.size()) << k << ": every profile of the wall is measured";
+    EXPECT_LT(Rms(ek.area), k * k * kAreaBound) << k;
+    EXPECT_LT(Rms(ek.width), k * kWidthBound) << k;
+    // As many shifts found, within a tenth (the search's own steps are
+    // not all in spacings), and each to its sampling.
+    EXPECT_GE(ek.shift_found, static_cast<int>(0.9 * e1.shift_found)) << k;
+    EXPECT_LT(Rms(ek.offset), k * (2.0 * 0.05 / std::sqrt(12.0) * std::sqrt(2.0) + 0.01)) << k;
+    EXPECT_GE(ek.shift_covered, static_cast<int>(0.9 * ek.shift_found)) << k;
+  }
 }
 
 // A fine sensor (1 um of noise, read at the 2 um floor) over a textured
