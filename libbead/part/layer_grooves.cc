@@ -56,7 +56,7 @@ void Apply(const HiddenGroove& g, double spacing, PartGeometryRow& row) {
                 (row.bead.edge_left_mm * row.bead.edge_left_mm + row.bead.edge_right_mm * row.bead.edge_right_mm);
   const double corrected = row.bead.area_mm2 + g.seen_adjust_mm2 - g.hidden_mm2;
   const double sigma = std::sqrt(g.sigma_mm2 * g.sigma_mm2 + edges / 12.0 + row.bead.AreaNoiseVar(spacing) +
-                                 row.below_change_var_mm4 + TopMissVar(g, row));
+                                 row.below_change_var_mm4 + row.below_bend_var_mm4 + TopMissVar(g, row));
   if (g.ok && corrected > 0.0 && sigma < 0.5 * corrected)
     row.area_corrected_mm2 = corrected, row.area_corrected_sigma_mm2 = sigma;
 }

@@ -203,7 +203,10 @@ class PartMeasurer {
     if (under && options_.several_beads) row.roads = RoadsOver(mine, noise, *under, row.bead.shift_mm, options_.roads);
     mine.center_x_mm = row.bead.valid() ? row.bead.center_x_mm : std::nan("");
     mine.area_mm2 = row.bead.valid() ? row.bead.area_mm2 : std::nan("");
-    if (row.layer > 0 && row.bead.valid()) row.below_change_var_mm4 = below_.ChangeAt(row.path_mm).Variance();
+    if (row.layer > 0 && row.bead.valid()) {
+      const BelowChange change = below_.ChangeAt(row.path_mm);
+      row.below_change_var_mm4 = change.Variance(), row.below_bend_var_mm4 = change.BendVariance();
+    }
     if (row.layer > 0 && row.bead.valid() && (row.bead.shift_constrained || !options_.register_layers))
       row.offset_below_mm = row.bead.center_x_mm - (below_.CenterAt(row.path_mm) + row.bead.shift_mm);
     const bool groove = under && row.bead.valid() && options_.correct_hidden;

@@ -44,6 +44,7 @@ struct PartGeometryRow {
   // The variance the layer below's blend along the path leaves in the
   // corrected area (part/surface_below.h BelowChange), mm^4; in its sigma.
   double below_change_var_mm4 = 0.0;
+  double below_bend_var_mm4 = 0.0;  // BelowChange::BendVariance
   // Where there is none on a valid row because the bead's outline is not
   // one the model knows (part/hidden_groove.h), why.
   OutlineMisfit outline_misfit = OutlineMisfit::kNone;

@@ -285,7 +285,9 @@ void SurfaceBelow::Steps() {
     if (std::isfinite(off[k])) sizes.push_back(off[k]);
   }
   if (sizes.empty()) return;
-  const double beyond = 3.0 * 1.4826 * MiddleInPlace(sizes);
+  // (At least 1e-6 mm^2, far under any profile's area noise: a layer
+  // whose areas lie on their trend to rounding had every pair a step.)
+  const double beyond = std::max(3.0 * 1.4826 * MiddleInPlace(sizes), 1e-6);
   for (std::size_t k = 0; k < pairs; ++k)
     if (off[k] > beyond)
       for (std::size_t n = k > 0 ? k - 1 : 0; n <= std::min(k + 1, pairs - 1); ++n) below_[n].step = true;
@@ -297,6 +299,12 @@ BelowChange SurfaceBelow::ChangeAt(double path) const {
   if (!Neighbours(path, i, j, c.w, nullptr) || i == j) return c;
   c.change_mm2 = below_[j].area_mm2 - below_[i].area_mm2;
   c.step = below_[i].step;
+  const double before = i > 0 ? c.change_mm2 - (below_[i].area_mm2 - below_[i - 1].area_mm2) : kNaN;
+  const double after = j + 1 < below_.size() ? below_[j + 1].area_mm2 - below_[j].area_mm2 - c.change_mm2 : kNaN;
+  c.bend_mm2 = std::isfinite(before) && std::isfinite(after) ? 0.5 * (before + after)
+               : std::isfinite(before)                       ? before
+               : std::isfinite(after)                        ? after
+                                                             : 0.0;
   return c;
 }
 
