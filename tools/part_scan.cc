@@ -140,6 +140,11 @@ void SayLayers(const std::vector<part::LayerSummary>& layers) {
       std::printf("; pass shift %+.3f mm (median; found in %zu profiles)\n", l.MedianShift(), l.shift_found);
     else
       std::printf("; pass shift not found (the layer below shows nowhere beside the new bead): no offset\n");
+    if (l.layer > 0 && l.no_surface_below && l.no_surface_below < l.profiles)
+      std::printf(
+          "    %zu profiles lie where layer %lld's profiles around them are more than %.0f mm of path apart, or it "
+          "ends more than that before them (status no_surface_below): its surface there is not known\n",
+          l.no_surface_below, static_cast<long long>(l.layer - 1), part::SurfaceBelowOptions{}.max_path_gap_mm);
     SayNoBareBed(l.bead_in_reference, l.reference_not_a_line, "    ");
     if (l.Misfits()) SayMisfits(l);
     if (l.valid > l.corrected + l.Misfits())

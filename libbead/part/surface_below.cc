@@ -233,11 +233,16 @@ bool SurfaceBelow::Neighbours(double path, std::size_t& i, std::size_t& j, doubl
   j = static_cast<std::size_t>(it - below_.begin());
   if (j == below_.size()) j = below_.size() - 1;
   i = j > 0 && below_[j].path_mm > path ? j - 1 : j;
-  const double gap = std::max(std::abs(path - below_[i].path_mm), std::abs(below_[j].path_mm - path));
+  // Between two profiles: their distance apart (the blend spans it all,
+  // wherever the place lies in it); beyond the layer's ends: the nearest's.
+  // (The farther neighbour's distance refused a layer scanned every 6 mm
+  // where its places fell 0.5 mm before the layer below's, and measured
+  // the next, whose fell 1.8 mm after them.)
+  const double gap = i == j ? std::abs(path - below_[i].path_mm) : below_[j].path_mm - below_[i].path_mm;
   if (gap > options_.max_path_gap_mm) {
     if (why)
-      *why = "layer " + std::to_string(layer_ - 1) + " was not scanned within " +
-             std::to_string(options_.max_path_gap_mm) + " mm of path " + std::to_string(path) + " mm";
+      *why = "layer " + std::to_string(layer_ - 1) + "'s profiles around path " + std::to_string(path) +
+             " mm lie more than " + std::to_string(options_.max_path_gap_mm) + " mm apart";
     return false;
   }
   const double span = below_[j].path_mm - below_[i].path_mm;

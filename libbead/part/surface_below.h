@@ -198,8 +198,10 @@ struct BelowChange {
 };
 
 struct SurfaceBelowOptions {
-  // The layer below is not known at a place farther than this from its
-  // nearest profile (a stretch not scanned), mm along the path.
+  // The layer below is not known between two of its profiles farther
+  // apart than this, nor beyond its ends by more (a stretch not scanned,
+  // or profiles too far apart for their blend to stand for what lies
+  // between them), mm along the path.
   double max_path_gap_mm = 5.0;
   // A gap between a stored profile's valid points longer than this is
   // not bridged (the surface there is unknown), mm.

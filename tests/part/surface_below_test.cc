@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 namespace bead::part {
 namespace {
@@ -240,6 +241,30 @@ TEST(SurfaceBelow, ALayerCurvingAlongThePathBetweenItsProfilesIsTheBlendsVarianc
       const double blend = (1.0 - c.w) * area(4.0 * std::floor(path / 4.0)) + c.w * area(4.0 * std::ceil(path / 4.0));
       EXPECT_NEAR(std::sqrt(c.BendVariance()), std::abs(blend - area(path)), 1e-9) << curve << " " << path;
     }
+  }
+}
+
+// A layer below scanned every 6 mm of path (a slow profiler): no place
+// between two of its profiles is known, wherever it lies between them (the
+// farther neighbour's distance decided it, so a layer whose places fell
+// just before the layer below's was refused and one whose fell after them
+// was measured, its intervals covering two rows in three); every 4 mm,
+// every place is, and past the layer's ends within 5 mm of its last.
+TEST(SurfaceBelow, ProfilesFartherApartThanTheGapLeaveNoPlaceBetweenThemKnown) {
+  const auto flat = [](double z) { return [z](double) { return z; }; };
+  for (const double apart : {4.0, 6.0}) {
+    SurfaceBelow below;
+    below.BeginLayer(0);
+    for (int k = 0; k < 8; ++k) below.Keep(Profile(apart * k + 1.0, -10.0, 41, flat(1.0)));
+    below.BeginLayer(1);
+    for (double phase : {0.1, 0.5, 1.8, 3.0}) {
+      std::string why;
+      const bool known = below.At(apart * 3 + 1.0 + phase, &why).has_value();
+      EXPECT_EQ(known, apart < 5.0) << apart << " " << phase;
+      if (!known) EXPECT_NE(why.find("apart"), std::string::npos) << why;
+    }
+    EXPECT_TRUE(below.At(apart * 7 + 1.0 + 4.9, nullptr).has_value()) << apart << ": 4.9 mm past the last";
+    EXPECT_FALSE(below.At(apart * 7 + 1.0 + 5.1, nullptr).has_value()) << apart << ": 5.1 mm past the last";
   }
 }
 
