@@ -195,7 +195,7 @@ int MeasurePartScan(const std::string& rig_path, const std::string& run, const s
   const RunArchive scan = ReadPartScan(run, false, false);
   const Rig rig = PartRigSaying(rig_path);
   part::PartGeometryCsvWriter out(output);
-  part::MeasurePartOptions options = part::PartOptionsFor(bed);
+  const part::MeasurePartOptions options = part::PartOptionsFor(bed);
   const auto start = std::chrono::steady_clock::now();
   const auto layers = part::MeasurePartFile(
       run, *scan.part, rig, options, threads, [&](const part::PartGeometryRow& r) { out.Append(r); },
@@ -320,7 +320,7 @@ int FlowPartScan(const std::string& rig_path, const std::string& run, const std:
   if (!scan.log) throw NoNozzleLog(run);
   const Rig rig = PartRigSaying(rig_path);
   part::PartFlowCsvWriter out(output);
-  part::MeasurePartOptions options = part::PartOptionsFor(bed);
+  const part::MeasurePartOptions options = part::PartOptionsFor(bed);
   const auto start = std::chrono::steady_clock::now();
   const part::PartScanFlow f = part::MeasurePartScanFlow(
       run, *scan.part, &*scan.log, rig, options, 0, nullptr, [&](const part::PartFlowRow& row) { out.Append(row); },

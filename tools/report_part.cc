@@ -85,7 +85,7 @@ void WritePartReportData(const std::string& rig_path, const std::string& run, co
   const RunArchive scan = ReadPartScan(run, /*with_profiles=*/false, /*with_log=*/true);
   const RigFile rig = ReadPartRigFile(rig_path);
   SayRigWarnings(rig);
-  part::MeasurePartOptions options = part::PartOptionsFor(bed);
+  const part::MeasurePartOptions options = part::PartOptionsFor(bed);
   part::PartGeometryCsvWriter geometry((dir / "part_geometry.csv").string());
   std::optional<part::PartFlowCsvWriter> flow;
   if (scan.log) flow.emplace((dir / "part_flow.csv").string());

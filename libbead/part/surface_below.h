@@ -181,10 +181,10 @@ struct BelowChange {
   double bend_mm2 = 0.0;
   // The variance the blend leaves where the layer curves along the path
   // (no step): a straight blend of a quadratic misses it by w (1 - w) / 2
-  // times its second difference over the pair. (Profiles 3-6 mm apart
-  // along a contour whose beads follow a wave of 40 mm and bulge at its
-  // corners: the blend was off by 0.3-3 mm^2 at sigmas of 0.03-0.1, a
-  // layer's intervals covering 55-75 %.)
+  // times its second difference over the pair. (Profiles 3-4 mm apart
+  // along the twin's contour, whose beads follow a wave of 40 mm and bulge
+  // at its corners: the blend was off by up to 0.5 mm^2 at sigmas of
+  // 0.03-0.1, some layers' intervals covering 55-65 %.)
   double BendVariance() const {
     const double miss = 0.5 * w * (1.0 - w) * bend_mm2;
     return step || !std::isfinite(miss) ? 0.0 : miss * miss;
