@@ -111,12 +111,13 @@ TEST(Roads, EachRoadOfALayerIsCountedPlacedAndGivenItsMaterial) {
   }
 }
 
-// The same roads at a quarter of the twin's size (1.5 mm wide, 0.19 mm
+// The same roads at a quarter of the twin's size (1.5 mm wide, 0.35 mm
 // high, points 12.5 um apart with 2.5 um of noise) and four times it: the
 // same figures, the centres' bound scaled. A quarter the size, crests
 // were told from valleys by the detection threshold's floor (0.05 mm, of
-// valleys 0.05 mm deep at 0.7 w) and smoothed over +-0.15 mm (a tenth of
-// a road): at 0.70 w the four roads were counted in 27 of 120 profiles.
+// valleys 0.08-0.11 mm deep at 0.7 w) after smoothing over +-0.15 mm (a
+// tenth of a road, which shallows them further): at 0.70 w the four roads
+// were counted in 27 of 120 profiles.
 TEST(Roads, RoadsAQuarterAndFourTimesTheTwinsSizeAreCountedAsTheTwinsAre) {
   for (double k : {0.25, 4.0}) {
     for (double ratio : {0.70, 0.85}) {
