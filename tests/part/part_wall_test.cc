@@ -13,6 +13,7 @@
 #include "libbead/io/run_archive.h"
 #include "libbead/part/measure_part.h"
 #include "libbead/sim/part_twin.h"
+#include "tests/support/scaled_twin.h"
 #include "tests/support/temp_dir.h"
 
 namespace bead {
@@ -162,16 +163,12 @@ TEST(PartWall, APassShiftedBeyondTheFirstSearchRangeIsFoundWhereItIs) {
   EXPECT_GE(e.shift_covered, static_cast<int>(0.9 * e.shift_found));
 }
 
-// The default wall at a scale: every length (and the noise) k times.
+// The default wall of three layers at a scale (tests/support/scaled_twin.h).
 sim::PartTwin ScaledWall(double k) {
   sim::PartTwinConfig c;
   c.seed = 1;
   c.layers = 3;
-  c.length_mm *= k, c.width_mm *= k, c.area_mm2 *= k * k, c.area_wave_mm2 *= k * k;
-  c.wave_period_mm *= k, c.wander_sigma_mm *= k, c.pass_shift_sigma_mm *= k;
-  c.point_spacing_mm *= k, c.field_half_mm *= k, c.noise_mm *= k;
-  c.profile_spacing_mm *= k, c.trail_mm *= k, c.standoff_mm *= k, c.head_speed_mm_s *= k;
-  return sim::SimulatePartWall(c);
+  return sim::SimulatePartWall(test::Scaled(c, k));
 }
 
 // The default wall four times larger (a large-scale printer's 24 mm bead
