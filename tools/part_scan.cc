@@ -44,6 +44,20 @@ void SayShape(const part::PooledShape& s) {
     std::printf(
         "; an ellipse assumed (too few of its beads overhang to show their walls and solve the exponent): the sigma "
         "is the fitted beads' spread alone, not what a shape other than the ellipse would leave\n");
+  } else if (part::IsStadium(s.exponent)) {
+    // A stadium's p is its corner share c, negated (part/superellipse.h).
+    std::printf(
+        ", a stadium: flat on top, each end a quarter ellipse over %s of the half-width (%s; 1 is the ellipse, the "
+        "aspect half circles; the two errors correlated %+.2f)%s\n",
+        WithSigma(-s.exponent, s.exponent_sigma).c_str(),
+        s.NotAnEllipse() ? "its top flatter than an ellipse's" : "an ellipse, within two sigmas", s.correlation,
+        s.exponent_layer >= 0 ? ", carried from an earlier layer" : "");
+    if (s.Tamped())
+      std::printf(
+          "    held as a tamped bead's: half-height %s mm and ends' arcs %s mm wide in every profile (its aspect and "
+          "corner share from its own width: more flow widens a tamped bead, not heightens it)\n",
+          WithSigma(s.half_height_mm, s.half_height_sigma_mm).c_str(),
+          WithSigma(s.corner_mm, s.corner_sigma_mm).c_str());
   } else {
     // The words follow the model: a shape not an ellipse is fitted as itself.
     const char* words = !s.NotAnEllipse()  ? "an ellipse, within two sigmas"

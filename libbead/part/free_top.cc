@@ -53,8 +53,7 @@ bool Interpolate(const FreeTop f[3], const FreeTop* beyond, int side, Between& o
 // The free solves at the grid's exponents k - 2 .. k + 2 (the top's points
 // of the bead with ends L and R).
 std::array<FreeTop, 5> FiveSolves(const Window& w, std::size_t first, std::size_t last, double L, double R,
-                                  std::size_t k) {
-  const std::vector<double>& grid = SuperellipseGrid();
+                                  std::size_t k, const std::vector<double>& grid) {
   std::array<FreeTop, 5> out;
   for (std::size_t i = 0; i < 5; ++i)
     out[i] = FreeResidual(TableSums(w, first, last, L, R, SuperellipseOf(grid[k + i - 2])));
@@ -71,13 +70,12 @@ struct FreeShape {
   double z0 = NAN, b = NAN, exponent = NAN, residual_variance = NAN, aspect = NAN;
   double aspect_grid_var = 0.0, exponent_grid_var = 0.0;
 };
-bool ShapeBetween(const Window& w, std::size_t first, std::size_t last, double L, double R, std::ptrdiff_t& found,
-                  FreeShape& out) {
-  const std::vector<double>& grid = SuperellipseGrid();
+bool ShapeBetween(const Window& w, std::size_t first, std::size_t last, double L, double R,
+                  const std::vector<double>& grid, std::ptrdiff_t& found, FreeShape& out) {
   for (int moves = 0; moves < 3; ++moves) {
     if (found < 2 || found + 2 >= std::ssize(grid)) return false;
     const auto k = static_cast<std::size_t>(found);
-    const std::array<FreeTop, 5> f5 = FiveSolves(w, first, last, L, R, k);
+    const std::array<FreeTop, 5> f5 = FiveSolves(w, first, last, L, R, k, grid);
     const FreeTop f[3] = {f5[1], f5[2], f5[3]};
     Between there;
     if (!Interpolate(f, nullptr, 0, there)) return false;
@@ -95,13 +93,6 @@ bool ShapeBetween(const Window& w, std::size_t first, std::size_t last, double L
     return std::isfinite(out.aspect) && out.b > 0.0;
   }
   return false;
-}
-
-// |u| at which a top of exponent p stands a share h of its half-height b
-// over z0: (1 - h^p)^(1/p) (h held to [0, 1)).
-double ReachAt(double h, double p) {
-  h = std::clamp(h, 0.0, 1.0 - 1e-9);
-  return std::pow(1.0 - std::pow(h, p), 1.0 / p);
 }
 
 // Where the top f places the ends: the outermost point of the top on each
@@ -145,8 +136,7 @@ constexpr double kSettledCell = 1e-2;
 // the exponent: one least), its exponent, z0 and b between the grid's
 // (Interpolate's parabola).
 std::ptrdiff_t SolveFree(const Window& w, std::size_t first, std::size_t last, double L, double R, Silhouette& s,
-                         std::ptrdiff_t from) {
-  const std::vector<double>& grid = SuperellipseGrid();
+                         std::ptrdiff_t from, const std::vector<double>& grid, double* variance) {
   const auto n = static_cast<std::ptrdiff_t>(grid.size());
   std::vector<FreeTop> solved(grid.size(), FreeTop{NAN});
   // The solve at grid index k (its residual INFINITY off the grid or unsolved).
@@ -166,19 +156,28 @@ std::ptrdiff_t SolveFree(const Window& w, std::size_t first, std::size_t last, d
     return -1;
   const double a = 0.5 * (R - L);
   s.e.p = s.exponent = grid[b], s.aspect = solved[b].b / a;
+  if (variance) *variance = solved[b].rss;
   const FreeTop around[3] = {at(best - 1), solved[b], at(best + 1)};
   Between there;
   if (!Interpolate(around, nullptr, 0, there)) return best;
   s.exponent = grid[b] * std::pow(grid[b + 1] / grid[b], there.x);
   s.aspect = there.b / a;
+  // The residual at the vertex, the parabola's there (the least between
+  // the grid's exponents: two families are compared at their leasts).
+  const double x = there.x;
+  if (variance)
+    *variance =
+        around[0].rss * 0.5 * x * (x - 1.0) + around[1].rss * (1.0 - x * x) + around[2].rss * 0.5 * x * (x + 1.0);
   return best;
 }
 
-// The grid index nearest the ellipse's exponent, where a free search starts.
-std::ptrdiff_t EllipseIndex() {
-  const std::vector<double>& grid = SuperellipseGrid();
+// The grid index nearest the ellipse, where a free search starts.
+std::ptrdiff_t EllipseIndex(const std::vector<double>& grid) {
+  const double ellipse = EllipseOf(grid.front());
   std::ptrdiff_t k = 0;
-  while (k + 1 < std::ssize(grid) && grid[static_cast<std::size_t>(k) + 1] <= 2.0) ++k;
+  while (k + 1 < std::ssize(grid) && std::abs(grid[static_cast<std::size_t>(k) + 1] - ellipse) <
+                                         std::abs(grid[static_cast<std::size_t>(k)] - ellipse))
+    ++k;
   return k;
 }
 
@@ -210,7 +209,7 @@ void EndsVariance(const double ends[2], const double sigma[2], const double mixe
 // it either way), the ends stay at their cells' middles, each anywhere in
 // its cell (uniform: sigma half / sqrt 3).
 void EndsAnywhereInTheirCells(const Window& w, std::size_t first, std::size_t last, double L, double R,
-                              std::ptrdiff_t from, Silhouette& s) {
+                              std::ptrdiff_t from, const std::vector<double>& grid, Silhouette& s) {
   const double ends[2] = {L, R}, unmixed[2] = {0.0, 0.0};
   const double sigma[2] = {0.5 * (s.cell[1] - s.cell[0]) / std::sqrt(3.0),
                            0.5 * (s.cell[3] - s.cell[2]) / std::sqrt(3.0)};
@@ -218,7 +217,7 @@ void EndsAnywhereInTheirCells(const Window& w, std::size_t first, std::size_t la
       ends, sigma, unmixed, s.aspect, s.exponent,
       [&](double l, double r, double& aspect, double& exponent) {
         Silhouette moved = s;
-        if (SolveFree(w, first, last, l, r, moved, from) < 0) return false;
+        if (SolveFree(w, first, last, l, r, moved, from, grid) < 0) return false;
         aspect = moved.aspect, exponent = moved.exponent;
         return true;
       },
@@ -233,7 +232,7 @@ void EndsAnywhereInTheirCells(const Window& w, std::size_t first, std::size_t la
 // grid's exponents interpolated by the parabola alone, -1.7 % on noise-free
 // ellipses (the cubic: under 0.1 %).
 void ShapeByTop(const Window& w, std::size_t first, std::size_t last, double L, double R, std::ptrdiff_t found,
-                Silhouette& s, const double* start) {
+                const std::vector<double>& grid, Silhouette& s, const double* start) {
   FreeShape f;
   double ends[2] = {L, R};
   const auto in_cell = [&](int side, double place) {
@@ -245,11 +244,11 @@ void ShapeByTop(const Window& w, std::size_t first, std::size_t last, double L, 
   if (start && std::isfinite(start[0]) && std::isfinite(start[1])) {
     std::ptrdiff_t at = found;
     const double warm[2] = {in_cell(0, start[0]), in_cell(1, start[1])};
-    if ((solved = ShapeBetween(w, first, last, warm[0], warm[1], at, f)))
+    if ((solved = ShapeBetween(w, first, last, warm[0], warm[1], grid, at, f)))
       ends[0] = warm[0], ends[1] = warm[1], found = at;
   }
-  if (!solved && !ShapeBetween(w, first, last, L, R, found, f))
-    return EndsAnywhereInTheirCells(w, first, last, L, R, found, s);
+  if (!solved && !ShapeBetween(w, first, last, L, R, grid, found, f))
+    return EndsAnywhereInTheirCells(w, first, last, L, R, found, grid, s);
   // Each end placed from the outermost point on the top (OnTheTop: one
   // under its z0 is a mix of the end and the wall's foot, or another wall).
   constexpr bool kNoGaps[2] = {false, false};
@@ -264,7 +263,7 @@ void ShapeByTop(const Window& w, std::size_t first, std::size_t last, double L, 
                                   std::abs(placed.end[1] - ends[1]) / (s.cell[3] - s.cell[2]));
     if (moved < kSettledCell) break;
     FreeShape there;
-    if (!ShapeBetween(w, first, last, placed.end[0], placed.end[1], found, there)) break;
+    if (!ShapeBetween(w, first, last, placed.end[0], placed.end[1], grid, found, there)) break;
     ends[0] = placed.end[0], ends[1] = placed.end[1], f = there;
     placed = PlaceEnds(w, top_first, top_last, s.cell, f);
   }
@@ -279,7 +278,7 @@ void ShapeByTop(const Window& w, std::size_t first, std::size_t last, double L, 
       [&](double l, double r, double& aspect, double& exponent) {
         std::ptrdiff_t at = found;
         FreeShape m;
-        if (!ShapeBetween(w, first, last, l, r, at, m)) return false;
+        if (!ShapeBetween(w, first, last, l, r, grid, at, m)) return false;
         aspect = m.aspect, exponent = m.exponent;
         return true;
       },

@@ -3,6 +3,7 @@
 // the surface below under each.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -70,7 +71,28 @@ struct PooledShape {
   // Whether the exponent solved is not an ellipse's: beyond two of its
   // sigmas from 2 (`bead measure` says "an ellipse, within two sigmas"
   // otherwise). Fits (no silhouette) then hold it; else an ellipse's.
-  bool NotAnEllipse() const { return exponent_solved && std::abs(exponent - 2.0) > 2.0 * exponent_sigma; }
+  bool NotAnEllipse() const {
+    return exponent_solved && std::abs(exponent - EllipseOf(exponent)) > 2.0 * exponent_sigma;
+  }
+  // A stadium's pool (part/superellipse.h: a tamped bead, its height held
+  // by the tamper, widened by more flow, not heightened): its half-height b
+  // and the width of its ends' arcs c a, mm (the rows' medians; the sigmas
+  // the aspect's and exponent's at the rows' median half-width). Held, each
+  // row's aspect and corner share follow from its own half-width
+  // (AtHalfWidth). NaN: not a stadium's.
+  double half_height_mm = NAN, corner_mm = NAN, half_height_sigma_mm = 0.0, corner_sigma_mm = 0.0;
+  bool Tamped() const { return NotAnEllipse() && IsStadium(exponent) && std::isfinite(half_height_mm); }
+  // The pool held for a bead of half-width a: a tamped one's aspect and
+  // corner share at a (their sigmas with them), any other's as it is.
+  PooledShape AtHalfWidth(double a) const {
+    PooledShape at = *this;
+    if (!Tamped() || !(a > 0.0)) return at;
+    at.aspect = half_height_mm / a, at.exponent = -std::clamp(corner_mm / a, 0.1, 1.0);
+    const double by = aspect > 0.0 ? at.aspect / aspect : 1.0;
+    at.aspect_rows_sigma *= by, at.aspect_footprint_sigma *= by;
+    at.aspect_sigma = half_height_sigma_mm / a, at.exponent_sigma = corner_sigma_mm / a;
+    return at;
+  }
   // Whether the aspect (and the tops' miss) is pooled over the rows placed
   // at their walls alone: the layer's own exponent is not an ellipse's (a
   // fit's aspect is an ellipse's, not that shape's, until it is pooled).

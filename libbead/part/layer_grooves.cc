@@ -1,8 +1,10 @@
 #include "libbead/part/layer_grooves.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <tuple>
 #include <utility>
 
@@ -69,9 +71,13 @@ HiddenGroove LayerGrooves::Estimate(const StoredProfile& p, const SurfaceGrid& u
   const double shift_sigma = std::isfinite(row.bead.shift_sigma_mm) ? row.bead.shift_sigma_mm : 0.0;
   const auto* carried = shape || !std::isnan(free_exponent) ? nullptr : Carried();
   if (std::isnan(free_exponent)) free_exponent = carried ? carried->second.exponent : 2.0;
+  // A tamped bead's pool holds its height and ends' arcs in mm: at this
+  // row's half-width.
+  const std::optional<PooledShape> held =
+      shape ? std::optional(shape->AtHalfWidth(0.5 * row.bead.width_mm)) : std::nullopt;
   return EstimateHiddenGroove(p.x_mm, p.z_mm, under, row.bead.shift_mm, shift_sigma, row.bead.noise_mm,
-                              row.bead.center_x_mm, row.bead.width_mm, row.bead.height_mm, shape, previous,
-                              free_exponent);
+                              row.bead.center_x_mm, row.bead.width_mm, row.bead.height_mm, held ? &*held : nullptr,
+                              previous, free_exponent);
 }
 
 void LayerGrooves::Add(PartGeometryRow row, const StoredProfile* points, const SurfaceGrid* under, const Emit& emit) {
@@ -94,7 +100,7 @@ void LayerGrooves::Add(PartGeometryRow row, const StoredProfile* points, const S
     if (!pooled_ && g.ok && g.shape_consistent && g.at_silhouette)
       placed_.push_back({g.aspect, g.exponent, g.aspect_end_var, g.exponent_end_var, g.aspect_grid_var,
                          g.exponent_grid_var, g.left_end_mm, points->spacing_mm, g.end_mixed, g.aspect_mixed_var,
-                         g.exponent_mixed_var, top});
+                         g.exponent_mixed_var, top, 0.5 * row.bead.width_mm});
   }
   if (pooled_ && waiting_.empty()) return emit(row);
   waiting_.push_back({std::move(row), points && under ? std::optional(*points) : std::nullopt,
@@ -160,6 +166,41 @@ double ShapeCorrelation(const std::vector<LayerGrooves::Placed>& placed) {
   return aa > 0.0 && pp > 0.0 ? std::clamp(ap / std::sqrt(aa * pp), -1.0, 1.0) : 0.0;
 }
 
+// The rows of the family most of them were placed in (part/superellipse.h:
+// a superellipse's or a stadium's; a tie, the superellipse's): exponents of
+// two families are not one quantity to take a median of.
+std::vector<LayerGrooves::Placed> OfOneFamily(const std::vector<LayerGrooves::Placed>& placed) {
+  std::size_t stadiums = 0;
+  for (const auto& p : placed) stadiums += IsStadium(p.exponent);
+  const bool stadium = 2 * stadiums > placed.size();
+  std::vector<LayerGrooves::Placed> out;
+  for (const auto& p : placed)
+    if (IsStadium(p.exponent) == stadium) out.push_back(p);
+  return out;
+}
+
+// A stadium's pool in mm (PooledShape::half_height_mm): the rows' medians
+// of b = aspect a and of c a, each with its median's standard error, at
+// least the floors the ends' places and the grid leave (floors: the
+// aspect's and the exponent's, as the pool's), beside what a footprint
+// leaves (spots: the same), both at the rows' median half-width. (The
+// aspects' own spread is not the error here: a tamped bead's aspect
+// follows its width along the path, through the corners' bulges. Their
+// sigma taken for b's, every layer's b was within 0.4 of its sigma of the
+// generator's.)
+void Tamped(const std::vector<LayerGrooves::Placed>& placed, const std::array<double, 2>& floors,
+            const std::array<double, 2>& spots, PooledShape& pool) {
+  std::vector<double> b, corner, half;
+  for (const auto& p : placed)
+    b.push_back(p.aspect * p.half_mm), corner.push_back(-p.exponent * p.half_mm), half.push_back(p.half_mm);
+  const double a = MedianAndError(half).first;
+  const auto [b_mm, b_se] = MedianAndError(b);
+  const auto [corner_mm, corner_se] = MedianAndError(corner);
+  pool.half_height_mm = b_mm, pool.corner_mm = corner_mm;
+  pool.half_height_sigma_mm = std::hypot(std::max(b_se, floors[0] * a), spots[0] * a);
+  pool.corner_sigma_mm = std::hypot(std::max(corner_se, floors[1] * a), spots[1] * a);
+}
+
 }  // namespace
 
 // The layer's first rows' own shapes, then their pool, held: the aspect
@@ -196,12 +237,12 @@ PooledShape LayerGrooves::Pooled() const {
   pool.top_noise = tops_.empty() ? NAN : MedianAndError(tops_).first;
   pool.rows = aspects_.size();
   pool.ends_off = EndsOff();
-  if (!placed_.empty()) {
+  if (const std::vector<Placed> placed = OfOneFamily(placed_); !placed.empty()) {
     std::vector<double> exponents;
     double lo = INFINITY, hi = -INFINITY, aspect_var = 0.0, exponent_var = 0.0, spacing = 0.0;
     double aspect_grid = 0.0, exponent_grid = 0.0, aspect_mixed = 0.0, exponent_mixed = 0.0;
     std::size_t mixed = 0;
-    for (const Placed& p : placed_) {
+    for (const Placed& p : placed) {
       mixed += p.end_mixed;
       exponents.push_back(p.exponent);
       lo = std::min(lo, p.left_end_mm), hi = std::max(hi, p.left_end_mm), spacing += p.spacing_mm;
@@ -209,8 +250,8 @@ PooledShape LayerGrooves::Pooled() const {
       aspect_grid += p.aspect_grid_var, exponent_grid += p.exponent_grid_var;
       aspect_mixed += p.aspect_mixed_var, exponent_mixed += p.exponent_mixed_var;
     }
-    const auto n = static_cast<double>(placed_.size());
-    pool.footprint = 2 * mixed > placed_.size();
+    const auto n = static_cast<double>(placed.size());
+    pool.footprint = 2 * mixed > placed.size();
     const double cycles = (hi - lo) / (spacing / n);  // K
     const double shared = std::min(1.0, 1.0 / (std::numbers::pi * cycles));
     const auto floor = [&](double ends, double grid) { return std::sqrt(shared * shared * ends / n + grid / n); };
@@ -220,12 +261,15 @@ PooledShape LayerGrooves::Pooled() const {
     pool.aspect_rows_sigma = std::max(pool.aspect_sigma, floor(aspect_var, aspect_grid));
     pool.aspect_footprint_sigma = aspect_spot;
     pool.aspect_sigma = std::hypot(pool.aspect_rows_sigma, aspect_spot);
-    if (placed_.size() >= kMinExponents) {
+    if (placed.size() >= kMinExponents) {
       std::tie(pool.exponent, pool.exponent_sigma) = MedianAndError(exponents);
       pool.exponent_sigma =
           std::hypot(std::max(pool.exponent_sigma, floor(exponent_var, exponent_grid)), exponent_spot);
-      pool.correlation = ShapeCorrelation(placed_);
+      pool.correlation = ShapeCorrelation(placed);
       pool.exponent_solved = true;
+      if (IsStadium(pool.exponent))
+        Tamped(placed, {floor(aspect_var, aspect_grid), floor(exponent_var, exponent_grid)},
+               {aspect_spot, exponent_spot}, pool);
     }
     // Not an ellipse: a fit's aspect is an ellipse's on another shape (on
     // the twin's walls of exponent 2.6 whose beads hang 2-4 mm off the one
@@ -236,7 +280,7 @@ PooledShape LayerGrooves::Pooled() const {
     // and the tops over the rows placed at their walls.
     if (pool.AspectAtWalls()) {
       std::vector<double> aspects, tops;
-      for (const Placed& p : placed_) {
+      for (const Placed& p : placed) {
         aspects.push_back(p.aspect);
         if (std::isfinite(p.top)) tops.push_back(p.top);
       }
@@ -244,7 +288,7 @@ PooledShape LayerGrooves::Pooled() const {
       std::tie(pool.aspect, pool.aspect_sigma) = MedianAndError(aspects);
       pool.aspect_rows_sigma = std::max(pool.aspect_sigma, floor(aspect_var, aspect_grid));
       pool.aspect_sigma = std::hypot(pool.aspect_rows_sigma, aspect_spot);
-      pool.rows = placed_.size();
+      pool.rows = placed.size();
     }
   }
   // Too few rows placed at their walls, after layers that solved a shape
@@ -262,6 +306,8 @@ PooledShape LayerGrooves::Pooled() const {
     if (const auto* carried = Carried()) {
       const PooledShape& c = carried->second;
       pool.exponent = c.exponent, pool.exponent_sigma = c.exponent_sigma, pool.exponent_solved = true;
+      pool.half_height_mm = c.half_height_mm, pool.half_height_sigma_mm = c.half_height_sigma_mm;
+      pool.corner_mm = c.corner_mm, pool.corner_sigma_mm = c.corner_sigma_mm;
       pool.exponent_layer = c.exponent_layer >= 0 ? c.exponent_layer : carried->first;
       const double induced = AspectByExponent(c.exponent) * c.exponent_sigma;
       pool.aspect_sigma = std::hypot(pool.aspect_sigma, induced);
@@ -274,10 +320,11 @@ PooledShape LayerGrooves::Pooled() const {
 // fitted at, da/dp: the median over up to kSlopeRows of them fitted (not
 // placed at their walls) at p and p + kStep. (kStep: a tenth, so that the
 // aspects' change, some 0.002, stands well over the fits' settling, 1e-3
-// mm of b over its 3 mm.)
+// mm of b over its 3 mm; a stadium's p is its corner share c, negated:
+// a twentieth of c toward the box.)
 double LayerGrooves::AspectByExponent(double p) const {
   constexpr std::size_t kSlopeRows = 10;
-  constexpr double kStep = 0.1;
+  const double kStep = IsStadium(p) ? -0.05 * p : 0.1;
   std::vector<double> slopes;
   for (const Waiting& w : waiting_) {
     if (slopes.size() == kSlopeRows) break;

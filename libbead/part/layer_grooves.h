@@ -71,7 +71,8 @@ class LayerGrooves {
         spacing_mm;
     bool end_mixed;
     double aspect_mixed_var, exponent_mixed_var;
-    double top;  // its top's RMS over its tolerance (NaN: none)
+    double top;      // its top's RMS over its tolerance (NaN: none)
+    double half_mm;  // half its bead's width (a tamped pool is held by it: PooledShape::AtHalfWidth)
   };
 
  private:

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstddef>
+#include <vector>
 #include <utility>
 
 #include "libbead/part/groove_window.h"
@@ -55,14 +56,17 @@ std::pair<std::size_t, std::size_t> OnTheTop(const Window& w, std::size_t first,
                                              double sigma_mm, const bool gapped[2], double cell[4],
                                              bool* mixed = nullptr);
 
-// The top with the shape free: from grid index `from` downhill to the least
-// residual, the exponent, z0 and b interpolated between the grid's around it.
-// Returns the least's grid index (-1: none solved).
+// The top with the shape free over a family's grid (part/superellipse.h:
+// SuperellipseGrid or StadiumGrid): from grid index `from` downhill to the
+// least residual, the exponent, z0 and b interpolated between the grid's
+// around it. Returns the least's grid index (-1: none solved); variance
+// (where given): the top's residual variance at the least (between the
+// grid's exponents, where it is interpolated).
 std::ptrdiff_t SolveFree(const Window& w, std::size_t first, std::size_t last, double L, double R, Silhouette& s,
-                         std::ptrdiff_t from);
+                         std::ptrdiff_t from, const std::vector<double>& grid, double* variance = nullptr);
 
-// The grid index nearest the ellipse's exponent, where a free search starts.
-std::ptrdiff_t EllipseIndex();
+// The grid index nearest the ellipse, where a free search starts.
+std::ptrdiff_t EllipseIndex(const std::vector<double>& grid);
 
 // How many of the window's points the top is solved over.
 std::size_t TopPointCount(const Window& w, std::size_t first, std::size_t last, double L, double R);
@@ -74,6 +78,6 @@ std::size_t TopPointCount(const Window& w, std::size_t first, std::size_t last, 
 // placement starts from `start` (Silhouette::end_place: the row before's)
 // where given, else from the cells' middles.
 void ShapeByTop(const Window& w, std::size_t first, std::size_t last, double L, double R, std::ptrdiff_t found,
-                Silhouette& s, const double* start = nullptr);
+                const std::vector<double>& grid, Silhouette& s, const double* start = nullptr);
 
 }  // namespace bead::part

@@ -17,14 +17,32 @@ const std::array<double, SuperellipseTable::kNodes>& Nodes() {
   return u;
 }
 
+// The stadium of corner share c = -p at v = |u| (< 1): flat to 1 - c, a
+// quarter ellipse beyond, s = sqrt(1 - w^2) with w = (v - 1 + c) / c; ds/dv
+// = -w / (s c), dw/dc = (1 - v) / c^2, and ds/dp = -ds/dc.
+SuperellipseTable::Value StadiumAt(double u, double p) {
+  const double c = -p, v = std::min(std::abs(u), 1.0 - 1e-12), w = (v - 1.0 + c) / c;
+  if (!(w > 0.0)) return {1.0, 0.0, 0.0};
+  const double s = std::sqrt(1.0 - w * w), ds_dv = -w / (s * c);
+  return {s, u < 0.0 ? -ds_dv : ds_dv, (w / s) * (1.0 - v) / (c * c)};
+}
+
 }  // namespace
 
 double SuperellipseS(double u, double p) {
+  if (IsStadium(p)) return StadiumAt(u, p).s;
   const double v = std::min(std::abs(u), 1.0 - 1e-12);
   return v == 0.0 ? 1.0 : std::pow(1.0 - std::pow(v, p), 1.0 / p);
 }
 
+double ReachAt(double h, double p) {
+  h = std::clamp(h, 0.0, 1.0 - 1e-9);
+  if (IsStadium(p)) return std::max(0.0, 1.0 + p - p * std::sqrt(1.0 - h * h));
+  return std::pow(1.0 - std::pow(h, p), 1.0 / p);
+}
+
 SuperellipseTable::Value SuperellipseAt(double u, double p) {
+  if (IsStadium(p)) return StadiumAt(u, p);
   const double v = std::min(std::abs(u), 1.0 - 1e-12);
   if (v == 0.0) return {1.0, 0.0, 0.0};
   const double vp = std::pow(v, p), rest = 1.0 - vp, s = std::pow(rest, 1.0 / p);
@@ -61,10 +79,12 @@ const SuperellipseTable& SuperellipseOf(double p) {
   // cache of 32 with the layers' pooled exponents, the oldest let go: from
   // the 13th pool on a grid table could be freed while a solve held it,
   // which crashed a run of the part tests once the pools' exponents moved.)
-  const std::vector<double>& grid = SuperellipseGrid();
-  thread_local std::vector<std::unique_ptr<SuperellipseTable>> on_grid(grid.size());
+  const std::vector<double>& grid = GridOf(p);
+  thread_local std::vector<std::unique_ptr<SuperellipseTable>> on_grid[2] = {
+      std::vector<std::unique_ptr<SuperellipseTable>>(SuperellipseGrid().size()),
+      std::vector<std::unique_ptr<SuperellipseTable>>(StadiumGrid().size())};
   if (const auto it = std::find(grid.begin(), grid.end(), p); it != grid.end()) {
-    std::unique_ptr<SuperellipseTable>& t = on_grid[static_cast<std::size_t>(it - grid.begin())];
+    std::unique_ptr<SuperellipseTable>& t = on_grid[IsStadium(p)][static_cast<std::size_t>(it - grid.begin())];
     if (!t) t = std::make_unique<SuperellipseTable>(p);
     return *t;
   }
@@ -83,6 +103,15 @@ const std::vector<double>& SuperellipseGrid() {
   static const std::vector<double> grid = [] {
     std::vector<double> g;
     for (double p = 1.2; p <= 8.0; p *= 1.1) g.push_back(p);
+    return g;
+  }();
+  return grid;
+}
+
+const std::vector<double>& StadiumGrid() {
+  static const std::vector<double> grid = [] {
+    std::vector<double> g;
+    for (double c = 0.1; c <= 1.6; c *= 1.1) g.push_back(-c);
     return g;
   }();
   return grid;

@@ -15,6 +15,16 @@
 // 6e-6 for 2 <= p <= 8 and 3e-5 at p = 1.2 (near u = 0, where its
 // curvature is unbounded below p = 2): times b, nanometres, a thousandth of
 // a profiler's noise.
+//
+// A second family, the stadium, is held in the same tables under negative
+// exponents: p = -c is a flat top over |u| <= 1 - c with a quarter ellipse
+// of semi-axes c a across and b up at each end, s = sqrt(1 - w^2), w =
+// (|u| - 1 + c) / c. c = 1 is the ellipse, c -> 0 a box; c = b / a gives
+// half circles for ends: large-scale printing's tamped bead, a flat top and
+// bottom held at the layer height with rounded sides (no superellipse has
+// its top: the best misses it by 8-14 % of its height). Above c = 1 the
+// ends' arcs meet at a ridge over the centre (the grid's far side of the
+// ellipse, for its neighbours).
 #pragma once
 
 #include <algorithm>
@@ -66,6 +76,11 @@ class SuperellipseTable {
   std::array<double, kNodes> node_s_{}, node_ds_dp_{};
 };
 
+// Whether p is a stadium's (its corner share c = -p), not a superellipse's.
+inline bool IsStadium(double p) { return p < 0.0; }
+// The ellipse's own value of p's family (2, or -1 for the stadium's).
+inline double EllipseOf(double p) { return IsStadium(p) ? -1.0 : 2.0; }
+
 // s and its derivatives exactly (|u| < 1).
 SuperellipseTable::Value SuperellipseAt(double u, double p);
 // s alone, as SuperellipseAt computes it (without its derivatives' logs).
@@ -79,5 +94,14 @@ const SuperellipseTable& SuperellipseOf(double p);
 // The exponents a free placement tries (part/silhouette.h): from 1.2 (near
 // a diamond) to 8 (near a box), each a tenth above the one before.
 const std::vector<double>& SuperellipseGrid();
+// The stadiums it tries: c from 0.1 (near a box) to 1.6 (a ridged arch),
+// each a tenth above the one before, as p = -c.
+const std::vector<double>& StadiumGrid();
+// The grid p's family is tried on.
+inline const std::vector<double>& GridOf(double p) { return IsStadium(p) ? StadiumGrid() : SuperellipseGrid(); }
+// |u| at which the top of p stands a share h of its half-height b over its
+// centre (h held to [0, 1)): (1 - h^p)^(1/p); a stadium's 1 - c + c sqrt(1
+// - h^2) (at least 0).
+double ReachAt(double h, double p);
 
 }  // namespace bead::part

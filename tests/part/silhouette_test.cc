@@ -75,6 +75,24 @@ TEST(Silhouette, TheAspectFreeIsTheTruthsToWithinItsEndsCells) {
   }
 }
 
+// A tamped bead (a stadium with half-circle ends, c = b / a: part/
+// superellipse.h) free is solved as the stadium, not as a superellipse,
+// its corner share and aspect the truth's to within its ends' cells (as
+// the ellipse's above), over a surface below that is a stadium too.
+TEST(Silhouette, ATampedBeadFreeIsTheStadium) {
+  const Ellipse truth{0.13, 1.0, 3.2, 1.0, -1.0 / 3.2};
+  const Ellipse under{0.43, -1.0, 3.2, 1.0, -1.0 / 3.2};
+  const auto old = [&](double x) { return std::abs(x - under.x0) < under.a ? under.z0 + under.Half(x) : -2.0; };
+  const double share = 0.5 * kSpacing / truth.a;
+  for (double offset : {0.0, 0.011, 0.023, 0.037}) {
+    const auto s = AtSilhouette(Seen(truth, old, offset), truth.x0, kScale, nullptr);
+    ASSERT_TRUE(s) << offset;
+    EXPECT_TRUE(IsStadium(s->exponent)) << offset;
+    EXPECT_NEAR(s->aspect, truth.b / truth.a, 2.0 * share * truth.b / truth.a) << offset;
+    EXPECT_NEAR(-s->exponent, truth.b / truth.a, 2.0 * share) << offset;
+  }
+}
+
 // A bead sunk so deep that its sides meet the surface below shows no wall:
 // nothing to place it by (the fit's work, not the silhouette's).
 TEST(Silhouette, ABeadWhoseSidesMeetTheSurfaceBelowHasNone) {

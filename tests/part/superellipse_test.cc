@@ -36,6 +36,42 @@ TEST(Superellipse, TheDerivativesAreTheDifferences) {
     }
 }
 
+// The stadium (p = -c): flat over |u| <= 1 - c, a quarter ellipse of
+// semi-axes c a and b at each end; c = 1 is the ellipse again.
+TEST(Superellipse, AStadiumIsAFlatTopWithQuarterEllipseEnds) {
+  for (double u : {-0.95, -0.5, 0.0, 0.3, 0.8}) {
+    const SuperellipseTable::Value v = SuperellipseAt(u, -1.0);
+    EXPECT_NEAR(v.s, std::sqrt(1.0 - u * u), 1e-14) << u;
+    EXPECT_NEAR(v.ds_du, -u / std::sqrt(1.0 - u * u), 1e-12) << u;
+  }
+  const double c = 0.3;
+  for (double u : {-0.69, 0.0, 0.5, 0.7}) EXPECT_EQ(SuperellipseS(u, -c), 1.0) << u;
+  for (double u : {0.75, -0.85, 0.99}) {
+    const double w = (std::abs(u) - (1.0 - c)) / c;
+    EXPECT_NEAR(SuperellipseS(u, -c), std::sqrt(1.0 - w * w), 1e-14) << u;
+  }
+  EXPECT_TRUE(IsStadium(-c));
+  EXPECT_FALSE(IsStadium(2.0));
+}
+
+// Its derivatives in u and in p are the central differences' too (away
+// from the flat top's end, where s' jumps from 0 to the arc's), and
+// ReachAt inverts s in either family.
+TEST(Superellipse, AStadiumsDerivativesAreTheDifferencesAndReachInvertsIt) {
+  const double h = 1e-5;
+  for (double p : {-0.2, -0.45, -0.9, -1.3})
+    for (double u : {-0.95, -0.85, 0.1, 0.6, 0.9}) {
+      if (std::abs(std::abs(u) - (1.0 + p)) < 0.05) continue;
+      const SuperellipseTable::Value v = SuperellipseAt(u, p);
+      const double by_u = (SuperellipseAt(u + h, p).s - SuperellipseAt(u - h, p).s) / (2 * h);
+      const double by_p = (SuperellipseAt(u, p + h).s - SuperellipseAt(u, p - h).s) / (2 * h);
+      EXPECT_NEAR(v.ds_du, by_u, 1e-6) << p << " " << u;
+      EXPECT_NEAR(v.ds_dp, by_p, 1e-6) << p << " " << u;
+    }
+  for (double p : {-0.3, -1.0, 1.5, 2.0, 4.0})
+    for (double share : {0.1, 0.5, 0.9}) EXPECT_NEAR(SuperellipseS(ReachAt(share, p), p), share, 1e-9) << p;
+}
+
 // The table, linear between its entries (|u| steps of 0.9 / 512), holds s
 // to the interpolation's bound, the step squared over 8 times |s''|, for
 // the ellipse (|s''| <= 12 up to u = 0.9) and p = 3.5 (16); below p = 2
