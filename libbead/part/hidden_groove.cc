@@ -82,7 +82,7 @@ GrooveSum GrooveWithGradient(const Ellipse& e, const SurfaceGrid& below, double 
 OutlineMisfit MisfitOf(const GrooveSum& g, double height, double exponent) {
   if (std::isfinite(g.lowest) && g.lowest > kFloatsHeights * height) return OutlineMisfit::kFloats;
   // (Within a thousandth of either end of its family's grid; a stadium's
-  // p is negative, its grid's ends c = 0.1 and 1.6.)
+  // p is negative, its grid's ends c = 0.1 and 1.59.)
   const std::vector<double>& family = GridOf(exponent);
   const auto near = [&](double end) { return std::abs(exponent - end) <= 1e-3 * std::abs(end); };
   if (near(family.front()) || near(family.back())) return OutlineMisfit::kFamilyEdge;

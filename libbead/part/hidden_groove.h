@@ -7,8 +7,9 @@
 // Model: the new bead's cross-section is a superellipse (centre x0, z0;
 // semi-axes A across, B up; exponent p, part/superellipse.h: p = 2 the
 // ellipse of the thesis' rounded beads and the twin's, a box above, a
-// diamond below), its material what lies inside it above the surface
-// before it. The sensor sees max(surface below, the bead's top). Where the
+// diamond below; or p < 0, a stadium: a flat top with quarter-ellipse
+// ends, a tamped bead's, whose flat bottom is pressed onto what lies under
+// it), its material what lies inside it above the surface before it. The sensor sees max(surface below, the bead's top). Where the
 // bead overhangs, its ends show as walls in the seen profile and the bead
 // is placed there, its height solved over its top, and its shape (aspect
 // and exponent) with it until the layer's is pooled (part/silhouette.h);
@@ -38,7 +39,7 @@ namespace bead::part {
 //  - floats: it stands clear of the surface it was laid on everywhere
 //    under it, by more than a tenth of the bead's height (a bead touches
 //    what it was laid on; a flat-topped bead with rounded sides, a tamped
-//    bead, gets an ellipse that floats);
+//    bead, got an ellipse that floats, before the stadium was a shape);
 //  - top_off: the layer's shape (its pool: part/layer_grooves.h) misses
 //    its beads' seen tops by over kTopOffNoise times their tolerance
 //    (TopTolerance: their noise, and kTopShapeHeights of their height that
@@ -70,8 +71,9 @@ inline constexpr double kTopOffNoise = 3.0;
 // six layers went uncorrected, 15-30 % high. A top's miss of a small share
 // of the height moves the groove under it by that share of the groove,
 // a few thousandths of the area: 0.5 % is allowed beside the noise. A
-// tamped bead's flat top misses by 120-210 um (8-14 % of its height), a
-// lens's by 65-77 um at a 10 um noise: still told apart.
+// tamped bead's flat top missed any superellipse's by 120-210 um (8-14 %
+// of its height; now a stadium's), a lens's misses by 65-77 um at a 10 um
+// noise: still told apart.
 inline constexpr double kTopShapeHeights = 0.005;
 inline double TopTolerance(double noise_mm, double height_mm) {
   return std::hypot(noise_mm, kTopShapeHeights * height_mm);

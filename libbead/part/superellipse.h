@@ -94,7 +94,7 @@ const SuperellipseTable& SuperellipseOf(double p);
 // The exponents a free placement tries (part/silhouette.h): from 1.2 (near
 // a diamond) to 8 (near a box), each a tenth above the one before.
 const std::vector<double>& SuperellipseGrid();
-// The stadiums it tries: c from 0.1 (near a box) to 1.6 (a ridged arch),
+// The stadiums it tries: c from 0.1 (near a box) to 1.59 (a ridged arch),
 // each a tenth above the one before, as p = -c.
 const std::vector<double>& StadiumGrid();
 // The grid p's family is tried on.
