@@ -146,7 +146,7 @@ bool PlaceEndsByTop(const Window& w, std::size_t first, std::size_t last, double
 // variance over the stadium's beyond four sigmas of that ratio (sqrt(2 /
 // dof) each: two variances over the same m points, m - 2 degrees of
 // freedom each), and over what any shape's top may leave, a share of the
-// height (part/hidden_groove.h: kTopShapeHeights of 2 b): a top no
+// bead's height (part/hidden_groove.h: kTopShapeHeights): a top no
 // superellipse follows. (The superellipse follows a tamped bead's top over
 // |u| < 0.9, the stretch solved on, with b three times the bead's and 1.4-1.6
 // times the noise; the stadium to the noise. Taken wherever the stadium's
@@ -161,13 +161,16 @@ std::ptrdiff_t SolveEitherFamily(const Window& w, std::size_t first, std::size_t
   Silhouette stadium = s;
   grid = &SuperellipseGrid();
   const std::ptrdiff_t found = SolveFree(w, first, last, L, R, s, EllipseIndex(*grid), *grid, &variance);
+  // The bead's height over the surface below at its top's middle; a top
+  // the superellipse follows within its share, the stadium is not tried
+  // (a twin's ellipses: none of their rows is).
+  const double least = kTopShapeHeights * (s.e.z0 + s.e.b - w.old[(first + last) / 2]);
+  if (found >= 0 && variance <= least * least) return found;
   const std::ptrdiff_t other =
       SolveFree(w, first, last, L, R, stadium, EllipseIndex(StadiumGrid()), StadiumGrid(), &stadium_variance);
   if (other < 0) return found;
   const double dof = std::max(1.0, static_cast<double>(TopPointCount(w, first, last, L, R)) - 2.0);
-  const double least = kTopShapeHeights * 2.0 * stadium.e.b;
-  const bool better = variance > (1.0 + 4.0 * std::sqrt(2.0 / dof)) * stadium_variance && variance > least * least;
-  if (found >= 0 && !better) return found;
+  if (found >= 0 && !(variance > (1.0 + 4.0 * std::sqrt(2.0 / dof)) * stadium_variance)) return found;
   s = stadium, grid = &StadiumGrid();
   return other;
 }
