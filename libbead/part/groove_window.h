@@ -78,14 +78,20 @@ struct PooledShape {
   // by the tamper, widened by more flow, not heightened): its half-height b
   // and the width of its ends' arcs c a, mm (the rows' medians; the sigmas
   // the aspect's and exponent's at the rows' median half-width). Held, each
-  // row's aspect and corner share follow from its own half-width
-  // (AtHalfWidth). NaN: not a stadium's.
+  // row's aspect and corner share follow from its own half-width: half its
+  // width as measured (part/added_bead.h) less width_excess_mm, the rows'
+  // median of that less the half-width placed at the walls (the width's
+  // crossing of the edge floor lies beyond a wall's foot by part of a
+  // spacing: b and c a pooled over the width's half were 0.7-0.9 % high).
+  // NaN: not a stadium's.
   double half_height_mm = NAN, corner_mm = NAN, half_height_sigma_mm = 0.0, corner_sigma_mm = 0.0;
+  double width_excess_mm = 0.0;
   bool Tamped() const { return NotAnEllipse() && IsStadium(exponent) && std::isfinite(half_height_mm); }
-  // The pool held for a bead of half-width a: a tamped one's aspect and
-  // corner share at a (their sigmas with them), any other's as it is.
-  PooledShape AtHalfWidth(double a) const {
+  // The pool held for a bead `width` wide: a tamped one's aspect and corner
+  // share at its half-width (their sigmas with them), any other's as it is.
+  PooledShape AtWidth(double width) const {
     PooledShape at = *this;
+    const double a = 0.5 * width - width_excess_mm;
     if (!Tamped() || !(a > 0.0)) return at;
     at.aspect = half_height_mm / a, at.exponent = -std::clamp(corner_mm / a, 0.1, 1.0);
     const double by = aspect > 0.0 ? at.aspect / aspect : 1.0;

@@ -73,8 +73,7 @@ HiddenGroove LayerGrooves::Estimate(const StoredProfile& p, const SurfaceGrid& u
   if (std::isnan(free_exponent)) free_exponent = carried ? carried->second.exponent : 2.0;
   // A tamped bead's pool holds its height and ends' arcs in mm: at this
   // row's half-width.
-  const std::optional<PooledShape> held =
-      shape ? std::optional(shape->AtHalfWidth(0.5 * row.bead.width_mm)) : std::nullopt;
+  const std::optional<PooledShape> held = shape ? std::optional(shape->AtWidth(row.bead.width_mm)) : std::nullopt;
   return EstimateHiddenGroove(p.x_mm, p.z_mm, under, row.bead.shift_mm, shift_sigma, row.bead.noise_mm,
                               row.bead.center_x_mm, row.bead.width_mm, row.bead.height_mm, held ? &*held : nullptr,
                               previous, free_exponent);
@@ -100,7 +99,7 @@ void LayerGrooves::Add(PartGeometryRow row, const StoredProfile* points, const S
     if (!pooled_ && g.ok && g.shape_consistent && g.at_silhouette)
       placed_.push_back({g.aspect, g.exponent, g.aspect_end_var, g.exponent_end_var, g.aspect_grid_var,
                          g.exponent_grid_var, g.left_end_mm, points->spacing_mm, g.end_mixed, g.aspect_mixed_var,
-                         g.exponent_mixed_var, top, 0.5 * row.bead.width_mm});
+                         g.exponent_mixed_var, top, 0.5 * row.bead.width_mm, g.a});
   }
   if (pooled_ && waiting_.empty()) return emit(row);
   waiting_.push_back({std::move(row), points && under ? std::optional(*points) : std::nullopt,
@@ -183,22 +182,26 @@ std::vector<LayerGrooves::Placed> OfOneFamily(const std::vector<LayerGrooves::Pl
 // of b = aspect a and of c a, each with its median's standard error, at
 // least the floors the ends' places and the grid leave (floors: the
 // aspect's and the exponent's, as the pool's), beside what a footprint
-// leaves (spots: the same), both at the rows' median half-width. (The
-// aspects' own spread is not the error here: a tamped bead's aspect
+// leaves (spots: the same), both at the rows' median half-width; and the
+// median of half the width measured less a (PooledShape::width_excess_mm).
+// (The aspects' own spread is not the error here: a tamped bead's aspect
 // follows its width along the path, through the corners' bulges. Their
 // sigma taken for b's, every layer's b was within 0.4 of its sigma of the
 // generator's.)
 void Tamped(const std::vector<LayerGrooves::Placed>& placed, const std::array<double, 2>& floors,
             const std::array<double, 2>& spots, PooledShape& pool) {
-  std::vector<double> b, corner, half;
-  for (const auto& p : placed)
-    b.push_back(p.aspect * p.half_mm), corner.push_back(-p.exponent * p.half_mm), half.push_back(p.half_mm);
+  std::vector<double> b, corner, half, excess;
+  for (const auto& p : placed) {
+    b.push_back(p.aspect * p.a_mm), corner.push_back(-p.exponent * p.a_mm), half.push_back(p.a_mm);
+    excess.push_back(p.half_mm - p.a_mm);
+  }
   const double a = MedianAndError(half).first;
   const auto [b_mm, b_se] = MedianAndError(b);
   const auto [corner_mm, corner_se] = MedianAndError(corner);
   pool.half_height_mm = b_mm, pool.corner_mm = corner_mm;
   pool.half_height_sigma_mm = std::hypot(std::max(b_se, floors[0] * a), spots[0] * a);
   pool.corner_sigma_mm = std::hypot(std::max(corner_se, floors[1] * a), spots[1] * a);
+  pool.width_excess_mm = MedianAndError(excess).first;
 }
 
 }  // namespace
@@ -307,6 +310,7 @@ PooledShape LayerGrooves::Pooled() const {
       const PooledShape& c = carried->second;
       pool.exponent = c.exponent, pool.exponent_sigma = c.exponent_sigma, pool.exponent_solved = true;
       pool.half_height_mm = c.half_height_mm, pool.half_height_sigma_mm = c.half_height_sigma_mm;
+      pool.width_excess_mm = c.width_excess_mm;
       pool.corner_mm = c.corner_mm, pool.corner_sigma_mm = c.corner_sigma_mm;
       pool.exponent_layer = c.exponent_layer >= 0 ? c.exponent_layer : carried->first;
       const double induced = AspectByExponent(c.exponent) * c.exponent_sigma;

@@ -72,7 +72,8 @@ class LayerGrooves {
     bool end_mixed;
     double aspect_mixed_var, exponent_mixed_var;
     double top;      // its top's RMS over its tolerance (NaN: none)
-    double half_mm;  // half its bead's width (a tamped pool is held by it: PooledShape::AtHalfWidth)
+    double half_mm;  // half its bead's width (part/added_bead.h), and its own half-width a
+    double a_mm;
   };
 
  private:

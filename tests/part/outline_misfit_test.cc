@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -45,28 +46,31 @@ part::SurfaceGrid Bed() {
 
 struct LayerResult {
   int rows = 0, corrected = 0, misfit = 0, covered = 0;
-  double error_sum = 0.0, sigma_sum = 0.0;  // over the corrected rows, mm^2
+  double error_sum = 0.0, sigma_sum = 0.0, error_squares = 0.0;  // over the corrected rows, mm^2 (mm^4)
 };
 
 // A layer of 80 rows of the bead (each its own noise) through the layer's
-// grooves, as bead measure corrects them.
-template <class Top>
-LayerResult Layer(Top top, double material_mm2) {
+// grooves, as bead measure corrects them; row k's bead tops_of(k), its
+// material material_of(k).
+template <class TopsOf, class MaterialOf>
+LayerResult LayerOf(TopsOf tops_of, MaterialOf material_of) {
   std::mt19937_64 rng(7);
   const part::SurfaceGrid bed = Bed();
   part::LayerGrooves grooves;
   LayerResult r;
   const part::LayerGrooves::Emit emit = [&](const part::PartGeometryRow& row) {
     ++r.rows;
+    const double material_mm2 = material_of(static_cast<int>(row.profile));
     if (std::isfinite(row.area_corrected_mm2)) {
       ++r.corrected;
       r.covered += std::abs(row.area_corrected_mm2 - material_mm2) < 1.96 * row.area_corrected_sigma_mm2;
-      r.error_sum += row.area_corrected_mm2 - material_mm2, r.sigma_sum += row.area_corrected_sigma_mm2;
+      const double error = row.area_corrected_mm2 - material_mm2;
+      r.error_sum += error, r.sigma_sum += row.area_corrected_sigma_mm2, r.error_squares += error * error;
     }
     r.misfit += row.outline_misfit != part::OutlineMisfit::kNone;
   };
   for (int k = 0; k < 80; ++k) {
-    const part::StoredProfile p = Profile(top, rng);
+    const part::StoredProfile p = Profile(tops_of(k), rng);
     part::PartGeometryRow row;
     row.profile = k;
     row.bead = part::MeasureAddedBead(p.x_mm, p.z_mm, bed, false);
@@ -76,6 +80,25 @@ LayerResult Layer(Top top, double material_mm2) {
   grooves.Flush(emit);
   return r;
 }
+// The same bead in every row.
+template <class Top>
+LayerResult Layer(Top top, double material_mm2) {
+  return LayerOf([&](int) { return top; }, [&](int) { return material_mm2; });
+}
+
+// A tamped bead of half-width `half` on the bed: flat top at kHeight,
+// half-circle sides of radius kHeight / 2; and its material.
+std::function<double(double)> Tamped(double half) {
+  return [half](double x) {
+    const double r = 0.5 * kHeight, out = std::abs(x) - (half - r);
+    if (std::abs(x) > half) return -1.0;
+    return out <= 0.0 ? kHeight : r + std::sqrt(r * r - out * out);
+  };
+}
+double TampedMaterial(double half) {
+  const double r = 0.5 * kHeight;
+  return 2.0 * half * kHeight - (4.0 - std::numbers::pi) * r * r;
+}
 
 // A tamped bead is a stadium whose ends' arcs are as high as they are wide
 // (c = b / a): every row corrected, its 95 % intervals covering the
@@ -84,13 +107,7 @@ LayerResult Layer(Top top, double material_mm2) {
 // said the shape fitting its top floats, or misses it.)
 TEST(OutlineMisfit, ATampedBeadIsAStadiumAndIsCorrected) {
   const double r = 0.5 * kHeight, half = 3.2;  // its sides' radius, its half-width
-  const auto stadium = [&](double x) {
-    const double out = std::abs(x) - (half - r);
-    if (std::abs(x) > half) return -1.0;
-    return out <= 0.0 ? kHeight : r + std::sqrt(r * r - out * out);
-  };
-  const double material = 2.0 * half * kHeight - (4.0 - std::numbers::pi) * r * r;
-  const LayerResult got = Layer(stadium, material);
+  const LayerResult got = Layer(Tamped(half), TampedMaterial(half));
   EXPECT_EQ(got.rows, 80);
   EXPECT_EQ(got.misfit, 0);
   EXPECT_EQ(got.corrected, 80);
@@ -102,6 +119,29 @@ TEST(OutlineMisfit, ATampedBeadIsAStadiumAndIsCorrected) {
   const double mean_error = got.error_sum / 80.0, mean_sigma = got.sigma_sum / 80.0;
   EXPECT_LT(std::abs(mean_error), 2.0 * mean_sigma);
   EXPECT_LT(4.0 * mean_sigma, 2.0 * (1.0 - std::numbers::pi / 4.0) * r * r);
+}
+
+// A tamped bead widens with more flow and keeps its height (the tamper's):
+// through a corner its half-width swings from 3.2 to 4.0 mm and back, its
+// sides the same half circles. Its aspect is not the layer's one value;
+// its height and its sides' radius are, and the layer holds those (each
+// row's aspect from its own width): every row is corrected as the straight
+// bead's, the errors' spread about their mean (the pool's error, every
+// row's) within the rows' sigma, the mean within two of it. (Measured:
+// spread 0.032 mm^2, sigma 0.048, mean -0.065.)
+// (Held by the pooled aspect, the wide rows' flat bottoms floated over the
+// bed: on a generator's tamped walls -0.29 mm^2 on average, a quarter of
+// the rows' intervals missing; here the spread is 0.17 mm^2 at sigmas of
+// 0.024.)
+TEST(OutlineMisfit, ATampedBeadWideningThroughACornerKeepsItsHeight) {
+  const auto half = [](int k) { return 3.2 + 0.8 * std::pow(std::sin(std::numbers::pi * k / 80.0), 2); };
+  const LayerResult got =
+      LayerOf([&](int k) { return Tamped(half(k)); }, [&](int k) { return TampedMaterial(half(k)); });
+  ASSERT_EQ(got.corrected, 80);
+  const double mean_error = got.error_sum / 80.0, mean_sigma = got.sigma_sum / 80.0;
+  const double spread = std::sqrt(std::max(0.0, got.error_squares / 80.0 - mean_error * mean_error));
+  EXPECT_LT(spread, mean_sigma) << spread << " " << mean_sigma;
+  EXPECT_LT(std::abs(mean_error), 2.0 * mean_sigma) << mean_error << " " << mean_sigma;
 }
 
 TEST(OutlineMisfit, AnEllipseSunkIntoTheBedIsCorrectedAndSaysNothing) {
