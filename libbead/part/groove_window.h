@@ -94,8 +94,6 @@ struct PooledShape {
     const double a = 0.5 * width - width_excess_mm;
     if (!Tamped() || !(a > 0.0)) return at;
     at.aspect = half_height_mm / a, at.exponent = -std::clamp(corner_mm / a, 0.1, 1.0);
-    const double by = aspect > 0.0 ? at.aspect / aspect : 1.0;
-    at.aspect_rows_sigma *= by, at.aspect_footprint_sigma *= by;
     at.aspect_sigma = half_height_sigma_mm / a, at.exponent_sigma = corner_sigma_mm / a;
     return at;
   }

@@ -185,9 +185,10 @@ std::vector<LayerGrooves::Placed> OfOneFamily(const std::vector<LayerGrooves::Pl
 // leaves (spots: the same), both at the rows' median half-width; and the
 // median of half the width measured less a (PooledShape::width_excess_mm).
 // (The aspects' own spread is not the error here: a tamped bead's aspect
-// follows its width along the path, through the corners' bulges. Their
-// sigma taken for b's, every layer's b was within 0.4 of its sigma of the
-// generator's.)
+// follows its width along the path, through the corners' bulges. On 36
+// layers of nine seeds of a generator's tamped walls, b and c a lie within
+// 1.2 of these sigmas of its 1 mm, most within 0.6 (the floors set them);
+// on six of points that do not average over a spot, within 1.7.)
 void Tamped(const std::vector<LayerGrooves::Placed>& placed, const std::array<double, 2>& floors,
             const std::array<double, 2>& spots, PooledShape& pool) {
   std::vector<double> b, corner, half, excess;

@@ -13,8 +13,8 @@
 #pragma once
 
 #include <cstddef>
-#include <vector>
 #include <utility>
+#include <vector>
 
 #include "libbead/part/groove_window.h"
 #include "libbead/part/silhouette.h"
