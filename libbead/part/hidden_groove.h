@@ -10,7 +10,8 @@
 // diamond below; or p < 0, a stadium: a flat top with quarter-ellipse
 // ends, a tamped bead's, whose flat bottom is pressed onto what lies under
 // it), its material what lies inside it above the surface before it. The
-// sensor sees max(surface below, the bead's top). Where the bead overhangs, its ends show as walls in the seen profile and the bead
+// sensor sees max(surface below, the bead's top). Where the bead
+// overhangs, its ends show as walls in the seen profile and the bead
 // is placed there, its height solved over its top, and its shape (aspect
 // and exponent) with it until the layer's is pooled (part/silhouette.h);
 // where they do not, an ellipse (the layer's pooled superellipse, where it

@@ -189,8 +189,8 @@ std::vector<LayerGrooves::Placed> OfOneFamily(const std::vector<LayerGrooves::Pl
 // layers of nine seeds of a generator's tamped walls, b and c a lie within
 // 1.2 of these sigmas of its 1 mm, most within 0.6 (the floors set them);
 // on six of points that do not average over a spot, within 1.7.)
-void Tamped(const std::vector<LayerGrooves::Placed>& placed, const std::array<double, 2>& floors,
-            const std::array<double, 2>& spots, PooledShape& pool) {
+void PoolTamped(const std::vector<LayerGrooves::Placed>& placed, const std::array<double, 2>& floors,
+                const std::array<double, 2>& spots, PooledShape& pool) {
   std::vector<double> b, corner, half, excess;
   for (const auto& p : placed) {
     b.push_back(p.aspect * p.a_mm), corner.push_back(-p.exponent * p.a_mm), half.push_back(p.a_mm);
@@ -272,8 +272,8 @@ PooledShape LayerGrooves::Pooled() const {
       pool.correlation = ShapeCorrelation(placed);
       pool.exponent_solved = true;
       if (IsStadium(pool.exponent))
-        Tamped(placed, {floor(aspect_var, aspect_grid), floor(exponent_var, exponent_grid)},
-               {aspect_spot, exponent_spot}, pool);
+        PoolTamped(placed, {floor(aspect_var, aspect_grid), floor(exponent_var, exponent_grid)},
+                   {aspect_spot, exponent_spot}, pool);
     }
     // Not an ellipse: a fit's aspect is an ellipse's on another shape (on
     // the twin's walls of exponent 2.6 whose beads hang 2-4 mm off the one
@@ -323,21 +323,21 @@ PooledShape LayerGrooves::Pooled() const {
 
 // How the waiting rows' fitted aspects move with the exponent they are
 // fitted at, da/dp: the median over up to kSlopeRows of them fitted (not
-// placed at their walls) at p and p + kStep. (kStep: a tenth, so that the
+// placed at their walls) at p and p + step. (The step: a tenth, so that the
 // aspects' change, some 0.002, stands well over the fits' settling, 1e-3
 // mm of b over its 3 mm; a stadium's p is its corner share c, negated:
 // a twentieth of c toward the box.)
 double LayerGrooves::AspectByExponent(double p) const {
   constexpr std::size_t kSlopeRows = 10;
-  const double kStep = IsStadium(p) ? -0.05 * p : 0.1;
+  const double step = IsStadium(p) ? -0.05 * p : 0.1;
   std::vector<double> slopes;
   for (const Waiting& w : waiting_) {
     if (slopes.size() == kSlopeRows) break;
     if (!w.points || !w.row.bead.valid()) continue;
     const HiddenGroove at = Estimate(*w.points, *w.under, w.row, nullptr, nullptr, p);
     if (!at.ok || at.at_silhouette) continue;
-    const HiddenGroove next = Estimate(*w.points, *w.under, w.row, nullptr, nullptr, p + kStep);
-    if (next.ok && !next.at_silhouette) slopes.push_back((next.aspect - at.aspect) / kStep);
+    const HiddenGroove next = Estimate(*w.points, *w.under, w.row, nullptr, nullptr, p + step);
+    if (next.ok && !next.at_silhouette) slopes.push_back((next.aspect - at.aspect) / step);
   }
   return slopes.empty() ? 0.0 : MiddleInPlace(slopes);
 }

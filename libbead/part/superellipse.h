@@ -22,9 +22,9 @@
 // (|u| - 1 + c) / c. c = 1 is the ellipse, c -> 0 a box; c = b / a gives
 // half circles for ends: large-scale printing's tamped bead, a flat top and
 // bottom held at the layer height with rounded sides (no superellipse has
-// its top: a layer's pooled one missed it by 8-14 % of its height). Above c = 1 the
-// ends' arcs meet at a ridge over the centre (the grid's far side of the
-// ellipse, for its neighbours).
+// its top: a layer's pooled one missed it by 8-14 % of its height). Above
+// c = 1 the ends' arcs meet at a ridge over the centre (the grid's far
+// side of the ellipse, for its neighbours).
 #pragma once
 
 #include <algorithm>
