@@ -75,7 +75,7 @@ void SayShape(const part::PooledShape& s) {
   if (s.footprint)
     std::printf(
         "    the profiler's points average over a footprint (most beads' walls hold a point between the surface below "
-        "and the top): the area seen follows each such end, its place in its cell counted whole in the sigma; where "
+        "and the top): each such end's cell stays its wall's, its place in the cell counted whole in the sigma; where "
         "within the spot's reach the bead's end lies, its points cannot tell (the spot's shape is not known), the "
         "same in every profile: the shape's sigmas hold it (+-%.3f of the aspect)\n",
         s.aspect_footprint_sigma);

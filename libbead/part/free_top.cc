@@ -211,6 +211,7 @@ void EndsVariance(const double ends[2], const double sigma[2], const double mixe
 void EndsAnywhereInTheirCells(const Window& w, std::size_t first, std::size_t last, double L, double R,
                               std::ptrdiff_t from, const std::vector<double>& grid, Silhouette& s) {
   const double ends[2] = {L, R}, unmixed[2] = {0.0, 0.0};
+  s.shape_a = 0.5 * (R - L);
   const double sigma[2] = {0.5 * (s.cell[1] - s.cell[0]) / std::sqrt(3.0),
                            0.5 * (s.cell[3] - s.cell[2]) / std::sqrt(3.0)};
   EndsVariance(
@@ -269,7 +270,7 @@ void ShapeByTop(const Window& w, std::size_t first, std::size_t last, double L, 
   }
   for (int side = 0; side < 2; ++side)
     s.end_place[side] = (ends[side] - s.cell[2 * side]) / (s.cell[2 * side + 1] - s.cell[2 * side]);
-  s.aspect = f.aspect, s.exponent = f.exponent;
+  s.aspect = f.aspect, s.exponent = f.exponent, s.shape_a = 0.5 * (ends[1] - ends[0]);
   s.aspect_grid_var = f.aspect_grid_var, s.exponent_grid_var = f.exponent_grid_var;
   s.end_sigma[0] = placed.sigma[0], s.end_sigma[1] = placed.sigma[1];
   s.shape_consistent = placed.consistent;

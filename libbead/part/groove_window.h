@@ -45,8 +45,9 @@ struct PooledShape {
   // Whether the profiler averages over a footprint: more than half the
   // rows placed at their walls had an end whose wall holds a point between
   // the surface below and the top (a mix; part/silhouette_top.h: OnTheTop).
-  // Its points then integrate a wall wherever it lies, and the area seen
-  // follows a mixed end (part/silhouette.h: SilhouetteVariance).
+  // Its points then integrate a wall wherever it lies: a mixed end's cell
+  // stays its wall's (part/silhouette.cc), and what the spot leaves in the
+  // rows' shapes is held whole (below).
   bool footprint = false;
   // aspect_sigma's two parts, in quadrature: what the rows' spread (or the
   // floor their ends and grid set) leaves, and what the footprint leaves

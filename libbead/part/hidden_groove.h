@@ -116,6 +116,11 @@ struct HiddenGroove {
   // The ellipse placed or fitted, its centre from the bead's centre and the
   // surface below there: where the next profile's fit starts.
   double dx0 = kNaN, dz0 = kNaN, a = kNaN, b = kNaN;
+  // Placed at the silhouette with the shape free: the half-width its
+  // aspect and exponent belong to (Silhouette::shape_a); and, a stadium on
+  // a flat surface, its half-height from its top's height over that
+  // surface (hidden_groove.cc: PressedHalfHeight; NaN: not so).
+  double shape_a = kNaN, pressed_half_mm = kNaN;
 };
 
 // x, z: the profile's valid points in the bed frame (x increasing); below:

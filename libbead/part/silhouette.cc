@@ -237,7 +237,7 @@ std::optional<Silhouette> AtSilhouette(const Window& w, double center, const Sil
     if (!SolveHeld(w, jl + 1, jr, L, R, *held, s) || !stands(s, 0.0)) return std::nullopt;
     // Where the profiler averages over a footprint, the end lies within its
     // mixed point's spot: its cell stays the wall's (one spacing), only the
-    // mix is told (the area seen follows the end: SilhouetteVariance).
+    // mix is told (the end anywhere in the cell: SilhouetteVariance).
     double widened[4] = {s.cell[0], s.cell[1], s.cell[2], s.cell[3]};
     OnTheTop(w, jl + 1, jr, s.e.z0, std::sqrt(s.residual_variance), gapped, held->footprint ? widened : s.cell,
              s.end_mixed);
@@ -271,11 +271,13 @@ double SilhouetteVariance(const Silhouette& s, const PooledShape* held, const do
     Ellipse moved = s.e;
     moved.x0 += 0.5 * step, moved.a += (side ? 0.5 : -0.5) * step;
     moved.z0 += s.z0_by_end[side] * step, moved.b += s.b_by_end[side] * step;
-    // A profiler averaging over a footprint (the layer's pool says so) sees
-    // a mixed end's wall as it lies: the area seen follows the end, and
-    // does not cancel what its place moves the groove by.
-    const bool follows = held && held->footprint && s.end_mixed[side];
-    const double seen = follows ? 0.0 : (side ? s.wall_right : -s.wall_left) * step;
+    // The area seen across the wall's cell is the bead placed's
+    // (CellSeenChange), so it moves with the place as the groove does, a
+    // mixed end's too. (Left to follow the end where the profiler averages
+    // over a footprint, as the spots' integral across the cell would, after
+    // that area was the placed bead's: a generator's tamped walls' beads on
+    // the bed were corrected to 0.024 mm^2 at sigmas of 0.015, 75 % covered.)
+    const double seen = (side ? s.wall_right : -s.wall_left) * step;
     const double range = GrooveChange(s.e, moved, gradient) - seen;
     ends += range * range / 12.0;
   }

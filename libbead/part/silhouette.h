@@ -64,6 +64,9 @@ struct Silhouette {
   // ... and where each settled: its share of the way across its cell (a
   // row's placement starts from the row before's).
   double end_place[2] = {NAN, NAN};
+  // ... and the half-width between them: the aspect and exponent are the
+  // shape's at that half-width, not at the cells' middles' (e.a).
+  double shape_a = NAN;
   // false where the top places an end outside the cell its wall was found
   // in by more than three of its sigmas: the wall taken for the end is not
   // the bead's (the layer below's wall, interpolated across a registration

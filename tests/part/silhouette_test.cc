@@ -488,19 +488,20 @@ TEST(Silhouette, APointMixingTheEndAndTheWallsFootIsNotOnTheTop) {
   std::printf("the free shape's aspect over the phases: %+.4f\n", mean);
 }
 
-// Through the same spot, on a flat surface below: the area seen, the
-// integral of points that each average their spot, follows the true end
-// wherever it lies in its cell, so its error there is what the end's place
-// moves the groove by, not that less the wall (part/silhouette.h). With
-// the layer's pool saying the profiler averages over a footprint, the
-// area less the groove of the bead held at its shape lies within three of
-// its sigmas at every phase, and its errors' RMS over the phases within a
-// factor of two of the sigmas' (taken as points that do not average, the
-// wall cancelling, the sigmas were three times the errors').
-TEST(Silhouette, ThroughASpotTheAreaSeenFollowsAMixedEnd) {
+// Through the same spot, on a flat surface below, with the layer's pool
+// saying the profiler averages over a footprint: the area seen across each
+// wall's cell is taken as the bead placed shows it (seen_adjust), so its
+// error moves with the end's place in the cell as the groove's does, a
+// mixed end's too. The area less the groove of the bead held at its shape
+// lies within three of its sigmas at every phase, and its errors' RMS over
+// the phases within a factor of two of the sigmas'. (Counted as if the
+// area seen followed a mixed end, the spots' integral across the cell,
+// these rows' sigmas left out the wall times the place: a generator's
+// tamped beads on the bed came out at 0.024 mm^2 for sigmas of 0.015.)
+TEST(Silhouette, ThroughASpotTheAreaSeenIsThePlacedBeads) {
   PooledShape footprint = kHalf;
   footprint.footprint = true;
-  double err2 = 0.0, var = 0.0, var_points = 0.0;
+  double err2 = 0.0, var = 0.0;
   int mixed = 0;
   const int phases = 8;
   for (int m = 0; m < phases; ++m) {
@@ -512,15 +513,13 @@ TEST(Silhouette, ThroughASpotTheAreaSeenFollowsAMixedEnd) {
     double gradient[4];
     FlatGradient(s->e, gradient);
     s->residual_variance = 0.0;  // noise-free: the ends alone
-    const double error = SeenArea(w) - FlatGroove(s->e) - FlatMaterial(truth);
+    const double error = SeenArea(w) + s->seen_adjust - FlatGroove(s->e) - FlatMaterial(truth);
     const double sigma = std::sqrt(SilhouetteVariance(*s, &footprint, gradient, 0.0));
-    const double as_points = std::sqrt(SilhouetteVariance(*s, &kHalf, gradient, 0.0));
-    std::printf("phase %d: area less groove %+.4f mm^2, sigma %.4f (as points %.4f)\n", m, error, sigma, as_points);
+    std::printf("phase %d: area less groove %+.4f mm^2, sigma %.4f\n", m, error, sigma);
     EXPECT_LT(std::abs(error), 3.0 * sigma) << m;
-    err2 += error * error, var += sigma * sigma, var_points += as_points * as_points;
+    err2 += error * error, var += sigma * sigma;
   }
-  std::printf("RMS: error %.4f, sigma %.4f, as points %.4f\n", std::sqrt(err2 / phases), std::sqrt(var / phases),
-              std::sqrt(var_points / phases));
+  std::printf("RMS: error %.4f, sigma %.4f\n", std::sqrt(err2 / phases), std::sqrt(var / phases));
   EXPECT_GT(mixed, 0);
   EXPECT_LT(std::sqrt(err2 / var), 2.0);
   EXPECT_GT(std::sqrt(err2 / var), 0.5);
