@@ -44,7 +44,7 @@ class WallPrinter {
     const double two_pi = 2.0 * std::numbers::pi;
     Layer l;
     l.area = FlowAt(n, p) / head_.SpeedAt(p);
-    l.center = shift_[n] + wander_[n] + 0.1 * std::sin(two_pi * p / 60.0 + 1.3 * n);
+    l.center = shift_[n] + wander_[n] + c_.wander_wave_mm * std::sin(two_pi * p / c_.wander_wave_period_mm + 1.3 * n);
     return l;
   }
 

@@ -22,6 +22,8 @@ inline sim::PartTwinConfig Scaled(sim::PartTwinConfig c, double k) {
                          &c.width_mm,
                          &c.wave_period_mm,
                          &c.wander_sigma_mm,
+                         &c.wander_wave_mm,
+                         &c.wander_wave_period_mm,
                          &c.pass_shift_sigma_mm,
                          &c.frame_x_wave_mm,
                          &c.standoff_mm,
