@@ -103,22 +103,37 @@ TEST(Registration, AShiftBeyondTheFirstRangeIsFoundWhereItIs) {
 // steps), the truth within two of it. (Counted as constrained by the few
 // agreeing bed points whose noise slopes like a flank, the scan's least
 // among the bracket's noise claimed a wall's sampling, 0.014 mm.)
-TEST(Registration, ABeadCoveringTheOneBelowBracketsTheShift) {
-  const auto box = [](double x, double half, double h) { return std::abs(x) < half ? h : 0.0; };
-  std::mt19937 rng(11);
-  std::normal_distribution<double> noise(0.0, 0.01);
+// A box of half-width `half` and height h on a bed.
+double Box(double x, double half, double h) { return std::abs(x) < half ? h : 0.0; }
+
+// A layer below of one box 5 mm wide and 1.2 mm high, measured at points
+// 0.05 mm apart with noise (0.01 mm).
+SurfaceGrid BoxBelow(std::mt19937& rng, std::normal_distribution<double>& noise) {
   SurfaceRow row;
   row.x0_mm = -10.0, row.dx_mm = 0.05, row.at_points = true;
-  for (int k = 0; k <= 400; ++k) row.z_mm.push_back(static_cast<float>(box(-10.0 + 0.05 * k, 2.5, 1.2) + noise(rng)));
+  for (int k = 0; k <= 400; ++k) row.z_mm.push_back(static_cast<float>(Box(-10.0 + 0.05 * k, 2.5, 1.2) + noise(rng)));
   row.variance.assign(row.z_mm.size(), 1.0f);
-  const SurfaceGrid below(std::move(row));
-  const double truth = 0.03;
-  std::vector<float> x, z;
+  return SurfaceGrid(std::move(row));
+}
+
+// That box moved by `shift` under a new one 5.2 mm wide and 3 mm high
+// centred at `centre`, seen at the same points with the same noise.
+void Covered(double shift, double centre, std::mt19937& rng, std::normal_distribution<double>& noise,
+             std::vector<float>& x, std::vector<float>& z) {
   for (int k = 0; k <= 400; ++k) {
     const double xk = -10.0 + 0.05 * k;
     x.push_back(static_cast<float>(xk));
-    z.push_back(static_cast<float>(std::max(box(xk - truth, 2.5, 1.2), box(xk - truth, 2.6, 3.0)) + noise(rng)));
+    z.push_back(static_cast<float>(std::max(Box(xk - shift, 2.5, 1.2), Box(xk - centre, 2.6, 3.0)) + noise(rng)));
   }
+}
+
+TEST(Registration, ABeadCoveringTheOneBelowBracketsTheShift) {
+  std::mt19937 rng(11);
+  std::normal_distribution<double> noise(0.0, 0.01);
+  const SurfaceGrid below = BoxBelow(rng, noise);
+  const double truth = 0.03;
+  std::vector<float> x, z;
+  Covered(truth, truth, rng, noise, x, z);
   const double uniform = (0.2 - 0.025) / std::sqrt(12.0);
   for (const double* start : {static_cast<const double*>(nullptr), &truth}) {
     const Registration r = Register(x, z, below, kScale, {}, start, nullptr, start ? uniform : 0.0);
@@ -135,21 +150,12 @@ TEST(Registration, ABeadCoveringTheOneBelowBracketsTheShift) {
 // (Counted so, it was tracked as constrained at a wall's sampling, 0.014
 // mm, wherever the track started in the bracket.)
 TEST(Registration, ABareBedsNoiseIsNoFlankToRegisterOn) {
-  const auto box = [](double x, double half, double h) { return std::abs(x) < half ? h : 0.0; };
   std::mt19937 rng(5);
   std::normal_distribution<double> noise(0.0, 0.01);
-  SurfaceRow row;
-  row.x0_mm = -10.0, row.dx_mm = 0.05, row.at_points = true;
-  for (int k = 0; k <= 400; ++k) row.z_mm.push_back(static_cast<float>(box(-10.0 + 0.05 * k, 2.5, 1.2) + noise(rng)));
-  row.variance.assign(row.z_mm.size(), 1.0f);
-  const SurfaceGrid below(std::move(row));
+  const SurfaceGrid below = BoxBelow(rng, noise);
   for (const double truth : {-0.07, 0.0, 0.05}) {
     std::vector<float> x, z;
-    for (int k = 0; k <= 400; ++k) {
-      const double xk = -10.0 + 0.05 * k;
-      x.push_back(static_cast<float>(xk));
-      z.push_back(static_cast<float>(std::max(box(xk - truth, 2.5, 1.2), box(xk, 2.6, 3.0)) + noise(rng)));
-    }
+    Covered(truth, 0.0, rng, noise, x, z);
     for (const double* start : {static_cast<const double*>(nullptr), &truth})
       EXPECT_FALSE(Register(x, z, below, kScale, {}, start).constrained) << truth << (start ? " tracked" : " searched");
   }
