@@ -95,14 +95,6 @@ TEST(Registration, AShiftBeyondTheFirstRangeIsFoundWhereItIs) {
   EXPECT_NEAR(tracked.shift, truth, 2.0 * tracked.sigma);
 }
 
-// A new bead that covers the one below, its walls beyond the old walls by
-// 0.1 mm either side (a straight wall's beads, stacked): only the bare bed
-// beside it speaks, and it says the old bead lies anywhere it stays hidden,
-// a 0.2 mm bracket. The shift is somewhere in it, and its sigma says so:
-// at least the bracket's uniform sigma (less the scan's quarter-spacing
-// steps), the truth within two of it. (Counted as constrained by the few
-// agreeing bed points whose noise slopes like a flank, the scan's least
-// among the bracket's noise claimed a wall's sampling, 0.014 mm.)
 // A box of half-width `half` and height h on a bed.
 double Box(double x, double half, double h) { return std::abs(x) < half ? h : 0.0; }
 
@@ -127,6 +119,14 @@ void Covered(double shift, double centre, std::mt19937& rng, std::normal_distrib
   }
 }
 
+// A new bead that covers the one below, its walls beyond the old walls by
+// 0.1 mm either side (a straight wall's beads, stacked): only the bare bed
+// beside it speaks, and it says the old bead lies anywhere it stays hidden,
+// a 0.2 mm bracket. The shift is somewhere in it, and its sigma says so:
+// at least the bracket's uniform sigma (less the scan's quarter-spacing
+// steps), the truth within two of it. (Counted as constrained by the few
+// agreeing bed points whose noise slopes like a flank, the scan's least
+// among the bracket's noise claimed a wall's sampling, 0.014 mm.)
 TEST(Registration, ABeadCoveringTheOneBelowBracketsTheShift) {
   std::mt19937 rng(11);
   std::normal_distribution<double> noise(0.0, 0.01);
