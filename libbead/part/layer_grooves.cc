@@ -99,8 +99,7 @@ void LayerGrooves::Add(PartGeometryRow row, const StoredProfile* points, const S
     if (!pooled_ && g.ok && g.shape_consistent && g.at_silhouette)
       placed_.push_back({g.aspect, g.exponent, g.aspect_end_var, g.exponent_end_var, g.aspect_grid_var,
                          g.exponent_grid_var, g.left_end_mm, points->spacing_mm, g.end_mixed, g.aspect_mixed_var,
-                         g.exponent_mixed_var, top, 0.5 * row.bead.width_mm, std::isfinite(g.shape_a) ? g.shape_a : g.a,
-                         g.pressed_half_mm});
+                         g.exponent_mixed_var, top, 0.5 * row.bead.width_mm, g.shape_a, g.pressed_half_mm});
   }
   if (pooled_ && waiting_.empty()) return emit(row);
   waiting_.push_back({std::move(row), points && under ? std::optional(*points) : std::nullopt,
