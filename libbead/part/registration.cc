@@ -151,7 +151,10 @@ Registration FromCurve(const CostCurve& curve, const RegistrationScale& k) {
       lo4 = std::min(lo4, curve.s[i]), hi4 = std::max(hi4, curve.s[i]);
       r.at_end = r.at_end || i == 0 || i + 1 == cost.size();
     }
-    if (cost[i] <= least + cap) lo_cap = std::min(lo_cap, curve.s[i]), hi_cap = std::max(hi_cap, curve.s[i]);
+    if (cost[i] <= least + cap) {
+      lo_cap = std::min(lo_cap, curve.s[i]), hi_cap = std::max(hi_cap, curve.s[i]);
+      r.bracket_open = r.bracket_open || i == 0 || i + 1 == cost.size();
+    }
   }
   r.shift = 0.5 * (lo1 + hi1);
   r.sigma = std::max(0.25 * (hi4 - lo4), k.spacing / std::sqrt(12.0));
@@ -317,7 +320,7 @@ Registration Register(std::span<const float> x, std::span<const float> z, const 
     }
     r = FromCurve(Scan(x, z, below, *start, o.warm_half_mm, k, grid), k);
     Settle(x, z, below, k, o, grid, r);
-    if (!r.at_end) return r;
+    if (!r.at_end && (r.constrained || !r.bracket_open)) return r;
   }
   // A pass found beyond the first range is searched about its shift; one
   // not found yet, over the widest where asked and a least lies there.

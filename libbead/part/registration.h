@@ -6,8 +6,10 @@
 //    their variance; its sigma from the cost's curvature there,
 //    1 / sqrt(sum g^2 / variance) with g the slope of the surface below,
 //    at least a wall's sampling, spacing / sqrt 12;
-//  - scanned: the cost on a grid of shifts over a window (or the whole
-//    range, widened where its least lies at its end; a pass's first
+//  - scanned: the cost on a grid of shifts over the warm window (or the
+//    whole range where the window's band within 4 of its least reaches its
+//    end, or, the shift unconstrained, its bracket does: hidden_sigma; the
+//    range widened where its least lies at its end; a pass's first
 //    searches also look over the widest, a quarter of the surface below's
 //    span), its sigma from the range within 4 of the least.
 // A profile is tracked where a start is given and the track converges
@@ -40,6 +42,10 @@ struct Registration {
   // the bracket tells one shift from another). The sigma is at least this.
   // A scan's own; a track carries the pass's last.
   double hidden_sigma = 0.0;
+  // The shifts within the cap of a scan's least reach its end: the bracket
+  // may reach further, hidden_sigma is then a floor. An unconstrained warm
+  // window's scan so bracketed is searched over the whole range.
+  bool bracket_open = false;
 };
 
 // The noise and the point spacing the registration weighs gains by.

@@ -142,6 +142,29 @@ TEST(Registration, ABeadCoveringTheOneBelowBracketsTheShift) {
   }
 }
 
+// A new bead 2 mm wider than the one below, which lies anywhere in a 2 mm
+// bracket, tracked from the pass's last least (no shift of the pass found:
+// part/measure_part.cc searches about the profile before's least first).
+// The warm window's scan (+-0.3 mm) lies inside the bracket; its sigma is
+// the whole bracket's, not the window's (0.17 mm, where the window's scan
+// was taken as it was).
+TEST(Registration, ABracketWiderThanTheWarmWindowIsSearchedWhole) {
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise(0.0, 0.01);
+  const SurfaceGrid below = BoxBelow(rng, noise);
+  const double truth = 0.4, start = -0.2;
+  std::vector<float> x, z;
+  for (int k = 0; k <= 400; ++k) {
+    const double xk = -10.0 + 0.05 * k;
+    x.push_back(static_cast<float>(xk));
+    z.push_back(static_cast<float>(std::max(Box(xk - truth, 2.5, 1.2), Box(xk, 3.5, 3.0)) + noise(rng)));
+  }
+  const Registration r = Register(x, z, below, kScale, {}, &start);
+  EXPECT_FALSE(r.constrained);
+  EXPECT_GE(r.sigma, (2.0 - 0.025) / std::sqrt(12.0));
+  EXPECT_NEAR(r.shift, truth, 2.0 * r.sigma);
+}
+
 // The same covering bead, the surface below measured with the profile's
 // noise at every point (a layer below scanned as this one is): over the
 // bare bed either side, 3.4 % of its points rise by three noises over a
