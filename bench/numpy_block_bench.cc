@@ -48,7 +48,7 @@ const Block& SampleBlock() {
 
 void BM_MeasureProfilesCxx(benchmark::State& state) {
   const Block& b = SampleBlock();
-  bead::BatchOptions one;
+  bead::BlockOptions one;
   one.threads = 1;
   for (auto _ : state) {
     auto g = bead::MeasureProfiles(

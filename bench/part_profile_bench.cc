@@ -45,12 +45,16 @@ void Rate(benchmark::State& state, const bead::sim::PartTwin& twin) {
 // Every profile of the wall, each layer against the one below; with the
 // groove hidden under the overhangs estimated (range 0 = 1: the default)
 // or not (0: the area seen only); range 1: the wall's length, mm; range 2
-// (1): the profiler's frame moving sideways.
+// (1): the profiler's frame moving sideways; range 3 (0): no lateral
+// registration either, the naive layer subtraction (the surface below
+// interpolated along the path, the gains, the bead's area: the floor of
+// what a part profile costs here).
 void BM_PartProfile(benchmark::State& state) {
   const int length_mm = static_cast<int>(state.range(1));
   const bead::sim::PartTwin& twin = Wall(length_mm, state.range(2) != 0);
   bead::part::MeasurePartOptions options;
   options.correct_hidden = state.range(0) != 0;
+  options.register_layers = state.range(3) != 0;
   std::size_t valid = 0;
   for (auto _ : state) {
     state.PauseTiming();
@@ -77,10 +81,11 @@ void BM_WheelProfileOnThePart(benchmark::State& state) {
 }
 
 BENCHMARK(BM_PartProfile)
-    ->Args({1, 50, 0})
-    ->Args({0, 50, 0})
-    ->Args({1, 400, 0})
-    ->Args({0, 50, 1})
+    ->Args({1, 50, 0, 1})
+    ->Args({0, 50, 0, 1})
+    ->Args({1, 400, 0, 1})
+    ->Args({0, 50, 1, 1})
+    ->Args({0, 50, 0, 0})
     ->Repetitions(5)
     ->MinTime(0.5)
     ->Unit(benchmark::kMillisecond);

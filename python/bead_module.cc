@@ -94,7 +94,7 @@ py::dict Measure(const py::array_t<float, py::array::c_style | py::array::forcec
   std::vector<BeadGeometry> g;
   {
     py::gil_scoped_release free;
-    BatchOptions batch;
+    BlockOptions batch;
     batch.threads = threads;
     g = MeasureProfiles(
         n,

@@ -8,7 +8,7 @@ namespace bead {
 
 std::vector<BeadGeometry> MeasureProfiles(std::size_t count, const std::function<ProfileView(std::size_t)>& view,
                                           const ReferenceArea& left, const ReferenceArea& right,
-                                          const ProfileOptions& options, const BatchOptions& batch) {
+                                          const ProfileOptions& options, const BlockOptions& batch) {
   std::vector<BeadGeometry> out(count);
   unsigned threads = batch.threads ? batch.threads : std::max(1u, std::thread::hardware_concurrency());
   threads = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(count / 256, 1)));

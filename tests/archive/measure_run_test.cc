@@ -14,11 +14,12 @@
 #include "libbead/profile/measure_block.h"
 #include "libbead/sim/rig_simulator.h"
 #include "tests/support/temp_dir.h"
+#include "tests/support/error_stats.h"
 
 namespace bead {
 namespace {
 
-bool Same(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0 || (std::isnan(a) && std::isnan(b)); }
+using test::SameBits;
 
 struct Whole {
   std::vector<BeadGeometry> geometry;
@@ -82,19 +83,20 @@ TEST_F(MeasureRunTest, StreamedGeometryAndPoolAreTheWholeArchives) {
       const BeadGeometry& b = whole.geometry[i];
       ASSERT_EQ(rows[i].profile, static_cast<int64_t>(i));
       ASSERT_EQ(a.status, b.status) << i;
-      ASSERT_TRUE(Same(a.area_mm2, b.area_mm2) && Same(a.width_mm, b.width_mm) && Same(a.height_mm, b.height_mm) &&
-                  Same(a.area_sigma_mm2, b.area_sigma_mm2) &&
-                  Same(a.reference.residual_rms_mm, b.reference.residual_rms_mm))
+      ASSERT_TRUE(SameBits(a.area_mm2, b.area_mm2) && SameBits(a.width_mm, b.width_mm) &&
+                  SameBits(a.height_mm, b.height_mm) && SameBits(a.area_sigma_mm2, b.area_sigma_mm2) &&
+                  SameBits(a.reference.residual_rms_mm, b.reference.residual_rms_mm))
           << "profile " << i << " window " << window;
       const occlusion::CorrectedArea c = occlusion::ApplyPooled(whole.pool, b);
-      ASSERT_TRUE(Same(rows[i].area_corrected_mm2, c.area_mm2) && Same(rows[i].area_corrected_sigma_mm2, c.sigma_mm2))
+      ASSERT_TRUE(SameBits(rows[i].area_corrected_mm2, c.area_mm2) &&
+                  SameBits(rows[i].area_corrected_sigma_mm2, c.sigma_mm2))
           << i;
       valid += b.valid();
     }
     EXPECT_EQ(s.valid, valid);
     EXPECT_EQ(s.pooled.fitted, whole.pool.fitted);
-    EXPECT_TRUE(Same(s.pooled.bias_fraction, whole.pool.bias_fraction));
-    EXPECT_TRUE(Same(s.pooled.fraction_sigma, whole.pool.fraction_sigma));
+    EXPECT_TRUE(SameBits(s.pooled.bias_fraction, whole.pool.bias_fraction));
+    EXPECT_TRUE(SameBits(s.pooled.fraction_sigma, whole.pool.fraction_sigma));
   }
 }
 
@@ -104,7 +106,7 @@ TEST_F(MeasureRunTest, FitsPerProfileDoNotDependOnThreads) {
   ASSERT_EQ(one.size(), three.size());
   std::size_t fitted = 0;
   for (std::size_t i = 0; i < one.size(); ++i) {
-    ASSERT_TRUE(Same(one[i].area_corrected_mm2, three[i].area_corrected_mm2)) << i;
+    ASSERT_TRUE(SameBits(one[i].area_corrected_mm2, three[i].area_corrected_mm2)) << i;
     fitted += std::isfinite(one[i].area_corrected_mm2);
   }
   EXPECT_GT(fitted, one.size() / 2);  // most profiles have a bead to fit

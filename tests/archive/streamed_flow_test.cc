@@ -26,11 +26,12 @@
 #include "libbead/occlusion/occlusion_fit.h"
 #include "libbead/sim/rig_simulator.h"
 #include "tests/support/temp_dir.h"
+#include "tests/support/error_stats.h"
 
 namespace bead {
 namespace {
 
-bool Same(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0 || (std::isnan(a) && std::isnan(b)); }
+using test::SameBits;
 
 TEST(MedianByWalks, IsMedianInPlaceBitForBit) {
   std::mt19937_64 rng(5);
@@ -46,7 +47,7 @@ TEST(MedianByWalks, IsMedianInPlaceBitForBit) {
       for (double x : copy) visit(x);
     });
     std::vector<double> sorted = v;
-    EXPECT_TRUE(Same(walked, MedianInPlace(sorted.data(), sorted.size()))) << n;
+    EXPECT_TRUE(SameBits(walked, MedianInPlace(sorted.data(), sorted.size()))) << n;
   }
   EXPECT_TRUE(std::isnan(MedianByWalks([](const std::function<void(double)>&) {})));
 }
@@ -71,7 +72,7 @@ TEST(MedianByWalks, LongSequencesTogetherInAtMostFourWalks) {
   EXPECT_LE(walks, 4);
   for (auto [sequence, values] : {std::pair{0, clustered}, std::pair{1, constant}}) {
     std::vector<double> copy = values;
-    EXPECT_TRUE(Same(m[static_cast<std::size_t>(sequence)], MedianInPlace(copy.data(), copy.size()))) << sequence;
+    EXPECT_TRUE(SameBits(m[static_cast<std::size_t>(sequence)], MedianInPlace(copy.data(), copy.size()))) << sequence;
   }
 }
 
@@ -129,18 +130,19 @@ TEST_F(StreamedFlowTest, IsTheWholeRunsFlowBitForBit) {
     ASSERT_EQ(a.profile, b.profile);
     ASSERT_EQ(a.valid, b.valid) << k;
     ASSERT_EQ(a.encoder, b.encoder) << k;
-    ASSERT_TRUE(Same(a.t_s, b.t_s) && Same(a.surface_speed_mm_s, b.surface_speed_mm_s) &&
-                Same(a.area_mm2, b.area_mm2) && Same(a.area_corrected_mm2, b.area_corrected_mm2) &&
-                Same(a.occlusion_bias_mm2, b.occlusion_bias_mm2) &&
-                Same(a.area_corrected_sigma_mm2, b.area_corrected_sigma_mm2) && Same(a.flow_mm3_s, b.flow_mm3_s) &&
-                Same(a.flow_sigma_mm3_s, b.flow_sigma_mm3_s) && Same(a.screw_rpm, b.screw_rpm))
+    ASSERT_TRUE(SameBits(a.t_s, b.t_s) && SameBits(a.surface_speed_mm_s, b.surface_speed_mm_s) &&
+                SameBits(a.area_mm2, b.area_mm2) && SameBits(a.area_corrected_mm2, b.area_corrected_mm2) &&
+                SameBits(a.occlusion_bias_mm2, b.occlusion_bias_mm2) &&
+                SameBits(a.area_corrected_sigma_mm2, b.area_corrected_sigma_mm2) &&
+                SameBits(a.flow_mm3_s, b.flow_mm3_s) && SameBits(a.flow_sigma_mm3_s, b.flow_sigma_mm3_s) &&
+                SameBits(a.screw_rpm, b.screw_rpm))
         << "sample " << k;
-    ASSERT_TRUE(Same(rows[k].geometry.area_mm2, m.geometry[k].area_mm2)) << k;
+    ASSERT_TRUE(SameBits(rows[k].geometry.area_mm2, m.geometry[k].area_mm2)) << k;
     valid += b.valid;
   }
   EXPECT_GT(valid, got.size() / 2);
   EXPECT_EQ(s.valid, valid);
-  EXPECT_TRUE(Same(s.total_volume_mm3, whole.total_volume_mm3));
+  EXPECT_TRUE(SameBits(s.total_volume_mm3, whole.total_volume_mm3));
   EXPECT_EQ(s.area_outliers, whole.area_outliers);
   EXPECT_EQ(s.speed_outliers, whole.speed_outliers);
   EXPECT_EQ(s.encoder_repairs, whole.encoder_repairs);
@@ -267,7 +269,7 @@ TEST_F(StreamedFlowTest, MeasureRunFlowStreamedOrKeptWritesTheSameFiles) {
   EXPECT_EQ(text(*dir_ / "call_streamed_flow.csv"), text(*dir_ / "call_kept_flow.csv"));
   EXPECT_EQ(text(*dir_ / "call_streamed_geometry.csv"), text(*dir_ / "call_kept_geometry.csv"));
   EXPECT_EQ(streamed.valid, kept.valid);
-  EXPECT_TRUE(Same(streamed.total_volume_mm3, kept.total_volume_mm3));
+  EXPECT_TRUE(SameBits(streamed.total_volume_mm3, kept.total_volume_mm3));
   EXPECT_EQ(streamed.encoder_repairs, kept.encoder_repairs);
 
   RunArchive bare = sim_->run;

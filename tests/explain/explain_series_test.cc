@@ -99,7 +99,7 @@ std::string Tried(const ExplainReport& r) {
   return s + (r.base.misspecified ? " [base misspecified]" : "");
 }
 
-const FittedParameter& Param(const AddedEffect& e, const std::string& name) {
+const FittedParameter& Fitted(const AddedEffect& e, const std::string& name) {
   for (const auto& p : e.parameters)
     if (p.name == name) return p;
   throw std::runtime_error("no parameter " + name);
@@ -121,7 +121,7 @@ TEST(ExplainSeries, FindsDrift) {
   const ExplainReport r = Explain(c.data);
   ASSERT_EQ(r.effects_added.size(), 1u) << Tried(r);
   EXPECT_EQ(r.effects_added[0].name, "drift");
-  const auto& p = Param(r.effects_added[0], "linear_units");
+  const auto& p = Fitted(r.effects_added[0], "linear_units");
   EXPECT_NEAR(p.value, slope * 30.0 / 29.9, 1.5 * p.ci95);  // the record spans about 0..59.95 s
   EXPECT_LT(r.effects_added[0].rms_after, r.effects_added[0].rms_before);
 }
@@ -134,8 +134,8 @@ TEST(ExplainSeries, FindsSaturatingBuildUp) {
   const ExplainReport r = Explain(c.data);
   ASSERT_GE(r.effects_added.size(), 1u) << Tried(r);
   EXPECT_EQ(r.effects_added[0].name, "buildup");
-  const auto& a = Param(r.effects_added[0], "amplitude_units");
-  const auto& t = Param(r.effects_added[0], "tau_s");
+  const auto& a = Fitted(r.effects_added[0], "amplitude_units");
+  const auto& t = Fitted(r.effects_added[0], "tau_s");
   EXPECT_NEAR(a.value, amplitude, 1.5 * a.ci95);
   EXPECT_NEAR(t.value, tau, 1.5 * t.ci95);
 }
@@ -152,7 +152,7 @@ TEST(ExplainSeries, FindsLevelDependentGain) {
   const ExplainReport r = Explain(c.data);
   ASSERT_GE(r.effects_added.size(), 1u) << Tried(r);
   EXPECT_EQ(r.effects_added[0].name, "level_gain");
-  const auto& p = Param(r.effects_added[0], "rel_per_sd_level");
+  const auto& p = Fitted(r.effects_added[0], "rel_per_sd_level");
   EXPECT_NEAR(p.value, g, 1.5 * p.ci95);
 }
 
@@ -167,7 +167,7 @@ TEST(ExplainSeries, FindsChangingDelay) {
   const ExplainReport r = Explain(c.data);
   ASSERT_GE(r.effects_added.size(), 1u) << Tried(r);
   EXPECT_EQ(r.effects_added[0].name, "delay_drift");
-  const auto& p = Param(r.effects_added[0], "delay_change_s");
+  const auto& p = Fitted(r.effects_added[0], "delay_change_s");
   EXPECT_NEAR(p.value, change, 1.5 * p.ci95);
 }
 
@@ -200,7 +200,7 @@ TEST(ExplainSeries, ATimeConstantThatChangesWithLevelIsNeverTakenForAnotherEffec
   const ExplainReport r = Explain(c.data);
   for (const auto& e : r.effects_added) EXPECT_EQ(e.name, "level_lag") << Tried(r);
   if (r.effects_added.empty()) return;
-  const auto& p = Param(r.effects_added[0], "lag_s_per_sd_level");
+  const auto& p = Fitted(r.effects_added[0], "lag_s_per_sd_level");
   EXPECT_GT(p.value, 0.0);
   EXPECT_GT(p.value, p.ci95);  // significantly positive
   EXPECT_LT(r.effects_added[0].rms_after, 0.8 * r.effects_added[0].rms_before);

@@ -97,7 +97,7 @@ TEST(AddedBead, TheSpacingIsTheMedianStepWithOrWithoutSorting) {
 // height at x `below`, the row's values and the bead's points each with
 // the normal noise `sigma` (none where 0).
 constexpr int kPoints = 401;
-constexpr double kDx = 0.05, kX0 = -10.0;
+constexpr double kPointDx = 0.05, kX0 = -10.0;
 
 struct BeadOverRow {
   SurfaceRow row;
@@ -109,9 +109,9 @@ BeadOverRow EllipseOver(Below below, double sigma, std::mt19937& rng) {
   std::normal_distribution<double> noise(0.0, std::max(sigma, 1e-300));
   const auto draw = [&] { return sigma > 0.0 ? noise(rng) : 0.0; };
   BeadOverRow b;
-  b.row.x0_mm = kX0, b.row.dx_mm = kDx, b.row.at_points = true;
+  b.row.x0_mm = kX0, b.row.dx_mm = kPointDx, b.row.at_points = true;
   for (int j = 0; j < kPoints; ++j) {
-    const double xj = kX0 + kDx * j, u = xj / 3.0, bead = std::abs(u) < 1.0 ? 0.8 * std::sqrt(1.0 - u * u) : 0.0;
+    const double xj = kX0 + kPointDx * j, u = xj / 3.0, bead = std::abs(u) < 1.0 ? 0.8 * std::sqrt(1.0 - u * u) : 0.0;
     b.row.z_mm.push_back(static_cast<float>(below(xj) + draw()));
     b.row.variance.push_back(1.0f);
     b.x.push_back(static_cast<float>(xj)), b.z.push_back(static_cast<float>(below(xj) + bead + draw()));
@@ -140,7 +140,7 @@ TEST(AddedBead, PointsOverALostSurfaceBelowMeasureAsThePointsLeftOut) {
     if (j >= 150 && j < 155) holed.z_mm[j] = NAN;
     if (j < 149 || j >= 155) x_left.push_back(x[j]), z_left.push_back(z[j]);
   }
-  const double spacing = kDx, noise_mm = 0.01;
+  const double spacing = kPointDx, noise_mm = 0.01;
   const AddedBead over_hole = MeasureAddedBead(x, z, SurfaceGrid(holed), false, {}, nullptr, spacing, 0.0, noise_mm);
   const AddedBead left_out =
       MeasureAddedBead(x_left, z_left, SurfaceGrid(full), false, {}, nullptr, spacing, 0.0, noise_mm);
@@ -172,12 +172,12 @@ TEST(AddedBead, AGainRisingAgainBesideTheBeadIsNotTheBeads) {
   z[end] += 0.03f;      // ... raised over the floor, under the threshold (0.06)
   SurfaceRow walled = flat;
   walled.z_mm[end + 1] = -1.0f;  // the next point's gain 2 mm: the wall beside it
-  const AddedBead bare = MeasureAddedBead(x, z, SurfaceGrid(flat), false, {}, nullptr, kDx, 0.0, kNoise);
-  const AddedBead walled_off = MeasureAddedBead(x, z, SurfaceGrid(walled), false, {}, nullptr, kDx, 0.0, kNoise);
+  const AddedBead bare = MeasureAddedBead(x, z, SurfaceGrid(flat), false, {}, nullptr, kPointDx, 0.0, kNoise);
+  const AddedBead walled_off = MeasureAddedBead(x, z, SurfaceGrid(walled), false, {}, nullptr, kPointDx, 0.0, kNoise);
   ASSERT_EQ(bare.status, AddedStatus::kValid);
   ASSERT_EQ(walled_off.status, AddedStatus::kValid);
-  EXPECT_NEAR(walled_off.area_mm2, bare.area_mm2, 0.5 * 0.02 * kDx + 1e-9);
-  EXPECT_NEAR(walled_off.width_mm, bare.width_mm, kDx);
+  EXPECT_NEAR(walled_off.area_mm2, bare.area_mm2, 0.5 * 0.02 * kPointDx + 1e-9);
+  EXPECT_NEAR(walled_off.width_mm, bare.width_mm, kPointDx);
   EXPECT_EQ(walled_off.height_mm, bare.height_mm);
 }
 

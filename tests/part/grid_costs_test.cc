@@ -14,18 +14,18 @@
 namespace bead::part {
 namespace {
 
-constexpr double kDx = 0.05, kNoise = 0.01, kTau = 0.06;
+constexpr double kGridDx = 0.05, kNoise = 0.01, kTau = 0.06;
 
-double OldBead(double x) { return std::abs(x) < 4.0 ? 1.5 * std::sqrt(1.0 - x * x / 16.0) : 0.0; }
+double LowerBead(double x) { return std::abs(x) < 4.0 ? 1.5 * std::sqrt(1.0 - x * x / 16.0) : 0.0; }
 
 // The layer below on its points' grid: a gap of 0.3 mm not seen, a
 // stretch bridged (variance under one point's); from x0 on n values.
 SurfaceRow BelowRow(double x0, int n, int gap) {
   SurfaceRow row;
-  row.x0_mm = x0, row.dx_mm = kDx, row.at_points = true;
+  row.x0_mm = x0, row.dx_mm = kGridDx, row.at_points = true;
   for (int k = 0; k < n; ++k) {
-    const double x = row.x0_mm + k * kDx;
-    row.z_mm.push_back(k >= gap && k < gap + 6 ? NAN : static_cast<float>(OldBead(x)));
+    const double x = row.x0_mm + k * kGridDx;
+    row.z_mm.push_back(k >= gap && k < gap + 6 ? NAN : static_cast<float>(LowerBead(x)));
     row.variance.push_back(k >= 200 && k < 204 ? 0.5f : 1.0f);
   }
   return row;
@@ -36,7 +36,7 @@ SurfaceRow BelowRow(double x0, int n, int gap) {
 // weighed 0.3: where one is not known the other stands for both.
 std::vector<SurfaceGrid> Surfaces() {
   auto first = std::make_shared<const SurfaceRow>(BelowRow(-12.0, 481, 100));
-  auto second = std::make_shared<const SurfaceRow>(BelowRow(-11.5 + 0.37 * kDx, 450, 150));
+  auto second = std::make_shared<const SurfaceRow>(BelowRow(-11.5 + 0.37 * kGridDx, 450, 150));
   return {SurfaceGrid(first, nullptr, 0.0), SurfaceGrid(first, second, 0.3)};
 }
 SurfaceGrid Below() { return Surfaces()[0]; }
@@ -53,11 +53,11 @@ Points NewPoints(double shift, bool dropouts = true) {
   Points p;
   for (int j = 0; j < 401; ++j) {
     if (dropouts && j % 37 == 5) continue;
-    const double x = -10.0 + kDx / 3.0 + j * kDx, u = (x - shift - 0.3) / 3.0;
+    const double x = -10.0 + kGridDx / 3.0 + j * kGridDx, u = (x - shift - 0.3) / 3.0;
     const double top = std::abs(u) < 1.0 ? 1.2 + 1.5 * std::sqrt(1.0 - u * u) : 0.0;
     p.x.push_back(static_cast<float>(x));
     p.exact.push_back(x);
-    p.z.push_back(static_cast<float>(std::max(OldBead(x - shift), top) + noise(rng)));
+    p.z.push_back(static_cast<float>(std::max(LowerBead(x - shift), top) + noise(rng)));
   }
   return p;
 }
@@ -151,7 +151,7 @@ TEST(GridCosts, WhereTheSurfacesAgreeIsCountedAsPointByPoint) {
       PointsOnGrid grid;
       grid.UseKernel(*kernel);
       ASSERT_TRUE(grid.Make(p.x, p.z, below));
-      const double feature_slope = 3.0 * kNoise / kDx;
+      const double feature_slope = 3.0 * kNoise / kGridDx;
       for (double s : {-0.31, 0.0, 0.137, 0.25}) {
         double sum = 0.0;
         int points = 0, features = 0;
@@ -203,7 +203,7 @@ TEST(GridCosts, PointsOffTheGridOrRowsOfOtherSpacingsAreLeftToThePointByPointPat
   Points p = NewPoints(0.0);
   PointsOnGrid grid;
   EXPECT_TRUE(grid.Make(p.x, p.z, below));
-  p.x[17] += static_cast<float>(0.2 * kDx);  // one point off the spacing's grid
+  p.x[17] += static_cast<float>(0.2 * kGridDx);  // one point off the spacing's grid
   EXPECT_FALSE(grid.Make(p.x, p.z, below));
   const Points q = NewPoints(0.0);
   SurfaceRow row = *below.single_row(), coarser = row;

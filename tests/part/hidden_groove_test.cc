@@ -12,6 +12,7 @@
 #include "libbead/io/profile_stream.h"
 #include "libbead/part/measure_part.h"
 #include "libbead/sim/part_twin.h"
+#include "tests/support/error_stats.h"
 
 namespace bead {
 namespace {
@@ -61,11 +62,7 @@ double CoverageFloor(std::size_t rows) {
   return n * (0.95 - 3.0 * std::sqrt(0.05 * 0.95 / n));
 }
 
-double MedianAbs(std::vector<double> v) {
-  for (double& x : v) x = std::abs(x);
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v.empty() ? NAN : v[v.size() / 2];
-}
+using test::MedianAbs;
 
 // Four walls the thresholds were not set on (seeds 5 to 8, the twin's
 // default wall: six layers whose beads overhang the one below). The

@@ -15,6 +15,7 @@
 #include "libbead/part/measure_part.h"
 #include "libbead/part/part_flow.h"
 #include "libbead/sim/part_twin.h"
+#include "tests/support/error_stats.h"
 
 namespace bead {
 namespace {
@@ -53,11 +54,7 @@ ContourFigures Figures(const sim::PartTwin& twin, bool naive) {
   return f;
 }
 
-double MedianAbs(std::vector<double> v) {
-  for (double& x : v) x = std::abs(x);
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v.empty() ? NAN : v[v.size() / 2];
-}
+using test::MedianAbs;
 
 // The q-quantile of |v|.
 double QuantileAbs(std::vector<double> v, double q) {

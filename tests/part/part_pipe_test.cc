@@ -12,6 +12,7 @@
 #include "libbead/part/bed_arc.h"
 #include "libbead/part/measure_part.h"
 #include "libbead/sim/part_twin.h"
+#include "tests/support/error_stats.h"
 
 namespace bead {
 namespace {
@@ -29,11 +30,7 @@ std::vector<double> FirstLayerErrors(const sim::PartTwin& twin, const Rig& rig, 
   return e;
 }
 
-double Rms(const std::vector<double>& v) {
-  double s = 0;
-  for (double x : v) s += x * x;
-  return std::sqrt(s / std::max<std::size_t>(v.size(), 1));
-}
+using test::Rms;
 
 TEST(PartPipe, TheFirstLayerStandsOnTheArcGivenOrFittedNotOnAChord) {
   sim::PartTwinConfig config;

@@ -15,6 +15,7 @@
 #include "libbead/sim/part_twin.h"
 #include "tests/support/scaled_twin.h"
 #include "tests/support/temp_dir.h"
+#include "tests/support/error_stats.h"
 
 namespace bead {
 namespace {
@@ -39,11 +40,7 @@ double Mean(const std::vector<double>& v) {
   for (double x : v) s += x;
   return v.empty() ? NAN : s / v.size();
 }
-double Rms(const std::vector<double>& v) {
-  double s = 0;
-  for (double x : v) s += x * x;
-  return v.empty() ? NAN : std::sqrt(s / v.size());
-}
+using test::Rms;
 
 void Collect(const sim::PartTwin& twin, const std::vector<part::PartGeometryRow>& rows, Errors& e) {
   std::vector<double> pass_shift(64, 0.0);

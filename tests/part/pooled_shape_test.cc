@@ -16,6 +16,7 @@
 #include "libbead/part/layer_grooves.h"
 #include "libbead/part/measure_part.h"
 #include "libbead/sim/part_twin.h"
+#include "tests/support/error_stats.h"
 
 namespace bead {
 namespace {
@@ -51,11 +52,7 @@ int Within(const std::vector<double>& z, double k) {
   return n;
 }
 
-double Rms(const std::vector<double>& z) {
-  double s = 0.0;
-  for (double v : z) s += v * v;
-  return std::sqrt(s / static_cast<double>(z.size()));
-}
+using test::Rms;
 
 // Twelve walls of six layers (72 pools, the seeds the thresholds were not
 // set on). A 95 % interval misses 3.6 of 72 on average; 11 or more misses

@@ -17,6 +17,7 @@
 #include "libbead/part/roads.h"
 #include "libbead/sim/part_twin.h"
 #include "tests/support/scaled_twin.h"
+#include "tests/support/error_stats.h"
 
 namespace bead {
 namespace {
@@ -83,11 +84,7 @@ RoadFigures RoadsAt(double spacing_over_width, uint64_t seed, double k = 1.0) {
   return f;
 }
 
-double MedianAbs(const std::vector<double>& v) {
-  std::vector<double> a;
-  for (double x : v) a.push_back(std::abs(x));
-  return Median(a);
-}
+using test::MedianAbs;
 
 // The figures on the twin (ellipses laid in order, each filling
 // down to the surface before it), seeds the thresholds were not set on.

@@ -18,7 +18,7 @@ TEST(MeasureProfiles, ThreadsGiveTheSameResultsAsOneProcessor) {
     profiles.push_back(test::Render(sim::ParabolaOutline(6.0 + (i % 7), 2.0), {0.01, 0.0, 40.0 + 0.001 * i},
                                     test::UniformGrid(320), noise, i));
   auto view = [&](std::size_t i) { return profiles[i].view(); };
-  BatchOptions two;
+  BlockOptions two;
   two.threads = 2;
   const auto batch = MeasureProfiles(profiles.size(), view, test::kLeft, test::kRight, {}, two);
   ProfileProcessor one(test::kLeft, test::kRight);

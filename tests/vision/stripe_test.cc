@@ -25,7 +25,7 @@ StripeOptions Across(StripeMethod method = StripeMethod::kGaussian) {
   return o;
 }
 
-void StripeCentres(const cv::Mat& frame, const StripeOptions& options, std::vector<float>& rows) {
+void CentreRows(const cv::Mat& frame, const StripeOptions& options, std::vector<float>& rows) {
   vision::StripeCentres found;
   FindStripe(frame, options, found);
   rows = found.centres;
@@ -35,7 +35,7 @@ TEST(Stripe, FloatFrameGivesTheExactCentre) {
   const test::Stripe stripe{Centre, 1.8, 180.0, 12.0};
   const cv::Mat frame = test::RenderStripe(120, 400, stripe, CV_32F);
   std::vector<float> rows;
-  StripeCentres(frame, Across(), rows);
+  CentreRows(frame, Across(), rows);
   ASSERT_EQ(rows.size(), 400u);
   // Float intensities carry a relative rounding of 6e-8; through the
   // logarithms and the curvature 1 / sigma^2 that moves the centre by
@@ -48,7 +48,7 @@ TEST(Stripe, EightBitRoundingMovesTheCentreWithinItsBound) {
   const test::Stripe stripe{Centre, sigma, peak, 12.0};
   const cv::Mat frame = test::RenderStripe(120, 400, stripe, CV_8U);
   std::vector<float> rows;
-  StripeCentres(frame, Across(), rows);
+  CentreRows(frame, Across(), rows);
   // The estimator is d = 0.5 N / D with N = ln a - ln d and D = ln a -
   // 2 ln c + ln d = -1 / sigma^2. Rounding moves each sample by at most
   // 0.5 grey level: ln a and ln d by 0.5 / a_min with a_min = peak
@@ -73,11 +73,11 @@ TEST(Stripe, SaturatedPeakIsTheMiddleOfItsPlateau) {
   // ceil(c - r) to floor(c + r), whose middle is within half a pixel of c.
   const test::Stripe stripe{Centre, 2.0, 400.0, 10.0};
   std::vector<float> rows;
-  StripeCentres(test::RenderStripe(120, 400, stripe, CV_8U), Across(), rows);
+  CentreRows(test::RenderStripe(120, 400, stripe, CV_8U), Across(), rows);
   for (int u = 0; u < 400; ++u) EXPECT_NEAR(rows[static_cast<std::size_t>(u)], Centre(u), 0.5) << "column " << u;
   // Sixteen-bit frames saturate at 65535.
   const test::Stripe bright{Centre, 2.0, 1e5, 10.0};
-  StripeCentres(test::RenderStripe(120, 400, bright, CV_16U), Across(), rows);
+  CentreRows(test::RenderStripe(120, 400, bright, CV_16U), Across(), rows);
   for (int u = 0; u < 400; ++u) EXPECT_NEAR(rows[static_cast<std::size_t>(u)], Centre(u), 0.5) << "column " << u;
 }
 
@@ -91,7 +91,7 @@ TEST(Stripe, NoStripeWhereThereIsNone) {
   frame.colRange(200, 300).setTo(12.0f);
   frame.row(0).colRange(200, 300).setTo(200.0f);
   std::vector<float> rows;
-  StripeCentres(frame, Across(), rows);
+  CentreRows(frame, Across(), rows);
   for (int u = 0; u < 300; ++u) {
     const float r = rows[static_cast<std::size_t>(u)];
     if (u >= 100 && u < 200)
@@ -103,9 +103,9 @@ TEST(Stripe, NoStripeWhereThereIsNone) {
 
 TEST(Stripe, RejectsFramesItCannotRead) {
   std::vector<float> rows;
-  EXPECT_THROW(StripeCentres(cv::Mat(), Across(), rows), Error);
+  EXPECT_THROW(CentreRows(cv::Mat(), Across(), rows), Error);
   try {
-    StripeCentres(cv::Mat(10, 10, CV_8UC3, cv::Scalar(0, 0, 0)), Across(), rows);
+    CentreRows(cv::Mat(10, 10, CV_8UC3, cv::Scalar(0, 0, 0)), Across(), rows);
     ADD_FAILURE() << "a colour frame was accepted";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("8UC3"), std::string::npos) << e.what();
