@@ -20,9 +20,12 @@
 //    edge floor (it is not the bead's); width: between the edges,
 //    where d crosses the edge floor (linear between the foot and the bare
 //    point); height: d at the crest (the median of three around the
-//    highest new point); centre: the top of the bead, the vertex of the
-//    parabola through the new surface within a fifth of the width of its
-//    highest point (the gain's centroid leans toward an overhanging side);
+//    highest new point); centre: the middle of the bead's top, halfway
+//    between where the new surface falls below the crest by half the
+//    lesser of its drops to the two feet (a flat top's middle as a round
+//    one's; the gain's centroid leans toward an overhanging side); where
+//    that drop is under six noises, the vertex of the parabola through the
+//    new surface within a fifth of the width of its highest point;
 //  - registration: s minimises the mean squared gain of the points outside
 //    the bead (where the old surface is still what the sensor sees: the
 //    bed, a lower layer's flank that the new bead does not cover): s
