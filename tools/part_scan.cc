@@ -40,7 +40,14 @@ void SayShape(const part::PooledShape& s) {
   std::printf("    bead shape (%s%zu %s pooled): half-height over half-width %s", s.AspectAtWalls() ? "" : "its first ",
               s.rows, s.AspectAtWalls() ? "of its first profiles, those placed at their walls," : "profiles",
               WithSigma(s.aspect, s.aspect_sigma).c_str());
-  if (!s.exponent_solved) {
+  if (!s.exponent_solved && s.walls_unsolved > 0) {
+    std::printf(
+        "; an ellipse assumed (too few of its beads were placed at their walls to solve the exponent: %zu of its "
+        "first %zu profiles show walls at both ends, their beads overhanging, but the shape each one's top solves does "
+        "not stand over its walls: their tops are too noisy, to the profiles' noise, to solve their own shape): the "
+        "sigma is the fitted beads' spread alone, not what a shape other than the ellipse would leave\n",
+        s.walls_unsolved, s.estimated);
+  } else if (!s.exponent_solved) {
     std::printf(
         "; an ellipse assumed (too few of its beads overhang to show their walls and solve the exponent): the sigma "
         "is the fitted beads' spread alone, not what a shape other than the ellipse would leave\n");
@@ -85,10 +92,16 @@ void SayShape(const part::PooledShape& s) {
 // (part/hidden_groove.h: OutlineMisfit).
 void SayMisfits(const part::LayerSummary& l) {
   using part::OutlineMisfit;
+  // (Where the tops were too noisy to solve their shape, the misfit is the
+  // ellipse assumed for them: SayShape.)
   std::printf(
-      "    %zu valid profiles without a corrected area: the bead's outline is none of the model's shapes, so the "
-      "hidden groove is not estimated and the area seen stands (",
-      l.Misfits());
+      "    %zu valid profiles without a corrected area: %s, so the hidden groove is not estimated and the area "
+      "seen stands (",
+      l.Misfits(),
+      l.shape && l.shape->TopsTooNoisy()
+          ? "the ellipse assumed for their beads (their tops too noisy to solve their own shape) is not their "
+            "outline"
+          : "the bead's outline is none of the model's shapes");
   const char* sep = "";
   const auto say = [&](OutlineMisfit m, const std::string& why) {
     if (const std::size_t n = l.misfit[static_cast<std::size_t>(m)])

@@ -306,7 +306,8 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   // the walls' and contours' figures were read once, with these.)
   const SilhouetteScale scale{std::max(3.0 * noise_mm, 0.02 * height), std::max(6.0 * noise_mm, 0.15 * height)};
   const double* start_place = previous && previous->ok ? previous->end_place : nullptr;
-  if (const std::optional<Silhouette> s = AtSilhouette(w, center, scale, pooled, start_place)) {
+  bool walls_unsolved = false;
+  if (const std::optional<Silhouette> s = AtSilhouette(w, center, scale, pooled, start_place, &walls_unsolved)) {
     HiddenGroove placed = AtTheSilhouette(*s, around, pooled, center, base, height);
     if (!pooled) placed.pressed_half_mm = PressedHalfHeight(w, s->e, noise_mm);
     return placed;
@@ -356,6 +357,7 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
       if (rss < best_rss) best_rss = rss, best = e, best_JtJ = JtJ, best_top = NAN;
     }
   out.fit_rms_mm = std::sqrt(best_rss / static_cast<double>(w.x.size()));
+  out.walls_unsolved = walls_unsolved;
   out.aspect = best.b / best.a, out.exponent = exponent;
   out.dx0 = best.x0 - center, out.dz0 = best.z0 - base, out.a = best.a, out.b = best.b;
   const GrooveSum groove = GrooveWithGradient(best, below, shift);

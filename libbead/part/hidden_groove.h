@@ -121,6 +121,11 @@ struct HiddenGroove {
   // a flat surface, its half-height from its top's height over that
   // surface (hidden_groove.cc: PressedHalfHeight; NaN: not so).
   double shape_a = kNaN, pressed_half_mm = kNaN;
+  // Fitted, with no shape held, where both its ends showed walls but the
+  // free shape its top solved did not stand over them (part/silhouette.h:
+  // AtSilhouette's walls_unsolved): the bead overhangs, and its top is
+  // too noisy to solve its shape.
+  bool walls_unsolved = false;
 };
 
 // x, z: the profile's valid points in the bed frame (x increasing); below:

@@ -83,7 +83,7 @@ void LayerGrooves::Add(PartGeometryRow row, const StoredProfile* points, const S
   if (row.layer != layer_) {
     Flush(emit);
     aspects_.clear(), tops_.clear(), placed_.clear(), pooled_.reset(), last_.reset(), layer_ = row.layer;
-    at_walls_ = ends_off_ = 0;
+    at_walls_ = ends_off_ = estimated_ = walls_unsolved_ = 0;
   }
   double top = NAN;
   if (points && under) {
@@ -92,6 +92,7 @@ void LayerGrooves::Add(PartGeometryRow row, const StoredProfile* points, const S
     Apply(g, points->spacing_mm, row);
     top = g.top_rms_mm / TopTolerance(row.bead.noise_mm, row.bead.height_mm);
     if (!pooled_ && g.at_silhouette) ++at_walls_, ends_off_ += !g.shape_consistent;
+    if (!pooled_) ++estimated_, walls_unsolved_ += g.walls_unsolved;
     if (!pooled_ && g.ok && g.shape_consistent) {
       aspects_.push_back(g.aspect);
       if (std::isfinite(top)) tops_.push_back(top);
@@ -258,6 +259,7 @@ PooledShape LayerGrooves::Pooled() const {
   pool.top_noise = tops_.empty() ? NAN : MedianAndError(tops_).first;
   pool.rows = aspects_.size();
   pool.ends_off = EndsOff();
+  pool.estimated = estimated_, pool.walls_unsolved = walls_unsolved_;
   if (const std::vector<Placed> placed = OfOneFamily(placed_); !placed.empty()) {
     std::vector<double> exponents;
     double lo = INFINITY, hi = -INFINITY, aspect_var = 0.0, exponent_var = 0.0, spacing = 0.0;

@@ -105,6 +105,9 @@ class LayerGrooves {
   // The rows placed at their walls so far, and those whose top put an end
   // off its wall's cell (OutlineMisfit::kEndsOff); the layer's verdict.
   std::size_t at_walls_ = 0, ends_off_ = 0;
+  // The rows estimated before the pool, and those whose walls showed but
+  // whose tops solved no shape standing over them (PooledShape).
+  std::size_t estimated_ = 0, walls_unsolved_ = 0;
   bool EndsOff() const { return at_walls_ >= kMinPoolProfiles && 2 * ends_off_ > at_walls_; }
   std::vector<std::pair<int64_t, PooledShape>> pools_;
   std::optional<PooledShape> pooled_;

@@ -178,7 +178,7 @@ std::ptrdiff_t SolveEitherFamily(const Window& w, std::size_t first, std::size_t
 }  // namespace
 
 std::optional<Silhouette> AtSilhouette(const Window& w, double center, const SilhouetteScale& k,
-                                       const PooledShape* held, const double* start_place) {
+                                       const PooledShape* held, const double* start_place, bool* walls_unsolved) {
   const std::size_t n = w.x.size();
   const auto c = static_cast<std::size_t>(std::lower_bound(w.x.begin(), w.x.end(), center) - w.x.begin());
   if (c >= n || !(w.Gain(c) > k.floor)) return std::nullopt;
@@ -247,9 +247,11 @@ std::optional<Silhouette> AtSilhouette(const Window& w, double center, const Sil
   }
   const std::vector<double>* grid = nullptr;
   const std::ptrdiff_t found = SolveEitherFamily(w, jl + 1, jr, L, R, s, grid);
-  if (found < 0) return std::nullopt;
   const double cell = std::max(s.cell[1] - s.cell[0], s.cell[3] - s.cell[2]);
-  if (!stands(s, s.e.b * std::sqrt(cell / s.e.a))) return std::nullopt;
+  if (found < 0 || !stands(s, s.e.b * std::sqrt(cell / s.e.a))) {
+    if (walls_unsolved) *walls_unsolved = true;
+    return std::nullopt;
+  }
   // The shape (for the layer's pool) with the ends placed by the top; the
   // bead itself stays placed at the cells' middles (its area seen counts
   // the walls' cells as trapezoids, which the middles match).

@@ -123,8 +123,12 @@ struct SilhouetteScale {
 // no wall (the gain rises by less than `rise` there, or the ellipse placed
 // stands on the surface below by less at its end: the bead's side meets
 // the surface below, nothing to place it by).
+// walls_unsolved (where given): set where both ends showed walls but the
+// free shape its top solves does not stand over them (its widest point
+// under the walls' tops: a top too noisy to solve its own shape).
 std::optional<Silhouette> AtSilhouette(const Window& w, double center, const SilhouetteScale& scale,
-                                       const PooledShape* held, const double* start_place = nullptr);
+                                       const PooledShape* held, const double* start_place = nullptr,
+                                       bool* walls_unsolved = nullptr);
 
 // The variance the placement adds to the area seen less the groove: each
 // end anywhere in its cell (uniform: the range of the difference's change
