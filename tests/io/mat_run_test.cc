@@ -112,22 +112,17 @@ TEST(MatRun, ShapesThatDoNotFitAndFractionalCountsAreNamed) {
   WriteMatrix(mat, "t5", 5, 1, {0.0, 0.1, 0.2, 0.3, 0.4});
   WriteMatrix(mat, "enc", 3, 1, {0.0, 1.5, 2.0});
   Mat_Close(mat);
-  test::ExpectRejected(path, "X: is 1 x 5: x is a vector of 4 values or a matrix shaped as 'Z' (3 x 4)", [&] {
-    ReadMatRun(path, {"", "t", "X", "Z", "", 1.0, false});
-  });
-  test::ExpectRejected(path, "Z: is 3 x 4: neither side matches the 5 times of 't5'", [&] {
-    ReadMatRun(path, {"", "t5", "X", "Z", "", 1.0, false});
-  });
-  test::ExpectRejected(path, "height: no such variable (its numeric variables: Z, X, X4, t, t5, enc)", [&] {
-    ReadMatRun(path, {"", "t", "X", "height", "", 1.0, false});
-  });
-  test::ExpectRejected(path, "enc(2): the encoder is not a whole number", [&] {
-    ReadMatRun(path, {"", "t", "X4", "Z", "enc", 1.0, false});
-  });
+  test::ExpectRejected(path, "X: is 1 x 5: x is a vector of 4 values or a matrix shaped as 'Z' (3 x 4)",
+                       [&] { ReadMatRun(path, Columns("", "t", "X", "Z", "", 1.0, false)); });
+  test::ExpectRejected(path, "Z: is 3 x 4: neither side matches the 5 times of 't5'",
+                       [&] { ReadMatRun(path, Columns("", "t5", "X", "Z", "", 1.0, false)); });
+  test::ExpectRejected(path, "height: no such variable (its numeric variables: Z, X, X4, t, t5, enc)",
+                       [&] { ReadMatRun(path, Columns("", "t", "X", "height", "", 1.0, false)); });
+  test::ExpectRejected(path, "enc(2): the encoder is not a whole number",
+                       [&] { ReadMatRun(path, Columns("", "t", "X4", "Z", "enc", 1.0, false)); });
   test::WriteText(dir / "text.mat", "not a mat file at all, only text\n");
-  test::ExpectRejected(dir / "text.mat", "not a MATLAB .mat file", [&] {
-    ReadMatRun(dir / "text.mat", {"", "t", "X", "Z", "", 1.0, false});
-  });
+  test::ExpectRejected(dir / "text.mat", "not a MATLAB .mat file",
+                       [&] { ReadMatRun(dir / "text.mat", Columns("", "t", "X", "Z", "", 1.0, false)); });
 }
 
 }  // namespace

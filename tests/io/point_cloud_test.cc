@@ -18,6 +18,7 @@
 #include "libbead/io/rig_yaml.h"
 #include "tests/support/expect_rejected.h"
 #include "tests/support/run_cli.h"
+#include "tests/support/error_stats.h"
 
 namespace bead {
 namespace {
@@ -41,10 +42,7 @@ std::map<std::string, std::map<std::string, std::string>> GeometryRows(const std
   return rows;
 }
 
-double Median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
+using test::Median;
 
 TEST(PointCloud, TwinRunRoundTripsThroughPlyAndPcd) {
   test::TempDir dir;
@@ -66,8 +64,9 @@ TEST(PointCloud, TwinRunRoundTripsThroughPlyAndPcd) {
     ASSERT_EQ(ex, 0) << ex_out;
 
     // Wheel coordinates, read as another tool would (z is the height).
-    const ImportedRun as_height = ReadPointCloud(cloud_path, {"profile", "t_s", "x", "z", "encoder", 1.0, false});
-    const ImportedRun as_s = ReadPointCloud(cloud_path, {"profile", "t_s", "x", "y", "", 1.0, false});
+    const ImportedRun as_height =
+        ReadPointCloud(cloud_path, Columns("profile", "t_s", "x", "z", "encoder", 1.0, false));
+    const ImportedRun as_s = ReadPointCloud(cloud_path, Columns("profile", "t_s", "x", "y", "", 1.0, false));
     const ProfileBlock& h = as_height.run.profiles;
     const ProfileBlock& s = as_s.run.profiles;
     ASSERT_EQ(h.size(), s.size());
@@ -133,7 +132,8 @@ TEST(PointCloud, ForeignAsciiPlyIsOrderedByTheNamedField) {
                   "0 0 -101 2 20\n1 0 -102 2 20\n"
                   "0 0 -100 0 0\n1 0 -103 0 0\n"
                   "0 0 -104 1 10\n1 0 -105 1 10\n");
-  const ImportedRun r = ReadPointCloud(dir / "scan.ply", {"scalar_Line", "scalar_Time", "x", "z", "", 1e-3, true});
+  const ImportedRun r =
+      ReadPointCloud(dir / "scan.ply", Columns("scalar_Line", "scalar_Time", "x", "z", "", 1e-3, true));
   const ProfileBlock& b = r.run.profiles;
   ASSERT_EQ(b.size(), 3u);
   EXPECT_EQ(r.rows, 6u);
@@ -153,7 +153,7 @@ TEST(PointCloud, OrganizedPcdGivesAProfilePerRow) {
                   "VERSION .7\nFIELDS x z t\nSIZE 4 4 8\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 3\nHEIGHT 2\n"
                   "VIEWPOINT 0 0 0 1 0 0 0\nPOINTS 6\nDATA ascii\n"
                   "-1 0 0.5\n0 2 0.5\n1 nan 0.5\n-1 0 0.6\n0 3 0.6\n1 0 0.6\n");
-  const ImportedRun r = ReadPointCloud(dir / "grid.pcd", {"", "t", "x", "z", "", 1.0, false});
+  const ImportedRun r = ReadPointCloud(dir / "grid.pcd", Columns("", "t", "x", "z", "", 1.0, false));
   const ProfileBlock& b = r.run.profiles;
   ASSERT_EQ(b.size(), 2u);
   EXPECT_DOUBLE_EQ(b.t_s[1], 0.6);
@@ -168,29 +168,23 @@ TEST(PointCloud, BadCloudsAreNamed) {
       "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float z\n"
       "property float line\nproperty float t\nend_header\n";
   test::WriteText(dir / "ok.ply", ply_head + "0 1 0 0\n1 1 1 1\n");
-  test::ExpectRejected(dir / "ok.ply", "no field 'scan' for the scan line (the cloud has: x, z, line, t)", [&] {
-    ReadPointCloud(dir / "ok.ply", {"scan", "t", "x", "z", "", 1.0, false});
-  });
-  test::ExpectRejected(dir / "ok.ply", "name the field that numbers the scan lines", [&] {
-    ReadPointCloud(dir / "ok.ply", {"", "t", "x", "z", "", 1.0, false});
-  });
+  test::ExpectRejected(dir / "ok.ply", "no field 'scan' for the scan line (the cloud has: x, z, line, t)",
+                       [&] { ReadPointCloud(dir / "ok.ply", Columns("scan", "t", "x", "z", "", 1.0, false)); });
+  test::ExpectRejected(dir / "ok.ply", "name the field that numbers the scan lines",
+                       [&] { ReadPointCloud(dir / "ok.ply", Columns("", "t", "x", "z", "", 1.0, false)); });
   test::WriteText(dir / "nan.ply", ply_head + "0 1 nan 0\n1 1 1 1\n");
-  test::ExpectRejected(dir / "nan.ply", "point 0: the scan line field 'line' is not finite", [&] {
-    ReadPointCloud(dir / "nan.ply", {"line", "t", "x", "z", "", 1.0, false});
-  });
+  test::ExpectRejected(dir / "nan.ply", "point 0: the scan line field 'line' is not finite",
+                       [&] { ReadPointCloud(dir / "nan.ply", Columns("line", "t", "x", "z", "", 1.0, false)); });
   // Lines ordered by a field that runs against time.
   test::WriteText(dir / "back.ply", ply_head + "0 1 0 5\n1 1 1 1\n");
-  test::ExpectRejected(dir / "back.ply", "t_s", [&] {
-    ReadPointCloud(dir / "back.ply", {"line", "t", "x", "z", "", 1.0, false});
-  });
+  test::ExpectRejected(dir / "back.ply", "t_s",
+                       [&] { ReadPointCloud(dir / "back.ply", Columns("line", "t", "x", "z", "", 1.0, false)); });
   test::WriteText(dir / "text.ply", "this is no cloud\n");
-  test::ExpectRejected(dir / "text.ply", "not a PLY file PCL can read", [&] {
-    ReadPointCloud(dir / "text.ply", {"line", "t", "x", "z", "", 1.0, false});
-  });
+  test::ExpectRejected(dir / "text.ply", "not a PLY file PCL can read",
+                       [&] { ReadPointCloud(dir / "text.ply", Columns("line", "t", "x", "z", "", 1.0, false)); });
   test::WriteText(dir / "cut.pcd", "VERSION .7\nFIELDS x z t\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 4\n");
-  test::ExpectRejected(dir / "cut.pcd", "not a PCD file PCL can read", [&] {
-    ReadPointCloud(dir / "cut.pcd", {"", "t", "x", "z", "", 1.0, false});
-  });
+  test::ExpectRejected(dir / "cut.pcd", "not a PCD file PCL can read",
+                       [&] { ReadPointCloud(dir / "cut.pcd", Columns("", "t", "x", "z", "", 1.0, false)); });
   test::ExpectRejected(dir / "out.xyz", "a point cloud is written as .ply or .pcd",
                        [&] { WritePointCloud(dir / "out.xyz", WheelCloud{}); });
 }

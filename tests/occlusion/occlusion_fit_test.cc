@@ -11,6 +11,7 @@
 #include "libbead/sim/bead_shapes.h"
 #include "libbead/sim/rig_simulator.h"
 #include "tests/support/synthetic.h"
+#include "tests/support/error_stats.h"
 
 namespace bead::occlusion {
 namespace {
@@ -32,10 +33,7 @@ sim::SimConfig Undercut(double bottom_exponent) {
   return c;
 }
 
-double Median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
+using test::Median;
 
 // Issue 5's targets: median |corrected - true| <= 0.5 % of the true area
 // (naive about 2-3 %), and the reported uncertainty covers the truth for

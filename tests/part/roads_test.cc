@@ -32,11 +32,7 @@ std::vector<part::PartGeometryRow> MeasureRoads(const sim::PartTwin& twin) {
   return rows;
 }
 
-double Median(std::vector<double> v) {
-  if (v.empty()) return NAN;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
+using test::Median;
 
 struct RoadFigures {
   int profiles = 0, counted_right = 0;

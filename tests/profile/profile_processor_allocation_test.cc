@@ -17,6 +17,12 @@ namespace {
 std::atomic<long> g_allocations{0};
 }
 
+// (GCC 12 takes free() in a replaced operator delete for a pointer from a
+// mismatched allocation function; here new and delete are replaced
+// together, malloc and free, and match.)
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+#endif
 void* operator new(std::size_t size) {
   g_allocations.fetch_add(1, std::memory_order_relaxed);
   if (void* p = std::malloc(size ? size : 1)) return p;

@@ -13,6 +13,7 @@
 
 #include "tests/support/csv_rows.h"
 #include "tests/support/run_cli.h"
+#include "tests/support/error_stats.h"
 
 namespace bead {
 namespace {
@@ -34,10 +35,7 @@ std::vector<std::vector<std::string>> LayerRows(const std::string& page) {
   return rows;
 }
 
-double Median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
+using test::Median;
 
 TEST(PartReport, EachLayersRowIsTheMaterialTheTwinLaid) {
   test::TempDir dir;

@@ -1,4 +1,4 @@
-// The figures tests read errors by: their RMS, the median of their sizes,
+// The figures tests read errors by: their RMS, their median and that of their sizes,
 // and whether two values are the same bits (or both NaN). Shared, so that a
 // suite's files compile as one (tests/CMakeLists.txt: a unity build) without
 // each holding its own.
@@ -18,6 +18,10 @@ inline double Rms(const std::vector<double>& v) {
   for (double x : v) s += x * x;
   return v.empty() ? NAN : std::sqrt(s / static_cast<double>(v.size()));
 }
+
+// The median of v (the two middle ones' mean for an even count); NaN where
+// there is none.
+inline double Median(std::vector<double> v) { return v.empty() ? NAN : MedianInPlace(v.data(), v.size()); }
 
 // The median of |v| (the two middle ones' mean for an even count); NaN where
 // there is none.
