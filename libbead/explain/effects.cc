@@ -273,7 +273,8 @@ Effect DynamicsCorrection(const SeriesData& d) {
   Effect e = Make(d.dynamics.empty() ? "" : "dynamics_correction",
                   "a linear correction of the base model's dynamics (filters of its input)", Effect::Kind::kAdditive,
                   "dynamics");
-  for (std::size_t k = 0; k < d.dynamics.size(); ++k) e.linear.push_back("c" + std::to_string(k));
+  // (Appended, not `"c" + string`: GCC 12's -Wrestrict false alarm.)
+  for (std::size_t k = 0; k < d.dynamics.size(); ++k) e.linear.push_back(std::string("c").append(std::to_string(k)));
   return e;
 }
 

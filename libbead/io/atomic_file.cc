@@ -52,7 +52,11 @@ AtomicFile::AtomicFile(std::string destination) : destination_(std::move(destina
   const std::string host = HostName();
   RemoveStaleTemporaries(dir, dest.filename().string(), host);
   std::string pattern =
-      (dir / ("." + dest.filename().string() + ".tmp-" + host + "-" + std::to_string(::getpid()) + "-XXXXXX")).string();
+      // (A string appended to, not a literal before one: GCC 12 warns of an
+      // overlap in `"." + string`'s insert that cannot happen, -Wrestrict.)
+      (dir / (std::string(".").append(dest.filename().string()) + ".tmp-" + host + "-" + std::to_string(::getpid()) +
+              "-XXXXXX"))
+          .string();
   const int fd = mkstemp(pattern.data());
   if (fd < 0)
     throw Error(Located(destination_, "", std::string("cannot create a temporary file: ") + std::strerror(errno)));

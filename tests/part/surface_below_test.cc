@@ -261,7 +261,9 @@ TEST(SurfaceBelow, ProfilesFartherApartThanTheGapLeaveNoPlaceBetweenThemKnown) {
       std::string why;
       const bool known = below.At(apart * 3 + 1.0 + phase, &why).has_value();
       EXPECT_EQ(known, apart < 5.0) << apart << " " << phase;
-      if (!known) EXPECT_NE(why.find("apart"), std::string::npos) << why;
+      if (!known) {
+        EXPECT_NE(why.find("apart"), std::string::npos) << why;
+      }
     }
     EXPECT_TRUE(below.At(apart * 7 + 1.0 + 4.9, nullptr).has_value()) << apart << ": 4.9 mm past the last";
     EXPECT_FALSE(below.At(apart * 7 + 1.0 + 5.1, nullptr).has_value()) << apart << ": 5.1 mm past the last";

@@ -76,10 +76,11 @@ TEST(StripeShape, ChessboardSquaresAndEdgesAreNoStripe) {
   for (int u = 0; u < 400; ++u) {
     const double c = 100.3 + 0.1 * u, edge = 40.0 * std::round(c / 40.0);
     const double found = s.centres[static_cast<std::size_t>(u)];
-    if (std::abs(c - edge) > 3 * 1.8)
+    if (std::abs(c - edge) > 3 * 1.8) {
       EXPECT_NEAR(found, c, 0.02) << u;
-    else if (!std::isnan(found))
+    } else if (!std::isnan(found)) {
       EXPECT_NEAR(found, c, 1.8) << u;
+    }
   }
 }
 
