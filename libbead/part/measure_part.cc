@@ -193,12 +193,12 @@ class PartMeasurer {
       double warm = RecentShift(), hidden = hidden_;
       const bool wide = shift && !std::isfinite(warm) && wide_searches_ > 0;
       wide_searches_ -= wide;
-      if (!std::isfinite(warm) && !wide) warm = loose_shift_, hidden = loose_hidden_;
+      if (!std::isfinite(warm) && !wide && loose_) warm = loose_->shift, hidden = loose_->hidden_sigma;
       row.bead = MeasureAddedBead(mine.x_mm, mine.z_mm, *under, shift, options_.added,
                                   std::isfinite(warm) ? &warm : nullptr, mine.spacing_mm, hidden, noise, wide);
       if (row.bead.shift_constrained) KeepShift(row.bead.shift_mm), hidden_ = row.bead.shift_hidden_sigma_mm;
       const bool loose = shift && row.bead.valid() && !row.bead.shift_constrained;
-      loose_shift_ = loose ? row.bead.shift_mm : std::nan(""), loose_hidden_ = row.bead.shift_hidden_sigma_mm;
+      loose_ = loose ? std::optional(Loose{row.bead.shift_mm, row.bead.shift_hidden_sigma_mm}) : std::nullopt;
     }
     // Several beads over the surface below, at the shift the layer's
     // registration found (its truncated cost holds any number of beads).
@@ -238,7 +238,7 @@ class PartMeasurer {
   }
   void BeginPass(int64_t layer) {
     recent_shifts_.clear(), hidden_ = 0.0, warm_layer_ = layer, wide_searches_ = kWideSearches;
-    loose_shift_ = std::nan("");
+    loose_.reset();
   }
   static constexpr std::size_t kRecentShifts = 9;
   std::vector<double> recent_shifts_;
@@ -251,7 +251,10 @@ class PartMeasurer {
   // (part/registration.h). (Each such profile searched the whole range
   // afresh: a twin wall's first 24 profiles a layer, 480 costs each, 43 %
   // of its time.)
-  double loose_shift_ = std::nan(""), loose_hidden_ = 0.0;
+  struct Loose {
+    double shift, hidden_sigma;
+  };
+  std::optional<Loose> loose_;
   // The pass's first registrations with no shift found yet look over the
   // whole span for a least beyond the first range (part/registration.h):
   // this many a pass (a layer whose shift is never found pays no more).
