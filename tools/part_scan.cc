@@ -43,9 +43,10 @@ void SayShape(const part::PooledShape& s) {
   if (!s.exponent_solved && s.walls_unsolved > 0) {
     std::printf(
         "; an ellipse assumed (too few of its beads were placed at their walls to solve the exponent: %zu of its "
-        "first %zu profiles show walls at both ends, their beads overhanging, but the shape each one's top solves does "
-        "not stand over its walls: their tops are too noisy, to the profiles' noise, to solve their own shape): the "
-        "sigma is the fitted beads' spread alone, not what a shape other than the ellipse would leave\n",
+        "first %zu profiles show walls at both ends, but the shape each one's top solves does not stand over them by "
+        "more than the noise and the ends' cells, a point spacing wide, leave in doubt: their tops and walls do not "
+        "pin their own shape): the sigma is the fitted beads' spread alone, not what a shape other than the ellipse "
+        "would leave\n",
         s.walls_unsolved, s.estimated);
   } else if (!s.exponent_solved) {
     std::printf(
@@ -92,15 +93,14 @@ void SayShape(const part::PooledShape& s) {
 // (part/hidden_groove.h: OutlineMisfit).
 void SayMisfits(const part::LayerSummary& l) {
   using part::OutlineMisfit;
-  // (Where the tops were too noisy to solve their shape, the misfit is the
+  // (Where the tops and walls did not pin their shape, the misfit is the
   // ellipse assumed for them: SayShape.)
   std::printf(
       "    %zu valid profiles without a corrected area: %s, so the hidden groove is not estimated and the area "
       "seen stands (",
       l.Misfits(),
-      l.shape && l.shape->TopsTooNoisy()
-          ? "the ellipse assumed for their beads (their tops too noisy to solve their own shape) is not their "
-            "outline"
+      l.shape && l.shape->ShapeUnpinned()
+          ? "the ellipse assumed for their beads (their own shape not solved: below) is not their outline"
           : "the bead's outline is none of the model's shapes");
   const char* sep = "";
   const auto say = [&](OutlineMisfit m, const std::string& why) {

@@ -72,10 +72,10 @@ struct PooledShape {
   // Of the rows estimated before the pool was formed (`estimated`), those
   // whose ends showed walls but whose tops solved no shape standing over
   // them (HiddenGroove::walls_unsolved): where most are, the exponent is
-  // not solved because the tops are too noisy for their shape, not
-  // because the beads do not overhang.
+  // not solved because the tops and walls do not pin the shape (noise, the
+  // ends' cells), not because the beads do not overhang.
   std::size_t estimated = 0, walls_unsolved = 0;
-  bool TopsTooNoisy() const { return !exponent_solved && 2 * walls_unsolved > estimated; }
+  bool ShapeUnpinned() const { return !exponent_solved && 2 * walls_unsolved > estimated; }
   // Whether the exponent solved is not an ellipse's: beyond two of its
   // sigmas from 2 (`bead measure` says "an ellipse, within two sigmas"
   // otherwise). Fits (no silhouette) then hold it; else an ellipse's.

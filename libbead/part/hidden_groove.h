@@ -123,8 +123,8 @@ struct HiddenGroove {
   double shape_a = kNaN, pressed_half_mm = kNaN;
   // Fitted, with no shape held, where both its ends showed walls but the
   // free shape its top solved did not stand over them (part/silhouette.h:
-  // AtSilhouette's walls_unsolved): the bead overhangs, and its top is
-  // too noisy to solve its shape.
+  // AtSilhouette's walls_unsolved): its top and walls, to the noise and the
+  // ends' cells, do not pin its shape.
   bool walls_unsolved = false;
 };
 

@@ -246,7 +246,7 @@ def test_a_noisy_tamped_walls_refusal_says_why(tmp_path):
     assert f["valid"] == f["profiles"]
     bed = said.split("  layer 1:")[0]
     assert "too few of its beads overhang" not in bed, said
-    assert "show walls at both ends, their beads overhanging, but the shape each one's top solves" in bed, said
-    assert "the ellipse assumed for their beads (their tops too noisy to solve their own shape)" in bed, said
+    assert "show walls at both ends, but the shape each one's top solves does not stand over them" in bed, said
+    assert "the ellipse assumed for their beads (their own shape not solved: below) is not their outline" in bed, said
     flowed = run("flow", os.path.join(d, "part.h5"), "--rig", os.path.join(d, "rig.yaml"), "-o", os.path.join(d, "f.csv"))
     assert f"{f['valid'] - f['corrected']} valid profiles' flow is from the area seen" in flowed, flowed
