@@ -107,23 +107,31 @@ void SayMisfits(const part::LayerSummary& l) {
     if (const std::size_t n = l.misfit[static_cast<std::size_t>(m)])
       std::printf("%s%zu: %s", sep, n, why.c_str()), sep = "; ";
   };
-  char top[256];
+  char top[320];
   if (l.shape)
     std::snprintf(top, sizeof top,
-                  "the layer's shape misses its beads' tops by %.1f times what a top may leave (the noise and %.1f "
-                  "%% of the height, in quadrature; median; over %.0f, it is not their shape)",
+                  "the layer's shape misses its beads' tops by %.1f times what a top may leave (the noise, %.1f "
+                  "%% of the height and what the ends' cells, a point spacing wide, leave on it, in quadrature; "
+                  "median; over %.0f, it is not their shape)",
                   l.shape->top_noise, 100.0 * part::kTopShapeHeights, part::kTopOffNoise);
   else
     std::snprintf(top, sizeof top,
                   "too few rows to pool the layer's shape, and each one's own misses its top by over %.0f times the "
-                  "noise and %.1f %% of its height, in quadrature",
+                  "noise, %.1f %% of its height and what the ends' cells leave, in quadrature",
                   part::kTopOffNoise, 100.0 * part::kTopShapeHeights);
   say(OutlineMisfit::kFloats, "the shape fitting its top would float over the surface it was laid on");
   say(OutlineMisfit::kTopOff, top);
   say(OutlineMisfit::kFamilyEdge, "boxier or more pointed than any of the shapes");
-  say(OutlineMisfit::kEndsOff,
-      "in most of the layer's rows placed at their walls, the shape solved over the top puts an end off the wall the "
-      "profile shows: no shape of the model's has both those tops and those walls");
+  if (l.shape && l.shape->ends_off_layer >= 0)
+    say(OutlineMisfit::kEndsOff,
+        "as layer " + std::to_string(l.shape->ends_off_layer) +
+            "'s walls showed (this layer shows too few walls to judge its own, and carries the shape of the layers "
+            "below): in most of that layer's rows placed at their walls, the shape solved over the top put an end off "
+            "the wall the profile showed, and no shape of the model's has both those tops and those walls");
+  else
+    say(OutlineMisfit::kEndsOff,
+        "in most of the layer's rows placed at their walls, the shape solved over the top puts an end off the wall "
+        "the profile shows: no shape of the model's has both those tops and those walls");
   std::printf(")\n");
 }
 

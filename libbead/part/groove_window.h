@@ -63,12 +63,16 @@ struct PooledShape {
   // The rows whose aspects were pooled.
   std::size_t rows = 0;
   // The median over those rows of their tops' RMS about the shape over
-  // their tolerance, the noise and a share of the height
-  // (part/hidden_groove.h: TopTolerance, OutlineMisfit::kTopOff).
+  // their tolerance, the noise, a share of the height and what the points'
+  // spacing leaves (part/hidden_groove.h: TopTolerance, TopSamplingMm,
+  // OutlineMisfit::kTopOff).
   double top_noise = NAN;
   // Most of the layer's rows placed at their walls had an end the top put
   // off its wall's cell (part/hidden_groove.h: OutlineMisfit::kEndsOff).
   bool ends_off = false;
+  // Where not -1: the verdict is that earlier layer's, carried with its
+  // exponent (this layer shows too few walls to judge its own).
+  int64_t ends_off_layer = -1;
   // Of the rows estimated before the pool was formed (`estimated`), those
   // whose ends showed walls but whose tops solved no shape standing over
   // them (HiddenGroove::walls_unsolved): where most are, the exponent is

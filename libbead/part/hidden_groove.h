@@ -43,8 +43,9 @@ namespace bead::part {
 //    bead, got an ellipse that floats, before the stadium was a shape);
 //  - top_off: the layer's shape (its pool: part/layer_grooves.h) misses
 //    its beads' seen tops by over kTopOffNoise times their tolerance
-//    (TopTolerance: their noise, and kTopShapeHeights of their height that
-//    a bead's top may leave any shape of the family; the median over the
+//    (TopTolerance: their noise, kTopShapeHeights of their height that
+//    a bead's top may leave any shape of the family, and what the ends'
+//    cells leave at the points' spacing, TopSamplingMm; the median over the
 //    pooled rows of each top's RMS; the right shape leaves the noise:
 //    1.0-1.1 times it on the twin's walls and contours, while
 //    single rows reach 8-18 times it at mixed points and lost points'
@@ -78,6 +79,27 @@ inline constexpr double kTopOffNoise = 3.0;
 inline constexpr double kTopShapeHeights = 0.005;
 inline double TopTolerance(double noise_mm, double height_mm) {
   return std::hypot(noise_mm, kTopShapeHeights * height_mm);
+}
+// What the points' spacing leaves on the top of the right shape, placed by
+// ends that each lie anywhere in a cell a spacing s wide (sigma s / sqrt 12;
+// the centre's and the half-width's s / sqrt 24 each): over the top's
+// points (|u| < 0.9, uniform in u) an ellipse's top moves by b / a times
+// u / sqrt(1 - u^2) per mm of centre and u^2 / sqrt(1 - u^2) per mm of
+// half-width, whose mean squares there are 0.636 and 0.366:
+// sqrt(1.002) (b / a) s / sqrt 24 = 0.204 (b / a) s (the ellipse's slopes
+// as the scale for every shape; their refit height and size take up part
+// of it: an upper bound). (Left out, pressed ellipses seen at points 0.2 mm
+// apart, 10 um of noise, had a whole layer's tops miss by 4.0 times the
+// noise and height's tolerance and the layer go uncorrected, "not their
+// shape", the flow fit -87 %; the sampling's 0.020 mm is 1.4 times that
+// tolerance. At 0.05 mm it is 0.005 mm.)
+inline double TopSamplingMm(double aspect, double spacing_mm) {
+  return std::isfinite(aspect) ? 0.204 * aspect * spacing_mm : 0.0;
+}
+// The tolerance the layer's shape is judged by (OutlineMisfit::kTopOff): the
+// above and the spacing's, in quadrature.
+inline double TopTolerance(double noise_mm, double height_mm, double sampling_mm) {
+  return std::hypot(TopTolerance(noise_mm, height_mm), sampling_mm);
 }
 inline constexpr double kFloatsHeights = 0.1;
 

@@ -189,6 +189,25 @@ def test_a_lens_wall_is_not_corrected_as_a_superellipse(tmp_path):
     assert f"{seen} valid profiles' flow is from the area seen" in flowed, flowed
 
 
+def test_a_coarser_sensors_lens_wall_is_not_corrected_in_any_layer(tmp_path):
+    """The lens wall seen by a sensor of a quarter the points (201 over 40
+    mm: 0.2 mm apart), six layers. Layers whose walls show judge the shape
+    none of the model's; a layer showing too few walls to judge its own
+    carries the exponent of the layers below, and with it their verdict.
+    (Given the exponent alone, the sixth layer was corrected as the third's
+    superellipse: 10 % high, half its intervals covering.)"""
+    c = tamped_wall.Config()
+    c.shape, c.layers, c.length_mm, c.width_mm, c.points = "lens", 6, 70.0, 40.0, 201
+    d = str(tmp_path)
+    f, said = measured(c, 17, d)
+    assert f["valid"] == f["profiles"]
+    geom = score.columns(os.path.join(d, "geom.csv"))
+    above = (geom["layer"] > 0) & (geom["valid"] == 1)
+    corrected = above & np.isfinite(geom["area_corrected_mm2"])
+    assert corrected.sum() < 0.1 * above.sum(), (corrected.sum(), above.sum(), said)
+    assert "walls showed (this layer shows too few walls to judge its own" in said, said
+
+
 def test_a_glue_beads_wall_a_tenth_the_size_keeps_the_bars(tmp_path):
     """The pressed wall at a tenth of its size (a glue bead 0.6 mm wide,
     0.2 mm layers, seen over +-2 mm by a sensor of points 5 um apart with
