@@ -185,7 +185,7 @@ def lay_layer(c, x, surface, centre, base, area):
     layer or more beside it: the step is kept inside a bracket of widths
     whose areas lie either side of the target, halving it where the step
     leaves it (a step taken as h per mm swung about the answer without
-    reaching it: a layer laid 26 % over its flow, 3.4 layer heights off
+    reaching it: a layer laid 26 % over its flow, 0.43 layer heights off
     the one below)."""
     if c.shape in ("pressed", "lens"):
         return lay_pressed(c, x, surface, centre, base, area)
