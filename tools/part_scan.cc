@@ -40,18 +40,23 @@ void SayShape(const part::PooledShape& s) {
   std::printf("    bead shape (%s%zu %s pooled): half-height over half-width %s", s.AspectAtWalls() ? "" : "its first ",
               s.rows, s.AspectAtWalls() ? "of its first profiles, those placed at their walls," : "profiles",
               WithSigma(s.aspect, s.aspect_sigma).c_str());
-  if (!s.exponent_solved && s.walls_unsolved > 0) {
+  if (!s.exponent_solved) {
+    // One test for "the tops and walls do not pin the shape", the misfit
+    // line's (SayMisfits): most of the rows estimated showed walls unsolved.
+    char why[400];
+    if (s.ShapeUnpinned())
+      std::snprintf(why, sizeof why,
+                    "%zu of its first %zu profiles show walls at both ends, but the shape each one's top solves does "
+                    "not stand over them by more than the noise and the ends' cells, a point spacing wide, leave in "
+                    "doubt: their tops and walls do not pin their own shape",
+                    s.walls_unsolved, s.estimated);
+    else
+      std::snprintf(why, sizeof why, "few of its beads overhang to show their walls%s",
+                    s.walls_unsolved > 0 ? ", and of those that do, the tops of some do not pin their shape" : "");
     std::printf(
-        "; an ellipse assumed (too few of its beads were placed at their walls to solve the exponent: %zu of its "
-        "first %zu profiles show walls at both ends, but the shape each one's top solves does not stand over them by "
-        "more than the noise and the ends' cells, a point spacing wide, leave in doubt: their tops and walls do not "
-        "pin their own shape): the sigma is the fitted beads' spread alone, not what a shape other than the ellipse "
-        "would leave\n",
-        s.walls_unsolved, s.estimated);
-  } else if (!s.exponent_solved) {
-    std::printf(
-        "; an ellipse assumed (too few of its beads overhang to show their walls and solve the exponent): the sigma "
-        "is the fitted beads' spread alone, not what a shape other than the ellipse would leave\n");
+        "; an ellipse assumed (too few of its beads were placed at their walls to solve the exponent: %s): the sigma "
+        "is the fitted beads' spread alone, not what a shape other than the ellipse would leave\n",
+        why);
   } else if (part::IsStadium(s.exponent)) {
     // A stadium's p is its corner share c, negated (part/superellipse.h).
     std::printf(
