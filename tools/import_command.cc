@@ -82,6 +82,13 @@ void PrintSummary(const std::string& input, const std::string& output, const Imp
     const auto [lo, hi] = std::minmax_element(part->path_mm.begin(), part->path_mm.end());
     std::printf("  a part scan: layers %lld to %lld, path %.1f .. %.1f mm (bead measure measures it layer on layer)\n",
                 static_cast<long long>(part->layer.front()), static_cast<long long>(part->layer.back()), *lo, *hi);
+    const auto [z_lo, z_hi] = std::minmax_element(part->frame_z_mm.begin(), part->frame_z_mm.end());
+    if (part->layer.front() != part->layer.back() && *z_lo == *z_hi)
+      std::printf(
+          "  frame_z_mm is %.4g mm in every layer%s: right only where the profiler does not rise with the part; where "
+          "it rides on the head, name the head's height with --frame-z-column (bead measure refuses a layer whose "
+          "surface then lies under the one before it)\n",
+          *z_lo, *z_lo == 0.0 ? " (no --frame-z-column)" : "");
     if (const int64_t low = *std::min_element(part->layer.begin(), part->layer.end()); low == 1)
       std::printf(
           "  no layer 0 (the first layer, on the bed): layer 1 will be measured against a layer 0 the scan does not "

@@ -159,6 +159,27 @@ void SayNoBareBed(std::size_t in_reference, std::size_t not_a_line, const char* 
         indent, not_a_line, part::kReferenceNoises);
 }
 
+// A layer's profiles whose new surface lies under the surface before it
+// (status under_surface_below), in words: what is wrong and where to look.
+void SayUnder(const part::LayerSummary& l, const char* indent) {
+  if (l.under_mm.empty()) return;
+  if (l.layer == 0)
+    std::printf(
+        "%s%zu profiles of layer 0 lie under the bed line the rig's reference areas give, over more of their points "
+        "than any bead stands over it (status under_surface_below; %.3f mm under, median): the areas do not lie on "
+        "the bed the bead was laid on (a clamp, a raised plate); those profiles are not measured: set the areas "
+        "where the bed is bare\n",
+        indent, l.under_mm.size(), -l.MedianUnder());
+  else
+    std::printf(
+        "%s%zu profiles' surface lies under the surface layer %lld left, over more of their points than any bead "
+        "stands over it (status under_surface_below; %.3f mm under, median): a layer only adds material, so the "
+        "two scans are not where their frames say. /profiles/frame_z_mm must be the head's height above the bed at "
+        "each profile (bead import --frame-z-column; without it every profile's is 0, right only where the "
+        "profiler does not rise with the part); those profiles are not measured\n",
+        indent, l.under_mm.size(), static_cast<long long>(l.layer - 1), -l.MedianUnder());
+}
+
 void SayLayers(const std::vector<part::LayerSummary>& layers) {
   for (const part::LayerSummary& l : layers) {
     std::printf("  layer %lld: %zu profiles over path %.1f to %.1f mm, %zu valid", static_cast<long long>(l.layer),
@@ -176,6 +197,8 @@ void SayLayers(const std::vector<part::LayerSummary>& layers) {
     } else if (l.no_surface_below == l.profiles)
       std::printf("; layer %lld is not in the scan: nothing to measure it against\n",
                   static_cast<long long>(l.layer - 1));
+    else if (!l.valid)
+      std::printf("\n");  // (no shift to speak of: why none is valid follows)
     else if (l.shift_found)
       std::printf("; pass shift %+.3f mm (median; found in %zu profiles)\n", l.MedianShift(), l.shift_found);
     else
@@ -186,6 +209,7 @@ void SayLayers(const std::vector<part::LayerSummary>& layers) {
           "ends more than that before them (status no_surface_below): its surface there is not known\n",
           l.no_surface_below, static_cast<long long>(l.layer - 1), part::SurfaceBelowOptions{}.max_path_gap_mm);
     SayNoBareBed(l.bead_in_reference, l.reference_not_a_line, "    ");
+    SayUnder(l, "    ");
     if (l.Misfits()) SayMisfits(l);
     if (l.valid > l.corrected + l.Misfits())
       std::printf("    %zu valid profiles without a corrected area: the bead's outline could not be fitted\n",
@@ -259,11 +283,17 @@ PartPlaces OnTheBed(std::size_t n) {
   return p;
 }
 
-void SayRoads(const part::RoadsSummary& s, bool laid_left_first, bool above_bed, std::size_t no_surface,
-              std::size_t in_reference, std::size_t not_a_line) {
-  // Profiles with no surface below (said below, with why) hold no beads:
-  // the count of none is of those measured that showed none.
-  const std::size_t unmeasured = no_surface + in_reference + not_a_line;
+void SayRoads(const part::RoadsSummary& s, bool laid_left_first, const std::vector<part::LayerSummary>& layers) {
+  // Profiles with no surface below, or none to trust (said below, with
+  // why) hold no beads: the count of none is of those measured that showed
+  // none.
+  std::size_t no_surface = 0, in_reference = 0, not_a_line = 0, under = 0;
+  for (const part::LayerSummary& l : layers)
+    no_surface += l.no_surface_below, in_reference += l.bead_in_reference, not_a_line += l.reference_not_a_line,
+        under += l.under_mm.size();
+  const bool above_bed =
+      std::any_of(layers.begin(), layers.end(), [](const part::LayerSummary& l) { return l.layer > 0; });
+  const std::size_t unmeasured = no_surface + in_reference + not_a_line + under;
   for (const auto& [count, profiles] : s.profiles_by_count) {
     if (count > 0)
       std::printf("  %zu profiles with %zu bead%s\n", profiles, count, count == 1 ? "" : "s");
@@ -276,6 +306,7 @@ void SayRoads(const part::RoadsSummary& s, bool laid_left_first, bool above_bed,
   if (const std::string words = s.SpacingInWords(); !words.empty()) std::printf("  %s\n", words.c_str());
   if (const std::string words = s.OrderInWords(laid_left_first); !words.empty()) std::printf("  %s\n", words.c_str());
   SayNoBareBed(in_reference, not_a_line, "  ");
+  for (const part::LayerSummary& l : layers) SayUnder(l, "  ");
   if (no_surface)
     std::printf(
         "  %zu profiles have no surface below to measure against (layer 0: no bare bed in the reference areas; "
@@ -322,19 +353,13 @@ int MeasureRoads(const std::string& rig_path, const std::string& run, const std:
   }
   part::RoadsCsvWriter out(output);
   part::RoadsSummary summary;
-  bool above_bed = false;
-  std::size_t no_surface = 0, in_reference = 0, not_a_line = 0;
   const auto tty = TtyProgress("measured");
   const std::size_t total = stream->size();
-  part::MeasurePart(
+  const std::vector<part::LayerSummary> layers = part::MeasurePart(
       *stream, places, rig, options,
       [&](const part::PartGeometryRow& r) {
         out.Append(r);
         summary.Add(r.roads);
-        above_bed |= r.layer > 0;
-        no_surface += r.bead.status == part::AddedStatus::kNoSurfaceBelow;
-        in_reference += r.bead.status == part::AddedStatus::kBeadInReferenceArea;
-        not_a_line += r.bead.status == part::AddedStatus::kReferenceNotALine;
       },
       [&](std::size_t done) {
         if (tty) tty(done, total);
@@ -342,7 +367,7 @@ int MeasureRoads(const std::string& rig_path, const std::string& run, const std:
   out.Commit();
   std::printf("%s: %zu profiles, %zu beads found (laid %s); wrote %s\n", run.c_str(), total, summary.roads,
               laid_left_first ? "left to right" : "right to left", output.c_str());
-  SayRoads(summary, laid_left_first, above_bed, no_surface, in_reference, not_a_line);
+  SayRoads(summary, laid_left_first, layers);
   return 0;
 }
 

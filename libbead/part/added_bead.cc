@@ -289,6 +289,23 @@ double CommonStep(std::span<const float> x) {
   return kNaN;
 }
 
+// Whether the new surface lies under the old by tau over more points than
+// stand over it by tau, and over kUnderShare of them (AddedStatus::
+// kUnderSurfaceBelow); `under` then the median gain of those under. A
+// correct pair of scans leaves under tau only the noise's tails (tau is six
+// noises at least) and the few points of a steep wall the shift misses by a
+// hair; a bead stands over it wherever one was laid.
+bool UnderSurfaceBelow(const std::vector<double>& d, double tau, double& under) {
+  std::size_t below = 0, above = 0;
+  for (const double v : d) below += v<-tau, above += v> tau;
+  if (below <= above || static_cast<double>(below) <= kUnderShare * static_cast<double>(d.size())) return false;
+  std::vector<double> sunk;
+  for (const double v : d)
+    if (v < -tau) sunk.push_back(v);
+  under = MiddleInPlace(sunk);
+  return true;
+}
+
 }  // namespace
 
 double ProfileNoiseMm(std::span<const float> z) { return NoiseOf(z); }
@@ -318,6 +335,8 @@ const char* AddedStatusName(AddedStatus s) {
       return "bead_in_reference_area";
     case AddedStatus::kReferenceNotALine:
       return "reference_not_a_line";
+    case AddedStatus::kUnderSurfaceBelow:
+      return "under_surface_below";
   }
   return "unknown";
 }
@@ -345,6 +364,11 @@ AddedBead MeasureAddedBead(std::span<const float> x, std::span<const float> z, c
   }
   const Gains& g = GainsAt(x, z, below, reg.shift, grid);
   if (g.d.size() < 10) return out;  // kTooFewPoints
+  if (UnderSurfaceBelow(g.d, tau, out.under_mm)) {
+    out.status = AddedStatus::kUnderSurfaceBelow;
+    out.shift_mm = reg.shift;
+    return out;
+  }
   Span s;
   if (!BestRun(g, tau, o.max_gap_mm, o.min_bead_points, s)) {
     out.status = AddedStatus::kNoBead;

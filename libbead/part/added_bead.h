@@ -103,7 +103,16 @@ enum class AddedStatus : uint8_t {
   // noise (a bead filling them, or a curved bed).
   kBeadInReferenceArea,
   kReferenceNotALine,
+  // The new surface lies under the surface before it by the threshold over
+  // more points than stand over it by the threshold, and over kUnderShare
+  // of its points. A layer only adds material: above layer 0 the two scans
+  // are not where their frames say (most often /profiles/frame_z_mm not the
+  // head's height: absent, so 0, or in other units or sign); on layer 0 the
+  // bed line stands over the bed (reference areas on something raised).
+  // Not measured (AddedBead::under_mm says by how much).
+  kUnderSurfaceBelow,
 };
+inline constexpr double kUnderShare = 0.1;
 const char* AddedStatusName(AddedStatus status);
 
 struct AddedBead {
@@ -123,6 +132,9 @@ struct AddedBead {
   double edge_left_mm = kNaN, edge_right_mm = kNaN;
   double noise_mm = kNaN;
   int outside_points = 0;  // points where the two surfaces agree (|gain| under the threshold)
+  // Where kUnderSurfaceBelow: the median gain of the points under the
+  // surface before it (negative), mm.
+  double under_mm = kNaN;
   bool valid() const { return status == AddedStatus::kValid; }
   // The area's own noise variance, mm^4: its trapezoids over the bead's
   // width / spacing points, each a spacing times a gain of the point's noise

@@ -202,7 +202,10 @@ class PartMeasurer {
     }
     // Several beads over the surface below, at the shift the layer's
     // registration found (its truncated cost holds any number of beads).
-    if (under && options_.several_beads) row.roads = RoadsOver(mine, noise, *under, row.bead.shift_mm, options_.roads);
+    // (Not where the new surface lies under the one before it: the scans
+    // are not where their frames say, and no bead is measured.)
+    if (under && options_.several_beads && row.bead.status != AddedStatus::kUnderSurfaceBelow)
+      row.roads = RoadsOver(mine, noise, *under, row.bead.shift_mm, options_.roads);
     mine.center_x_mm = row.bead.valid() ? row.bead.center_x_mm : std::nan("");
     mine.area_mm2 = row.bead.valid() ? row.bead.area_mm2 : std::nan("");
     if (row.layer > 0 && row.bead.valid()) {
@@ -276,6 +279,12 @@ MeasurePartOptions PartOptionsFor(const ProfileOptions& profile) {
   return o;
 }
 
+double LayerSummary::MedianUnder() const {
+  if (under_mm.empty()) return kNaN();
+  std::vector<double> v = under_mm;
+  return MiddleInPlace(v);
+}
+
 double LayerSummary::MedianShift() const {
   if (shifts_mm.empty()) return kNaN();
   std::vector<double> v = shifts_mm;
@@ -297,6 +306,7 @@ void Tally(std::vector<LayerSummary>& layers, const PartGeometryRow& r) {
   l.no_surface_below += r.bead.status == AddedStatus::kNoSurfaceBelow;
   l.bead_in_reference += r.bead.status == AddedStatus::kBeadInReferenceArea;
   l.reference_not_a_line += r.bead.status == AddedStatus::kReferenceNotALine;
+  if (r.bead.status == AddedStatus::kUnderSurfaceBelow) l.under_mm.push_back(r.bead.under_mm);
   if (!r.bead.valid()) return;
   ++l.valid;
   l.area_sum_mm2 += r.bead.area_mm2;

@@ -87,6 +87,10 @@ struct LayerSummary {
   std::size_t profiles = 0, valid = 0, shift_found = 0, no_surface_below = 0;
   // On layer 0: AddedStatus::kBeadInReferenceArea, kReferenceNotALine.
   std::size_t bead_in_reference = 0, reference_not_a_line = 0;
+  // AddedStatus::kUnderSurfaceBelow: how many, and the median of their
+  // AddedBead::under_mm.
+  std::vector<double> under_mm;
+  double MedianUnder() const;
   double area_sum_mm2 = 0.0;  // over the valid rows
   // Over the rows with a corrected area; `loose`: those whose corrected
   // area's sigma exceeds a tenth of it (the bead's sides not seen well

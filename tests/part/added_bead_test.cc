@@ -220,3 +220,45 @@ TEST(AddedBead, AFlatToppedBeadsCentreIsTheMiddleOfItsTop) {
 
 }  // namespace
 }  // namespace bead::part
+
+namespace bead::part {
+namespace {
+
+// A layer only adds material: a new surface lying under the one before it
+// by the threshold over more points than stand over it, and over a tenth
+// of them, is two scans not where their frames say (a frame height missing
+// or wrong), and is not measured; by how much it lies under is said (the
+// median of those points: the frame's error, to the noise). A bead on the
+// right frame, and a layer where nothing was laid, are what they were: the
+// threshold (six noises of the point, its gain's two noises at 4.2 sigmas)
+// leaves the noise's tails under it at 1e-5 of the points.
+TEST(AddedBead, ASurfaceUnderTheOneBeforeItIsNotMeasured) {
+  constexpr double kNoise = 0.01;
+  for (const double drop : {2.0, 0.2, 0.0}) {
+    std::mt19937 rng(11);
+    BeadOverRow b = EllipseOver([](double x) { return 1.0 + 0.01 * x; }, kNoise, rng);
+    for (float& z : b.z) z -= static_cast<float>(drop);
+    const AddedBead m = MeasureAddedBead(b.x, b.z, SurfaceGrid(b.row), false, {}, nullptr, kPointDx, 0.0, kNoise);
+    if (drop == 0.0) {
+      EXPECT_EQ(m.status, AddedStatus::kValid);
+      EXPECT_TRUE(std::isnan(m.under_mm));
+      continue;
+    }
+    EXPECT_EQ(m.status, AddedStatus::kUnderSurfaceBelow) << drop;
+    EXPECT_STREQ(AddedStatusName(m.status), "under_surface_below");
+    // (The bead's own points under the threshold are its last 2 % of a
+    // half-width a side at a drop of 0.2: a few of the 300 the median is of.)
+    EXPECT_NEAR(m.under_mm, -drop, kNoise) << drop;
+    EXPECT_TRUE(std::isnan(m.area_mm2));
+  }
+  std::mt19937 rng(12);
+  BeadOverRow bare = EllipseOver([](double) { return 1.0; }, kNoise, rng);
+  std::normal_distribution<double> noise(0.0, kNoise);
+  for (int j = 0; j < kPoints; ++j) bare.z[j] = static_cast<float>(1.0 + noise(rng));
+  const AddedBead none =
+      MeasureAddedBead(bare.x, bare.z, SurfaceGrid(bare.row), false, {}, nullptr, kPointDx, 0.0, kNoise);
+  EXPECT_EQ(none.status, AddedStatus::kNoBead);
+}
+
+}  // namespace
+}  // namespace bead::part

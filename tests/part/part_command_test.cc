@@ -226,6 +226,37 @@ TEST(PartCommand, AnotherLabsLayerScanIsImportedAndSaysWhatItLacks) {
   EXPECT_NE(out.find("not both"), std::string::npos) << out;
 }
 
+// A part scan exported to CSV and imported back without naming its frame
+// heights (--frame-z-column): the import says every profile's is 0, and
+// bead measure refuses the layers above the bed, saying why and by how much
+// each lies under the one before it, not measuring a sliver of a bead.
+TEST(PartCommand, AScanImportedWithoutItsFrameHeightsSaysSo) {
+  test::TempDir dir;
+  ASSERT_FALSE(SimulatedAndMeasured(dir, "part:\n  shape: wall\n  layers: 3\n  length_mm: 20\n").empty());
+  auto [code, out] = test::RunCli(dir, "export " + (dir / "sim/part.h5") + " -o " + (dir / "part.csv"));
+  ASSERT_EQ(code, 0) << out;
+  std::tie(code, out) = test::RunCli(
+      dir, "import " + (dir / "part.csv") + " -o " + (dir / "flat.h5") +
+               " --profile-column profile --time-column t_s --x-column x_mm --z-column z_mm --layer-column layer "
+               "--path-column path_mm --frame-x-column frame_x_mm");
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("frame_z_mm is 0 mm in every layer (no --frame-z-column)"), std::string::npos) << out;
+  std::tie(code, out) =
+      test::RunCli(dir, "measure --rig " + (dir / "sim/rig.yaml") + " " + (dir / "flat.h5") + " -o " + (dir / "f.csv"));
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("profiles' surface lies under the surface layer 0 left"), std::string::npos) << out;
+  EXPECT_NE(out.find("/profiles/frame_z_mm must be the head's height"), std::string::npos) << out;
+  const auto rows = CsvRows(dir / "f.csv");
+  std::size_t under = 0, above = 0;
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    if (rows[i][2] == "0") continue;
+    ++above;
+    under += rows[i][16] == "under_surface_below";
+  }
+  EXPECT_GT(above, 60u);
+  EXPECT_EQ(under, above);
+}
+
 }  // namespace
 }  // namespace bead
 

@@ -286,6 +286,50 @@ TEST(PartWall, ALayerMissingFromTheScanLeavesTheNextWithoutASurfaceBelow) {
   EXPECT_GT(layer3, 30);
 }
 
+// A scan whose frame heights were not given (bead import without
+// --frame-z-column: 0 in every profile) while the profiler rose with the
+// head: each layer's surface lies a layer's rise under the one before it.
+// No row above the bed is measured, each says so, and by the rise; the
+// bed's layer, measured against its own reference line, is as before.
+TEST(PartWall, AScanWithoutItsFrameHeightsIsNotMeasuredAboveTheBed) {
+  sim::PartTwinConfig config;
+  config.layers = 3;
+  config.length_mm = 20.0;
+  sim::PartTwin twin = sim::SimulatePartWall(config);
+  const std::vector<part::PartGeometryRow> right = Measure(twin.scan, twin.rig, true);
+  RunArchive flat = twin.scan;
+  std::vector<double> rise(config.layers, NAN);  // layer n's frame over layer n - 1's, mm
+  for (std::size_t i = 0; i < flat.part->size(); ++i) {
+    const int64_t layer = flat.part->layer[i];
+    if (layer > 0 && std::isnan(rise[layer])) {
+      // (The twin's frame rides the layer's base: one height in a layer.)
+      const auto below =
+          std::find(flat.part->layer.begin(), flat.part->layer.end(), layer - 1) - flat.part->layer.begin();
+      rise[layer] = flat.part->frame_z_mm[i] - flat.part->frame_z_mm[below];
+    }
+  }
+  std::fill(flat.part->frame_z_mm.begin(), flat.part->frame_z_mm.end(), 0.0);
+  const std::vector<part::PartGeometryRow> rows = Measure(flat, twin.rig, true);
+  ASSERT_EQ(rows.size(), right.size());
+  int above = 0;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const part::PartGeometryRow& r = rows[i];
+    if (r.layer == 0) {
+      // (Its heights now moved by 0 where they were by the standoff, 60 mm,
+      // in floats: 4e-6 mm a point, 2.4e-5 mm^2 over the bead's 6 mm.)
+      EXPECT_NEAR(r.bead.area_mm2, right[i].bead.area_mm2, 1e-4) << i;
+      continue;
+    }
+    ++above;
+    EXPECT_TRUE(right[i].bead.valid()) << i;
+    EXPECT_EQ(r.bead.status, part::AddedStatus::kUnderSurfaceBelow) << i;
+    // The median of hundreds of points, each a rise under to two points'
+    // noise (0.014 mm): within a noise.
+    EXPECT_NEAR(r.bead.under_mm, -rise[r.layer], config.noise_mm) << i;
+  }
+  EXPECT_GT(above, 60);
+}
+
 }  // namespace
 }  // namespace bead
 
