@@ -166,9 +166,10 @@ void SayUnder(const part::LayerSummary& l, const char* indent) {
   if (l.layer == 0)
     std::printf(
         "%s%zu profiles of layer 0 lie under the bed line the rig's reference areas give, over more of their points "
-        "than any bead stands over it (status under_surface_below; %.3f mm under, median): the areas do not lie on "
-        "the bed the bead was laid on (a clamp, a raised plate); those profiles are not measured: set the areas "
-        "where the bed is bare\n",
+        "than any bead stands over it (status under_surface_below; %.3f mm under, median): its z is a distance from "
+        "the sensor, not a height (the bead a trough: bead import --z-distance), or the areas do not lie on the bed "
+        "the bead was laid on (a clamp, a raised plate: set them where the bed is bare); those profiles are not "
+        "measured\n",
         indent, l.under_mm.size(), -l.MedianUnder());
   else
     std::printf(

@@ -36,10 +36,10 @@ void ProcessPartScan(const BatchRun& job, const std::string& dir, const BatchOpt
       r.warnings.push_back("layer " + std::to_string(l.layer) + ": layer " + std::to_string(l.layer - 1) +
                            " is not in the scan: nothing to measure it against");
     if (!l.under_mm.empty())
-      r.warnings.push_back(
-          "layer " + std::to_string(l.layer) + ": " + std::to_string(l.under_mm.size()) +
-          " profiles lie under the surface before them (under_surface_below): " +
-          (l.layer > 0 ? "frame_z_mm is not the head's height" : "the reference areas are not on the bed"));
+      r.warnings.push_back("layer " + std::to_string(l.layer) + ": " + std::to_string(l.under_mm.size()) +
+                           " profiles lie under the surface before them (under_surface_below): " +
+                           (l.layer > 0 ? "frame_z_mm is not the head's height"
+                                        : "z is a distance, not a height, or the reference areas are not on the bed"));
   }
   if (seen > 0.0) r.occlusion_fraction = 1.0 - corrected / seen;
   if (!flow) {

@@ -107,8 +107,9 @@ enum class AddedStatus : uint8_t {
   // more points than stand over it by the threshold, and over kUnderShare
   // of its points. A layer only adds material: above layer 0 the two scans
   // are not where their frames say (most often /profiles/frame_z_mm not the
-  // head's height: absent, so 0, or in other units or sign); on layer 0 the
-  // bed line stands over the bed (reference areas on something raised).
+  // head's height: absent, so 0, or in other units or sign); on layer 0 z
+  // is a distance, not a height (the bead a trough), or the bed line stands
+  // over the bed (reference areas on something raised).
   // Not measured (AddedBead::under_mm says by how much).
   kUnderSurfaceBelow,
 };

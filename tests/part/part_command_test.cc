@@ -229,8 +229,9 @@ TEST(PartCommand, AnotherLabsLayerScanIsImportedAndSaysWhatItLacks) {
 // A part scan exported to CSV and imported back without naming its frame
 // heights (--frame-z-column): the import says every profile's is 0, and
 // bead measure refuses the layers above the bed, saying why and by how much
-// each lies under the one before it, not measuring a sliver of a bead.
-TEST(PartCommand, AScanImportedWithoutItsFrameHeightsSaysSo) {
+// each lies under the one before it, not measuring a sliver of a bead. And
+// imported with its heights taken for distances: the bed's layer refused.
+TEST(PartCommand, AScanImportedWithoutItsFrameHeightsOrWithItsZTurnedSaysSo) {
   test::TempDir dir;
   ASSERT_FALSE(SimulatedAndMeasured(dir, "part:\n  shape: wall\n  layers: 3\n  length_mm: 20\n").empty());
   auto [code, out] = test::RunCli(dir, "export " + (dir / "sim/part.h5") + " -o " + (dir / "part.csv"));
@@ -255,6 +256,21 @@ TEST(PartCommand, AScanImportedWithoutItsFrameHeightsSaysSo) {
   }
   EXPECT_GT(above, 60u);
   EXPECT_EQ(under, above);
+  // Its heights read as distances from the sensor (--z-distance on a
+  // height column): each bead a trough under the bed line, said so on the
+  // bed's layer, none of its rows measured.
+  std::tie(code, out) = test::RunCli(
+      dir, "import " + (dir / "part.csv") + " -o " + (dir / "trough.h5") +
+               " --profile-column profile --time-column t_s --x-column x_mm --z-column z_mm --layer-column layer "
+               "--path-column path_mm --frame-z-column frame_z_mm --frame-x-column frame_x_mm --z-distance");
+  ASSERT_EQ(code, 0) << out;
+  std::tie(code, out) = test::RunCli(
+      dir, "measure --rig " + (dir / "sim/rig.yaml") + " " + (dir / "trough.h5") + " -o " + (dir / "t.csv"));
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("profiles of layer 0 lie under the bed line"), std::string::npos) << out;
+  EXPECT_NE(out.find("its z is a distance from the sensor, not a height"), std::string::npos) << out;
+  EXPECT_NE(out.find("layer 0: 40 profiles over path"), std::string::npos) << out;
+  EXPECT_NE(out.find(", 0 valid (on the bed)"), std::string::npos) << out;
 }
 
 }  // namespace
