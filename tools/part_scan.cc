@@ -380,6 +380,25 @@ Error NoNozzleLog(const std::string& run) {
   return Error(Located(run, "/log", "missing group: the flow along the path needs the nozzle's log"));
 }
 
+// How long after the nozzle laid each place the profiler saw it, or that
+// it saw places before they were laid (the log on another clock).
+void SayScanDelay(const part::PartScanFlow::ScanDelay& d) {
+  if (!d.rows) return;
+  if (2 * d.early > d.rows)
+    std::printf(
+        "the profiler saw %zu of %zu places before the nozzle laid them (by %.3f s, mean): the log is not on the "
+        "profiles' clock, or its layers or places are not the scan's; the flow stands on the log's own times and "
+        "speeds, but when each place was measured after it was laid cannot be read\n",
+        d.early, d.rows, -d.Mean());
+  else
+    std::printf(
+        "the profiler saw each place %.3f s after the nozzle laid it (mean; %.3f to %.3f s): the bead's time to cool "
+        "before it was measured%s\n",
+        d.Mean(), d.min_s, d.max_s,
+        d.early ? "; some places were seen before they were laid: the log's clock and the profiles' disagree there"
+                : "");
+}
+
 int FlowPartScan(const std::string& rig_path, const std::string& run, const std::string& output,
                  const ProfileOptions& bed) {
   const RunArchive scan = ReadPartScan(run, false, true);
@@ -397,6 +416,7 @@ int FlowPartScan(const std::string& rig_path, const std::string& run, const std:
   for (const auto& [layer, v] : f.volumes_mm3)
     std::printf("  layer %lld: %.1f mm^3 along the path\n", static_cast<long long>(layer), v);
   std::printf("total volume %.1f mm^3 (the area integrated along the path, valid profiles)\n", f.TotalVolume());
+  SayScanDelay(f.delay);
   SaySeenFlow(f.layers);
   if (const part::CornerBulge& b = f.bulge; b.slow)
     std::printf(

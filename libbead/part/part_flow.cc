@@ -223,6 +223,11 @@ double PartScanFlow::TotalVolume() const {
   return total;
 }
 
+void PartScanFlow::ScanDelay::Add(double delay_s) {
+  ++rows, sum_s += delay_s, early += delay_s < -kEarlyS;
+  min_s = std::min(min_s, delay_s), max_s = std::max(max_s, delay_s);
+}
+
 PartScanFlow MeasurePartScanFlow(const std::string& path, const PartPlaces& places, const AcquisitionLog* log,
                                  const Rig& rig, const MeasurePartOptions& options, unsigned threads,
                                  const std::function<void(const PartGeometryRow&)>& on_geometry,
@@ -246,7 +251,10 @@ PartScanFlow MeasurePartScanFlow(const std::string& path, const PartPlaces& plac
       path, places, rig, options, threads,
       [&](const PartGeometryRow& g) {
         if (on_geometry) on_geometry(g);
-        if (clock) filter.Add(FlowOf(g, *clock), emit);
+        if (!clock) return;
+        const PartFlowRow row = FlowOf(g, *clock);
+        if (std::isfinite(row.t_s)) out.delay.Add(g.t_s - row.t_s);
+        filter.Add(row, emit);
       },
       progress);
   filter.Flush(emit);

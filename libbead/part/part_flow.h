@@ -159,6 +159,18 @@ struct PartScanFlow {
   std::size_t flow_samples = 0;  // valid flow rows
   std::size_t unplaced = 0;      // rows whose place the log never had the nozzle pass
   std::size_t replaced = 0;      // rows whose flow the filter along the path replaced (part/flow_hampel.h)
+  // How long after the nozzle laid each place the profiler saw it (the
+  // profile's time less its row's t_s), over the rows the log placed: the
+  // bead's time to cool before it was measured. Rows seen before they were
+  // laid (`early`, over kEarlyS) say the log is not on the profiles' clock,
+  // or its layers or places are not the scan's.
+  struct ScanDelay {
+    static constexpr double kEarlyS = 1e-3;
+    std::size_t rows = 0, early = 0;
+    double sum_s = 0.0, min_s = INFINITY, max_s = -INFINITY;
+    void Add(double delay_s);
+    double Mean() const { return rows ? sum_s / static_cast<double>(rows) : std::nan(""); }
+  } delay;
   double TotalVolume() const;
 };
 PartScanFlow MeasurePartScanFlow(const std::string& path, const PartPlaces& places, const AcquisitionLog* log,

@@ -11,8 +11,10 @@
 
 #include "libbead/core/error.h"
 #include "libbead/io/profile_stream.h"
+#include "libbead/io/run_archive.h"
 #include "libbead/part/part_flow.h"
 #include "libbead/sim/part_twin.h"
+#include "tests/support/temp_dir.h"
 
 namespace bead {
 namespace {
@@ -248,6 +250,32 @@ TEST(PartFlow, AWheelsLogIsNamed) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("run.h5"), std::string::npos);
     EXPECT_NE(std::string(e.what()).find("/log/layer"), std::string::npos);
+  }
+}
+
+// How long after the nozzle laid each place the profiler saw it: on the
+// twin's straight wall the laser line trails the nozzle by 30 mm at 20 mm/s,
+// 1.5 s, to the log's sampling (100 Hz; the clock's error well under one
+// sample). With the log's clock 2 s late, every place is seen before it
+// was laid: told, not timed as a cooling.
+TEST(PartFlow, ThePlacesAreSeenTheTrailsTimeAfterTheyWereLaid) {
+  sim::PartTwinConfig config;
+  config.layers = 2;
+  config.length_mm = 30.0;
+  sim::PartTwin twin = sim::SimulatePartWall(config);
+  const double trail_s = config.trail_mm / config.head_speed_mm_s;
+  test::TempDir dir;
+  for (const double late_s : {0.0, 2.0}) {
+    RunArchive scan = twin.scan;
+    for (double& t : scan.log->t_s) t += late_s;
+    WriteRunArchive(dir / "part.h5", scan);
+    const part::PartScanFlow f =
+        part::MeasurePartScanFlow(dir / "part.h5", *scan.part, &*scan.log, twin.rig, {}, 1, nullptr, nullptr);
+    ASSERT_GT(f.delay.rows, 100u);
+    EXPECT_NEAR(f.delay.Mean(), trail_s - late_s, 0.01) << late_s;
+    EXPECT_NEAR(f.delay.min_s, trail_s - late_s, 0.01) << late_s;
+    EXPECT_NEAR(f.delay.max_s, trail_s - late_s, 0.01) << late_s;
+    EXPECT_EQ(f.delay.early, late_s > trail_s ? f.delay.rows : 0u) << late_s;
   }
 }
 
