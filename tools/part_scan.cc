@@ -235,6 +235,8 @@ void SayLayers(const std::vector<part::LayerSummary>& layers) {
   }
 }
 
+}  // namespace
+
 // The part scan's rig file, its warnings said.
 Rig PartRigSaying(const std::string& rig_path) {
   const RigFile rig = ReadPartRigFile(rig_path);
@@ -252,8 +254,6 @@ void SayMeasured(const std::string& run, const std::vector<part::LayerSummary>& 
               layers.size(), layers.size() == 1 ? "" : "s", valid, seconds);
   SayLayers(layers);
 }
-
-}  // namespace
 
 int MeasurePartScan(const std::string& rig_path, const std::string& run, const std::string& output,
                     const ProfileOptions& bed, unsigned threads) {
@@ -322,17 +322,6 @@ void SayRoads(const part::RoadsSummary& s, bool laid_left_first, const std::vect
       "(no occlusion model for several beads yet): area_mm2 is the material seen\n");
 }
 
-// The valid rows whose flow stands on the area seen (no corrected area).
-void SaySeenFlow(const std::vector<part::LayerSummary>& layers) {
-  std::size_t seen = 0;
-  for (const part::LayerSummary& l : layers) seen += l.valid - l.corrected;
-  if (seen)
-    std::printf(
-        "  %zu valid profiles' flow is from the area seen, having no corrected area (the lines above say why): where "
-        "their beads overhang, it counts the groove they hide as material\n",
-        seen);
-}
-
 }  // namespace
 
 int MeasureRoads(const std::string& rig_path, const std::string& run, const std::string& output,
@@ -369,71 +358,6 @@ int MeasureRoads(const std::string& rig_path, const std::string& run, const std:
   std::printf("%s: %zu profiles, %zu beads found (laid %s); wrote %s\n", run.c_str(), total, summary.roads,
               laid_left_first ? "left to right" : "right to left", output.c_str());
   SayRoads(summary, laid_left_first, layers);
-  return 0;
-}
-
-Error NoNozzleLog(const std::string& run) {
-  if (run.ends_with(".csv"))
-    return Error(Located(run, "",
-                         "a part profiles CSV carries no log, and the flow along the path needs the nozzle's: bead "
-                         "import it with --log LOG.csv (docs/data-formats.md, part scan CSV forms)"));
-  return Error(Located(run, "/log", "missing group: the flow along the path needs the nozzle's log"));
-}
-
-// How long after the nozzle laid each place the profiler saw it, or that
-// it saw places before they were laid (the log on another clock).
-void SayScanDelay(const part::PartScanFlow::ScanDelay& d) {
-  if (!d.rows) return;
-  if (2 * d.early > d.rows)
-    std::printf(
-        "the profiler saw %zu of %zu places before the nozzle laid them (by %.3f s, mean): the log is not on the "
-        "profiles' clock, or its layers or places are not the scan's; the flow stands on the log's own times and "
-        "speeds, but when each place was measured after it was laid cannot be read\n",
-        d.early, d.rows, -d.Mean());
-  else
-    std::printf(
-        "the profiler saw each place %.3f s after the nozzle laid it (mean; %.3f to %.3f s): the bead's time to cool "
-        "before it was measured%s\n",
-        d.Mean(), d.min_s, d.max_s,
-        d.early ? "; some places were seen before they were laid: the log's clock and the profiles' disagree there"
-                : "");
-}
-
-int FlowPartScan(const std::string& rig_path, const std::string& run, const std::string& output,
-                 const ProfileOptions& bed) {
-  const RunArchive scan = ReadPartScan(run, false, true);
-  if (!scan.log) throw NoNozzleLog(run);
-  const Rig rig = PartRigSaying(rig_path);
-  part::PartFlowCsvWriter out(output);
-  const part::MeasurePartOptions options = part::PartOptionsFor(bed);
-  const auto start = std::chrono::steady_clock::now();
-  const part::PartScanFlow f = part::MeasurePartScanFlow(
-      run, *scan.part, &*scan.log, rig, options, 0, nullptr, [&](const part::PartFlowRow& row) { out.Append(row); },
-      TtyProgress("measured"));
-  out.Commit();
-  SayMeasured(run, f.layers, scan.part->size(), start);
-  std::printf("wrote %s (t_s: when the nozzle laid each place; flow = head speed x area)\n", output.c_str());
-  for (const auto& [layer, v] : f.volumes_mm3)
-    std::printf("  layer %lld: %.1f mm^3 along the path\n", static_cast<long long>(layer), v);
-  std::printf("total volume %.1f mm^3 (the area integrated along the path, valid profiles)\n", f.TotalVolume());
-  SayScanDelay(f.delay);
-  SaySeenFlow(f.layers);
-  if (const part::CornerBulge& b = f.bulge; b.slow)
-    std::printf(
-        "where the head slowed below 90 %% of its median speed (%zu profiles, %.1f against %.1f mm/s: corners), the "
-        "area is %+.1f %% over the rest and the flow %+.1f %%: %s\n",
-        b.slow, b.slow_speed_mm_s, b.rest_speed_mm_s, 100 * b.area_excess, 100 * b.flow_excess,
-        std::abs(b.flow_excess) < 0.5 * std::abs(b.area_excess)
-            ? "the extruder did not follow the head (the corner bulge, thesis 1.3.2)"
-            : "the extruder's flow followed the head's speed");
-  if (f.replaced)
-    std::printf(
-        "  %zu profiles' flows stood apart from their neighbours' along the layer's path (over %.0f sigmas; a Hampel "
-        "filter of +-%d profiles, as the wheel's area): each took its window's median\n",
-        f.replaced, part::FlowHampel::kSigmas, part::FlowHampel::kHalfWindow);
-  if (f.unplaced)
-    std::printf("  %zu %s where the log never had the nozzle pass in the layer's printing direction: no time\n",
-                f.unplaced, f.unplaced == 1 ? "profile stands" : "profiles stand");
   return 0;
 }
 

@@ -1,11 +1,16 @@
 // bead measure and bead flow on a part scan (format 1.1; the archive's
 // kind = "part" chooses them): each layer against the one below; the part
-// geometry CSV, or the flow along the toolpath.
+// geometry CSV (part_scan.cc), or the flow along the toolpath
+// (part_flow_scan.cc).
 #pragma once
 
+#include <chrono>
 #include <string>
+#include <vector>
 
 #include "libbead/core/error.h"
+#include "libbead/core/rig.h"
+#include "libbead/part/measure_part.h"
 #include "libbead/profile/profile_processor.h"
 
 namespace bead::tools {
@@ -20,6 +25,12 @@ int MeasureRoads(const std::string& rig_path, const std::string& run, const std:
 // Why a part scan has no flow: its file has no nozzle log (a part profiles
 // CSV never has one).
 Error NoNozzleLog(const std::string& run);
+// Shared by part_scan.cc and part_flow_scan.cc: the part rig file read,
+// its warnings said; and what was measured, a line for the scan and its
+// layers' words.
+Rig PartRigSaying(const std::string& rig_path);
+void SayMeasured(const std::string& run, const std::vector<part::LayerSummary>& layers, std::size_t total,
+                 std::chrono::steady_clock::time_point start);
 int FlowPartScan(const std::string& rig_path, const std::string& run, const std::string& output,
                  const ProfileOptions& bed);
 

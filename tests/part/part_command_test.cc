@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -271,6 +272,55 @@ TEST(PartCommand, AScanImportedWithoutItsFrameHeightsOrWithItsZTurnedSaysSo) {
   EXPECT_NE(out.find("its z is a distance from the sensor, not a height"), std::string::npos) << out;
   EXPECT_NE(out.find("layer 0: 40 profiles over path"), std::string::npos) << out;
   EXPECT_NE(out.find(", 0 valid (on the bed)"), std::string::npos) << out;
+}
+
+// The twin's log rewritten line by line: each data row's fields through
+// `change` (t_s, layer, path_mm, screw_rpm; the head's speed left out).
+void RewriteLog(const std::string& from, const std::string& to,
+                const std::function<void(std::vector<std::string>&)>& change) {
+  std::ifstream in(from);
+  std::ofstream out(to);
+  std::string line;
+  std::getline(in, line);
+  out << "t_s,layer,path_mm,screw_rpm\n";
+  while (std::getline(in, line)) {
+    std::vector<std::string> f;
+    std::stringstream fields(line);
+    for (std::string v; std::getline(fields, v, ',');) f.push_back(v);
+    change(f);
+    out << f[0] << ',' << f[1] << ',' << f[2] << ',' << f[3] << '\n';
+  }
+}
+
+// A log whose places are not the scan's: its path in metres, or its layers
+// counted from 1. bead flow says what the two span, or which layer the log
+// never printed, beside the profiles it could not time.
+TEST(PartCommand, ALogWhosePlacesAreNotTheScansSaysWhy) {
+  test::TempDir dir;
+  ASSERT_FALSE(SimulatedAndMeasured(dir, "part:\n  shape: wall\n  layers: 3\n  length_mm: 20\n").empty());
+  auto [code, out] = test::RunCli(dir, "export " + (dir / "sim/part.h5") + " -o " + (dir / "part.csv"));
+  ASSERT_EQ(code, 0) << out;
+  std::tie(code, out) = test::RunCli(dir, "export " + (dir / "sim/part.h5") + " --log -o " + (dir / "log.csv"));
+  ASSERT_EQ(code, 0) << out;
+  RewriteLog(dir / "log.csv", dir / "metres.csv", [](auto& f) { f[2] = std::to_string(std::stod(f[2]) / 1000.0); });
+  RewriteLog(dir / "log.csv", dir / "from1.csv", [](auto& f) { f[1] = std::to_string(std::stoll(f[1]) + 1); });
+  const std::string columns =
+      " --profile-column profile --time-column t_s --x-column x_mm --z-column z_mm --layer-column layer "
+      "--path-column path_mm --frame-z-column frame_z_mm --frame-x-column frame_x_mm --log ";
+  for (const std::string log : {"metres", "from1"}) {
+    std::tie(code, out) = test::RunCli(
+        dir, "import " + (dir / "part.csv") + " -o " + (dir / (log + ".h5")) + columns + (dir / (log + ".csv")));
+    ASSERT_EQ(code, 0) << out;
+    std::tie(code, out) = test::RunCli(
+        dir, "flow --rig " + (dir / "sim/rig.yaml") + " " + (dir / (log + ".h5")) + " -o " + (dir / (log + "_f.csv")));
+    ASSERT_EQ(code, 0) << out;
+    if (log == "metres") {
+      EXPECT_NE(out.find("most profiles were never placed: the scan's path spans"), std::string::npos) << out;
+      EXPECT_NE(out.find("over layers 0 to 2, the log's 0 .. 0.0"), std::string::npos) << out;
+    } else {
+      EXPECT_NE(out.find("the scan's layer 0 is not in the log (its layers 1 to 3)"), std::string::npos) << out;
+    }
+  }
 }
 
 }  // namespace
