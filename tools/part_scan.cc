@@ -112,12 +112,14 @@ void SayMisfits(const part::LayerSummary& l) {
     if (const std::size_t n = l.misfit[static_cast<std::size_t>(m)])
       std::printf("%s%zu: %s", sep, n, why.c_str()), sep = "; ";
   };
-  char top[320];
+  char top[640];
   if (l.shape)
     std::snprintf(top, sizeof top,
                   "the layer's shape misses its beads' tops by %.1f times what a top may leave (the noise, %.1f "
                   "%% of the height and what the ends' cells, a point spacing wide, leave on it, in quadrature; "
-                  "median; over %.0f, it is not their shape)",
+                  "median; over %.0f, it is not their shape, or it cannot be placed on them: where a bead's end "
+                  "stands over a steep flank of the layer below that the points sample a spacing apart, that "
+                  "surface between two points is not known, nor the end's wall)",
                   l.shape->top_noise, 100.0 * part::kTopShapeHeights, part::kTopOffNoise);
   else
     std::snprintf(top, sizeof top,
