@@ -183,6 +183,19 @@ void SayUnder(const part::LayerSummary& l, const char* indent) {
         indent, l.under_mm.size(), static_cast<long long>(l.layer - 1), -l.MedianUnder());
 }
 
+// A layer's profiles whose bare bed in the reference areas lies off the
+// layer below's scan of it (status bed_moved).
+void SayBedMoved(const part::LayerSummary& l, const char* indent) {
+  if (l.bed_off_mm.empty()) return;
+  const double off = l.MedianBedOff();
+  std::printf(
+      "%s%zu profiles' bare bed in the rig's reference areas lies %.3f mm %s where layer %lld's scan has it (status "
+      "bed_moved; median): the bed does not move between layers, so the two scans are not where their frames say. "
+      "/profiles/frame_z_mm must be the head's height above the bed at each profile, in mm, and z a height, not a "
+      "distance from the sensor (bead import --z-distance); those profiles are not measured\n",
+      indent, l.bed_off_mm.size(), std::abs(off), off < 0.0 ? "under" : "over", static_cast<long long>(l.layer - 1));
+}
+
 void SayLayers(const std::vector<part::LayerSummary>& layers) {
   for (const part::LayerSummary& l : layers) {
     std::printf("  layer %lld: %zu profiles over path %.1f to %.1f mm, %zu valid", static_cast<long long>(l.layer),
@@ -213,6 +226,7 @@ void SayLayers(const std::vector<part::LayerSummary>& layers) {
           l.no_surface_below, static_cast<long long>(l.layer - 1), part::SurfaceBelowOptions{}.max_path_gap_mm);
     SayNoBareBed(l.bead_in_reference, l.reference_not_a_line, "    ");
     SayUnder(l, "    ");
+    SayBedMoved(l, "    ");
     if (l.Misfits()) SayMisfits(l);
     if (l.valid > l.corrected + l.Misfits())
       std::printf("    %zu valid profiles without a corrected area: the bead's outline could not be fitted\n",
@@ -293,7 +307,7 @@ void SayRoads(const part::RoadsSummary& s, bool laid_left_first, const std::vect
   std::size_t no_surface = 0, in_reference = 0, not_a_line = 0, under = 0;
   for (const part::LayerSummary& l : layers)
     no_surface += l.no_surface_below, in_reference += l.bead_in_reference, not_a_line += l.reference_not_a_line,
-        under += l.under_mm.size();
+        under += l.under_mm.size() + l.bed_off_mm.size();
   const bool above_bed =
       std::any_of(layers.begin(), layers.end(), [](const part::LayerSummary& l) { return l.layer > 0; });
   const std::size_t unmeasured = no_surface + in_reference + not_a_line + under;
@@ -309,7 +323,7 @@ void SayRoads(const part::RoadsSummary& s, bool laid_left_first, const std::vect
   if (const std::string words = s.SpacingInWords(); !words.empty()) std::printf("  %s\n", words.c_str());
   if (const std::string words = s.OrderInWords(laid_left_first); !words.empty()) std::printf("  %s\n", words.c_str());
   SayNoBareBed(in_reference, not_a_line, "  ");
-  for (const part::LayerSummary& l : layers) SayUnder(l, "  ");
+  for (const part::LayerSummary& l : layers) SayUnder(l, "  "), SayBedMoved(l, "  ");
   if (no_surface)
     std::printf(
         "  %zu profiles have no surface below to measure against (layer 0: no bare bed in the reference areas; "

@@ -35,6 +35,10 @@ void ProcessPartScan(const BatchRun& job, const std::string& dir, const BatchOpt
     if (l.layer > 0 && l.no_surface_below == l.profiles)
       r.warnings.push_back("layer " + std::to_string(l.layer) + ": layer " + std::to_string(l.layer - 1) +
                            " is not in the scan: nothing to measure it against");
+    if (!l.bed_off_mm.empty())
+      r.warnings.push_back("layer " + std::to_string(l.layer) + ": " + std::to_string(l.bed_off_mm.size()) +
+                           " profiles' bare bed lies off the layer below's (bed_moved): frame_z_mm or z is not "
+                           "the bed frame's height");
     if (!l.under_mm.empty())
       r.warnings.push_back("layer " + std::to_string(l.layer) + ": " + std::to_string(l.under_mm.size()) +
                            " profiles lie under the surface before them (under_surface_below): " +

@@ -337,6 +337,8 @@ const char* AddedStatusName(AddedStatus s) {
       return "reference_not_a_line";
     case AddedStatus::kUnderSurfaceBelow:
       return "under_surface_below";
+    case AddedStatus::kBedMoved:
+      return "bed_moved";
   }
   return "unknown";
 }

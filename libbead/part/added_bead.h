@@ -112,6 +112,11 @@ enum class AddedStatus : uint8_t {
   // over the bed (reference areas on something raised).
   // Not measured (AddedBead::under_mm says by how much).
   kUnderSurfaceBelow,
+  // Above layer 0: the bare bed in the rig's reference areas (bare in every
+  // layer) lies off where the layer below's scan has it, by the threshold
+  // (AddedBead::bed_off_mm, signed): the two scans are not where their
+  // frames say (frame_z_mm, z read as a distance). Not measured.
+  kBedMoved,
 };
 inline constexpr double kUnderShare = 0.1;
 const char* AddedStatusName(AddedStatus status);
@@ -136,6 +141,8 @@ struct AddedBead {
   // Where kUnderSurfaceBelow: the median gain of the points under the
   // surface before it (negative), mm.
   double under_mm = kNaN;
+  // Where kBedMoved: the median gain over the reference areas' points, mm.
+  double bed_off_mm = kNaN;
   bool valid() const { return status == AddedStatus::kValid; }
   // The area's own noise variance, mm^4: its trapezoids over the bead's
   // width / spacing points, each a spacing times a gain of the point's noise

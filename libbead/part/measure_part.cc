@@ -151,6 +151,35 @@ std::optional<SurfaceGrid> BedArcGrid(const Rig& rig, const ProfileView& v, cons
   return SampledBed(p, GridStep(p), frame_x, frame_z, false, [&arc](double x) { return arc.At(x); });
 }
 
+// Above layer 0, the median gain over the rig's reference areas (in the
+// profile's own frame: bare bed in every layer), the surface below moved by
+// `shift`; NaN where fewer than kMinReferencePoints points there have one
+// (a bed out of the sensor's range under a tall part).
+constexpr std::size_t kMinReferencePoints = 10;
+double ReferenceGain(const StoredProfile& p, const SurfaceGrid& under, double shift, double frame_x, const Rig& rig) {
+  thread_local std::vector<double> gains;
+  gains.clear();
+  for (std::size_t j = 0; j < p.x_mm.size(); ++j) {
+    const double x = p.x_mm[j];
+    if (!rig.reference_left.Contains(x - frame_x) && !rig.reference_right.Contains(x - frame_x)) continue;
+    if (const double gain = p.z_mm[j] - under.At(x - shift); std::isfinite(gain)) gains.push_back(gain);
+  }
+  return gains.size() < kMinReferencePoints ? std::nan("") : MiddleInPlace(gains);
+}
+
+// Where the bare bed in the reference areas lies off the layer below's
+// scan of it by the bead's threshold: the row not measured, said why.
+void CheckBedStayed(const StoredProfile& p, const SurfaceGrid& under, double frame_x, const Rig& rig,
+                    const AddedBeadOptions& o, AddedBead& bead) {
+  if (bead.status == AddedStatus::kUnderSurfaceBelow || !std::isfinite(bead.noise_mm)) return;
+  const double off = ReferenceGain(p, under, bead.shift_mm, frame_x, rig);
+  if (!(std::abs(off) > std::max(o.min_threshold_mm, o.threshold_sigmas * bead.noise_mm))) return;
+  AddedBead moved;
+  moved.status = AddedStatus::kBedMoved;
+  moved.bed_off_mm = off, moved.noise_mm = bead.noise_mm, moved.shift_mm = bead.shift_mm;
+  bead = moved;
+}
+
 // Each bead of the profile over the surface below, moved by `shift`.
 std::vector<Road> RoadsOver(const StoredProfile& p, double noise_mm, const SurfaceGrid& under, double shift,
                             const RoadOptions& o) {
@@ -196,6 +225,7 @@ class PartMeasurer {
       if (!std::isfinite(warm) && !wide && loose_) warm = loose_->shift, hidden = loose_->hidden_sigma;
       row.bead = MeasureAddedBead(mine.x_mm, mine.z_mm, *under, shift, options_.added,
                                   std::isfinite(warm) ? &warm : nullptr, mine.spacing_mm, hidden, noise, wide);
+      if (row.layer > 0) CheckBedStayed(mine, *under, places.frame_x_mm[i], rig_, options_.added, row.bead);
       if (row.bead.shift_constrained) KeepShift(row.bead.shift_mm), hidden_ = row.bead.shift_hidden_sigma_mm;
       const bool loose = shift && row.bead.valid() && !row.bead.shift_constrained;
       loose_ = loose ? std::optional(Loose{row.bead.shift_mm, row.bead.shift_hidden_sigma_mm}) : std::nullopt;
@@ -204,7 +234,8 @@ class PartMeasurer {
     // registration found (its truncated cost holds any number of beads).
     // (Not where the new surface lies under the one before it: the scans
     // are not where their frames say, and no bead is measured.)
-    if (under && options_.several_beads && row.bead.status != AddedStatus::kUnderSurfaceBelow)
+    if (under && options_.several_beads && row.bead.status != AddedStatus::kUnderSurfaceBelow &&
+        row.bead.status != AddedStatus::kBedMoved)
       row.roads = RoadsOver(mine, noise, *under, row.bead.shift_mm, options_.roads);
     mine.center_x_mm = row.bead.valid() ? row.bead.center_x_mm : std::nan("");
     mine.area_mm2 = row.bead.valid() ? row.bead.area_mm2 : std::nan("");
@@ -285,6 +316,12 @@ double LayerSummary::MedianUnder() const {
   return MiddleInPlace(v);
 }
 
+double LayerSummary::MedianBedOff() const {
+  if (bed_off_mm.empty()) return kNaN();
+  std::vector<double> v = bed_off_mm;
+  return MiddleInPlace(v);
+}
+
 double LayerSummary::MedianShift() const {
   if (shifts_mm.empty()) return kNaN();
   std::vector<double> v = shifts_mm;
@@ -307,6 +344,7 @@ void Tally(std::vector<LayerSummary>& layers, const PartGeometryRow& r) {
   l.bead_in_reference += r.bead.status == AddedStatus::kBeadInReferenceArea;
   l.reference_not_a_line += r.bead.status == AddedStatus::kReferenceNotALine;
   if (r.bead.status == AddedStatus::kUnderSurfaceBelow) l.under_mm.push_back(r.bead.under_mm);
+  if (r.bead.status == AddedStatus::kBedMoved) l.bed_off_mm.push_back(r.bead.bed_off_mm);
   if (!r.bead.valid()) return;
   ++l.valid;
   l.area_sum_mm2 += r.bead.area_mm2;

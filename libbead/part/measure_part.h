@@ -91,6 +91,9 @@ struct LayerSummary {
   // AddedBead::under_mm.
   std::vector<double> under_mm;
   double MedianUnder() const;
+  // AddedStatus::kBedMoved: each row's AddedBead::bed_off_mm, their median.
+  std::vector<double> bed_off_mm;
+  double MedianBedOff() const;
   double area_sum_mm2 = 0.0;  // over the valid rows
   // Over the rows with a corrected area; `loose`: those whose corrected
   // area's sigma exceeds a tenth of it (the bead's sides not seen well

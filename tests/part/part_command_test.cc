@@ -231,7 +231,7 @@ TEST(PartCommand, AnotherLabsLayerScanIsImportedAndSaysWhatItLacks) {
 // heights (--frame-z-column): the import says every profile's is 0, and
 // bead measure refuses the layers above the bed, saying why and by how much
 // each lies under the one before it, not measuring a sliver of a bead. And
-// imported with its heights taken for distances: the bed's layer refused.
+// imported with its heights taken for distances: every layer refused.
 TEST(PartCommand, AScanImportedWithoutItsFrameHeightsOrWithItsZTurnedSaysSo) {
   test::TempDir dir;
   ASSERT_FALSE(SimulatedAndMeasured(dir, "part:\n  shape: wall\n  layers: 3\n  length_mm: 20\n").empty());
@@ -272,6 +272,11 @@ TEST(PartCommand, AScanImportedWithoutItsFrameHeightsOrWithItsZTurnedSaysSo) {
   EXPECT_NE(out.find("its z is a distance from the sensor, not a height"), std::string::npos) << out;
   EXPECT_NE(out.find("layer 0: 40 profiles over path"), std::string::npos) << out;
   EXPECT_NE(out.find(", 0 valid (on the bed)"), std::string::npos) << out;
+  // ... and the layers above: each one's bare bed lies off where the last
+  // one's scan has it (its heights turned, the frame's rise doubled).
+  EXPECT_NE(out.find("profiles' bare bed in the rig's reference areas lies"), std::string::npos) << out;
+  for (const auto& row : CsvRows(dir / "t.csv"))
+    if (row[2] != "layer" && row[2] != "0") EXPECT_EQ(row[16], "bed_moved") << row[0];
 }
 
 // The twin's log rewritten line by line: each data row's fields through

@@ -286,48 +286,59 @@ TEST(PartWall, ALayerMissingFromTheScanLeavesTheNextWithoutASurfaceBelow) {
   EXPECT_GT(layer3, 30);
 }
 
-// A scan whose frame heights were not given (bead import without
-// --frame-z-column: 0 in every profile) while the profiler rose with the
-// head: each layer's surface lies a layer's rise under the one before it.
-// No row above the bed is measured, each says so, and by the rise; the
-// bed's layer, measured against its own reference line, is as before.
-TEST(PartWall, AScanWithoutItsFrameHeightsIsNotMeasuredAboveTheBed) {
+// A scan whose frame heights are not the head's: not given (bead import
+// without --frame-z-column: 0 in every profile) while the profiler rose
+// with the head, each layer's surface then a layer's rise under the one
+// before it; or twice the head's (another unit, another axis), each
+// layer's bare bed a rise over it. No row above the bed is measured, each
+// says so, and by the rise: the surface under the old one over most of the
+// profile, or the bare bed in the rig's reference areas off the old scan
+// of it. The bed's layer, measured against its own reference line, is as
+// before.
+TEST(PartWall, AScanWhoseFrameHeightsAreNotTheHeadsIsNotMeasuredAboveTheBed) {
   sim::PartTwinConfig config;
   config.layers = 3;
   config.length_mm = 20.0;
   sim::PartTwin twin = sim::SimulatePartWall(config);
   const std::vector<part::PartGeometryRow> right = Measure(twin.scan, twin.rig, true);
-  RunArchive flat = twin.scan;
+  const PartPlaces& places = *twin.scan.part;
   std::vector<double> rise(config.layers, NAN);  // layer n's frame over layer n - 1's, mm
-  for (std::size_t i = 0; i < flat.part->size(); ++i) {
-    const int64_t layer = flat.part->layer[i];
+  for (std::size_t i = 0; i < places.size(); ++i) {
+    const int64_t layer = places.layer[i];
     if (layer > 0 && std::isnan(rise[layer])) {
       // (The twin's frame rides the layer's base: one height in a layer.)
-      const auto below =
-          std::find(flat.part->layer.begin(), flat.part->layer.end(), layer - 1) - flat.part->layer.begin();
-      rise[layer] = flat.part->frame_z_mm[i] - flat.part->frame_z_mm[below];
+      const auto below = std::find(places.layer.begin(), places.layer.end(), layer - 1) - places.layer.begin();
+      rise[layer] = places.frame_z_mm[i] - places.frame_z_mm[below];
     }
   }
-  std::fill(flat.part->frame_z_mm.begin(), flat.part->frame_z_mm.end(), 0.0);
-  const std::vector<part::PartGeometryRow> rows = Measure(flat, twin.rig, true);
-  ASSERT_EQ(rows.size(), right.size());
-  int above = 0;
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const part::PartGeometryRow& r = rows[i];
-    if (r.layer == 0) {
-      // (Its heights now moved by 0 where they were by the standoff, 60 mm,
-      // in floats: 4e-6 mm a point, 2.4e-5 mm^2 over the bead's 6 mm.)
-      EXPECT_NEAR(r.bead.area_mm2, right[i].bead.area_mm2, 1e-4) << i;
-      continue;
+  for (const bool doubled : {false, true}) {
+    RunArchive wrong = twin.scan;
+    for (double& z : wrong.part->frame_z_mm) z = doubled ? 2.0 * z - places.frame_z_mm.front() : 0.0;
+    const std::vector<part::PartGeometryRow> rows = Measure(wrong, twin.rig, true);
+    ASSERT_EQ(rows.size(), right.size());
+    int above = 0;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const part::PartGeometryRow& r = rows[i];
+      if (r.layer == 0) {
+        // (Its heights moved by another frame height, in floats: 4e-6 mm a
+        // point at 60 mm, 2.4e-5 mm^2 over the bead's 6 mm.)
+        EXPECT_NEAR(r.bead.area_mm2, right[i].bead.area_mm2, 1e-4) << i;
+        continue;
+      }
+      ++above;
+      EXPECT_TRUE(right[i].bead.valid()) << i;
+      // The median of hundreds of points (the reference areas' 280), each
+      // a rise off to two points' noise (0.014 mm): within a noise.
+      if (doubled) {
+        EXPECT_EQ(r.bead.status, part::AddedStatus::kBedMoved) << i;
+        EXPECT_NEAR(r.bead.bed_off_mm, rise[r.layer], config.noise_mm) << i;
+      } else {
+        EXPECT_EQ(r.bead.status, part::AddedStatus::kUnderSurfaceBelow) << i;
+        EXPECT_NEAR(r.bead.under_mm, -rise[r.layer], config.noise_mm) << i;
+      }
     }
-    ++above;
-    EXPECT_TRUE(right[i].bead.valid()) << i;
-    EXPECT_EQ(r.bead.status, part::AddedStatus::kUnderSurfaceBelow) << i;
-    // The median of hundreds of points, each a rise under to two points'
-    // noise (0.014 mm): within a noise.
-    EXPECT_NEAR(r.bead.under_mm, -rise[r.layer], config.noise_mm) << i;
+    EXPECT_GT(above, 60);
   }
-  EXPECT_GT(above, 60);
 }
 
 }  // namespace
