@@ -297,7 +297,10 @@ double CommonStep(std::span<const float> x) {
 // hair; a bead stands over it wherever one was laid.
 bool UnderSurfaceBelow(const std::vector<double>& d, double tau, double& under) {
   std::size_t below = 0, above = 0;
-  for (const double v : d) below += v<-tau, above += v> tau;
+  for (const double v : d) {
+    below += v < -tau;
+    above += v > tau;
+  }
   if (below <= above || static_cast<double>(below) <= kUnderShare * static_cast<double>(d.size())) return false;
   std::vector<double> sunk;
   for (const double v : d)

@@ -112,10 +112,11 @@ enum class AddedStatus : uint8_t {
   // over the bed (reference areas on something raised).
   // Not measured (AddedBead::under_mm says by how much).
   kUnderSurfaceBelow,
-  // Above layer 0: the bare bed in the rig's reference areas (bare in every
-  // layer) lies off where the layer below's scan has it, by the threshold
-  // (AddedBead::bed_off_mm, signed): the two scans are not where their
-  // frames say (frame_z_mm, z read as a distance). Not measured.
+  // Above layer 0: the bare bed in both of the rig's reference areas (bare
+  // in every layer) lies off where the layer below's scan has it, by the
+  // threshold, the same way and by the same to within it (AddedBead::
+  // bed_off_mm, signed): the two scans are not where their frames say
+  // (frame_z_mm, z read as a distance). Not measured.
   kBedMoved,
 };
 inline constexpr double kUnderShare = 0.1;
@@ -141,7 +142,7 @@ struct AddedBead {
   // Where kUnderSurfaceBelow: the median gain of the points under the
   // surface before it (negative), mm.
   double under_mm = kNaN;
-  // Where kBedMoved: the median gain over the reference areas' points, mm.
+  // Where kBedMoved: the mean of the two reference areas' median gains, mm.
   double bed_off_mm = kNaN;
   bool valid() const { return status == AddedStatus::kValid; }
   // The area's own noise variance, mm^4: its trapezoids over the bead's

@@ -13,6 +13,7 @@
 #include "libbead/core/worker_pool.h"
 #include "libbead/io/part_scan_csv.h"
 #include "libbead/part/bed_arc.h"
+#include "libbead/part/bed_stayed.h"
 #include "libbead/part/layer_grooves.h"
 #include "libbead/part/part_kernel.h"
 
@@ -149,35 +150,6 @@ std::optional<SurfaceGrid> BedArcGrid(const Rig& rig, const ProfileView& v, cons
   const BedArc arc = FitBedArc(v.x_mm, v.z_mm, rig.reference_left, rig.reference_right, rig.part->radius_mm);
   if (!arc.ok) return std::nullopt;
   return SampledBed(p, GridStep(p), frame_x, frame_z, false, [&arc](double x) { return arc.At(x); });
-}
-
-// Above layer 0, the median gain over the rig's reference areas (in the
-// profile's own frame: bare bed in every layer), the surface below moved by
-// `shift`; NaN where fewer than kMinReferencePoints points there have one
-// (a bed out of the sensor's range under a tall part).
-constexpr std::size_t kMinReferencePoints = 10;
-double ReferenceGain(const StoredProfile& p, const SurfaceGrid& under, double shift, double frame_x, const Rig& rig) {
-  thread_local std::vector<double> gains;
-  gains.clear();
-  for (std::size_t j = 0; j < p.x_mm.size(); ++j) {
-    const double x = p.x_mm[j];
-    if (!rig.reference_left.Contains(x - frame_x) && !rig.reference_right.Contains(x - frame_x)) continue;
-    if (const double gain = p.z_mm[j] - under.At(x - shift); std::isfinite(gain)) gains.push_back(gain);
-  }
-  return gains.size() < kMinReferencePoints ? std::nan("") : MiddleInPlace(gains);
-}
-
-// Where the bare bed in the reference areas lies off the layer below's
-// scan of it by the bead's threshold: the row not measured, said why.
-void CheckBedStayed(const StoredProfile& p, const SurfaceGrid& under, double frame_x, const Rig& rig,
-                    const AddedBeadOptions& o, AddedBead& bead) {
-  if (bead.status == AddedStatus::kUnderSurfaceBelow || !std::isfinite(bead.noise_mm)) return;
-  const double off = ReferenceGain(p, under, bead.shift_mm, frame_x, rig);
-  if (!(std::abs(off) > std::max(o.min_threshold_mm, o.threshold_sigmas * bead.noise_mm))) return;
-  AddedBead moved;
-  moved.status = AddedStatus::kBedMoved;
-  moved.bed_off_mm = off, moved.noise_mm = bead.noise_mm, moved.shift_mm = bead.shift_mm;
-  bead = moved;
 }
 
 // Each bead of the profile over the surface below, moved by `shift`.

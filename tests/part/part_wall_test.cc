@@ -327,7 +327,7 @@ TEST(PartWall, AScanWhoseFrameHeightsAreNotTheHeadsIsNotMeasuredAboveTheBed) {
       }
       ++above;
       EXPECT_TRUE(right[i].bead.valid()) << i;
-      // The median of hundreds of points (the reference areas' 280), each
+      // The median of hundreds of points (an area's, or those the surface lies under by), each
       // a rise off to two points' noise (0.014 mm): within a noise.
       if (doubled) {
         EXPECT_EQ(r.bead.status, part::AddedStatus::kBedMoved) << i;
@@ -339,6 +339,20 @@ TEST(PartWall, AScanWhoseFrameHeightsAreNotTheHeadsIsNotMeasuredAboveTheBed) {
     }
     EXPECT_GT(above, 60);
   }
+  // Material laid in one reference area (a bead 1 mm high over its inner
+  // half, in every layer above the bed) is no moved bed: the other area
+  // stays where the layer below has it.
+  RunArchive bumped = twin.scan;
+  const ReferenceArea& area = twin.rig.reference_left;
+  const double inner = 0.5 * (area.x_min_mm + area.x_max_mm);
+  for (std::size_t i = 0; i < places.size(); ++i) {
+    if (places.layer[i] == 0) continue;
+    const ProfileView v = bumped.profiles.view(i);
+    for (std::size_t k = 0; k < v.x_mm.size(); ++k)
+      if (v.x_mm[k] > inner && area.Contains(v.x_mm[k])) bumped.profiles.z_mm[i * bumped.profiles.points + k] += 1.0f;
+  }
+  for (const part::PartGeometryRow& r : Measure(bumped, twin.rig, true))
+    EXPECT_NE(r.bead.status, part::AddedStatus::kBedMoved) << r.profile;
 }
 
 }  // namespace
