@@ -296,6 +296,14 @@ double CommonStep(std::span<const float> x) {
 // noises at least) and the few points of a steep wall the shift misses by a
 // hair; a bead stands over it wherever one was laid.
 bool UnderSurfaceBelow(const std::vector<double>& d, double tau, double& under) {
+  // First every kUnderStride-th point: where under half the share lies
+  // under among them, the whole cannot hold it but by a freak of sampling
+  // (a correct pair of scans has none there; a wrong frame, most). (Every
+  // point, counted first, took a tenth of the naive part profile's time.)
+  constexpr std::size_t kUnderStride = 8;
+  std::size_t sampled = 0, sampled_below = 0;
+  for (std::size_t j = 0; j < d.size(); j += kUnderStride) ++sampled, sampled_below += d[j] < -tau;
+  if (static_cast<double>(sampled_below) <= 0.5 * kUnderShare * static_cast<double>(sampled)) return false;
   std::size_t below = 0, above = 0;
   for (const double v : d) {
     below += v < -tau;
