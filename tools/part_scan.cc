@@ -307,7 +307,7 @@ void SayRoads(const part::RoadsSummary& s, bool laid_left_first, const std::vect
   std::size_t no_surface = 0, in_reference = 0, not_a_line = 0, under = 0;
   for (const part::LayerSummary& l : layers)
     no_surface += l.no_surface_below, in_reference += l.bead_in_reference, not_a_line += l.reference_not_a_line,
-        under += l.under_mm.size() + l.bed_off_mm.size();
+        under += l.FramesDisagree();
   const bool above_bed =
       std::any_of(layers.begin(), layers.end(), [](const part::LayerSummary& l) { return l.layer > 0; });
   const std::size_t unmeasured = no_surface + in_reference + not_a_line + under;

@@ -359,7 +359,7 @@ AddedBead MeasureAddedBead(std::span<const float> x, std::span<const float> z, c
                            double start_hidden_sigma, double noise_mm, bool search_wide) {
   AddedBead out;
   out.noise_mm = std::isfinite(noise_mm) ? noise_mm : NoiseOf(z);
-  const double tau = std::max(o.min_threshold_mm, o.threshold_sigmas * out.noise_mm);
+  const double tau = o.Threshold(out.noise_mm);
   const double floor = std::max(o.min_edge_floor_mm, o.edge_floor_sigmas * out.noise_mm);
   Registration reg;
   // The new points on the surface below's grid, where they lie on it

@@ -57,6 +57,7 @@
 #pragma once
 
 #include <cstdint>
+#include <algorithm>
 #include <limits>
 #include <span>
 
@@ -67,6 +68,8 @@ namespace bead::part {
 struct AddedBeadOptions {
   double min_threshold_mm = 0.05;
   double threshold_sigmas = 6.0;
+  // The detection threshold for a profile of noise `noise_mm`, mm.
+  double Threshold(double noise_mm) const { return std::max(min_threshold_mm, threshold_sigmas * noise_mm); }
   double min_edge_floor_mm = 0.01;
   double edge_floor_sigmas = 2.0;
   double max_gap_mm = 1.0;
@@ -145,6 +148,9 @@ struct AddedBead {
   // Where kBedMoved: the mean of the two reference areas' median gains, mm.
   double bed_off_mm = kNaN;
   bool valid() const { return status == AddedStatus::kValid; }
+  // The two scans are not where their frames say (kUnderSurfaceBelow,
+  // kBedMoved): nothing over the surface below is to be trusted.
+  bool FramesDisagree() const { return status == AddedStatus::kUnderSurfaceBelow || status == AddedStatus::kBedMoved; }
   // The area's own noise variance, mm^4: its trapezoids over the bead's
   // width / spacing points, each a spacing times a gain of the point's noise
   // and the surface below's (as much again: a layer below's point, or the

@@ -50,7 +50,7 @@ bool AreaOff(const StoredProfile& p, const SurfaceGrid& under, double shift, dou
 void CheckBedStayed(const StoredProfile& p, const SurfaceGrid& under, double frame_x, const Rig& rig,
                     const AddedBeadOptions& o, AddedBead& bead) {
   if (bead.status == AddedStatus::kUnderSurfaceBelow || !std::isfinite(bead.noise_mm)) return;
-  const double tau = std::max(o.min_threshold_mm, o.threshold_sigmas * bead.noise_mm);
+  const double tau = o.Threshold(bead.noise_mm);
   double left = 0.0, right = 0.0;
   if (!AreaOff(p, under, bead.shift_mm, frame_x, rig.reference_left, tau, left) ||
       !AreaOff(p, under, bead.shift_mm, frame_x, rig.reference_right, tau, right))

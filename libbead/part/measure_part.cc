@@ -206,8 +206,7 @@ class PartMeasurer {
     // registration found (its truncated cost holds any number of beads).
     // (Not where the new surface lies under the one before it: the scans
     // are not where their frames say, and no bead is measured.)
-    if (under && options_.several_beads && row.bead.status != AddedStatus::kUnderSurfaceBelow &&
-        row.bead.status != AddedStatus::kBedMoved)
+    if (under && options_.several_beads && !row.bead.FramesDisagree())
       row.roads = RoadsOver(mine, noise, *under, row.bead.shift_mm, options_.roads);
     mine.center_x_mm = row.bead.valid() ? row.bead.center_x_mm : std::nan("");
     mine.area_mm2 = row.bead.valid() ? row.bead.area_mm2 : std::nan("");
@@ -282,23 +281,17 @@ MeasurePartOptions PartOptionsFor(const ProfileOptions& profile) {
   return o;
 }
 
-double LayerSummary::MedianUnder() const {
-  if (under_mm.empty()) return kNaN();
-  std::vector<double> v = under_mm;
-  return MiddleInPlace(v);
-}
+namespace {
 
-double LayerSummary::MedianBedOff() const {
-  if (bed_off_mm.empty()) return kNaN();
-  std::vector<double> v = bed_off_mm;
-  return MiddleInPlace(v);
-}
+// The median of `values` (a copy: the summary keeps its order), NaN where
+// there are none.
+double MedianOrNaN(std::vector<double> values) { return values.empty() ? LayerSummary::kNaN() : MiddleInPlace(values); }
 
-double LayerSummary::MedianShift() const {
-  if (shifts_mm.empty()) return kNaN();
-  std::vector<double> v = shifts_mm;
-  return MiddleInPlace(v);
-}
+}  // namespace
+
+double LayerSummary::MedianUnder() const { return MedianOrNaN(under_mm); }
+double LayerSummary::MedianBedOff() const { return MedianOrNaN(bed_off_mm); }
+double LayerSummary::MedianShift() const { return MedianOrNaN(shifts_mm); }
 
 namespace {
 

@@ -94,6 +94,8 @@ struct LayerSummary {
   // AddedStatus::kBedMoved: each row's AddedBead::bed_off_mm, their median.
   std::vector<double> bed_off_mm;
   double MedianBedOff() const;
+  // The rows of both: the two scans not where their frames say.
+  std::size_t FramesDisagree() const { return under_mm.size() + bed_off_mm.size(); }
   double area_sum_mm2 = 0.0;  // over the valid rows
   // Over the rows with a corrected area; `loose`: those whose corrected
   // area's sigma exceeds a tenth of it (the bead's sides not seen well

@@ -237,7 +237,7 @@ std::vector<Road> LeftFirst(std::span<const float> xf, std::span<const double> g
   Despiked(xf, gain, o.spike_mm, x, d);
   std::vector<Road> out;
   if (x.size() < 10) return out;
-  const double tau = std::max(o.min_threshold_mm, o.threshold_sigmas * noise_mm);
+  const double tau = o.Threshold(noise_mm);
   const double floor = std::max(o.min_edge_floor_mm, o.edge_floor_sigmas * noise_mm);
   const double spacing = (x.back() - x.front()) / static_cast<double>(x.size() - 1);
   for (const Region& g : RegionsOf(x, d, floor, tau, o.max_gap_mm)) {

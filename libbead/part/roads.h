@@ -41,6 +41,7 @@
 //    between roads is filled (the two papers as the issue names them).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <map>
@@ -55,6 +56,8 @@ namespace bead::part {
 struct RoadOptions {
   double min_threshold_mm = 0.05;  // the detection threshold: at least this ...
   double threshold_sigmas = 6.0;   // ... and this many noise sigmas
+  // The detection threshold for a profile of noise `noise_mm`, mm.
+  double Threshold(double noise_mm) const { return std::max(min_threshold_mm, threshold_sigmas * noise_mm); }
   double min_edge_floor_mm = 0.01;
   double edge_floor_sigmas = 2.0;
   double max_gap_mm = 1.0;
