@@ -276,7 +276,9 @@ TEST(PartCommand, AScanImportedWithoutItsFrameHeightsOrWithItsZTurnedSaysSo) {
   // one's scan has it (its heights turned, the frame's rise doubled).
   EXPECT_NE(out.find("profiles' bare bed in the rig's reference areas lies"), std::string::npos) << out;
   for (const auto& row : CsvRows(dir / "t.csv")) {
-    if (row[2] != "layer" && row[2] != "0") EXPECT_EQ(row[16], "bed_moved") << row[0];
+    if (row[2] != "layer" && row[2] != "0") {
+      EXPECT_EQ(row[16], "bed_moved") << row[0];
+    }
   }
 }
 
