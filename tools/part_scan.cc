@@ -365,7 +365,7 @@ int MeasureRoads(const std::string& rig_path, const std::string& run, const std:
       *stream, places, rig, options,
       [&](const part::PartGeometryRow& r) {
         out.Append(r);
-        summary.Add(r.roads);
+        summary.Add(r.roads, laid_left_first);
       },
       [&](std::size_t done) {
         if (tty) tty(done, total);

@@ -284,14 +284,16 @@ std::vector<Road> FindRoads(std::span<const float> x, std::span<const double> ga
   return roads;
 }
 
-void RoadsSummary::Add(const std::vector<Road>& found) {
+void RoadsSummary::Add(const std::vector<Road>& found, bool laid_left_first) {
   ++profiles_by_count[found.size()];
   roads += found.size();
   for (std::size_t i = 0; i < found.size(); ++i) {
     cut_by_edge += found[i].status == RoadStatus::kCutByEdge;
     no_fit += found[i].status == RoadStatus::kNoFit;
-    if (i > 0 && found[i].valid() && found[i - 1].valid() && std::isfinite(found[i].spacing_over_width))
-      spacing_over_width.Add(found[i].spacing_over_width);
+    if (i > 0 && found[i].valid() && found[i - 1].valid()) {
+      const double spacing = found[laid_left_first ? i : i - 1].spacing_over_width;
+      if (std::isfinite(spacing)) spacing_over_width.Add(spacing);
+    }
     const bool paired = (i > 0 && found[i - 1].valid()) || (i + 1 < found.size() && found[i + 1].valid());
     if (found[i].valid() && paired && found[i].area_mm2 > 0.0)
       order_change.Add(std::abs(found[i].area_other_order_mm2 / found[i].area_mm2 - 1.0));

@@ -110,7 +110,9 @@ struct RoadsSummary {
   // Each valid road's |area in the other order / area - 1|, where it has a
   // valid neighbour: how much the split rests on the order the user gave.
   Reservoir order_change;
-  void Add(const std::vector<Road>& roads);
+  // A profile's roads, left to right, laid in that order or (false) the
+  // other: each pair's spacing is held by the road laid after the other.
+  void Add(const std::vector<Road>& roads, bool laid_left_first);
   double MedianSpacing() const;  // NaN without a pair of valid neighbours
   // The median spacing against the overlap models' critical ratios, in
   // words (empty without a spacing).

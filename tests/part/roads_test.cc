@@ -227,6 +227,15 @@ TEST(Roads, LaidRightToLeftTheMirroredLayerGivesTheMirroredSplit) {
     EXPECT_NEAR(a[k].area_mm2, b[a.size() - 1 - k].area_mm2, 1e-6);
     EXPECT_NEAR(a[k].center_x_mm, -b[a.size() - 1 - k].center_x_mm, 1e-6);
   }
+  // ... and the same spacings, each pair's held by the road laid after
+  // the other, the summary taking every pair in either order (right to
+  // left it took the pairs' left roads' and the last road's NaN: two of
+  // three pairs).
+  part::RoadsSummary left, right;
+  left.Add(a, true), right.Add(b, false);
+  EXPECT_EQ(left.spacing_over_width.seen(), a.size() - 1);
+  EXPECT_EQ(right.spacing_over_width.seen(), a.size() - 1);
+  EXPECT_NEAR(left.MedianSpacing(), right.MedianSpacing(), 1e-6);
 }
 
 // The model's top is the highest cap whichever road was laid first, so the
@@ -252,9 +261,9 @@ TEST(Roads, TheOtherOrdersAreaIsWhatThatOrderGivesAndTheSummarySaysIt) {
     // At 0.7 w the valley's material changes hands: the outer roads' areas
     // move by far more than the noise.
     EXPECT_GT(std::abs(a.front().area_other_order_mm2 / a.front().area_mm2 - 1.0), 0.02);
-    overlapping.Add(a);
+    overlapping.Add(a, true);
     const ParabolicLayer q = Parabolas(3, 1.05, 6.0, 6.0, seed);
-    apart.Add(part::FindRoads(q.x, q.gain, 0.01));
+    apart.Add(part::FindRoads(q.x, q.gain, 0.01), true);
   }
   EXPECT_NE(overlapping.OrderInWords(true).find("cannot show the order"), std::string::npos);
   EXPECT_NE(overlapping.OrderInWords(true).find("laid right to left"), std::string::npos);
