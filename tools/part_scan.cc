@@ -192,8 +192,12 @@ void SayBedMoved(const part::LayerSummary& l, const char* indent) {
       "%s%zu profiles' bare bed in the rig's reference areas lies %.3f mm %s where layer %lld's scan has it (status "
       "bed_moved; median): the bed does not move between layers, so the two scans are not where their frames say. "
       "/profiles/frame_z_mm must be the head's height above the bed at each profile, in mm, and z a height, not a "
-      "distance from the sensor (bead import --z-distance); those profiles are not measured\n",
-      indent, l.bed_off_mm.size(), std::abs(off), off < 0.0 ? "under" : "over", static_cast<long long>(l.layer - 1));
+      "distance from the sensor (bead import --z-distance)%s; those profiles are not measured\n",
+      indent, l.bed_off_mm.size(), std::abs(off), off < 0.0 ? "under" : "over", static_cast<long long>(l.layer - 1),
+      off < 0.0 ? ""
+                : ". Or this layer's material covers both areas at one height (a layer wider than the field of view), "
+                  "which a profile cannot tell from a frame one layer off: sensor.reference_areas_mm must lie where "
+                  "no layer reaches");
 }
 
 void SayLayers(const std::vector<part::LayerSummary>& layers) {
