@@ -97,6 +97,9 @@ class LayerGrooves {
   const std::pair<int64_t, PooledShape>* Carried() const;
   // How the waiting rows' fitted aspects move with their exponent at p.
   double AspectByExponent(double p) const;
+  // The median over up to kPoolProfiles waiting rows of their tops' RMS
+  // over their tolerance, each estimated with `pool` held (NaN: none).
+  double HeldTopNoise(PooledShape pool) const;
 
   int64_t layer_ = -1;
   std::vector<double> aspects_;
