@@ -239,7 +239,7 @@ HiddenGroove AtTheSilhouette(const Silhouette& s, const Around& o, const PooledS
   out.aspect_end_var = s.aspect_end_var, out.exponent_end_var = s.exponent_end_var, out.left_end_mm = s.e.x0 - s.e.a;
   out.aspect_grid_var = s.aspect_grid_var, out.exponent_grid_var = s.exponent_grid_var;
   out.aspect_mixed_var = s.aspect_mixed_var, out.exponent_mixed_var = s.exponent_mixed_var;
-  out.shape_consistent = s.shape_consistent;
+  out.shape_consistent = s.shape_consistent, out.family_log_ratio = s.family_log_ratio;
   out.end_mixed = s.end_mixed[0] || s.end_mixed[1];
   out.end_place[0] = s.end_place[0], out.end_place[1] = s.end_place[1];
   out.dx0 = s.e.x0 - center, out.dz0 = s.e.z0 - base, out.a = s.e.a, out.b = s.e.b, out.shape_a = s.shape_a;

@@ -127,6 +127,8 @@ struct HiddenGroove {
   // agrees with the walls' cells (part/silhouette.h: else not pooled).
   double aspect_grid_var = 0.0, exponent_grid_var = 0.0;
   bool shape_consistent = true;
+  // Placed with the shape free: Silhouette::family_log_ratio.
+  double family_log_ratio = 0.0;
   // Placed at the silhouette: whether either end's wall held a mixed point.
   bool end_mixed = false;
   // Where the top placed the free shape's ends in their cells

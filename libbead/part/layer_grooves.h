@@ -74,7 +74,8 @@ class LayerGrooves {
     double top;      // its top's RMS over its tolerance (NaN: none)
     double half_mm;  // half its bead's width (part/added_bead.h), and its own half-width a
     double a_mm;
-    double pressed_half_mm;  // HiddenGroove::pressed_half_mm
+    double pressed_half_mm;   // HiddenGroove::pressed_half_mm
+    double family_log_ratio;  // HiddenGroove::family_log_ratio
   };
 
  private:

@@ -168,6 +168,8 @@ std::ptrdiff_t SolveEitherFamily(const Window& w, std::size_t first, std::size_t
   if (found >= 0 && variance <= least * least) return found;
   const std::ptrdiff_t other =
       SolveFree(w, first, last, L, R, stadium, EllipseIndex(StadiumGrid()), StadiumGrid(), &stadium_variance);
+  const double ratio = found >= 0 && other >= 0 ? std::log(variance / stadium_variance) : NAN;
+  s.family_log_ratio = stadium.family_log_ratio = ratio;
   if (other < 0) return found;
   const double dof = std::max(1.0, static_cast<double>(TopPointCount(w, first, last, L, R)) - 2.0);
   if (found >= 0 && !(variance > (1.0 + 4.0 * std::sqrt(2.0 / dof)) * stadium_variance)) return found;

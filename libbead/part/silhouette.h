@@ -102,6 +102,13 @@ struct Silhouette {
   // What the exponent grid's steps leave in them (the same in every row of
   // a shape: a pool does not average it).
   double aspect_grid_var = 0.0, exponent_grid_var = 0.0;
+  // Where the shape is free: ln of the superellipse's least residual
+  // variance over the stadium's, both solved on the same points (0 where
+  // the superellipse follows the top within its share and the stadium is
+  // not tried; NaN where either family solves none): a row's evidence
+  // between the two families, which a layer's pool sums (part/
+  // layer_grooves.cc: OfOneFamily).
+  double family_log_ratio = 0.0;
   // With the shape held, each end is placed by the top (in a gap, lost
   // points beside its wall, where the top fits best); the area seen across
   // each wall's cell as the bead placed shows it, less the trapezoid the
