@@ -34,9 +34,27 @@ std::string WithSigma(double v, double sigma) {
   return buf;
 }
 
+// A tamped bead's shape as it is held, in mm.
+void SayTampedHold(const part::PooledShape& s) {
+  std::printf(
+      "    held as a tamped bead's: half-height %s mm and ends' arcs %s mm wide in every profile (its aspect and "
+      "corner share from its own width: more flow widens a tamped bead, not heightens it)\n",
+      WithSigma(s.half_height_mm, s.half_height_sigma_mm).c_str(), WithSigma(s.corner_mm, s.corner_sigma_mm).c_str());
+}
+
 // The layer's pooled bead shape, and in words how far from an ellipse (or
 // that an ellipse is assumed).
 void SayShape(const part::PooledShape& s) {
+  if (s.Tamped() && s.exponent_layer >= 0) {
+    // Held at each profile's own width: the aspect this layer's own fits
+    // pooled (at the carried exponent) is not what is held, and not said.
+    std::printf(
+        "    bead shape: layer %lld's tamped bead, carried from an earlier layer (too few of this layer's beads "
+        "were placed at their walls to solve its own)\n",
+        static_cast<long long>(s.exponent_layer));
+    SayTampedHold(s);
+    return;
+  }
   std::printf("    bead shape (%s%zu %s pooled): half-height over half-width %s", s.AspectAtWalls() ? "" : "its first ",
               s.rows, s.AspectAtWalls() ? "of its first profiles, those placed at their walls," : "profiles",
               WithSigma(s.aspect, s.aspect_sigma).c_str());
@@ -65,12 +83,7 @@ void SayShape(const part::PooledShape& s) {
         WithSigma(-s.exponent, s.exponent_sigma).c_str(),
         s.NotAnEllipse() ? "its top flatter than an ellipse's" : "an ellipse, within two sigmas", s.correlation,
         s.exponent_layer >= 0 ? ", carried from an earlier layer" : "");
-    if (s.Tamped())
-      std::printf(
-          "    held as a tamped bead's: half-height %s mm and ends' arcs %s mm wide in every profile (its aspect and "
-          "corner share from its own width: more flow widens a tamped bead, not heightens it)\n",
-          WithSigma(s.half_height_mm, s.half_height_sigma_mm).c_str(),
-          WithSigma(s.corner_mm, s.corner_sigma_mm).c_str());
+    if (s.Tamped()) SayTampedHold(s);
   } else {
     // The words follow the model: a shape not an ellipse is fitted as itself.
     const char* words = !s.NotAnEllipse()  ? "an ellipse, within two sigmas"

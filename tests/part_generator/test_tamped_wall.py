@@ -273,7 +273,7 @@ def test_a_fast_tamped_walls_layer_showing_few_walls_holds_the_shape_carried(tmp
     c.speed_mm_s, c.layers, c.length_mm, c.width_mm = 40.0, 6, 70.0, 40.0
     d = str(tmp_path)
     f, said = measured(c, 5, d)
-    assert "carried from an earlier layer" in said, said
+    assert "tamped bead, carried from an earlier layer" in said, said
     assert f["valid"] == f["profiles"] == f["corrected"]
     assert abs(f["corrected_run_bias"]) < 0.01
     assert f["flow_fit"] >= 85.0
