@@ -84,6 +84,11 @@ void SayShape(const part::PooledShape& s) {
         s.NotAnEllipse() ? "its top flatter than an ellipse's" : "an ellipse, within two sigmas", s.correlation,
         s.exponent_layer >= 0 ? ", carried from an earlier layer" : "");
     if (s.Tamped()) SayTampedHold(s);
+    if (s.stadium_by_evidence)
+      std::printf(
+          "    (most of its first beads' tops alone did not pin a shape standing over their walls; over the "
+          "layer's rows the stadium's family followed the tops better than the superellipse's, beyond their "
+          "noise, and each was placed with it)\n");
   } else {
     // The words follow the model: a shape not an ellipse is fitted as itself.
     const char* words = !s.NotAnEllipse()  ? "an ellipse, within two sigmas"

@@ -79,6 +79,10 @@ struct PooledShape {
   // not solved because the tops and walls do not pin the shape (noise, the
   // ends' cells), not because the beads do not overhang.
   std::size_t estimated = 0, walls_unsolved = 0;
+  // Whether the rows were placed with the stadium's family alone, most
+  // of their walls unsolved otherwise and their evidence favouring it
+  // (part/layer_grooves.h: RetryAsStadiums).
+  bool stadium_by_evidence = false;
   bool ShapeUnpinned() const { return !exponent_solved && 2 * walls_unsolved > estimated; }
   // Whether the exponent solved is not an ellipse's: beyond two of its
   // sigmas from 2 (`bead measure` says "an ellipse, within two sigmas"

@@ -254,7 +254,7 @@ HiddenGroove AtTheSilhouette(const Silhouette& s, const Around& o, const PooledS
 HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
                                   double shift, double shift_sigma, double noise_mm, double center, double width,
                                   double height, const PooledShape* pooled, const HiddenGroove* previous,
-                                  double free_exponent) {
+                                  double free_exponent, bool stadium_only) {
   HiddenGroove out;
   if (!(width > 0.0) || !(height > 0.0)) return out;
   if (pooled && pooled->top_noise > kTopOffNoise) {
@@ -306,8 +306,8 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   // the walls' and contours' figures were read once, with these.)
   const SilhouetteScale scale{std::max(3.0 * noise_mm, 0.02 * height), std::max(6.0 * noise_mm, 0.15 * height)};
   const double* start_place = previous && previous->ok ? previous->end_place : nullptr;
-  bool walls_unsolved = false;
-  if (const std::optional<Silhouette> s = AtSilhouette(w, center, scale, pooled, start_place, &walls_unsolved)) {
+  FreeSolve free{stadium_only};
+  if (const std::optional<Silhouette> s = AtSilhouette(w, center, scale, pooled, start_place, &free)) {
     HiddenGroove placed = AtTheSilhouette(*s, around, pooled, center, base, height);
     if (!pooled) placed.pressed_half_mm = PressedHalfHeight(w, s->e, noise_mm);
     return placed;
@@ -357,7 +357,7 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
       if (rss < best_rss) best_rss = rss, best = e, best_JtJ = JtJ, best_top = NAN;
     }
   out.fit_rms_mm = std::sqrt(best_rss / static_cast<double>(w.x.size()));
-  out.walls_unsolved = walls_unsolved;
+  out.walls_unsolved = free.walls_unsolved, out.family_log_ratio = free.family_log_ratio;
   out.aspect = best.b / best.a, out.exponent = exponent;
   out.dx0 = best.x0 - center, out.dz0 = best.z0 - base, out.a = best.a, out.b = best.b;
   const GrooveSum groove = GrooveWithGradient(best, below, shift);

@@ -127,7 +127,8 @@ struct HiddenGroove {
   // agrees with the walls' cells (part/silhouette.h: else not pooled).
   double aspect_grid_var = 0.0, exponent_grid_var = 0.0;
   bool shape_consistent = true;
-  // Placed with the shape free: Silhouette::family_log_ratio.
+  // With the shape free, placed or its walls unsolved: the solve's
+  // Silhouette::family_log_ratio (NaN where none was solved).
   double family_log_ratio = 0.0;
   // Placed at the silhouette: whether either end's wall held a mixed point.
   bool end_mixed = false;
@@ -158,10 +159,13 @@ struct HiddenGroove {
 // noise_mm^2 (surface_below.h); center, width, height:
 // the bead as part/added_bead.h measured it; pooled: the layer's shape to
 // hold (nullptr: solved here); free_exponent: with none held, a fit's
-// (an earlier layer's that is not an ellipse's, carried; else 2).
+// (an earlier layer's that is not an ellipse's, carried; else 2);
+// stadium_only: with none held, the stadium's family alone placed at the
+// walls (part/silhouette.h: FreeSolve).
 HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
                                   double shift, double shift_sigma, double noise_mm, double center, double width,
                                   double height, const PooledShape* pooled = nullptr,
-                                  const HiddenGroove* previous = nullptr, double free_exponent = 2.0);
+                                  const HiddenGroove* previous = nullptr, double free_exponent = 2.0,
+                                  bool stadium_only = false);
 
 }  // namespace bead::part

@@ -57,11 +57,16 @@ void Apply(const HiddenGroove& g, double spacing, PartGeometryRow& row) {
     row.area_corrected_mm2 = corrected, row.area_corrected_sigma_mm2 = sigma;
 }
 
+// A row's top's miss over its tolerance (OutlineMisfit::kTopOff).
+double TopOver(const HiddenGroove& g, const PartGeometryRow& row, const StoredProfile& points) {
+  return g.top_rms_mm / TopTolerance(row.bead.noise_mm, row.bead.height_mm, TopSamplingMm(g.aspect, points.spacing_mm));
+}
+
 }  // namespace
 
 HiddenGroove LayerGrooves::Estimate(const StoredProfile& p, const SurfaceGrid& under, const PartGeometryRow& row,
-                                    const HiddenGroove* previous, const PooledShape* shape,
-                                    double free_exponent) const {
+                                    const HiddenGroove* previous, const PooledShape* shape, double free_exponent,
+                                    bool stadium_only) const {
   const double shift_sigma = std::isfinite(row.bead.shift_sigma_mm) ? row.bead.shift_sigma_mm : 0.0;
   const auto* carried = shape || !std::isnan(free_exponent) ? nullptr : Carried();
   if (std::isnan(free_exponent)) free_exponent = carried ? carried->second.exponent : 2.0;
@@ -70,38 +75,63 @@ HiddenGroove LayerGrooves::Estimate(const StoredProfile& p, const SurfaceGrid& u
   const std::optional<PooledShape> held = shape ? std::optional(shape->AtWidth(row.bead.width_mm)) : std::nullopt;
   return EstimateHiddenGroove(p.x_mm, p.z_mm, under, row.bead.shift_mm, shift_sigma, row.bead.noise_mm,
                               row.bead.center_x_mm, row.bead.width_mm, row.bead.height_mm, held ? &*held : nullptr,
-                              previous, free_exponent);
+                              previous, free_exponent, stadium_only);
+}
+
+void LayerGrooves::Record(const HiddenGroove& g, const PartGeometryRow& row, const StoredProfile& points, double top) {
+  if (g.at_silhouette) ++at_walls_, ends_off_ += !g.shape_consistent;
+  ++estimated_, walls_unsolved_ += g.walls_unsolved;
+  const FamilyVote vote = FamilyVote::Of(g.family_log_ratio, row.bead.noise_mm, row.bead.height_mm);
+  if (std::isfinite(vote.log_ratio)) family_votes_.push_back(vote);
+  if (!g.ok || !g.shape_consistent) return;
+  aspects_.push_back(g.aspect);
+  if (std::isfinite(top)) tops_.push_back(top);
+  if (g.at_silhouette)
+    placed_.push_back({g.aspect, g.exponent, g.aspect_end_var, g.exponent_end_var, g.aspect_grid_var,
+                       g.exponent_grid_var, g.left_end_mm, points.spacing_mm, g.end_mixed, g.aspect_mixed_var,
+                       g.exponent_mixed_var, top, 0.5 * row.bead.width_mm, g.shape_a, g.pressed_half_mm, vote});
+}
+
+void LayerGrooves::ClearCounts() {
+  aspects_.clear(), tops_.clear(), placed_.clear(), family_votes_.clear();
+  at_walls_ = ends_off_ = estimated_ = walls_unsolved_ = 0;
+}
+
+void LayerGrooves::RetryAsStadiums() {
+  if (stadium_only_ || placed_.size() >= kMinExponents || 2 * walls_unsolved_ <= estimated_ ||
+      FamilyEvidence(family_votes_) <= 0)
+    return;
+  stadium_only_ = true;
+  ClearCounts(), last_.reset();
+  for (Waiting& w : waiting_) {
+    if (!w.points) continue;
+    const HiddenGroove g = Estimate(*w.points, *w.under, w.row, last_ ? &*last_ : nullptr, nullptr, NAN, true);
+    if (g.ok) last_ = g;
+    Apply(g, w.points->spacing_mm, w.row);
+    w.top_noise = TopOver(g, w.row, *w.points);
+    Record(g, w.row, *w.points, w.top_noise);
+  }
 }
 
 void LayerGrooves::Add(PartGeometryRow row, const StoredProfile* points, const SurfaceGrid* under, const Emit& emit) {
   if (row.layer != layer_) {
     Flush(emit);
-    aspects_.clear(), tops_.clear(), placed_.clear(), pooled_.reset(), last_.reset(), layer_ = row.layer;
-    at_walls_ = ends_off_ = estimated_ = walls_unsolved_ = 0;
+    ClearCounts(), pooled_.reset(), last_.reset(), layer_ = row.layer, stadium_only_ = false;
   }
   double top = NAN;
   if (points && under) {
-    const HiddenGroove g = Estimate(*points, *under, row, last_ ? &*last_ : nullptr, pooled_ ? &*pooled_ : nullptr);
+    const HiddenGroove g =
+        Estimate(*points, *under, row, last_ ? &*last_ : nullptr, pooled_ ? &*pooled_ : nullptr, NAN, stadium_only_);
     if (g.ok) last_ = g;
     Apply(g, points->spacing_mm, row);
-    top =
-        g.top_rms_mm / TopTolerance(row.bead.noise_mm, row.bead.height_mm, TopSamplingMm(g.aspect, points->spacing_mm));
-    if (!pooled_ && g.at_silhouette) ++at_walls_, ends_off_ += !g.shape_consistent;
-    if (!pooled_) ++estimated_, walls_unsolved_ += g.walls_unsolved;
-    if (!pooled_ && g.ok && g.shape_consistent) {
-      aspects_.push_back(g.aspect);
-      if (std::isfinite(top)) tops_.push_back(top);
-    }
-    if (!pooled_ && g.ok && g.shape_consistent && g.at_silhouette)
-      placed_.push_back({g.aspect, g.exponent, g.aspect_end_var, g.exponent_end_var, g.aspect_grid_var,
-                         g.exponent_grid_var, g.left_end_mm, points->spacing_mm, g.end_mixed, g.aspect_mixed_var,
-                         g.exponent_mixed_var, top, 0.5 * row.bead.width_mm, g.shape_a, g.pressed_half_mm,
-                         g.family_log_ratio});
+    top = TopOver(g, row, *points);
+    if (!pooled_) Record(g, row, *points, top);
   }
   if (pooled_ && waiting_.empty()) return emit(row);
   waiting_.push_back({std::move(row), points && under ? std::optional(*points) : std::nullopt,
                       points && under ? std::optional(*under) : std::nullopt, top});
   if (!pooled_ && aspects_.size() >= kPoolProfiles && aspects_.size() % kLooseStep == 0) {
+    RetryAsStadiums();
     const PooledShape pool = Pooled();
     // (What a footprint leaves, more rows do not shrink.)
     const bool loose = pool.aspect_rows_sigma > kLoosePool * pool.aspect && waiting_.size() < kMaxWaiting;
@@ -115,6 +145,7 @@ void LayerGrooves::Add(PartGeometryRow row, const StoredProfile* points, const S
 // miss their tops by over kTopOffNoise times the noise (the pool's test,
 // part/hidden_groove.h, on the row alone: nothing else judges it), not.
 void LayerGrooves::Flush(const Emit& emit) {
+  if (!pooled_) RetryAsStadiums();
   if (!pooled_ && aspects_.size() >= kMinPoolProfiles) Hold(Pooled());
   if (!pooled_) {
     for (Waiting& w : waiting_) {

@@ -42,38 +42,24 @@ double ShapeCorrelation(const std::vector<LayerGrooves::Placed>& placed) {
 // The rows of one family (part/superellipse.h: a superellipse's or a
 // stadium's; exponents of two families are not one quantity to take a
 // median of): the family the rows' evidence between the two favours
-// (Placed::family_log_ratio: its mean beyond kFamilyErrors of its
-// standard error and beyond kFamilyMargin), else the one most rows chose
-// (a tie, the superellipse's). A row chooses the stadium only where the
-// superellipse's residual is four of its sigmas over it (part/silhouette.cc:
+// (FamilyEvidence), else the one most rows chose (a tie, the
+// superellipse's). A row chooses the stadium only where the superellipse's
+// residual is four of its sigmas over it (part/silhouette.cc:
 // SolveEitherFamily), so where both follow a top closely, most rows may
 // choose the superellipse whichever the bead is: on a generator's tamped
 // wall at 40 mm/s (beads 4.8 mm wide, 2 mm high) 33-45 % of each layer's
-// rows chose the stadium, though its residual was the lower by 0.50-0.56
-// in ln (standard error 0.02) in every layer, and one layer's pool, a
-// superellipse of aspect 1.38 and exponent 4.4, corrected it 13.6 % high.
-// The margin, ln 1.2: the other family's top then misses by over 0.45 of
-// the noise beyond the one's. (A pressed ellipse is in both families: the
-// stadium's residual was the lower by 0.018-0.041 in ln, at standard errors
-// of 0.003-0.004, over a generator's five layers, none of whose rows chose
-// the stadium.)
-constexpr double kFamilyErrors = 3.0, kFamilyMargin = 0.18;
+// rows chose the stadium, though its residual was the lower in almost
+// every row, and one layer's pool, a superellipse of aspect 1.38 and
+// exponent 4.4, corrected it 13.6 % high.
 std::vector<LayerGrooves::Placed> OfOneFamily(const std::vector<LayerGrooves::Placed>& placed) {
   std::size_t stadiums = 0;
-  std::vector<double> ratios;
+  std::vector<FamilyVote> votes;
   for (const auto& p : placed) {
     stadiums += IsStadium(p.exponent);
-    if (std::isfinite(p.family_log_ratio)) ratios.push_back(p.family_log_ratio);
+    if (std::isfinite(p.family.log_ratio)) votes.push_back(p.family);
   }
-  bool stadium = 2 * stadiums > placed.size();
-  if (ratios.size() >= 2) {
-    const auto n = static_cast<double>(ratios.size());
-    double mean = 0.0, sq = 0.0;
-    for (double r : ratios) mean += r / n;
-    for (double r : ratios) sq += (r - mean) * (r - mean);
-    const double error = std::sqrt(sq / (n - 1.0) / n);
-    if (std::abs(mean) > std::max(kFamilyErrors * error, kFamilyMargin)) stadium = mean > 0.0;
-  }
+  const int evidence = FamilyEvidence(votes);
+  const bool stadium = evidence != 0 ? evidence > 0 : 2 * stadiums > placed.size();
   std::vector<LayerGrooves::Placed> out;
   for (const auto& p : placed)
     if (IsStadium(p.exponent) == stadium) out.push_back(p);
@@ -126,6 +112,28 @@ void PoolTamped(const std::vector<LayerGrooves::Placed>& placed, const std::arra
 
 }  // namespace
 
+// Sure: the mean log ratio beyond three of its standard errors. Large: the
+// one family's top misses by more than kFamilyMiss of the bead's height
+// beyond the other's (root mean excess share), which tells a shape apart
+// from what both families' grids leave on one they both hold. Over a
+// generator's layers (2 mm beads): tamped beads at 10 and 30 um of noise,
+// 0.31-0.62 % (the log ratios 0.12-0.90: at 30 um a miss is a smaller share
+// of the noise), pressed ellipses (in both families) 0.07-0.11 %.
+int FamilyEvidence(const std::vector<FamilyVote>& votes) {
+  std::vector<const FamilyVote*> finite;
+  for (const FamilyVote& v : votes)
+    if (std::isfinite(v.log_ratio) && std::isfinite(v.excess_share)) finite.push_back(&v);
+  if (finite.size() < 2) return 0;
+  const auto n = static_cast<double>(finite.size());
+  double mean = 0.0, sq = 0.0, excess = 0.0;
+  for (const FamilyVote* v : finite) mean += v->log_ratio / n, excess += v->excess_share / n;
+  for (const FamilyVote* v : finite) sq += (v->log_ratio - mean) * (v->log_ratio - mean);
+  const double error = std::sqrt(sq / (n - 1.0) / n);
+  const int way = mean > 0.0 ? 1 : -1;
+  const bool sure = std::abs(mean) > kFamilyErrors * error, large = way * excess > kFamilyMiss * kFamilyMiss;
+  return sure && large ? way : 0;
+}
+
 // The layer's first rows' own shapes, then their pool, held: the aspect
 // over every row, the exponent over those placed at their silhouette (a
 // fit's is an ellipse's by assumption, not measured; with fewer than
@@ -160,7 +168,7 @@ PooledShape LayerGrooves::Pooled() const {
   pool.top_noise = tops_.empty() ? NAN : MedianAndError(tops_).first;
   pool.rows = aspects_.size();
   pool.ends_off = EndsOff();
-  pool.estimated = estimated_, pool.walls_unsolved = walls_unsolved_;
+  pool.estimated = estimated_, pool.walls_unsolved = walls_unsolved_, pool.stadium_by_evidence = stadium_only_;
   if (const std::vector<Placed> placed = OfOneFamily(placed_); !placed.empty()) {
     std::vector<double> exponents;
     double lo = INFINITY, hi = -INFINITY, aspect_var = 0.0, exponent_var = 0.0, spacing = 0.0;

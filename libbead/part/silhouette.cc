@@ -154,11 +154,16 @@ bool PlaceEndsByTop(const Window& w, std::size_t first, std::size_t last, double
 // it, their ends at their cells' middles, not the bead's, and the pool of the
 // other 31 said "toward a box", 2.012 +- 0.003. Noise-free, two tops a
 // fraction of a cell off both fit to micrometres, one twice the other's.)
-// grid: the family's kept.
+// grid: the family's kept. stadium_only: the stadium's alone.
 std::ptrdiff_t SolveEitherFamily(const Window& w, std::size_t first, std::size_t last, double L, double R,
-                                 Silhouette& s, const std::vector<double>*& grid) {
+                                 Silhouette& s, const std::vector<double>*& grid, bool stadium_only) {
   double variance = NAN, stadium_variance = NAN;
   Silhouette stadium = s;
+  if (stadium_only) {
+    s.family_log_ratio = NAN;  // (no evidence: one family tried)
+    grid = &StadiumGrid();
+    return SolveFree(w, first, last, L, R, s, EllipseIndex(StadiumGrid()), StadiumGrid(), &stadium_variance);
+  }
   grid = &SuperellipseGrid();
   const std::ptrdiff_t found = SolveFree(w, first, last, L, R, s, EllipseIndex(*grid), *grid, &variance);
   // The bead's height over the surface below at its top's middle; a top
@@ -180,7 +185,7 @@ std::ptrdiff_t SolveEitherFamily(const Window& w, std::size_t first, std::size_t
 }  // namespace
 
 std::optional<Silhouette> AtSilhouette(const Window& w, double center, const SilhouetteScale& k,
-                                       const PooledShape* held, const double* start_place, bool* walls_unsolved) {
+                                       const PooledShape* held, const double* start_place, FreeSolve* free) {
   const std::size_t n = w.x.size();
   const auto c = static_cast<std::size_t>(std::lower_bound(w.x.begin(), w.x.end(), center) - w.x.begin());
   if (c >= n || !(w.Gain(c) > k.floor)) return std::nullopt;
@@ -248,10 +253,10 @@ std::optional<Silhouette> AtSilhouette(const Window& w, double center, const Sil
     return s;
   }
   const std::vector<double>* grid = nullptr;
-  const std::ptrdiff_t found = SolveEitherFamily(w, jl + 1, jr, L, R, s, grid);
+  const std::ptrdiff_t found = SolveEitherFamily(w, jl + 1, jr, L, R, s, grid, free && free->stadium_only);
   const double cell = std::max(s.cell[1] - s.cell[0], s.cell[3] - s.cell[2]);
   if (found < 0 || !stands(s, s.e.b * std::sqrt(cell / s.e.a))) {
-    if (walls_unsolved) *walls_unsolved = true;
+    if (free) free->walls_unsolved = true, free->family_log_ratio = s.family_log_ratio;
     return std::nullopt;
   }
   // The shape (for the layer's pool) with the ends placed by the top; the

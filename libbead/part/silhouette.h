@@ -130,16 +130,23 @@ struct SilhouetteScale {
 // no wall (the gain rises by less than `rise` there, or the ellipse placed
 // stands on the surface below by less at its end: the bead's side meets
 // the surface below, nothing to place it by).
-// walls_unsolved (where given): set where both ends showed walls but no
-// free shape its top solves stands over them by more than the rise and
-// what an end anywhere in its cell could make of a bead lying on the
-// surface (at 30 um of noise on tamped beads 2 mm high, b solved 3.1 mm for
-// 1.0, the widest point a mm under the walls' tops; on pressed ellipses
-// seen at points 0.2 mm apart, walls of about 0.55 mm under the rise's 0.3
-// and the cells' 0.38).
+// free (where given): with no shape held, the families tried, and what
+// the solve found where it placed none.
+// walls_unsolved: set where both ends showed walls but no free shape its
+// top solves stands over them by more than the rise and what an end
+// anywhere in its cell could make of a bead lying on the surface (at 30 um
+// of noise on tamped beads 2 mm high, b solved 3.1 mm for 1.0, a superellipse
+// boxier than the bead, the widest point a mm under the walls' tops; on
+// pressed ellipses seen at points 0.2 mm apart, walls of about 0.55 mm under
+// the rise's 0.3 and the cells' 0.38); family_log_ratio: that solve's.
+struct FreeSolve {
+  bool stadium_only = false;  // the stadium alone tried (part/layer_grooves.h: a layer's evidence)
+  bool walls_unsolved = false;
+  double family_log_ratio = NAN;
+};
 std::optional<Silhouette> AtSilhouette(const Window& w, double center, const SilhouetteScale& scale,
                                        const PooledShape* held, const double* start_place = nullptr,
-                                       bool* walls_unsolved = nullptr);
+                                       FreeSolve* free = nullptr);
 
 // The variance the placement adds to the area seen less the groove: each
 // end anywhere in its cell (uniform: the range of the difference's change

@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <numeric>
 #include <random>
 #include <utility>
 #include <vector>
@@ -116,19 +117,34 @@ TEST(Silhouette, WallsShownThatTheTopCannotSolveAreToldApart) {
   std::mt19937 rng(4);
   std::normal_distribution<double> noise(0.0, kNoise);
   int unsolved = 0;
+  std::vector<double> aspects;
   constexpr int kDraws = 20;
   for (int k = 0; k < kDraws; ++k) {
     Window w = Seen(truth, old, 0.011 * k);
     for (double& z : w.z) z += noise(rng);
-    bool walls_unsolved = false;
-    const auto s = AtSilhouette(w, truth.x0, scale, nullptr, nullptr, &walls_unsolved);
-    EXPECT_NE(s.has_value(), walls_unsolved) << k;
-    unsolved += walls_unsolved;
+    FreeSolve free;
+    const auto s = AtSilhouette(w, truth.x0, scale, nullptr, nullptr, &free);
+    EXPECT_NE(s.has_value(), free.walls_unsolved) << k;
+    unsolved += free.walls_unsolved;
+    // The stadium alone (a layer whose rows' evidence favours it,
+    // part/layer_grooves.h): one shape parameter fewer, its top pins it.
+    FreeSolve stadium{true};
+    const auto t = AtSilhouette(w, truth.x0, scale, nullptr, nullptr, &stadium);
+    if (!t) continue;
+    EXPECT_TRUE(IsStadium(t->exponent)) << k;
+    aspects.push_back(t->aspect);
   }
   EXPECT_GT(unsolved, kDraws / 2);
-  bool walls_unsolved = false;
-  EXPECT_TRUE(AtSilhouette(Seen(truth, old, 0.0), truth.x0, scale, nullptr, nullptr, &walls_unsolved));
-  EXPECT_FALSE(walls_unsolved);
+  // Each row's aspect scatters (about a fifth of it, the noise on its few
+  // arc points); their mean is the bead's within three standard errors.
+  ASSERT_GT(aspects.size(), kDraws - kDraws / 4);
+  const double n = aspects.size(), mean = std::accumulate(aspects.begin(), aspects.end(), 0.0) / n;
+  double var = 0.0;
+  for (double a : aspects) var += (a - mean) * (a - mean) / (n - 1.0);
+  EXPECT_NEAR(mean, truth.b / truth.a, 3.0 * std::sqrt(var / n));
+  FreeSolve free;
+  EXPECT_TRUE(AtSilhouette(Seen(truth, old, 0.0), truth.x0, scale, nullptr, nullptr, &free));
+  EXPECT_FALSE(free.walls_unsolved);
 }
 
 // A bead sunk so deep that its sides meet the surface below shows no wall:
@@ -136,9 +152,9 @@ TEST(Silhouette, WallsShownThatTheTopCannotSolveAreToldApart) {
 // wall is told as shown.
 TEST(Silhouette, ABeadWhoseSidesMeetTheSurfaceBelowHasNone) {
   const Ellipse sunk{0.0, -0.6, 3.0, 1.5};
-  bool walls_unsolved = false;
-  EXPECT_FALSE(AtSilhouette(Seen(sunk, kFlat, 0.0), 0.0, kScale, nullptr, nullptr, &walls_unsolved));
-  EXPECT_FALSE(walls_unsolved);
+  FreeSolve free;
+  EXPECT_FALSE(AtSilhouette(Seen(sunk, kFlat, 0.0), 0.0, kScale, nullptr, nullptr, &free));
+  EXPECT_FALSE(free.walls_unsolved);
   EXPECT_FALSE(AtSilhouette(Seen(sunk, kFlat, 0.0), 0.0, kScale, &kHalf));
   // Nor does a profile with nothing over the surface at the centre.
   EXPECT_FALSE(AtSilhouette(Seen(sunk, kFlat, 0.0), 5.5, kScale, &kHalf));
