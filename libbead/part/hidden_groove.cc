@@ -307,9 +307,20 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   const SilhouetteScale scale{std::max(3.0 * noise_mm, 0.02 * height), std::max(6.0 * noise_mm, 0.15 * height)};
   const double* start_place = previous && previous->ok ? previous->end_place : nullptr;
   FreeSolve free{stadium_only};
-  if (const std::optional<Silhouette> s = AtSilhouette(w, center, scale, pooled, start_place, &free)) {
-    HiddenGroove placed = AtTheSilhouette(*s, around, pooled, center, base, height);
-    if (!pooled) placed.pressed_half_mm = PressedHalfHeight(w, s->e, noise_mm);
+  if (const Walls walls = AtTheWalls(w, center, scale, pooled, start_place, free, TopScale{noise_mm, height, spacing});
+      walls.largest) {
+    const Silhouette& s = walls.other ? *walls.other : *walls.largest;
+    HiddenGroove placed = AtTheSilhouette(s, around, pooled, center, base, height);
+    // Placed at another rise, the data favour it by its top alone: half the
+    // two placements' difference in the area is in the sigma.
+    if (walls.other) {
+      const HiddenGroove largest = AtTheSilhouette(*walls.largest, around, pooled, center, base, height);
+      const double doubt =
+          0.5 * ((placed.seen_adjust_mm2 - placed.hidden_mm2) - (largest.seen_adjust_mm2 - largest.hidden_mm2));
+      placed.sigma_mm2 = std::isfinite(doubt) ? std::hypot(placed.sigma_mm2, doubt) : NAN;
+      placed.ok = placed.ok && std::isfinite(placed.sigma_mm2);
+    }
+    if (!pooled) placed.pressed_half_mm = PressedHalfHeight(w, s.e, noise_mm);
     return placed;
   }
   // Otherwise fitted: an ellipse, its aspect the layer's where held (and

@@ -24,6 +24,30 @@ double OldBetween(const Window& w, std::size_t j, double x) {
   return w.old[j] + t * (w.old[j + 1] - w.old[j]);
 }
 
+// The step j (j to j + 1) of the rank-th largest rise over `least` among
+// steps [from, to] (rises(j): the gain's rise toward the bead), the first
+// of equals; false where there are not that many.
+template <class Rise>
+bool RankedWall(std::size_t from, std::size_t to, double least, int rank, Rise rises, std::size_t& wall) {
+  thread_local std::vector<std::pair<double, std::size_t>> steps;
+  steps.clear();
+  for (std::size_t j = from; j <= to; ++j)
+    if (const double rise = rises(j); rise > least) steps.push_back({-rise, j});
+  if (std::ssize(steps) <= rank) return false;
+  std::stable_sort(steps.begin(), steps.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  wall = steps[static_cast<std::size_t>(rank)].second;
+  return true;
+}
+
+// The area seen from point `from` to point `to` (the trapezoids of the
+// gains over 0).
+double SeenBeyond(const Window& w, std::size_t from, std::size_t to) {
+  double area = 0.0;
+  for (std::size_t j = from; j < to; ++j)
+    area += 0.5 * (std::max(w.Gain(j), 0.0) + std::max(w.Gain(j + 1), 0.0)) * (w.x[j + 1] - w.x[j]);
+  return area;
+}
+
 // The groove's change from `from` to `to`, linear in the parameters.
 double GrooveChange(const Ellipse& from, const Ellipse& to, const double gradient[4]) {
   double change = 0.0;
@@ -204,6 +228,20 @@ std::optional<Silhouette> AtSilhouette(const Window& w, double center, const Sil
   for (std::size_t j = r - third; j <= r; ++j)
     if (const double rise = w.Gain(j) - w.Gain(j + 1); rise > rise_r) rise_r = rise, jr = j;
   if (!(rise_l > k.rise && rise_r > k.rise)) return std::nullopt;
+  // Another of the rises (SilhouetteScale::wall_rank): where it lies inside
+  // the largest, the area seen between the two is not the bead's (beyond
+  // the largest, its foot, as there).
+  double beyond = 0.0;
+  const auto rise_left = [&](std::size_t j) { return w.Gain(j + 1) - w.Gain(j); };
+  const auto rise_right = [&](std::size_t j) { return w.Gain(j) - w.Gain(j + 1); };
+  if (const std::size_t largest = jl; k.wall_rank[0] > 0) {
+    if (!RankedWall(l - 1, l + third - 1, k.rise, k.wall_rank[0], rise_left, jl)) return std::nullopt;
+    if (jl > largest) beyond += SeenBeyond(w, largest, jl);
+  }
+  if (const std::size_t largest = jr; k.wall_rank[1] > 0) {
+    if (!RankedWall(r - third, r, k.rise, k.wall_rank[1], rise_right, jr)) return std::nullopt;
+    if (jr < largest) beyond += SeenBeyond(w, jr + 1, largest + 1);
+  }
   // The walls span most of the run: a silhouette's widest point is the
   // bead's, and what stands over the floor beyond a wall is its foot. Walls
   // spanning less than kWallsOfRun of the run are steps on the bead (a bead
@@ -213,6 +251,8 @@ std::optional<Silhouette> AtSilhouette(const Window& w, double center, const Sil
   if (w.x[jr + 1] - w.x[jl] < kWallsOfRun * (w.x[r + 1] - w.x[l - 1])) return std::nullopt;
   Silhouette s;
   s.cell[0] = w.x[jl], s.cell[1] = w.x[jl + 1], s.cell[2] = w.x[jr], s.cell[3] = w.x[jr + 1];
+  s.over_cliff[0] = std::abs(w.old[jl + 1] - w.old[jl]) > rise_left(jl);
+  s.over_cliff[1] = std::abs(w.old[jr + 1] - w.old[jr]) > rise_right(jr);
   // A wall that rises across missing points (a cell half as wide again as
   // the window's spacing: a triangulation shadow or a dropout beside it)
   // does not solve the bead's shape: the end lies anywhere in the gap, and
@@ -250,6 +290,7 @@ std::optional<Silhouette> AtSilhouette(const Window& w, double center, const Sil
              s.end_mixed);
     // The area seen across each wall's cell as the bead placed shows it.
     for (int side = 0; side < 2; ++side) s.seen_adjust += CellSeenChange(w, side ? jr : jl, s.e);
+    s.seen_adjust -= beyond;
     return s;
   }
   const std::vector<double>* grid = nullptr;
@@ -263,7 +304,28 @@ std::optional<Silhouette> AtSilhouette(const Window& w, double center, const Sil
   // bead itself stays placed at the cells' middles (its area seen counts
   // the walls' cells as trapezoids, which the middles match).
   ShapeByTop(w, jl + 1, jr, L, R, found, *grid, s, start_place);
+  s.seen_adjust = -beyond;
   return s;
+}
+
+double TopScale::Over(const Silhouette& s) const {
+  return std::sqrt(s.residual_variance) / TopTolerance(noise_mm, height, TopSamplingMm(s.aspect, spacing));
+}
+
+Walls AtTheWalls(const Window& w, double center, SilhouetteScale scale, const PooledShape* pooled,
+                 const double* start_place, FreeSolve& free, const TopScale& top) {
+  Walls out{AtSilhouette(w, center, scale, pooled, start_place, &free), std::nullopt};
+  if (!out.largest || !(top.Over(*out.largest) > kTopOffNoise)) return out;
+  const bool* cliff = out.largest->over_cliff;
+  for (const auto [left, right] : {std::pair{1, 0}, {0, 1}, {1, 1}}) {
+    if ((left && !cliff[0]) || (right && !cliff[1])) continue;
+    scale.wall_rank[0] = left, scale.wall_rank[1] = right;
+    FreeSolve other{free.stadium_only};
+    std::optional<Silhouette> t = AtSilhouette(w, center, scale, pooled, start_place, &other);
+    if (t && top.Over(*t) <= kTopOffNoise && (!out.other || t->residual_variance < out.other->residual_variance))
+      out.other = t;
+  }
+  return out;
 }
 
 double SilhouetteVariance(const Silhouette& s, const PooledShape* held, const double gradient[4], double by_exponent) {

@@ -75,6 +75,11 @@ struct Silhouette {
   // Where an end's wall holds a point that is neither the top nor the
   // surface below (part/silhouette_top.h: OnTheTop).
   bool end_mixed[2] = {false, false};
+  // Whether each wall's rise (left, right) steps over a cliff: the surface
+  // below changes across it by more than the gain rises (a cliff sampled at
+  // another pass's points leaves gains of about its step: the rise may be
+  // that, not the bead's end; SilhouetteScale::wall_rank takes another).
+  bool over_cliff[2] = {false, false};
   double cell[4] = {};                     // the left end lies in [cell[0], cell[1]], the right in [cell[2], cell[3]]
   double wall_left = 0, wall_right = 0;    // the seen wall at each end: z0 over the surface below there, mm
   double residual_variance = 0.0;          // the top's points', mm^2
@@ -117,9 +122,12 @@ struct Silhouette {
 };
 
 // What a silhouette is: the bead's run stands more than `floor` over the
-// surface below; each end's wall rises by more than `rise` (mm).
+// surface below; each end's wall rises by more than `rise` (mm). wall_rank:
+// which of the rises over `rise` in the run's outer third each end's wall
+// is, left and right (0: the largest; 1: the next, another step).
 struct SilhouetteScale {
   double floor = 0.0, rise = 0.0;
+  int wall_rank[2] = {0, 0};
 };
 
 // The bead at the silhouette of the bead around `center` in w; held: the
@@ -147,6 +155,28 @@ struct FreeSolve {
 std::optional<Silhouette> AtSilhouette(const Window& w, double center, const SilhouetteScale& scale,
                                        const PooledShape* held, const double* start_place = nullptr,
                                        FreeSolve* free = nullptr);
+
+// What a top's miss is judged by (TopTolerance).
+struct TopScale {
+  double noise_mm, height, spacing;
+  double Over(const Silhouette& s) const;  // its top's RMS over the tolerance
+};
+
+// The bead at its silhouette, its walls the largest rises at its ends
+// (`largest`); where its top misses the shape placed there by over
+// kTopOffNoise tolerances, the next rise at either end or both whose
+// largest steps over a cliff (Silhouette::over_cliff), the least miss
+// within them (`other`). (Beside a bead, the wall of the layers below,
+// a cliff sampled at points 0.2 mm apart and read at another pass's
+// points, left gains of 0.7-1.2 mm past the bead's end: the largest rise
+// lay two points out, the shape placed there missed the top by 0.12-0.16
+// mm at 10 um of noise in most of a pressed wall's sixth layer, and the
+// layer went uncorrected.)
+struct Walls {
+  std::optional<Silhouette> largest, other;
+};
+Walls AtTheWalls(const Window& w, double center, SilhouetteScale scale, const PooledShape* pooled,
+                 const double* start_place, FreeSolve& free, const TopScale& top);
 
 // The variance the placement adds to the area seen less the groove: each
 // end anywhere in its cell (uniform: the range of the difference's change

@@ -57,9 +57,10 @@ TEST(Silhouette, TheEndsLieInTheirCellsAndTheHeightFollows) {
     // quarter, and z0, the mean of the top less b s, within about as much.
     EXPECT_NEAR(s->e.a, truth.a, 0.5 * kSpacing) << offset;
     EXPECT_NEAR(s->e.z0, truth.z0, 0.25 * kSpacing) << offset;
-    // The seen walls: z0 over the flat surface.
+    // The seen walls: z0 over the flat surface, no cliff under either.
     EXPECT_NEAR(s->wall_left, s->e.z0, 1e-12);
     EXPECT_NEAR(s->wall_right, s->e.z0, 1e-12);
+    EXPECT_FALSE(s->over_cliff[0] || s->over_cliff[1]) << offset;
   }
 }
 
@@ -145,6 +146,50 @@ TEST(Silhouette, WallsShownThatTheTopCannotSolveAreToldApart) {
   FreeSolve free;
   EXPECT_TRUE(AtSilhouette(Seen(truth, old, 0.0), truth.x0, scale, nullptr, nullptr, &free));
   EXPECT_FALSE(free.walls_unsolved);
+}
+
+// Past a bead's right end the wall of the layers below drops to the bed; read
+// at another pass's points, that cliff leaves gains of 0.7 and 1.2 mm beyond
+// the bead (as a generator's pressed wall seen at points 0.2 mm apart did),
+// and the largest rise lies there, two points out, its step over the cliff
+// (the surface below falls 5 mm across it). The next rise is the bead's
+// own wall: taken there, the end lies within a spacing of the truth's and
+// the top fits to the spacing's share.
+TEST(Silhouette, ARiseOverACliffPastTheEndIsToldAndTheNextIsTheWall) {
+  constexpr double kCoarse = 0.2;
+  const Ellipse truth{-0.1, 10.2, 3.15, 1.575};
+  Window w;
+  for (int k = 0; k <= 60; ++k) {
+    const double x = -6.0 + kCoarse * k;
+    // The surface below falling past the bead's end, and the gains read there.
+    // (On the left the bead overhangs a drop to a lower layer.)
+    const double old = k < 14    ? 1.3
+                       : k == 14 ? 5.2
+                       : k < 45  ? 9.0
+                       : k == 45 ? 9.05
+                       : k == 46 ? 8.1
+                       : k == 47 ? 4.3
+                                 : 0.0;
+    const double spurious = k == 46 ? 0.7 : k == 47 ? 1.2 : 0.0;
+    const double top = std::abs(x - truth.x0) < truth.a ? truth.z0 + truth.Half(x) : -INFINITY;
+    w.x.push_back(x), w.old.push_back(old), w.z.push_back(std::max(top, old + spurious));
+  }
+  const auto largest = AtSilhouette(w, truth.x0, kScale, nullptr);
+  ASSERT_TRUE(largest);
+  EXPECT_GT(largest->e.x0 + largest->e.a, truth.x0 + truth.a + kCoarse);  // placed two points out
+  EXPECT_TRUE(largest->over_cliff[1]);
+  EXPECT_FALSE(largest->over_cliff[0]);
+  SilhouetteScale next = kScale;
+  next.wall_rank[1] = 1;
+  const auto wall = AtSilhouette(w, truth.x0, next, nullptr);
+  ASSERT_TRUE(wall);
+  EXPECT_NEAR(wall->e.x0 + wall->e.a, truth.x0 + truth.a, kCoarse);
+  EXPECT_LT(std::sqrt(wall->residual_variance), std::sqrt(largest->residual_variance) / 3.0);
+  EXPECT_LT(std::sqrt(wall->residual_variance), TopSamplingMm(0.5, kCoarse) + 0.01);
+  // The area the run counted between the two walls is not the bead's: the
+  // gains' trapezoids from the point past its wall to the cliff's foot.
+  const double between = 0.5 * (0.7 + 1.2) * kCoarse + 0.5 * 1.2 * kCoarse;
+  EXPECT_NEAR(wall->seen_adjust, -between, 1e-9);
 }
 
 // A bead sunk so deep that its sides meet the surface below shows no wall:
