@@ -31,6 +31,8 @@ Error NoNozzleLog(const std::string& run);
 Rig PartRigSaying(const std::string& rig_path);
 void SayMeasured(const std::string& run, const std::vector<part::LayerSummary>& layers, std::size_t total,
                  std::chrono::steady_clock::time_point start);
+// A layer's pooled bead shape in words (part_shape_words.cc).
+void SayShape(const part::PooledShape& s);
 int FlowPartScan(const std::string& rig_path, const std::string& run, const std::string& output,
                  const ProfileOptions& bed);
 

@@ -319,6 +319,7 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
           0.5 * ((placed.seen_adjust_mm2 - placed.hidden_mm2) - (largest.seen_adjust_mm2 - largest.hidden_mm2));
       placed.sigma_mm2 = std::isfinite(doubt) ? std::hypot(placed.sigma_mm2, doubt) : NAN;
       placed.ok = placed.ok && std::isfinite(placed.sigma_mm2);
+      placed.inside_cliff = true;
     }
     if (!pooled) placed.pressed_half_mm = PressedHalfHeight(w, s.e, noise_mm);
     return placed;

@@ -151,6 +151,9 @@ struct HiddenGroove {
   // AtSilhouette's walls_unsolved): its top and walls, to the noise and the
   // ends' cells, do not pin its shape.
   bool walls_unsolved = false;
+  // Placed at its wall inside a rise over the cliff of the layers below
+  // (part/silhouette.h: AtTheWalls), the doubt between the two in the sigma.
+  bool inside_cliff = false;
 };
 
 // x, z: the profile's valid points in the bed frame (x increasing); below:

@@ -44,6 +44,7 @@ double TopMissVar(const HiddenGroove& g, const PartGeometryRow& row) {
 
 void Apply(const HiddenGroove& g, double spacing, PartGeometryRow& row) {
   row.area_corrected_mm2 = row.area_corrected_sigma_mm2 = PartGeometryRow::kNaN;
+  row.inside_cliff = false;
   row.outline_misfit = g.misfit;
   const double edges =
       g.at_silhouette
@@ -54,7 +55,7 @@ void Apply(const HiddenGroove& g, double spacing, PartGeometryRow& row) {
   const double sigma = std::sqrt(g.sigma_mm2 * g.sigma_mm2 + edges / 12.0 + row.bead.AreaNoiseVar(spacing) +
                                  row.below_change_var_mm4 + row.below_bend_var_mm4 + TopMissVar(g, row));
   if (g.ok && corrected > 0.0 && sigma < 0.5 * corrected)
-    row.area_corrected_mm2 = corrected, row.area_corrected_sigma_mm2 = sigma;
+    row.area_corrected_mm2 = corrected, row.area_corrected_sigma_mm2 = sigma, row.inside_cliff = g.inside_cliff;
 }
 
 // A row's top's miss over its tolerance (OutlineMisfit::kTopOff).

@@ -319,6 +319,7 @@ void Tally(std::vector<LayerSummary>& layers, const PartGeometryRow& r) {
     l.hidden_sum_mm2 += r.bead.area_mm2 - r.area_corrected_mm2;
     l.loose += r.area_corrected_sigma_mm2 > 0.1 * r.area_corrected_mm2;
     l.below_steps += r.below_change_var_mm4 > 0.0;
+    l.inside_cliff += r.inside_cliff;
     l.below_step_sigma_mm2 = std::max(l.below_step_sigma_mm2, std::sqrt(r.below_change_var_mm4));
   } else {
     ++l.misfit[static_cast<std::size_t>(r.outline_misfit)];

@@ -48,6 +48,8 @@ struct PartGeometryRow {
   // Where there is none on a valid row because the bead's outline is not
   // one the model knows (part/hidden_groove.h), why.
   OutlineMisfit outline_misfit = OutlineMisfit::kNone;
+  // HiddenGroove::inside_cliff, where corrected.
+  bool inside_cliff = false;
   // MeasurePartOptions::several_beads: each bead of the profile, left to
   // right, over the same surface below, moved by bead.shift_mm.
   std::vector<Road> roads;
@@ -106,6 +108,9 @@ struct LayerSummary {
   // largest sigma that adds.
   std::size_t below_steps = 0;
   double below_step_sigma_mm2 = 0.0;
+  // Of those, the rows placed at a wall inside a rise over a cliff
+  // (PartGeometryRow::inside_cliff).
+  std::size_t inside_cliff = 0;
   // The valid rows left without one because the bead's outline is not one
   // the model knows, by OutlineMisfit (kNone's count unused).
   std::size_t misfit[5] = {};

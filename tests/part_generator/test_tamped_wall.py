@@ -362,6 +362,8 @@ def test_a_coarse_pressed_walls_bead_beside_the_cliff_below_is_placed_at_its_own
     c.shape, c.length_mm, c.width_mm, c.points = "pressed", 70.0, 40.0, 201
     f, said = measured(c, 15, str(tmp_path))
     assert f["valid"] == f["profiles"] == f["corrected"], said
+    sixth = said.split("  layer 5:")[1]
+    assert "beads placed at the rise inside the largest, which steps over the cliff" in sixth, said
     assert abs(f["corrected_run_bias"]) < 0.01
     assert f["corrected_median_abs"] < 0.03
     assert f["covered_95"] >= 0.9
