@@ -101,6 +101,12 @@ inline double TopSamplingMm(double aspect, double spacing_mm) {
 inline double TopTolerance(double noise_mm, double height_mm, double sampling_mm) {
   return std::hypot(TopTolerance(noise_mm, height_mm), sampling_mm);
 }
+// A top's RMS miss over that tolerance, its shape's aspect and the points'
+// spacing setting the sampling's share.
+inline double TopMissTolerances(double top_rms_mm, double noise_mm, double height_mm, double aspect,
+                                double spacing_mm) {
+  return top_rms_mm / TopTolerance(noise_mm, height_mm, TopSamplingMm(aspect, spacing_mm));
+}
 inline constexpr double kFloatsHeights = 0.1;
 
 struct HiddenGroove {

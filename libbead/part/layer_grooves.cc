@@ -58,12 +58,11 @@ void Apply(const HiddenGroove& g, double spacing, PartGeometryRow& row) {
     row.area_corrected_mm2 = corrected, row.area_corrected_sigma_mm2 = sigma, row.inside_cliff = g.inside_cliff;
 }
 
-// A row's top's miss over its tolerance (OutlineMisfit::kTopOff).
-double TopOver(const HiddenGroove& g, const PartGeometryRow& row, const StoredProfile& points) {
-  return g.top_rms_mm / TopTolerance(row.bead.noise_mm, row.bead.height_mm, TopSamplingMm(g.aspect, points.spacing_mm));
-}
-
 }  // namespace
+
+double TopOver(const HiddenGroove& g, const PartGeometryRow& row, double spacing_mm) {
+  return TopMissTolerances(g.top_rms_mm, row.bead.noise_mm, row.bead.height_mm, g.aspect, spacing_mm);
+}
 
 HiddenGroove LayerGrooves::Estimate(const StoredProfile& p, const SurfaceGrid& under, const PartGeometryRow& row,
                                     const HiddenGroove* previous, const PooledShape* shape, double free_exponent,
@@ -104,14 +103,18 @@ void LayerGrooves::RetryAsStadiums() {
     return;
   stadium_only_ = true;
   ClearCounts(), last_.reset();
-  for (Waiting& w : waiting_) {
-    if (!w.points) continue;
-    const HiddenGroove g = Estimate(*w.points, *w.under, w.row, last_ ? &*last_ : nullptr, nullptr, NAN, true);
-    if (g.ok) last_ = g;
-    Apply(g, w.points->spacing_mm, w.row);
-    w.top_noise = TopOver(g, w.row, *w.points);
-    Record(g, w.row, *w.points, w.top_noise);
-  }
+  for (Waiting& w : waiting_)
+    if (w.points) w.top_noise = Place(w.row, *w.points, *w.under);
+}
+
+double LayerGrooves::Place(PartGeometryRow& row, const StoredProfile& points, const SurfaceGrid& under) {
+  const HiddenGroove g =
+      Estimate(points, under, row, last_ ? &*last_ : nullptr, pooled_ ? &*pooled_ : nullptr, NAN, stadium_only_);
+  if (g.ok) last_ = g;
+  Apply(g, points.spacing_mm, row);
+  const double top = TopOver(g, row, points.spacing_mm);
+  if (!pooled_) Record(g, row, points, top);
+  return top;
 }
 
 void LayerGrooves::Add(PartGeometryRow row, const StoredProfile* points, const SurfaceGrid* under, const Emit& emit) {
@@ -119,15 +122,7 @@ void LayerGrooves::Add(PartGeometryRow row, const StoredProfile* points, const S
     Flush(emit);
     ClearCounts(), pooled_.reset(), last_.reset(), layer_ = row.layer, stadium_only_ = false;
   }
-  double top = NAN;
-  if (points && under) {
-    const HiddenGroove g =
-        Estimate(*points, *under, row, last_ ? &*last_ : nullptr, pooled_ ? &*pooled_ : nullptr, NAN, stadium_only_);
-    if (g.ok) last_ = g;
-    Apply(g, points->spacing_mm, row);
-    top = TopOver(g, row, *points);
-    if (!pooled_) Record(g, row, *points, top);
-  }
+  const double top = points && under ? Place(row, *points, *under) : NAN;
   if (pooled_ && waiting_.empty()) return emit(row);
   waiting_.push_back({std::move(row), points && under ? std::optional(*points) : std::nullopt,
                       points && under ? std::optional(*under) : std::nullopt, top});

@@ -54,6 +54,10 @@ struct FamilyVote {
 inline constexpr double kFamilyErrors = 3.0, kFamilyMiss = 0.002;
 int FamilyEvidence(const std::vector<FamilyVote>& votes);
 
+// A row's top's miss over its tolerance (OutlineMisfit::kTopOff), its
+// points `spacing_mm` apart.
+double TopOver(const HiddenGroove& g, const PartGeometryRow& row, double spacing_mm);
+
 class LayerGrooves {
  public:
   using Emit = std::function<void(const PartGeometryRow&)>;
@@ -113,6 +117,10 @@ class LayerGrooves {
   // its tolerance: `top`).
   void Record(const HiddenGroove& g, const PartGeometryRow& row, const StoredProfile& points, double top);
   void ClearCounts();
+  // A row estimated (with the layer's shape where pooled, the stadium's
+  // family alone where RetryAsStadiums chose it), corrected, and counted
+  // for the pool where none is yet; its top's miss (TopOver).
+  double Place(PartGeometryRow& row, const StoredProfile& points, const SurfaceGrid& under);
   // Where most rows before the pool showed walls their tops solved no
   // shape over, too few were placed to solve the exponent, and the rows'
   // evidence favours the stadium (FamilyEvidence): the waiting rows

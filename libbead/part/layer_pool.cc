@@ -276,9 +276,7 @@ double LayerGrooves::HeldTopNoise(PooledShape pool) const {
     const HiddenGroove g = Estimate(*w.points, *w.under, w.row, previous ? &*previous : nullptr, &pool);
     if (!g.ok) continue;
     previous = g;
-    const double tolerance =
-        TopTolerance(w.row.bead.noise_mm, w.row.bead.height_mm, TopSamplingMm(g.aspect, w.points->spacing_mm));
-    if (const double top = g.top_rms_mm / tolerance; std::isfinite(top)) tops.push_back(top);
+    if (const double top = TopOver(g, w.row, w.points->spacing_mm); std::isfinite(top)) tops.push_back(top);
   }
   return tops.empty() ? NAN : MedianAndError(tops).first;
 }

@@ -182,12 +182,12 @@ bool PlaceEndsByTop(const Window& w, std::size_t first, std::size_t last, double
 std::ptrdiff_t SolveEitherFamily(const Window& w, std::size_t first, std::size_t last, double L, double R,
                                  Silhouette& s, const std::vector<double>*& grid, bool stadium_only) {
   double variance = NAN, stadium_variance = NAN;
-  Silhouette stadium = s;
   if (stadium_only) {
     s.family_log_ratio = NAN;  // (no evidence: one family tried)
     grid = &StadiumGrid();
     return SolveFree(w, first, last, L, R, s, EllipseIndex(StadiumGrid()), StadiumGrid(), &stadium_variance);
   }
+  Silhouette stadium = s;
   grid = &SuperellipseGrid();
   const std::ptrdiff_t found = SolveFree(w, first, last, L, R, s, EllipseIndex(*grid), *grid, &variance);
   // The bead's height over the surface below at its top's middle; a top
@@ -221,19 +221,19 @@ std::optional<Silhouette> AtSilhouette(const Window& w, double center, const Sil
   // Each side's largest rise from one point to the next, in the run's
   // outer third (from the bare point beside it).
   const std::size_t third = (r - l) / 3;
+  const auto rise_left = [&](std::size_t j) { return w.Gain(j + 1) - w.Gain(j); };
+  const auto rise_right = [&](std::size_t j) { return w.Gain(j) - w.Gain(j + 1); };
   std::size_t jl = l - 1, jr = r;
   double rise_l = -INFINITY, rise_r = -INFINITY;
   for (std::size_t j = l - 1; j < l + third; ++j)
-    if (const double rise = w.Gain(j + 1) - w.Gain(j); rise > rise_l) rise_l = rise, jl = j;
+    if (const double rise = rise_left(j); rise > rise_l) rise_l = rise, jl = j;
   for (std::size_t j = r - third; j <= r; ++j)
-    if (const double rise = w.Gain(j) - w.Gain(j + 1); rise > rise_r) rise_r = rise, jr = j;
+    if (const double rise = rise_right(j); rise > rise_r) rise_r = rise, jr = j;
   if (!(rise_l > k.rise && rise_r > k.rise)) return std::nullopt;
   // Another of the rises (SilhouetteScale::wall_rank): where it lies inside
   // the largest, the area seen between the two is not the bead's (beyond
   // the largest, its foot, as there).
   double beyond = 0.0;
-  const auto rise_left = [&](std::size_t j) { return w.Gain(j + 1) - w.Gain(j); };
-  const auto rise_right = [&](std::size_t j) { return w.Gain(j) - w.Gain(j + 1); };
   if (const std::size_t largest = jl; k.wall_rank[0] > 0) {
     if (!RankedWall(l - 1, l + third - 1, k.rise, k.wall_rank[0], rise_left, jl)) return std::nullopt;
     if (jl > largest) beyond += SeenBeyond(w, largest, jl);
@@ -309,7 +309,7 @@ std::optional<Silhouette> AtSilhouette(const Window& w, double center, const Sil
 }
 
 double TopScale::Over(const Silhouette& s) const {
-  return std::sqrt(s.residual_variance) / TopTolerance(noise_mm, height, TopSamplingMm(s.aspect, spacing));
+  return TopMissTolerances(std::sqrt(s.residual_variance), noise_mm, height, s.aspect, spacing);
 }
 
 Walls AtTheWalls(const Window& w, double center, SilhouetteScale scale, const PooledShape* pooled,
