@@ -111,8 +111,19 @@ struct PooledShape {
     if (!Tamped() || !(a > 0.0)) return at;
     at.aspect = half_height_mm / a, at.exponent = -std::clamp(corner_mm / a, 0.1, 1.0);
     at.aspect_sigma = half_height_sigma_mm / a, at.exponent_sigma = corner_sigma_mm / a;
+    at.held_b_mm = half_height_mm;
     return at;
   }
+  // Held at a row's width (AtWidth), a tamped bead's half-height, held as
+  // it is wherever the bead's ends are placed (the tamper holds it): the
+  // aspect at a half-width a placed is held_b_mm / a (any other shape's:
+  // the aspect held). (Held as the aspect at the width measured, b followed
+  // the ends placed, and the width measured besides: where gains past a
+  // bead's end, a cliff read at another pass's points, widened the width
+  // by 0.8 mm, b came out 0.88 mm for 1.0 and the bead placed floated over
+  // the one below, its row uncorrected.)
+  double held_b_mm = NAN;
+  double AspectAt(double a) const { return std::isfinite(held_b_mm) ? held_b_mm / a : aspect; }
   // Whether the aspect (and the tops' miss) is pooled over the rows placed
   // at their walls alone: the layer's own exponent is not an ellipse's (a
   // fit's aspect is an ellipse's, not that shape's, until it is pooled).

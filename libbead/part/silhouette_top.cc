@@ -176,9 +176,10 @@ std::pair<std::size_t, std::size_t> OnTheTop(const Window& w, std::size_t first,
 bool SolveHeld(const Window& w, std::size_t first, std::size_t last, double L, double R, const PooledShape& held,
                Silhouette& s) {
   const SuperellipseTable& t = SuperellipseOf(held.exponent);
-  if (!SolveTop(SumTop(TopOf(w, first, last, L, R), t), L, R, held.aspect, s)) return false;
+  const double aspect = held.AspectAt(0.5 * (R - L));
+  if (!SolveTop(SumTop(TopOf(w, first, last, L, R), t), L, R, aspect, s)) return false;
   s.e.p = held.exponent, s.exponent = held.exponent;
-  s.aspect = std::isfinite(held.aspect) ? held.aspect : s.e.b / s.e.a;
+  s.aspect = std::isfinite(aspect) ? aspect : s.e.b / s.e.a;
   return true;
 }
 
@@ -196,7 +197,7 @@ TopSums TableSums(const Window& w, std::size_t first, std::size_t last, double L
 double HeldTopVariance(const Window& w, std::size_t first, std::size_t last, double L, double R,
                        const PooledShape& held, std::size_t& points) {
   points = 0;
-  const double b = held.aspect * 0.5 * (R - L);
+  const double b = held.AspectAt(0.5 * (R - L)) * 0.5 * (R - L);
   if (!(b > 0.0)) return INFINITY;
   const TopSums t = TableSums(w, first, last, L, R, SuperellipseOf(held.exponent));
   points = static_cast<std::size_t>(t.m);

@@ -98,6 +98,31 @@ TEST(Silhouette, ATampedBeadFreeIsTheStadium) {
   }
 }
 
+// A tamped bead's pool held at a row's width (PooledShape::AtWidth): its
+// half-height is held as the tamper holds it, wherever the ends are
+// placed and whatever width the row measured. A bead 6.4 mm wide standing
+// on a flat bed, its width measured true and 0.8 mm wide (gains past an
+// end: a cliff read at another pass's points): b is the pool's 1.0 mm in
+// both, and the bead's flat bottom stands on the bed (held as the aspect at
+// the width measured, b came out 3.2 / 3.6 of it, 0.89 mm, and the bottom
+// 0.22 mm over the bed: a floating outline, the row left uncorrected).
+TEST(Silhouette, ATampedBeadHeldKeepsItsHalfHeightWhateverTheWidthMeasured) {
+  const Ellipse truth{0.13, 1.0, 3.2, 1.0, -1.0 / 3.2};  // ends' arcs 1 mm wide
+  PooledShape pool{truth.b / truth.a, 0.0, truth.p, 0.0};
+  pool.exponent_solved = true, pool.half_height_mm = truth.b, pool.corner_mm = 1.0;
+  ASSERT_TRUE(pool.Tamped());
+  for (const double width : {2.0 * truth.a, 2.0 * truth.a + 0.8}) {
+    const PooledShape held = pool.AtWidth(width);
+    const auto s = AtSilhouette(Seen(truth, kFlat, 0.0123), truth.x0, kScale, &held);
+    ASSERT_TRUE(s) << width;
+    EXPECT_NEAR(s->e.b, truth.b, 1e-12) << width;
+    // The bottom on the bed to what the ends' cells and the corner's share
+    // held at the width measured leave of the top's height (a hundredth of
+    // the bead's).
+    EXPECT_NEAR(s->e.z0 - s->e.b, 0.0, 0.01 * 2.0 * truth.b) << width;
+  }
+}
+
 // The same tamped bead seen with 30 um of noise (1.5 % of its height): its
 // walls, 1 mm high, show at both ends in every draw, but its top's points
 // between them pin its shape poorly (the arcs' few points trade the corner
