@@ -86,7 +86,7 @@ py::dict PartFlow(const std::string& rig_path, const std::string& scan_path, uns
     if (!scan.log) throw Error(Located(scan_path, "/log", "missing group: the flow along the path needs the log"));
     const part::NozzleClock clock(*scan.log, scan_path);
     for (const part::PartGeometryRow& g : MeasureRows(rig, scan_path, threads)) {
-      flow.push_back(part::FlowOf(g, clock));
+      flow.push_back(part::FlowOf(g, clock, part::MeasurePartOptions{}.correct_hidden));  // (MeasureRows' options)
       volumes.Add(flow.back());
     }
   }

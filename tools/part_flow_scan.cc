@@ -19,15 +19,15 @@
 namespace bead::tools {
 namespace {
 
-// The valid rows whose flow stands on the area seen (no corrected area).
-void SaySeenFlow(const std::vector<part::LayerSummary>& layers) {
-  std::size_t seen = 0;
-  for (const part::LayerSummary& l : layers) seen += l.valid - l.corrected;
-  if (seen)
+// The profiles measured whose corrected areas were refused: no flow.
+void SayUncorrectedFlow(const std::vector<part::LayerSummary>& layers) {
+  std::size_t refused = 0;
+  for (const part::LayerSummary& l : layers) refused += l.valid - l.corrected;
+  if (refused)
     std::printf(
-        "  %zu valid profiles' flow is from the area seen, having no corrected area (the lines above say why): where "
-        "their beads overhang, it counts the groove they hide as material\n",
-        seen);
+        "  %zu measured profiles have no flow (valid 0): their corrected areas were refused (the lines above say "
+        "why), and the area seen, in their rows, counts the groove an overhanging bead hides as material\n",
+        refused);
 }
 
 // Where most profiles' places were never passed in the log: the path each
@@ -110,7 +110,7 @@ int FlowPartScan(const std::string& rig_path, const std::string& run, const std:
     std::printf("  layer %lld: %.1f mm^3 along the path\n", static_cast<long long>(layer), v);
   std::printf("total volume %.1f mm^3 (the area integrated along the path, valid profiles)\n", f.TotalVolume());
   SayScanDelay(f.delay);
-  SaySeenFlow(f.layers);
+  SayUncorrectedFlow(f.layers);
   if (const part::CornerBulge& b = f.bulge; b.slow)
     std::printf(
         "where the head slowed below 90 %% of its median speed (%zu profiles, %.1f against %.1f mm/s: corners), the "

@@ -152,7 +152,7 @@ std::optional<NozzleClock::Passing> NozzleClock::At(int64_t layer, double path) 
   return std::nullopt;
 }
 
-PartFlowRow FlowOf(const PartGeometryRow& g, const NozzleClock& clock) {
+PartFlowRow FlowOf(const PartGeometryRow& g, const NozzleClock& clock, bool corrected) {
   PartFlowRow r;
   r.profile = g.profile;
   r.layer = g.layer;
@@ -166,6 +166,7 @@ PartFlowRow FlowOf(const PartGeometryRow& g, const NozzleClock& clock) {
   if (!p || !g.bead.valid()) return r;
   r.area_mm2 = g.bead.area_mm2;
   r.area_corrected_mm2 = g.area_corrected_mm2;
+  if (corrected && std::isnan(r.area_corrected_mm2)) return r;
   r.flow_mm3_s = p->head_speed_mm_s * r.Area();
   r.flow_sigma_mm3_s = p->head_speed_mm_s * g.area_corrected_sigma_mm2;
   r.valid = true;
@@ -252,7 +253,7 @@ PartScanFlow MeasurePartScanFlow(const std::string& path, const PartPlaces& plac
       [&](const PartGeometryRow& g) {
         if (on_geometry) on_geometry(g);
         if (!clock) return;
-        const PartFlowRow row = FlowOf(g, *clock);
+        const PartFlowRow row = FlowOf(g, *clock, options.correct_hidden);
         if (std::isfinite(row.t_s)) out.delay.Add(g.t_s - row.t_s);
         filter.Add(row, emit);
       },

@@ -91,7 +91,9 @@ struct PartFlowRow {
   double head_speed_mm_s = kNaN;
   double area_mm2 = kNaN;
   double area_corrected_mm2 = kNaN;
-  double flow_mm3_s = kNaN;  // v_head times the corrected area where there is one, else the area
+  // v_head times the corrected area; the area seen where the groove is not
+  // estimated (MeasurePartOptions::correct_hidden false)
+  double flow_mm3_s = kNaN;
   // Its sigma, v_head times the corrected area's (NaN without one), and
   // whether a filter along the path replaced it (part/flow_hampel.h).
   double flow_sigma_mm3_s = kNaN;
@@ -104,8 +106,12 @@ struct PartFlowRow {
 };
 
 // A profile's flow row; invalid (NaN) where its geometry is, or where the
-// log never had the nozzle at its place.
-PartFlowRow FlowOf(const PartGeometryRow& geometry, const NozzleClock& clock);
+// log never had the nozzle at its place, or, where the hidden groove is
+// estimated (`corrected`), where the profile's corrected area was refused
+// (its outline none of the model's shapes, or not fitted; the area seen
+// then stands in the row, and counts what an overhanging bead hides as
+// material: a flow from it is not checked, and not given).
+PartFlowRow FlowOf(const PartGeometryRow& geometry, const NozzleClock& clock, bool corrected);
 
 // The volume each layer added, the trapezoid integral of the area along the
 // path (mm^3), over the valid rows of each layer in the scan's order: the

@@ -38,7 +38,7 @@ ContourFigures Figures(const sim::PartTwin& twin, bool naive) {
   std::vector<std::size_t> layer_rows(64, 0);
   part::MeasurePart(stream, *twin.scan.part, twin.rig, options, [&](const part::PartGeometryRow& g) {
     const bool first = layer_rows[g.layer]++ < part::LayerGrooves::kPoolProfiles;
-    const part::PartFlowRow r = part::FlowOf(g, clock);
+    const part::PartFlowRow r = part::FlowOf(g, clock, options.correct_hidden);
     if (!r.valid) return;
     speeds.Add(r);
     const sim::PartTruthRow& t = twin.truth[g.profile];

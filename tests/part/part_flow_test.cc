@@ -33,7 +33,7 @@ Timed MeasureAndTime(const sim::PartTwin& twin, const part::NozzleClock& clock, 
   Timed out;
   std::map<int64_t, std::pair<double, double>> last;  // path, material of the layer's last row
   part::MeasurePart(stream, *twin.scan.part, twin.rig, {}, [&](const part::PartGeometryRow& g) {
-    const part::PartFlowRow r = part::FlowOf(g, clock);
+    const part::PartFlowRow r = part::FlowOf(g, clock, part::MeasurePartOptions{}.correct_hidden);
     const sim::PartTruthRow& t = twin.truth[g.profile];
     ++out.rows;
     out.measured.Add(r);
