@@ -368,8 +368,8 @@ double SilhouetteVariance(const Silhouette& s, const PooledShape* held, const do
   // its own derivative, z0 re-solved (the area seen stays: the ends do).
   // (A tamped bead's b held: its half-height's sigma.)
   const double by_b = g_b - g_z0 * s.mean_s;
-  const double by_aspect = std::isfinite(held->held_b_mm) ? by_b * held->half_height_sigma_mm
-                                                          : by_b * s.e.a * held->aspect_sigma;
+  const double by_aspect =
+      std::isfinite(held->held_b_mm) ? by_b * held->half_height_sigma_mm : by_b * s.e.a * held->aspect_sigma;
   const double by_p = (by_exponent + g_z0 * s.z0_by_exponent) * held->exponent_sigma;
   return ends + solved + by_aspect * by_aspect + by_p * by_p + 2.0 * held->correlation * by_aspect * by_p;
 }
