@@ -106,9 +106,17 @@ int FlowPartScan(const std::string& rig_path, const std::string& run, const std:
   out.Commit();
   SayMeasured(run, f.layers, scan.part->size(), start);
   std::printf("wrote %s (t_s: when the nozzle laid each place; flow = head speed x area)\n", output.c_str());
-  for (const auto& [layer, v] : f.volumes_mm3)
-    std::printf("  layer %lld: %.1f mm^3 along the path\n", static_cast<long long>(layer), v);
-  std::printf("total volume %.1f mm^3 (the area integrated along the path, valid profiles)\n", f.TotalVolume());
+  for (const part::LayerSummary& l : f.layers)
+    if (const auto v = f.volumes_mm3.find(l.layer); v != f.volumes_mm3.end())
+      std::printf("  layer %lld: %.1f mm^3 along the path\n", static_cast<long long>(l.layer), v->second);
+    else
+      std::printf("  layer %lld: no volume (none of its profiles has a flow: below)\n",
+                  static_cast<long long>(l.layer));
+  if (f.volumes_mm3.size() < f.layers.size())
+    std::printf("total volume %.1f mm^3 over %zu of the %zu layers, those with a flow: not the part's\n",
+                f.TotalVolume(), f.volumes_mm3.size(), f.layers.size());
+  else
+    std::printf("total volume %.1f mm^3 (the area integrated along the path, valid profiles)\n", f.TotalVolume());
   SayScanDelay(f.delay);
   SayUncorrectedFlow(f.layers);
   if (const part::CornerBulge& b = f.bulge; b.slow)

@@ -345,9 +345,10 @@ double SilhouetteVariance(const Silhouette& s, const PooledShape* held, const do
     // (A tamped bead held at its half-height, PooledShape::held_b_mm, is
     // moved here as its aspect held would be, b with a: moved with b held,
     // the ends' term of a generator's tamped walls under a footprint fell
-    // by a quarter and their upper layers' intervals covered 70-91 %, their
-    // errors holding more than the ends' places (the surface below's
-    // cliffs read through the spots), which the model does not hold.)
+    // by a quarter and their intervals covered 89-94 % (their upper layers
+    // 70-91 %), their errors holding more than the ends' places (the surface
+    // below's cliffs read through the spots), which the model does not
+    // hold.)
     // The area seen across the wall's cell is the bead placed's
     // (CellSeenChange), so it moves with the place as the groove does, a
     // mixed end's too. (Left to follow the end where the profiler averages

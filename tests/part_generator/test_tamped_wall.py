@@ -202,6 +202,10 @@ def test_a_lens_wall_is_not_corrected_as_a_superellipse(tmp_path):
     assert np.all(np.isfinite(flow["area_mm2"][refused & placed]))
     bed = (geom["valid"] == 1) & (geom["layer"] == 0)
     assert np.mean(flow["valid"][bed] == 1) > 0.95
+    # A layer with no flow has no volume, and the total says it is not the
+    # part's.
+    assert "layer 1: no volume (none of its profiles has a flow" in flowed, flowed
+    assert "layers, those with a flow: not the part's" in flowed, flowed
 
 
 def test_a_coarser_sensors_lens_wall_is_not_corrected_in_any_layer(tmp_path):
