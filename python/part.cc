@@ -79,16 +79,14 @@ py::dict MeasurePartColumns(const std::string& rig_path, const std::string& scan
 py::dict PartFlow(const std::string& rig_path, const std::string& scan_path, unsigned threads) {
   const Rig rig = PartRigWarning(rig_path);
   std::vector<part::PartFlowRow> flow;
-  part::LayerVolumes volumes;
+  part::PartScanFlow f;
   {
     py::gil_scoped_release free;
     const RunArchive scan = ReadPartScan(scan_path, false, true);
     if (!scan.log) throw Error(Located(scan_path, "/log", "missing group: the flow along the path needs the log"));
-    const part::NozzleClock clock(*scan.log, scan_path);
-    for (const part::PartGeometryRow& g : MeasureRows(rig, scan_path, threads)) {
-      flow.push_back(part::FlowOf(g, clock, part::MeasurePartOptions{}.correct_hidden));  // (MeasureRows' options)
-      volumes.Add(flow.back());
-    }
+    // `bead flow`'s own: the rows filtered along each layer's path too.
+    f = part::MeasurePartScanFlow(scan_path, *scan.part, &*scan.log, rig, {}, threads, nullptr,
+                                  [&](const part::PartFlowRow& row) { flow.push_back(row); });
   }
   using Row = part::PartFlowRow;
   py::dict out;
@@ -102,7 +100,7 @@ py::dict PartFlow(const std::string& rig_path, const std::string& scan_path, uns
   out["screw_rpm"] = Column<double>(flow, [](const Row& r) { return r.screw_rpm; });
   out["profile"] = Column<int64_t>(flow, [](const Row& r) { return r.profile; });
   out["valid"] = Flags(flow, [](const Row& r) { return r.valid; });
-  out["layer_volume_mm3"] = volumes.volumes_mm3();
+  out["layer_volume_mm3"] = f.volumes_mm3;
   return out;
 }
 
@@ -138,9 +136,13 @@ void AddPart(py::module_& m) {
         "area_corrected_sigma_mm2.");
   m.def("part_flow", &PartFlow, "rig"_a, "scan"_a, "threads"_a = 0,
         "The flow along a part scan's toolpath, as `bead flow` computes it on one: each profile's time is when the "
-        "nozzle laid its place (from the log's layer and path_mm), flow_mm3_s = head_speed_mm_s x area.\n\nReturns "
-        "[N] arrays t_s (s), layer, path_mm (mm), head_speed_mm_s, area_mm2, area_corrected_mm2, flow_mm3_s (mm^3/s), "
-        "screw_rpm, profile, valid; and layer_volume_mm3: {layer: mm^3} (the area integrated along the path).");
+        "nozzle laid its place (from the log's layer and path_mm), flow_mm3_s = head_speed_mm_s x the corrected "
+        "area, filtered along each layer's path (a Hampel filter). valid is 0 (flow_mm3_s NaN) where the log never "
+        "had the nozzle at the place, or the profile's corrected area was refused (the area seen counts what an "
+        "overhanging bead hides: `bead measure` says why).\n\nReturns [N] arrays t_s (s), layer, path_mm (mm), "
+        "head_speed_mm_s, area_mm2, area_corrected_mm2, flow_mm3_s (mm^3/s), screw_rpm, profile, valid; and "
+        "layer_volume_mm3: {layer: mm^3} (the area integrated along the path over the valid profiles; a layer with "
+        "none is absent).");
 }
 
 }  // namespace bead::python
