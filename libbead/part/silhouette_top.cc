@@ -16,9 +16,8 @@ namespace {
 // the exponent's table holds s).
 constexpr double kInner = SuperellipseTable::kTabulatedU;
 
-// The top's points within kInner of the half-width of the bead with ends
-// L and R > L: [lo, hi) of first .. last (x increases, and u with it: one
-// range, its ends found by the test each point would be put to).
+}  // namespace
+
 std::pair<std::size_t, std::size_t> TopRange(const Window& w, std::size_t first, std::size_t last, double L, double R) {
   const double x0 = 0.5 * (L + R), per_a = 2.0 / (R - L);
   const auto u_at = [&](std::size_t j) { return (w.x[j] - x0) * per_a; };
@@ -36,6 +35,8 @@ std::pair<std::size_t, std::size_t> TopRange(const Window& w, std::size_t first,
   const std::size_t lo = first_where(first, [](double u) { return u >= -kInner; });
   return {lo, first_where(lo, [](double u) { return u > kInner; })};
 }
+
+namespace {
 
 // Each of the top's points within kInner of the half-width of the bead
 // with ends L and R, to keep(j, u) in order.
@@ -185,9 +186,15 @@ bool SolveHeld(const Window& w, std::size_t first, std::size_t last, double L, d
 
 TopSums TableSums(const Window& w, std::size_t first, std::size_t last, double L, double R,
                   const SuperellipseTable& table) {
+  if (!(R > L)) return {};  // (R > L: the top's points one range)
+  return TableSumsOver(w, TopRange(w, first, last, L, R), L, R, table);
+}
+
+TopSums TableSumsOver(const Window& w, std::pair<std::size_t, std::size_t> range, double L, double R,
+                      const SuperellipseTable& table) {
   TopSums t;
-  if (!(R > L)) return t;  // (R > L: the top's points one range)
-  const auto [lo, hi] = TopRange(w, first, last, L, R);
+  if (!(R > L)) return t;
+  const auto [lo, hi] = range;
   const TopSums5 sums = ActivePartKernel().top(w.x.data(), w.z.data(), lo, hi, 0.5 * (L + R), 2.0 / (R - L),
                                                {table.entries(), kInner, SuperellipseTable::kEntries});
   t.m = static_cast<double>(hi - lo), t.z1 = sums.z1, t.zz = sums.zz, t.s1 = sums.s1, t.s2 = sums.s2, t.zs = sums.zs;
@@ -195,11 +202,12 @@ TopSums TableSums(const Window& w, std::size_t first, std::size_t last, double L
 }
 
 double HeldTopVariance(const Window& w, std::size_t first, std::size_t last, double L, double R,
-                       const PooledShape& held, std::size_t& points) {
+                       const PooledShape& held, std::size_t& points, const std::pair<std::size_t, std::size_t>* range) {
   points = 0;
   const double b = held.AspectAt(0.5 * (R - L)) * 0.5 * (R - L);
   if (!(b > 0.0)) return INFINITY;
-  const TopSums t = TableSums(w, first, last, L, R, SuperellipseOf(held.exponent));
+  const SuperellipseTable& table = SuperellipseOf(held.exponent);
+  const TopSums t = range ? TableSumsOver(w, *range, L, R, table) : TableSums(w, first, last, L, R, table);
   points = static_cast<std::size_t>(t.m);
   const double z0 = HeldZ0(t, b);
   if (t.m < 5.0 || !std::isfinite(z0)) return INFINITY;
@@ -210,6 +218,68 @@ std::size_t TopPointCount(const Window& w, std::size_t first, std::size_t last, 
   std::size_t n = 0;  // (counted, not written out: TopOf)
   ForEachTopPoint(w, first, last, L, R, [&n](std::size_t, double) { ++n; });
   return n;
+}
+
+namespace {
+
+// Where the held shape's top places an end, in steps from the first
+// place, from its residual variances var at places a step apart: the
+// vertex of the parabola through the least and its neighbours (within half
+// a step of the least), and that place's variance, least squares' 2
+// sigma^2 / (d2 rss / dE^2): the top's m points' rss = (m - 1) var,
+// sigma^2 the least var, so sigma_E^2 = 2 var step^2 / ((m - 1) curve);
+// INFINITY where the least has no neighbour either side or the residual is
+// not curved upward there. to_edge: a least at the first or last place is
+// refined too, by the parabola through the three places nearest that edge
+// (its vertex up to a step and a half from their middle).
+TopPlace ParabolaOfLeast(const std::vector<double>& var, const std::vector<std::size_t>& points, std::size_t best,
+                         double step, bool to_edge) {
+  TopPlace p{static_cast<double>(best)};
+  const std::size_t c = to_edge && var.size() >= 3 ? std::clamp<std::size_t>(best, 1, var.size() - 2) : best;
+  if (c == 0 || c + 1 >= var.size() || !std::isfinite(var[c - 1]) || !std::isfinite(var[c + 1])) return p;
+  const double curve = var[c - 1] - 2.0 * var[c] + var[c + 1];
+  if (!(curve > 0.0)) return p;
+  const double reach = c == best ? 0.5 : 1.5;
+  p.at = static_cast<double>(c) + std::clamp(0.5 * (var[c - 1] - var[c + 1]) / curve, -reach, reach);
+  const auto m = static_cast<double>(points[best]);
+  if (m > 1.0) p.sigma2 = 2.0 * var[best] * step * step / ((m - 1.0) * curve);
+  return p;
+}
+
+}  // namespace
+
+std::optional<TopPlace> SearchCell(const Window& w, std::size_t first, std::size_t last, double spacing,
+                                   const PooledShape& held, int side, bool same_points, double L, double R,
+                                   const Silhouette& s) {
+  double& end = side ? R : L;
+  const double lo = s.cell[2 * side], hi = s.cell[2 * side + 1];
+  const int steps = std::max(3, static_cast<int>(std::ceil((hi - lo) / (0.25 * spacing))));
+  const double step = (hi - lo) / steps;
+  // (Reused call after call: four of them a row.)
+  thread_local std::vector<double> var;
+  thread_local std::vector<std::size_t> points;
+  var.assign(static_cast<std::size_t>(steps), INFINITY), points.assign(var.size(), 0);
+  end = side ? lo : hi;  // (the inner edge: the top's fewest points)
+  const std::pair<std::size_t, std::size_t> top =
+      same_points ? TopRange(w, first, last, L, R) : std::pair{first, first};
+  for (int k = 0; k < steps; ++k) {
+    const auto i = static_cast<std::size_t>(k);
+    end = lo + (k + 0.5) * step;
+    if (std::isfinite(held.aspect)) {
+      var[i] = HeldTopVariance(w, first, last, L, R, held, points[i], same_points ? &top : nullptr);
+      continue;
+    }
+    // (A layer's pool always holds a finite aspect: b is solved here only
+    // for a shape that holds its exponent alone.)
+    Silhouette trial = s;
+    if (SolveHeld(w, first, last, L, R, held, trial))
+      var[i] = trial.residual_variance, points[i] = TopPointCount(w, first, last, L, R);
+  }
+  const auto best = static_cast<std::size_t>(std::min_element(var.begin(), var.end()) - var.begin());
+  if (!std::isfinite(var[best])) return std::nullopt;
+  TopPlace place = ParabolaOfLeast(var, points, best, step, same_points);
+  place.at = std::clamp(lo + (place.at + 0.5) * step, lo, hi);
+  return place;
 }
 
 }  // namespace bead::part

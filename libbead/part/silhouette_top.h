@@ -12,7 +12,9 @@
 // do not average out over the pool.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -27,9 +29,34 @@ namespace bead::part {
 bool SolveHeld(const Window& w, std::size_t first, std::size_t last, double L, double R, const PooledShape& held,
                Silhouette& s);
 // What SolveHeld leaves of the top alone, where the aspect is held: its
-// residual variance (INFINITY where it does not solve) over `points` points.
+// residual variance (INFINITY where it does not solve) over `points` points:
+// the top's within 0.9 of the half-width, or those of `range` where given.
 double HeldTopVariance(const Window& w, std::size_t first, std::size_t last, double L, double R,
-                       const PooledShape& held, std::size_t& points);
+                       const PooledShape& held, std::size_t& points,
+                       const std::pair<std::size_t, std::size_t>* range = nullptr);
+// The top's points within 0.9 of the half-width of the bead with ends L and
+// R > L (SuperellipseTable::kTabulatedU: where the tables hold s): [lo, hi)
+// of first .. last (x increases, and u with it: one range).
+std::pair<std::size_t, std::size_t> TopRange(const Window& w, std::size_t first, std::size_t last, double L, double R);
+
+// Where the held top places the end `side` (0 left, 1 right) of the bead
+// with ends L and R within its cell [s.cell[2 side], s.cell[2 side + 1]]:
+// its residual searched over the cell a quarter spacing at a time, the
+// least refined by the parabola through it and its neighbours, `at` in mm
+// (within the cell) with the variance the residual's curvature gives it
+// (INFINITY where the least has no neighbour either side, or the residual
+// is not curved upward there); nullopt where no place solves.
+// same_points: the top read over the same points at every place (those
+// within 0.9 of the half-width with the end at the cell's inner edge), and
+// a least at the cell's first or last place refined too, by the parabola
+// through the three places nearest that edge (part/silhouette.cc:
+// PlaceByTop says where).
+struct TopPlace {
+  double at = 0.0, sigma2 = INFINITY;
+};
+std::optional<TopPlace> SearchCell(const Window& w, std::size_t first, std::size_t last, double spacing,
+                                   const PooledShape& held, int side, bool same_points, double L, double R,
+                                   const Silhouette& s);
 
 // The outermost points of a top (first..last) that stand under its z0 by
 // more than three residual sigmas (sigma_mm) are not on it: no point of a

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 #include "libbead/part/groove_window.h"
@@ -41,6 +42,9 @@ TopSums SumTop(const TopPoints& p, const SuperellipseTable& t);
 // where R is not right of L.
 TopSums TableSums(const Window& w, std::size_t first, std::size_t last, double L, double R,
                   const SuperellipseTable& table);
+// The same over the points [lo, hi) given (part/silhouette_top.h: TopRange).
+TopSums TableSumsOver(const Window& w, std::pair<std::size_t, std::size_t> range, double L, double R,
+                      const SuperellipseTable& table);
 
 // The free solve from the sums: its residual variance (INFINITY where b
 // is not positive or too few points are), z0 and b.
