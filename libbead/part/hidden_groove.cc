@@ -33,31 +33,29 @@ namespace {
 // footprint), the variance of where the surface below steps between its
 // points under the groove. Beside the layer below's wall the surface seen
 // drops down the column its overhang hides (to the bed, or a lower layer's
-// shoulder: deeper layer by layer) between two points a spacing h apart;
-// a point there is the spot's average across the step, and where in the
-// spacing the step lies it tells only through the spot's shape, which is
-// not known (as for a bead's end: PooledShape::footprint). Read as the
-// straight line between the two, a step of depth d anywhere in between
-// alike misses the groove by d (place - middle): variance d^2 h^2 / 12.
-// Over the nodes:
-// a node dx wide on a run of slope S holds its share dx / h of (S h)^2 h^2
-// / 12; S min(S h, 2 f) h^2 dx / 12 with f the outline's stand there, so
-// that where the outline crosses the step's line the sum is the same d^2
-// h^2 / 12 with d its stand over the step's foot (3/4 of it where it just
-// clears the step's top). h: the new points' spacing, the sensor's (the
-// layer below's as well). (Left out, the corrected areas' errors grew
-// layer by layer with the column under a footprint and their sigmas did
-// not: on a generator's contours of 6-12 tamped or pressed layers, its spot
-// as wide as the spacing, the fifth of the rows with the most hidden were
-// 0.08-0.14 mm^2 off at sigmas of 0.04-0.06 and the worst layers'
-// intervals covered 72-84 %; the errors' excess over the sigmas there, 0.08
-// -0.11 mm^2, is this term's size, its median 0.07-0.12: with it, those
-// layers 94.7-99.3 %. The same wall without noise kept the excess (0.063
-// mm^2 at 0.039); its points not averaged (no footprint), the excess was
-// gone, noise or none (0.02-0.04 mm^2 at 0.05-0.07), as on the twin's
-// walls, whose deep rows' errors lie under their sigmas: there the term is
-// not added. Why the spot breaks what the straight line's misses cancel
-// between the area seen and the groove, I did not pin down.)
+// shoulder: deeper layer by layer) between two points a spacing h apart.
+// Read as the straight line between the two, a step of depth d anywhere in
+// between alike misses the groove by d (place - middle): variance d^2 h^2
+// / 12. Over the nodes: a node dx wide on a run of slope S holds its share
+// dx / h of (S h)^2 h^2 / 12; S min(S h, 2 f) h^2 dx / 12 with f the
+// outline's stand there, so that where the outline crosses the step's
+// line the sum is the same d^2 h^2 / 12 with d its stand over the step's
+// foot (3/4 of it where it just clears the step's top). h: the new points'
+// spacing, the sensor's (the layer below's as well). (Left out, the
+// corrected areas' errors grew layer by layer with the column under a
+// footprint and their sigmas did not: on a generator's contours of 6-12
+// tamped or pressed layers, its spot as wide as the spacing, the fifth of
+// the rows with the most hidden were 0.08-0.14 mm^2 off at sigmas of
+// 0.04-0.06 and the worst layers' intervals covered 72-84 %; the errors'
+// excess over the sigmas there, 0.08-0.11 mm^2, is this term's size, its
+// median 0.07-0.12: with it, those layers 94.7-99.3 %. The same wall
+// without noise kept the excess (0.063 mm^2 at 0.039); its points not
+// averaged, the excess was gone, noise or none (0.02-0.04 mm^2 at
+// 0.05-0.07), as on the twin's walls, whose deep rows' errors lie under
+// their sigmas: there the term is not added. Where the step lies should
+// cancel between the area seen and the groove, which read the same line
+// across it; why under a spot it does not, I did not pin down: the ends'
+// places explain about a third of the excess.)
 struct GrooveSum {
   double groove = 0.0;
   double lowest = INFINITY;
