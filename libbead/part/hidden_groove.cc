@@ -65,7 +65,8 @@ struct GrooveSum {
   double steps_under = 0.0;     // mm^4: the steps' variance (below)
 };
 
-GrooveSum GrooveWithGradient(const Ellipse& e, const SurfaceGrid& below, double shift, double spacing) {
+// steps_spacing: h for the steps' variance (0: not summed, no footprint).
+GrooveSum GrooveWithGradient(const Ellipse& e, const SurfaceGrid& below, double shift, double steps_spacing) {
   const SurfaceGrid::Shifted under(below, shift);
   const SuperellipseTable& shape = SuperellipseOf(e.p);
   constexpr int kNodes = SuperellipseTable::kNodes;
@@ -92,14 +93,14 @@ GrooveSum GrooveWithGradient(const Ellipse& e, const SurfaceGrid& below, double 
     const SurfaceGrid::Sample old = under.At(x);     // its slope and variance, where they count
     sum += f, on += 1.0, s_on += s, slope_on += old.slope, slope_u_on += old.slope * u, variance += old.variance;
     const double rise = std::abs(old.slope);
-    if (std::isfinite(rise)) steps += rise * std::min(rise * spacing, 2.0 * f);
+    if (steps_spacing > 0.0 && std::isfinite(rise)) steps += rise * std::min(rise * steps_spacing, 2.0 * f);
     dp_on += node_ds_dp[k];
   }
   const double step = e.a * kDu;
   GrooveSum g;
   g.groove = sum * step;
   g.variance_under = variance * step;
-  g.steps_under = steps * step * spacing * spacing / 12.0;
+  g.steps_under = steps * step * steps_spacing * steps_spacing / 12.0;
   g.gradient[0] = -slope_on * step;
   g.gradient[1] = on * step;
   g.gradient[2] = sum * kDu - slope_u_on * step;
@@ -131,6 +132,9 @@ struct Around {
   // errors' correlation with the aspect's (PooledShape).
   double exponent_sigma = 0.0, correlation = 0.0;
   bool footprint = false;
+  // The spacing the surface below's steps are counted at (GrooveSum::
+  // steps_under): only under a footprint.
+  double StepsSpacing() const { return footprint ? spacing : 0.0; }
 };
 
 // The groove's variance from what lies around the ellipse: the surface
@@ -147,7 +151,7 @@ double AroundVariance(const GrooveSum& sum, const Around& o, double seen_by_shif
   // way: the groove's derivative in the shift is minus its x0's, the area
   // seen less the groove's that plus seen_by_shift.
   const double by_shift = (seen_by_shift + sum.gradient[0]) * o.shift_sigma;
-  return below_var + by_shift * by_shift + (o.footprint ? sum.steps_under : 0.0);
+  return below_var + by_shift * by_shift + sum.steps_under;
 }
 
 // The fitted groove's 1-sigma: the fit's covariance (s2 (J^T J)^-1)
@@ -258,7 +262,7 @@ double PressedHalfHeight(const Window& w, const Ellipse& e, double noise_mm) {
 HiddenGroove AtTheSilhouette(const Silhouette& s, const Around& o, const PooledShape* held, double center, double base,
                              double height) {
   HiddenGroove out;
-  const GrooveSum groove = GrooveWithGradient(s.e, o.below, o.shift, o.spacing);
+  const GrooveSum groove = GrooveWithGradient(s.e, o.below, o.shift, o.StepsSpacing());
   out.hidden_mm2 = groove.groove;
   out.seen_adjust_mm2 = s.seen_adjust;
   // The area seen stands on the same surface below, between the ends: moved
@@ -407,7 +411,7 @@ HiddenGroove EstimateHiddenGroove(std::span<const float> x, std::span<const floa
   out.walls_unsolved = free.walls_unsolved, out.family_log_ratio = free.family_log_ratio;
   out.aspect = best.b / best.a, out.exponent = exponent;
   out.dx0 = best.x0 - center, out.dz0 = best.z0 - base, out.a = best.a, out.b = best.b;
-  const GrooveSum groove = GrooveWithGradient(best, below, shift, spacing);
+  const GrooveSum groove = GrooveWithGradient(best, below, shift, around.StepsSpacing());
   out.hidden_mm2 = groove.groove;
   const double dof = static_cast<double>(w.x.size()) - static_cast<double>(shape.Params());
   out.sigma_mm2 =
