@@ -58,11 +58,12 @@ double GrooveChange(const Ellipse& from, const Ellipse& to, const double gradien
 
 // An end placed with the shape held where the held shape's top fits the
 // points best, searched over its cell a quarter spacing at a time and
-// refined by a parabola (part/silhouette_top.h: SearchCell). In a gap (lost points beside
-// its wall: nothing else says where the end is) it goes there, its cell
-// narrowed to the width the residual's curvature places it within (at
-// least a spacing). In a wall's own cell (`in_cell`) the end lies anywhere in it
-// alike (a mean at the middle, a variance of cell^2 / 12) and the top's
+// refined by a parabola (part/silhouette_top.h: SearchCell). In a gap
+// (lost points beside its wall: nothing else says where the end is) it
+// goes there, its cell narrowed to the width the residual's curvature
+// places it within (at least a spacing). In a wall's own cell (`in_cell`)
+// the end lies anywhere in it alike (a mean at the middle, a variance of
+// cell^2 / 12) and the top's
 // place is a measurement of it with the curvature's variance: the two
 // combined, each in the other's variance (where the top places an end
 // poorly, it stays near the middle); its cell stays the wall's.
@@ -87,7 +88,8 @@ double GrooveChange(const Ellipse& from, const Ellipse& to, const double gradien
 // intervals cover 92.9 % for 97.3. (With the same points, the twin's wall's
 // rows' median error is 0.013 mm^2 for 0.008, a tenth of a percent of its
 // area for six hundredths: at a 0.05 mm cell, the ellipse held places an
-// end near a point no closer than the cell's middle.) false where no place solves.
+// end near a point no closer than the cell's middle.) false where no place
+// solves.
 bool PlaceByTop(const Window& w, std::size_t first, std::size_t last, double spacing, const PooledShape& held, int side,
                 bool in_cell, double& L, double& R, Silhouette& s) {
   const bool same_points = in_cell && std::isfinite(held.aspect) && !held.footprint;
