@@ -13,6 +13,7 @@
 
 #include "libbead/io/profile_stream.h"
 #include "libbead/part/measure_part.h"
+#include "libbead/part/part_profile_processor.h"
 #include "libbead/profile/profile_processor.h"
 #include "libbead/sim/part_twin.h"
 
@@ -67,6 +68,28 @@ void BM_PartProfile(benchmark::State& state) {
   Rate(state, twin);
 }
 
+// Every profile of the wall as it arrives (part/part_profile_processor.h:
+// the wheel's kernel over the layer below, registered by Gauss-Newton steps
+// from the pass's last shift; each profile kept for the next layer; the
+// pass's first two profiles searched wide): the area seen, as the wheel's
+// per-profile area is before its occlusion correction. Range 0: the wall's
+// length, mm (50: 100 profiles a layer; 400: 800).
+void BM_PartProfileAsItArrives(benchmark::State& state) {
+  const bead::sim::PartTwin& twin = Wall(static_cast<int>(state.range(0)), state.range(1) != 0);
+  const bead::ProfileBlock& b = twin.scan.profiles;
+  const bead::PartPlaces& places = *twin.scan.part;
+  std::size_t valid = 0;
+  for (auto _ : state) {
+    bead::part::PartProfileProcessor processor(twin.rig, {}, b.points);
+    for (std::size_t k = 0; k < b.size(); ++k) {
+      const bead::part::PartPlace place{places.layer[k], places.path_mm[k], places.frame_x_mm[k], places.frame_z_mm[k]};
+      valid += processor.Process(b.view(k), place).bead.status == bead::ProfileStatus::kValid;
+    }
+  }
+  benchmark::DoNotOptimize(valid);
+  Rate(state, twin);
+}
+
 // The baseline: the wheel's geometry (a bead on the reference line) on the
 // same profiles.
 void BM_WheelProfileOnThePart(benchmark::State& state) {
@@ -86,6 +109,13 @@ BENCHMARK(BM_PartProfile)
     ->Args({1, 400, 0, 1})
     ->Args({0, 50, 1, 1})
     ->Args({0, 50, 0, 0})
+    ->Repetitions(5)
+    ->MinTime(0.5)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PartProfileAsItArrives)
+    ->Args({50, 0})
+    ->Args({400, 0})
+    ->Args({50, 1})
     ->Repetitions(5)
     ->MinTime(0.5)
     ->Unit(benchmark::kMillisecond);

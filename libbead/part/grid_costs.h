@@ -25,6 +25,8 @@ class PointsOnGrid {
   // False (and nothing to use) where the surface below's rows are not
   // points on one grid, or the new points do not lie on it.
   bool Make(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below);
+  // Whether the last Make succeeded.
+  bool Ready() const { return count_ > 0; }
   // The loops' build (part_kernel.h): the one this processor runs unless set.
   void UseKernel(const PartKernel& kernel) { kernel_ = &kernel; }
 

@@ -331,4 +331,10 @@ Registration Register(std::span<const float> x, std::span<const float> z, const 
   return Searched(x, z, below, k, o, grid, 0.0, o.max_shift_mm);
 }
 
+void SettleShift(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
+                 const RegistrationScale& scale, const AddedBeadOptions& options, const PointsOnGrid* grid,
+                 Registration& r) {
+  Settle(x, z, below, scale, options, grid, r);
+}
+
 }  // namespace bead::part

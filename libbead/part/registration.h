@@ -72,4 +72,14 @@ Registration Register(std::span<const float> x, std::span<const float> z, const 
                       const RegistrationScale& scale, const AddedBeadOptions& options, const double* start,
                       const PointsOnGrid* grid = nullptr, double start_hidden_sigma = 0.0, bool search_wide = false);
 
+// A shift found elsewhere (r.shift, r.sigma, r.hidden_sigma: a tracker's
+// own steps, part/part_profile_processor.h) settled as Register settles its
+// own: the points where the surfaces agree there (r.points, r.rms), its
+// sigma at least the hidden one, and whether it is constrained (sigma
+// within options.max_shift_sigma_mm and the layer below sloped beside the
+// new bead in at least options.min_feature_points points).
+void SettleShift(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
+                 const RegistrationScale& scale, const AddedBeadOptions& options, const PointsOnGrid* grid,
+                 Registration& r);
+
 }  // namespace bead::part

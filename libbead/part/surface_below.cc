@@ -7,6 +7,8 @@
 
 #include "libbead/core/float_bits.h"
 #include "libbead/core/median.h"
+#include "libbead/part/added_bead.h"
+#include "libbead/part/part_kernel.h"
 
 namespace bead::part {
 namespace {
@@ -318,6 +320,50 @@ double SurfaceBelow::CenterAt(double path) const {
   double w = 0;
   if (!Neighbours(path, i, j, w, nullptr)) return kNaN;
   return (1 - w) * below_[i].center_x_mm + w * below_[j].center_x_mm;
+}
+
+namespace {
+
+// The finite points of p, increasing in x (kept in their order where they
+// increase, sorted where not).
+void KeepValid(StoredProfile& p) {
+  std::size_t n = 0;
+  bool increasing = true;
+  float before = -std::numeric_limits<float>::infinity();
+  for (std::size_t j = 0; j < p.x_mm.size(); ++j) {
+    const float x = p.x_mm[j], z = p.z_mm[j];
+    const bool keep = std::isfinite(x) && std::isfinite(z);
+    p.x_mm[n] = x, p.z_mm[n] = z;
+    increasing = increasing && (!keep || before < x);
+    before = keep ? x : before;
+    n += keep;
+  }
+  p.x_mm.resize(n), p.z_mm.resize(n);
+  if (increasing) return;
+  std::vector<std::pair<float, float>> points;
+  for (std::size_t j = 0; j < n; ++j) points.emplace_back(p.x_mm[j], p.z_mm[j]);
+  std::sort(points.begin(), points.end());
+  for (std::size_t j = 0; j < n; ++j) p.x_mm[j] = points[j].first, p.z_mm[j] = points[j].second;
+}
+
+}  // namespace
+
+// A profile's valid points moved into the bed frame, increasing in x (a
+// sensor's usually are: sorted only where they are not).
+StoredProfile InBedFrame(const ProfileView& v, double path, double frame_x, double frame_z, SurfaceBelow& below) {
+  StoredProfile p;
+  p.path_mm = path;
+  p.x_mm = below.Spare(), p.z_mm = below.Spare();
+  const std::size_t points = v.x_mm.size();
+  p.x_mm.resize(points), p.z_mm.resize(points);
+  // Every point moved; a sensor's complete profile (every point finite, x
+  // increasing) is then taken as it is, checked without branches.
+  int off =
+      ActivePartKernel().to_bed(v.x_mm.data(), v.z_mm.data(), points, frame_x, frame_z, p.x_mm.data(), p.z_mm.data());
+  for (std::size_t j = 1; j < points; ++j) off |= !(p.x_mm[j - 1] < p.x_mm[j]);
+  if (off) KeepValid(p);
+  p.spacing_mm = PointSpacingMm(p.x_mm);
+  return p;
 }
 
 }  // namespace bead::part

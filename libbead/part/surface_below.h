@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "libbead/core/profile_view.h"
 #include "libbead/part/part_kernel.h"
 
 namespace bead::part {
@@ -253,6 +254,12 @@ class SurfaceBelow {
   std::vector<std::vector<float>> spare_;        // buffers of the layer before's profiles
   mutable std::shared_ptr<SurfaceRow> blended_;  // At's last blend (one caller at a time)
 };
+
+// A profile's valid points moved into the bed frame (x + frame_x, z +
+// frame_z), increasing in x (a sensor's usually are: sorted only where they
+// are not), at `path` along the toolpath, with their spacing; in buffers
+// the layer before held (SurfaceBelow::Spare).
+StoredProfile InBedFrame(const ProfileView& v, double path, double frame_x, double frame_z, SurfaceBelow& below);
 
 // The values z at increasing points x placed on the grid x[0] + k dx of n
 // values, NaN where no point lies (out, resized to n): false where a point

@@ -16,9 +16,12 @@ namespace {
 
 // The bead's feet: from the run [lo, hi] outward while the height stays
 // above the noise floor and the points are joined; then one point further
-// on each side, the bare surface that brackets the edge. False when a side
-// has no such point (the edge is not seen).
-bool ExtendToFeet(const Heights& pts, float floor_mm, float max_gap, std::size_t& lo, std::size_t& hi) {
+// on each side, the bare surface that brackets the edge; and, where
+// `max_rise` is finite, while the height outward does not rise over the one
+// before by more than it (over a part's layer below, a gain rising again
+// is that layer's wall, not the bead's foot: BeadOptions::max_foot_rise_mm).
+// False when a side has no such point (the edge is not seen).
+bool ExtendToFeet(const Heights& pts, float floor_mm, float max_gap, float max_rise, std::size_t& lo, std::size_t& hi) {
   const float* h = pts.h;
   const float* s = pts.s;
   const std::size_t n = pts.n;
@@ -27,22 +30,24 @@ bool ExtendToFeet(const Heights& pts, float floor_mm, float max_gap, std::size_t
     // Eight points at a time, the steps counted from the mask's bits (a
     // foot is a few points: no loop over them).
     using namespace vec;
-    const V8 vf = Splat(floor_mm), vg = Splat(max_gap);
+    const V8 vf = Splat(floor_mm), vg = Splat(max_gap), vr = Splat(max_rise);
     while (lo >= 9) {  // points lo - 8 .. lo - 1, each joined to the next
-      const int bits = Bits((Load(h + lo - 8) > vf) & (Load(s + lo - 7) - Load(s + lo - 8) <= vg));
+      const int bits = Bits((Load(h + lo - 8) > vf) & (Load(s + lo - 7) - Load(s + lo - 8) <= vg) &
+                            (Load(h + lo - 8) <= Load(h + lo - 7) + vr));
       const int steps = __builtin_clz(~(static_cast<uint32_t>(bits) << 24));  // set bits down from lane 7
       lo -= static_cast<std::size_t>(steps);
       if (steps < 8) break;
     }
     while (hi + 9 < n) {  // points hi + 1 .. hi + 8, each joined to the one before
-      const int bits = Bits((Load(h + hi + 1) > vf) & (Load(s + hi + 1) - Load(s + hi) <= vg));
+      const int bits = Bits((Load(h + hi + 1) > vf) & (Load(s + hi + 1) - Load(s + hi) <= vg) &
+                            (Load(h + hi + 1) <= Load(h + hi) + vr));
       const int steps = __builtin_ctz(~static_cast<uint32_t>(bits));  // set bits up from lane 0
       hi += static_cast<std::size_t>(steps);
       if (steps < 8) break;
     }
   }
-  while (lo > 0 && joined(lo - 1, lo) && h[lo - 1] > floor_mm) --lo;
-  while (hi + 1 < n && joined(hi, hi + 1) && h[hi + 1] > floor_mm) ++hi;
+  while (lo > 0 && joined(lo - 1, lo) && h[lo - 1] > floor_mm && h[lo - 1] <= h[lo] + max_rise) --lo;
+  while (hi + 1 < n && joined(hi, hi + 1) && h[hi + 1] > floor_mm && h[hi + 1] <= h[hi] + max_rise) ++hi;
   if (lo == 0 || !joined(lo - 1, lo) || hi + 1 >= n || !joined(hi, hi + 1)) return false;
   --lo;
   ++hi;
@@ -233,7 +238,7 @@ BeadGeometry MeasureBead(const PointSet& p, const ReferenceLine& line, const Ref
   const auto floor_mm =
       static_cast<float>(std::max(options.edge_floor_sigmas * line.residual_rms_mm, options.min_edge_floor_mm));
   std::size_t lo = run.first, hi = run.last;
-  if (!ExtendToFeet(pts, floor_mm, max_gap, lo, hi)) {
+  if (!ExtendToFeet(pts, floor_mm, max_gap, static_cast<float>(options.max_foot_rise_mm), lo, hi)) {
     g.status = ProfileStatus::kBeadEdgeNotSeen;
     return g;
   }

@@ -59,6 +59,11 @@ struct BeadOptions {
   double min_edge_floor_mm = 0.001;
   // ... and this many reference-line residual RMS.
   double edge_floor_sigmas = 2.0;
+  // A foot is carried outward only while the height does not rise over the
+  // point before by more than this, mm (infinite: the wheel, whose feet
+  // run over a bare line; a part's over the layer below, whose wall beside
+  // the bead's foot makes the gain rise again: part/part_profile_processor.h).
+  double max_foot_rise_mm = std::numeric_limits<double>::infinity();
   // Fewest points above threshold that make a bead.
   int min_bead_points = 3;
   // Fewest valid points a profile needs at all.

@@ -1,0 +1,131 @@
+// PartProfileProcessor: a part's profiles measured as they arrive, for
+// acquisition software (as ProfileProcessor is the wheel's). A bead on the
+// wheel is measured against the line through the bare surface either side;
+// a part's against the surface it was laid on, the layer below at the same
+// place along the path (part/surface_below.h). Both are the same
+// measurement: the profile's heights over that surface go through the
+// wheel's own kernel (profile/kernel.h) against the line z = 0, so the
+// threshold, the spikes, the gaps bridged, the feet and the sub-sample
+// edges are the wheel's. What a part adds is the surface below: kept from
+// the layer before as its profiles pass (memory: a layer or two), blended
+// between its two profiles nearest along the path, and registered
+// laterally (the passes' shift, never assumed zero) by Gauss-Newton steps
+// on the truncated cost the offline registration uses (part/registration.h:
+// the points whose gain is under the detection threshold, where the two
+// surfaces agree), warm from the pass's last shift.
+//
+// What it leaves to the offline measurement (bead measure, part/
+// measure_part.h): the groove a bead hides under its overhangs (the
+// corrected area, a per-row fit of the bead's outline over the layer's
+// pooled shape), the registration's wide search and its hidden sigma, and
+// the checks that the two scans' frames agree. Its area is the area seen,
+// as the wheel's per-profile area is before the occlusion correction.
+//
+//   bead::part::PartProfileProcessor processor(rig, {}, 800);
+//   for (...) {
+//     const auto& g = processor.Process(view, {layer, path_mm, frame_x_mm, frame_z_mm});
+//     if (g.bead.status == bead::ProfileStatus::kValid) ... g.bead.area_mm2 ...
+//   }
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <string>
+
+#include "libbead/core/profile_view.h"
+#include "libbead/core/rig.h"
+#include "libbead/part/grid_costs.h"
+#include "libbead/part/surface_below.h"
+#include "libbead/profile/profile_processor.h"
+
+namespace bead::part {
+
+struct PartProfileOptions {
+  ProfileOptions profile;  // layer 0's bed line and every layer's bead (threshold, spikes, gaps, feet)
+  SurfaceBelowOptions below;
+  // Gauss-Newton steps on the shift at most, per profile; the steps stop
+  // when one moves it less than `shift_tolerance` point spacings.
+  int shift_steps = 4;
+  double shift_tolerance = 0.02;
+  // A shift whose sigma exceeds this is not constrained (the layer below
+  // has no slope where the surfaces agree): the pass's last is kept, mm.
+  double max_shift_sigma_mm = 0.05;
+};
+
+// Where a profile lies on the part (format 1.1's /profiles/layer, path_mm,
+// frame_x_mm, frame_z_mm).
+struct PartPlace {
+  int64_t layer = 0;
+  double path_mm = 0.0, frame_x_mm = 0.0, frame_z_mm = 0.0;
+};
+
+struct PartProfileGeometry {
+  static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  PartPlace place;
+  // In the bed frame: the bead's heights over the surface below (layer 0:
+  // over the bed's reference line, the wheel's geometry moved by the frame);
+  // its height the gain at the new surface's crest (as bead measure's),
+  // its centre the area's centroid (bead measure's: the top's middle).
+  // Its reference.residual_rms_mm: the noise the threshold was set on (a
+  // gain's: the new point's and the surface below's).
+  BeadGeometry bead;
+  // Why there is no bead to look for, in words (empty: there is one): the
+  // layer below not scanned there, or (layer 0) the bed's reference areas.
+  std::string no_surface;
+  // The layer below was moved by shift_mm (bed frame x) to agree with the
+  // new profile outside its bead; its sigma from the points' noise and the
+  // layer below's slope where they agree. Not constrained: the pass's last
+  // shift kept (0 before one is found).
+  double shift_mm = 0.0, shift_sigma_mm = kNaN;
+  bool shift_constrained = false;
+  int shift_steps = 0;  // Gauss-Newton steps taken
+};
+
+class PartProfileProcessor {
+ public:
+  explicit PartProfileProcessor(const Rig& rig, const PartProfileOptions& options = {}, std::size_t max_points = 2048);
+
+  // One profile, in the order they were scanned (a layer needs the one
+  // before it); the result stays valid until the next call.
+  const PartProfileGeometry& Process(const ProfileView& view, const PartPlace& place);
+
+ private:
+  void BeginLayer(int64_t layer);
+  // The new profile's points in the bed frame (bed_), kept for the next layer.
+  void ToBed(const ProfileView& view, const PartPlace& place);
+  void OnBed(const ProfileView& view);
+  void OverBelow(const SurfaceGrid& below);
+  // The heights over the surface below moved by s (heights_), measured.
+  void MeasureAt(const SurfaceGrid& below, double s, double noise);
+  // Gauss-Newton steps on the shift from `s`; false where the layer below
+  // does not constrain it.
+  bool Register(const SurfaceGrid& below, double noise, double& s);
+  // The gain at the new surface's crest (the highest median of three of
+  // its points between the bead's edges), as the offline height is.
+  double GainAtCrest() const;
+
+  Rig rig_;
+  PartProfileOptions options_;
+  ProfileProcessor bed_line_;
+  ProfileWorkspace workspace_;
+  const ProfileKernel* kernel_;
+  SurfaceBelow below_;
+  PointsOnGrid on_grid_;
+  StoredProfile bed_;
+  std::vector<float> below_z_, heights_;
+  PartProfileGeometry result_;
+  // The pass's last constrained shift (NaN: none yet) and its gains'
+  // noise (NaN: not yet estimated this pass).
+  double pass_shift_ = kNaN, pass_noise_ = kNaN;
+  // The pass's first search's hidden sigma (part/registration.h): a floor
+  // under every shift's sigma in the pass.
+  double pass_hidden_ = 0.0;
+  // Where the last wide search pointed, and how many the pass has left.
+  double pass_loose_ = 0.0;
+  static constexpr int kWideSearches = 2;
+  int wide_searches_ = kWideSearches;
+  static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+};
+
+}  // namespace bead::part
