@@ -13,6 +13,7 @@
 #include "libbead/io/run_archive.h"
 #include "libbead/part/measure_part.h"
 #include "libbead/part/part_flow.h"
+#include "libbead/part/part_profile_processor.h"
 #include "python/numpy_owned.h"
 
 namespace py = pybind11;
@@ -104,6 +105,33 @@ py::dict PartFlow(const std::string& rig_path, const std::string& scan_path, uns
   return out;
 }
 
+// One profile's geometry as the processor gives it (bed frame).
+py::dict ProcessProfile(part::PartProfileProcessor& p,
+                        const py::array_t<float, py::array::c_style | py::array::forcecast>& x,
+                        const py::array_t<float, py::array::c_style | py::array::forcecast>& z, int64_t layer,
+                        double path_mm, double frame_x_mm, double frame_z_mm) {
+  if (x.ndim() != 1 || z.ndim() != 1 || x.size() != z.size())
+    throw py::value_error("x_mm and z_mm must be 1-D arrays of one length (a profile's points, mm)");
+  const ProfileView view{{x.data(), static_cast<std::size_t>(x.size())},
+                         {z.data(), static_cast<std::size_t>(z.size())}};
+  const part::PartProfileGeometry& g = p.Process(view, {layer, path_mm, frame_x_mm, frame_z_mm});
+  const bool valid = g.bead.status == ProfileStatus::kValid && g.no_surface.empty();
+  py::dict out;
+  out["valid"] = valid;
+  out["status"] = g.no_surface.empty() ? std::string(StatusName(g.bead.status)) : std::string("no_surface_below");
+  out["why"] = g.no_surface;
+  const double nan = std::nan("");
+  out["area_mm2"] = valid ? g.bead.area_mm2 : nan;
+  out["area_sigma_mm2"] = valid ? g.bead.area_sigma_mm2 : nan;
+  out["width_mm"] = valid ? g.bead.width_mm : nan;
+  out["height_mm"] = valid ? g.bead.height_mm : nan;
+  out["center_x_mm"] = valid ? g.bead.center_x_mm : nan;
+  out["shift_mm"] = layer > 0 ? g.shift_mm : nan;
+  out["shift_sigma_mm"] = g.shift_sigma_mm;
+  out["shift_found"] = g.shift_constrained;
+  return out;
+}
+
 }  // namespace
 
 // A part scan's places and its log's path, added to read_run's dict.
@@ -125,6 +153,21 @@ void AddPartLogArrays(AcquisitionLog& l, py::dict& log) {
 }
 
 void AddPart(py::module_& m) {
+  py::class_<part::PartProfileProcessor>(m, "PartProfileProcessor",
+                                         "A part's profiles measured as they arrive (acquisition software), each "
+                                         "against the layer below kept as it passed: the area seen, as the wheel's "
+                                         "per-profile area (bead measure adds the groove a bead hides).")
+      .def(py::init([](const std::string& rig, std::size_t max_points) {
+             return part::PartProfileProcessor(PartRigWarning(rig), {}, max_points);
+           }),
+           "rig"_a, "max_points"_a = 2048, "rig: a rig file with the reference areas (layer 0's bed line).")
+      .def("process", &ProcessProfile, "x_mm"_a, "z_mm"_a, "layer"_a, "path_mm"_a, "frame_x_mm"_a = 0.0,
+           "frame_z_mm"_a = 0.0,
+           "One profile, in scan order (a layer needs the one before): its points in the profiler's frame (mm) and "
+           "where it lies (format 1.1's layer, path_mm, frame_x_mm, frame_z_mm). Returns a dict: valid, status, "
+           "why (words, where the layer below is not known there), area_mm2, area_sigma_mm2, width_mm, height_mm, "
+           "center_x_mm (bed frame), shift_mm, shift_sigma_mm, shift_found (the layer below's lateral "
+           "registration).");
   m.def("measure_part", &MeasurePartColumns, "rig"_a, "scan"_a, "threads"_a = 0,
         "Measure a part scan (format 1.1, kind = \"part\") layer on layer, as `bead measure` does on one: each "
         "profile against the layer below at its place along the path (layer 0 against the bed), the layer below "

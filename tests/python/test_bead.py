@@ -205,6 +205,31 @@ def test_a_part_scan_is_read_measured_and_flowed_as_the_commands_do(tmp_path):
     assert sorted(f["layer_volume_mm3"]) == [0, 1, 2]
 
 
+def test_a_part_profile_is_measured_as_it_arrives(tmp_path):
+    # The twin's wall fed profile by profile, as acquisition software would:
+    # each layer's area seen against the twin's truth within the walls'
+    # bound (0.15 mm^2 rms: each of four walls within a 0.05 mm spacing at
+    # up to 1.5 mm high, tests/part/part_wall_test.cc), layer 0 on the bed.
+    config = tmp_path / "wall.yaml"
+    config.write_text("seed: 3\npart:\n  layers: 3\n  length_mm: 20\n")
+    run_cli("simulate", str(config), "-o", str(tmp_path / "sim"))
+    d = bead.read_run(str(tmp_path / "sim" / "part.h5"))
+    truth = read_csv(tmp_path / "sim" / "truth.csv")
+    p = bead.PartProfileProcessor(str(tmp_path / "sim" / "rig.yaml"), max_points=d["z_mm"].shape[1])
+    errors = []
+    for k in range(len(d["t_s"])):
+        x = d["x_mm"] if d["x_mm"].ndim == 1 else d["x_mm"][k]  # one x for every profile, or each its own
+        g = p.process(x, d["z_mm"][k], int(d["layer"][k]), float(d["path_mm"][k]),
+                      float(d["frame_x_mm"][k]), float(d["frame_z_mm"][k]))
+        assert g["valid"], (k, g["status"], g["why"])
+        errors.append(g["area_mm2"] - float(truth[k]["visible_area_mm2"]))
+        if d["layer"][k] > 0:
+            assert np.isfinite(g["shift_mm"])
+    assert np.sqrt(np.mean(np.square(errors))) < 0.15
+    with pytest.raises(ValueError, match="1-D arrays of one length"):
+        p.process(d["z_mm"][0], d["z_mm"][0][:5], 0, 0.0)
+
+
 def test_identify_refuses_a_model_of_the_datas_opposite_sign():
     # The heater step searched for delays up to 10 s falls in a basin whose
     # gain has the data's opposite sign (README, the step-test chain): the
