@@ -222,6 +222,38 @@ bool ToBed(const float* x, const float* z, std::size_t n, double frame_x, double
   return off != 0;
 }
 
+// Settle's two rules for a flank of the layer below (part/registration.cc
+// FlankPoints), eight points a register: where |z - under| <= tau, the
+// rise to the next point beyond steep times the step (first), or not, but
+// beyond run times it and again to the point after, the same way (second).
+template <class T>
+inline void AddFlank(T d, T first, T second, T step, T next, float tau, float steep, float run, Sums<T>& s) {
+  const T zero = Broadcast<T>(0.0f), one = Broadcast<T>(1.0f);
+  const T a = first < zero ? -first : first, b = second < zero ? -second : second;
+  const auto agree = (d <= Broadcast<T>(tau)) & (d >= Broadcast<T>(-tau));
+  const auto big = a > Broadcast<T>(steep) * step;
+  s.first += (agree & big) ? one : zero;
+  s.second += (agree & !big & (a > Broadcast<T>(run) * step) & (first * second > zero) & (b > Broadcast<T>(run) * next))
+                  ? one
+                  : zero;
+}
+
+GridSums Flanks(const float* x, const float* z, const float* under, std::size_t n, float tau, float steep, float run) {
+  Sums<V8> wide;
+  std::size_t i = 0;
+  using vec::Load;
+  for (; i + 10 <= n; i += 8) {
+    const V8 u0 = Load(under + i), u1 = Load(under + i + 1), u2 = Load(under + i + 2);
+    const V8 x0 = Load(x + i), x1 = Load(x + i + 1), x2 = Load(x + i + 2);
+    AddFlank<V8>(Load(z + i) - u0, u1 - u0, u2 - u1, x1 - x0, x2 - x1, tau, steep, run, wide);
+  }
+  Sums<float> narrow;
+  for (; i + 2 < n; ++i)
+    AddFlank<float>(z[i] - under[i], under[i + 1] - under[i], under[i + 2] - under[i + 1], x[i + 1] - x[i],
+                    x[i + 2] - x[i + 1], tau, steep, run, narrow);
+  return Total(wide, narrow);
+}
+
 #define BEAD_STRINGIFY_(x) #x
 #define BEAD_STRINGIFY(x) BEAD_STRINGIFY_(x)
 constexpr PartKernel kPartKernel{BEAD_STRINGIFY(BEAD_KERNEL),
@@ -235,7 +267,8 @@ constexpr PartKernel kPartKernel{BEAD_STRINGIFY(BEAD_KERNEL),
                                  Ellipse,
                                  ToBed,
                                  Top,
-                                 RowsAtPlaces};
+                                 RowsAtPlaces,
+                                 Flanks};
 
 }  // namespace
 

@@ -125,6 +125,12 @@ struct PartKernel {
   // The surface below at x[0, n) to out (NaN where not known), four places
   // a register.
   void (*rows_at)(const double* x, std::size_t n, const RowsAt& rows, double* out);
+  // Over points [0, n - 2) of x, z and the surface below there (under),
+  // where |z - under| <= tau: those whose rise to the next point exceeds
+  // steep times the step (first); of the rest, those whose rise exceeds run
+  // times the step and again to the point after, the same way (second).
+  GridSums (*flanks)(const float* x, const float* z, const float* under, std::size_t n, float tau, float steep,
+                     float run);
 };
 
 // The build this processor runs.

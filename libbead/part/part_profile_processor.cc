@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "libbead/core/median.h"
 #include "libbead/part/added_bead.h"
 #include "libbead/part/registration.h"
 #include "libbead/profile/kernel.h"
+#include "libbead/part/sensor_rows.h"
 
 namespace bead::part {
 namespace {
@@ -25,15 +27,16 @@ ReferenceLine FlatLine(double noise_mm, int points) {
   line.ok = true;
   line.intercept_mm = 0.0, line.slope = 0.0;
   line.residual_rms_mm = noise_mm;
-  line.points_used = line.points_available = std::max(points, 1);
+  line.points_used = std::max(points, 1);  // (in the sigma: the line is exact, no fit)
+  line.points_available = 0;               // (no reference areas: the heights alone must hold enough)
   return line;
 }
 
-void MoveByFrame(BeadGeometry& g, double frame_x) {
+}  // namespace
+
+void PartProfileProcessor::MoveByFrame(BeadGeometry& g, double frame_x) {
   g.center_x_mm += frame_x, g.left_edge_x_mm += frame_x, g.right_edge_x_mm += frame_x;
 }
-
-}  // namespace
 
 PartProfileProcessor::PartProfileProcessor(const Rig& rig, const PartProfileOptions& options, std::size_t max_points)
     : rig_(rig),
@@ -41,13 +44,48 @@ PartProfileProcessor::PartProfileProcessor(const Rig& rig, const PartProfileOpti
       bed_line_(rig.reference_left, rig.reference_right, options.profile, max_points),
       workspace_(max_points),
       kernel_(&ActiveKernel()),
-      below_(options.below) {
+      below_(options.below),
+      rows_(options.below),
+      part_kernel_(&ActivePartKernel()) {
   below_z_.reserve(max_points), heights_.reserve(max_points);
 }
 
-void PartProfileProcessor::BeginLayer(int64_t layer) {
-  if (layer == below_.layer()) return;
-  below_.BeginLayer(layer);
+bool PartProfileProcessor::OnTheGrid(std::span<const float> x, double& x0, double& dx) {
+  // A sensor's x is the same profile after profile: the last one checked
+  // is compared (memcmp, far cheaper than the check), not checked again.
+  if (x.size() == grid_x_.size() && !x.empty() && std::memcmp(x.data(), grid_x_.data(), x.size_bytes()) == 0) {
+    x0 = grid_x0_, dx = grid_dx_;
+    return true;
+  }
+  if (!UniformGrid(x, x0, dx)) return false;
+  grid_x_.assign(x.begin(), x.end()), grid_x0_ = x0, grid_dx_ = dx;
+  return true;
+}
+
+void PartProfileProcessor::ToGeneralStore() {
+  lean_ = false;
+  if (rows_.layer() < 0) return;
+  const auto stored = [&](const SensorRows::Row& row) {
+    const float* z = row.z.data();
+    StoredProfile p;
+    p.path_mm = row.path_mm, p.spacing_mm = rows_.dx();
+    for (std::size_t k = 0; k < row.z.size(); ++k) {
+      if (!std::isfinite(z[k])) continue;
+      p.x_mm.push_back(static_cast<float>(row.x0_mm + static_cast<double>(k) * rows_.dx()));
+      p.z_mm.push_back(z[k]);
+    }
+    return p;
+  };
+  if (rows_.below_known()) {
+    below_.BeginLayer(rows_.layer() - 1);
+    for (const SensorRows::Row& row : rows_.below_rows()) below_.Keep(stored(row));
+  }
+  below_.BeginLayer(rows_.layer());
+  for (const SensorRows::Row& row : rows_.current_rows()) below_.Keep(stored(row));
+}
+
+void PartProfileProcessor::StartPass(int64_t layer) {
+  layer_ = layer;
   pass_shift_ = kNaN, pass_noise_ = kNaN, pass_hidden_ = 0.0, pass_loose_ = 0.0;
   wide_searches_ = kWideSearches;
 }
@@ -55,7 +93,18 @@ void PartProfileProcessor::BeginLayer(int64_t layer) {
 const PartProfileGeometry& PartProfileProcessor::Process(const ProfileView& view, const PartPlace& place) {
   result_ = PartProfileGeometry{};
   result_.place = place;
-  BeginLayer(place.layer);
+  if (place.layer != layer_) StartPass(place.layer);
+  if (lean_) {
+    double x0 = 0.0, dx = 0.0;
+    const bool on_grid = OnTheGrid(view.x_mm, x0, dx) && view.x_mm.size() <= kMaxGridPoints &&
+                         (rows_.dx() == 0.0 || std::abs(dx - rows_.dx()) <= 1e-6 * dx);
+    if (on_grid) {
+      OnSensorRows(view, place, x0, dx);
+      return result_;
+    }
+    ToGeneralStore();
+  }
+  below_.BeginLayer(place.layer);
   bed_ = InBedFrame(view, place.path_mm, place.frame_x_mm, place.frame_z_mm, below_);
   if (place.layer == 0) {
     OnBed(view);
@@ -178,8 +227,13 @@ void PartProfileProcessor::MeasureAt(const SurfaceGrid& below, double s, double 
     const float d = bed_.z_mm[i] - below_z_[i];
     heights_[i] = d < 0.0f ? 0.0f : d;
   }
+  MeasureHeights(bed_.x_mm, bed_.z_mm, noise);
+}
+
+void PartProfileProcessor::MeasureHeights(std::span<const float> x, std::span<const float> z, double noise) {
+  const std::size_t n = x.size();
   if (n > workspace_.capacity()) workspace_.Reserve(n);
-  const PointSet points{bed_.x_mm.data(), heights_.data(), n};
+  const PointSet points{x.data(), heights_.data(), n};
   // No spikes bridged in the gains: a wall of the layer below between two
   // points makes a one-point gain that is the surface, not a reflection
   // (a bead overhanging the layer below's wall by a spacing lost a third of
@@ -192,11 +246,10 @@ void PartProfileProcessor::MeasureAt(const SurfaceGrid& below, double s, double 
   bead.max_foot_rise_mm = 6.0 * noise / std::sqrt(2.0);
   result_.bead =
       kernel_->measure(points, FlatLine(noise, static_cast<int>(n)), kNowhereLeft, kNowhereRight, bead, workspace_);
-  if (result_.bead.status == ProfileStatus::kValid) result_.bead.height_mm = GainAtCrest();
+  if (result_.bead.status == ProfileStatus::kValid) result_.bead.height_mm = GainAtCrest(x, z);
 }
 
-double PartProfileProcessor::GainAtCrest() const {
-  const std::span<const float> x = bed_.x_mm, z = bed_.z_mm;
+double PartProfileProcessor::GainAtCrest(std::span<const float> x, std::span<const float> z) const {
   const auto first =
       static_cast<std::size_t>(std::lower_bound(x.begin(), x.end(), result_.bead.left_edge_x_mm) - x.begin());
   const auto last =

@@ -7,8 +7,10 @@
 // wheel's own kernel (profile/kernel.h) against the line z = 0, so the
 // threshold, the spikes, the gaps bridged, the feet and the sub-sample
 // edges are the wheel's. What a part adds is the surface below: kept from
-// the layer before as its profiles pass (memory: a layer or two), blended
-// between its two profiles nearest along the path, and registered
+// the layer before as its profiles pass (memory: a layer or two: a sensor's
+// rows as they are where its points lie on one grid, part/sensor_rows.h;
+// otherwise the general store), blended between its two profiles nearest
+// along the path, and registered
 // laterally (the passes' shift, never assumed zero) by Gauss-Newton steps
 // on the truncated cost the offline registration uses (part/registration.h:
 // the points whose gain is under the detection threshold, where the two
@@ -31,11 +33,13 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <string>
 
 #include "libbead/core/profile_view.h"
 #include "libbead/core/rig.h"
 #include "libbead/part/grid_costs.h"
+#include "libbead/part/sensor_rows.h"
 #include "libbead/part/surface_below.h"
 #include "libbead/profile/profile_processor.h"
 
@@ -47,7 +51,7 @@ struct PartProfileOptions {
   // Gauss-Newton steps on the shift at most, per profile; the steps stop
   // when one moves it less than `shift_tolerance` point spacings.
   int shift_steps = 4;
-  double shift_tolerance = 0.02;
+  double shift_tolerance = 0.25;
   // A shift whose sigma exceeds this is not constrained (the layer below
   // has no slope where the surfaces agree): the pass's last is kept, mm.
   double max_shift_sigma_mm = 0.05;
@@ -91,9 +95,29 @@ class PartProfileProcessor {
   const PartProfileGeometry& Process(const ProfileView& view, const PartPlace& place);
 
  private:
-  void BeginLayer(int64_t layer);
-  // The new profile's points in the bed frame (bed_), kept for the next layer.
-  void ToBed(const ProfileView& view, const PartPlace& place);
+  // A new layer: the pass's shift, noise and searches start again.
+  void StartPass(int64_t layer);
+  // A profile on the sensor's grid (x0 + k dx in its own frame), its
+  // layer below read from the sensor's rows (part_profile_rows.cc).
+  void OnSensorRows(const ProfileView& view, const PartPlace& place, double x0, double dx);
+  void OverRows(const ProfileView& view, const SensorRows::Pair& below, const float* z_bed, double x0_bed, double dx);
+  // The rows as the part kernel reads them at shift s, and the indices of
+  // the new points inside every row, [begin, end).
+  GridRows RowsAt(const SensorRows::Pair& below, double x0_bed, double dx, std::size_t n, double s,
+                  std::ptrdiff_t& begin, std::ptrdiff_t& end) const;
+  // below_z_ and heights_ at shift s (NaN outside every row).
+  void GainsOnRows(const SensorRows::Pair& below, const float* z_bed, double x0_bed, double dx, std::size_t n,
+                   double s);
+  // The pass's first profiles: the offline registration's wide search.
+  void SearchWide(const SensorRows::Pair& below, const float* z_bed, double x0_bed, double dx, std::size_t n,
+                  double noise);
+  // Whether x is a uniform grid (part/sensor_rows.h UniformGrid), and its
+  // start and spacing.
+  bool OnTheGrid(std::span<const float> x, double& x0, double& dx);
+  // A profile on no common grid: the rows kept so far handed to the
+  // general store, which every later profile uses.
+  void ToGeneralStore();
+  // The general store's path (points on any grid).
   void OnBed(const ProfileView& view);
   void OverBelow(const SurfaceGrid& below);
   // The heights over the surface below moved by s (heights_), measured.
@@ -101,9 +125,14 @@ class PartProfileProcessor {
   // Gauss-Newton steps on the shift from `s`; false where the layer below
   // does not constrain it.
   bool Register(const SurfaceGrid& below, double noise, double& s);
+  // heights_ at the points x (z: the new surface there) through the
+  // wheel's kernel, the gains' noise `noise`.
+  void MeasureHeights(std::span<const float> x, std::span<const float> z, double noise);
+  // The bead's places moved from the profiler's frame to the bed's.
+  static void MoveByFrame(BeadGeometry& g, double frame_x);
   // The gain at the new surface's crest (the highest median of three of
   // its points between the bead's edges), as the offline height is.
-  double GainAtCrest() const;
+  double GainAtCrest(std::span<const float> x, std::span<const float> z) const;
 
   Rig rig_;
   PartProfileOptions options_;
@@ -111,6 +140,12 @@ class PartProfileProcessor {
   ProfileWorkspace workspace_;
   const ProfileKernel* kernel_;
   SurfaceBelow below_;
+  SensorRows rows_;
+  bool lean_ = true;           // the sensor's rows in use (false: the general store, for good)
+  std::vector<float> grid_x_;  // the last x found on a uniform grid, its start and spacing
+  double grid_x0_ = 0.0, grid_dx_ = 0.0;
+  int64_t layer_ = -1;
+  const PartKernel* part_kernel_;
   PointsOnGrid on_grid_;
   StoredProfile bed_;
   std::vector<float> below_z_, heights_;

@@ -91,6 +91,20 @@ constexpr double kFeatureSigmas = 4.5, kRunNoises = 3.0;
 // rises by over `run` (a slope) to the next point and again to the one
 // after, the same way, but not by over `single` to the next (Settle's
 // single steep points, counted already).
+// RunFeatures' count on the surface below at the points (`under`, NaN
+// where unknown).
+int RunFeaturesAt(std::span<const float> x, std::span<const float> z, std::span<const float> under, double tau,
+                  double run, double single) {
+  const auto slope = [&](std::size_t i) { return (under[i + 1] - under[i]) / (x[i + 1] - x[i]); };
+  int features = 0;
+  for (std::size_t i = 0; i + 2 < x.size(); ++i) {
+    if (!(std::abs(z[i] - under[i]) <= tau)) continue;
+    const double first = slope(i), second = slope(i + 1);
+    features += std::abs(first) > run && std::abs(first) <= single && first * second > 0.0 && std::abs(second) > run;
+  }
+  return features;
+}
+
 int RunFeatures(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, double s, double tau,
                 double run, double single, const PointsOnGrid* grid) {
   thread_local std::vector<float> under;
@@ -100,14 +114,7 @@ int RunFeatures(std::span<const float> x, std::span<const float> z, const Surfac
     under.resize(x.size());
     for (std::size_t i = 0; i < x.size(); ++i) under[i] = static_cast<float>(below.At(x[i] - s));
   }
-  const auto slope = [&](std::size_t i) { return (under[i + 1] - under[i]) / (x[i + 1] - x[i]); };
-  int features = 0;
-  for (std::size_t i = 0; i + 2 < x.size(); ++i) {
-    if (!(std::abs(z[i] - under[i]) <= tau)) continue;
-    const double first = slope(i), second = slope(i + 1);
-    features += std::abs(first) > run && std::abs(first) <= single && first * second > 0.0 && std::abs(second) > run;
-  }
-  return features;
+  return RunFeaturesAt(x, z, under, tau, run, single);
 }
 
 void Settle(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, const RegistrationScale& k,
@@ -335,6 +342,24 @@ void SettleShift(std::span<const float> x, std::span<const float> z, const Surfa
                  const RegistrationScale& scale, const AddedBeadOptions& options, const PointsOnGrid* grid,
                  Registration& r) {
   Settle(x, z, below, scale, options, grid, r);
+}
+
+int FlankPoints(std::span<const float> x, std::span<const float> z, std::span<const float> under,
+                const RegistrationScale& k, int enough) {
+  const double noise_slope = k.noise / k.spacing, feature_slope = kFeatureSigmas * std::sqrt(2.0) * noise_slope;
+  // Both of Settle's rules in one pass (part/part_kernel.h flanks), in
+  // floats, each rise to the next point against what a slope gives over
+  // that spacing; the last point by the first rule alone.
+  const auto tau = static_cast<float>(k.tau), steep = static_cast<float>(feature_slope);
+  const GridSums counts = ActivePartKernel().flanks(x.data(), z.data(), under.data(), x.size(), tau, steep,
+                                                    static_cast<float>(kRunNoises * noise_slope));
+  auto single = static_cast<int>(counts.first), runs = static_cast<int>(counts.second);
+  if (x.size() >= 2) {
+    const std::size_t i = x.size() - 2;
+    const float d = z[i] - under[i];
+    single += (d <= tau && d >= -tau) && std::abs(under[i + 1] - under[i]) > steep * (x[i + 1] - x[i]);
+  }
+  return single < enough ? single + runs : single;
 }
 
 }  // namespace bead::part

@@ -82,4 +82,12 @@ void SettleShift(std::span<const float> x, std::span<const float> z, const Surfa
                  const RegistrationScale& scale, const AddedBeadOptions& options, const PointsOnGrid* grid,
                  Registration& r);
 
+// The points where the new profile (x, z) agrees with the surface below
+// at them (`under`, NaN where unknown) on a flank of it, by Settle's rule
+// above (the rise to the next point over 4.5 noises' worth, or a run of
+// two over three), the second rule counted only where the first gives
+// fewer than `enough`.
+int FlankPoints(std::span<const float> x, std::span<const float> z, std::span<const float> under,
+                const RegistrationScale& scale, int enough);
+
 }  // namespace bead::part

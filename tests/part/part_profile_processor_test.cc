@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <vector>
 
@@ -32,8 +33,10 @@ struct Errors {
   int valid = 0, layers_above = 0, shift_found = 0, shift_covered = 0;
 };
 
-// Every profile of the twin through one processor, in scan order.
-void Collect(const sim::PartTwin& twin, Errors& e) {
+// Every profile of the twin through one processor, in scan order; from
+// profile `reversed_from` on, each handed over right to left (points on no
+// uniform grid in increasing x: the general store from then on).
+void Collect(const sim::PartTwin& twin, Errors& e, std::size_t reversed_from = SIZE_MAX) {
   const ProfileBlock& b = twin.scan.profiles;
   const PartPlaces& places = *twin.scan.part;
   part::PartProfileProcessor processor(twin.rig, {}, b.points);
@@ -49,7 +52,13 @@ void Collect(const sim::PartTwin& twin, Errors& e) {
   });
   for (std::size_t k = 0; k < b.size(); ++k) {
     const part::PartPlace place{places.layer[k], places.path_mm[k], places.frame_x_mm[k], places.frame_z_mm[k]};
-    const part::PartProfileGeometry& g = processor.Process(b.view(k), place);
+    ProfileView view = b.view(k);
+    std::vector<float> rx, rz;
+    if (k >= reversed_from) {
+      rx.assign(view.x_mm.rbegin(), view.x_mm.rend()), rz.assign(view.z_mm.rbegin(), view.z_mm.rend());
+      view.x_mm = rx, view.z_mm = rz;
+    }
+    const part::PartProfileGeometry& g = processor.Process(view, place);
     const sim::PartTruthRow& t = twin.truth[k];
     e.layers_above += place.layer > 0;
     if (g.bead.status != ProfileStatus::kValid || !g.no_surface.empty()) continue;
@@ -101,9 +110,9 @@ TEST(PartProfileProcessor, EachLayerAsItArrivesIsMeasuredAgainstTheOneBelow) {
   ExpectTheWallsBounds(e, profiles, e.layers_above);
 }
 
-// The profiler's frame moving sideways along the path: the points lie on
-// another grid in the bed frame each profile, the surface below and the
-// registration sampled point by point.
+// The profiler's frame moving sideways along the path: each profile's
+// points lie on the sensor's grid moved by another amount in the bed frame,
+// each row of the layer below read at its own fraction of a spacing.
 TEST(PartProfileProcessor, AFrameMovingSidewaysOffTheGridMeasuresAsWell) {
   Errors e;
   int profiles = 0;
@@ -114,6 +123,25 @@ TEST(PartProfileProcessor, AFrameMovingSidewaysOffTheGridMeasuresAsWell) {
     const sim::PartTwin twin = sim::SimulatePartWall(config);
     profiles += static_cast<int>(twin.truth.size());
     Collect(twin, e);
+  }
+  ExpectTheWallsBounds(e, profiles, e.layers_above);
+}
+
+// A sensor that hands its points over right to left, from the middle of
+// the second layer on: the rows kept so far go to the general store, which
+// sorts each profile and reads the layer below point by point; the same
+// bounds hold across the change.
+TEST(PartProfileProcessor, PointsOnNoUniformGridMidLayerMeasureAsWell) {
+  Errors e;
+  int profiles = 0;
+  for (uint64_t seed : {1u, 2u}) {
+    sim::PartTwinConfig config;
+    config.seed = seed;
+    const sim::PartTwin twin = sim::SimulatePartWall(config);
+    profiles += static_cast<int>(twin.truth.size());
+    const std::vector<int64_t>& layer = twin.scan.part->layer;
+    const auto second = static_cast<std::size_t>(std::find(layer.begin(), layer.end(), 1) - layer.begin());
+    Collect(twin, e, second + 50);
   }
   ExpectTheWallsBounds(e, profiles, e.layers_above);
 }

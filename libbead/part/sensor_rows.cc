@@ -1,0 +1,84 @@
+#include "libbead/part/sensor_rows.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace bead::part {
+
+bool UniformGrid(std::span<const float> x, double& x0, double& dx) {
+  const std::size_t n = x.size();
+  if (n < 2) return false;
+  x0 = x[0];
+  dx = (static_cast<double>(x[n - 1]) - x0) / static_cast<double>(n - 1);
+  if (!(dx > 0.0) || !std::isfinite(dx)) return false;
+  // Each point's distance from its place, in floats (a hundredth of dx is
+  // far above a float's rounding of x at a profiler's range); counted, not
+  // branched on, so the loop runs eight points a register.
+  const auto x0f = static_cast<float>(x0), dxf = static_cast<float>(dx), tolerance = 0.01f * dxf;
+  int32_t off = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const float miss = x[k] - (x0f + static_cast<float>(static_cast<int32_t>(k)) * dxf);
+    off += !(miss <= tolerance && miss >= -tolerance);  // (a NaN is off)
+  }
+  return off == 0;
+}
+
+void SensorRows::BeginLayer(int64_t layer) {
+  if (layer == layer_) return;
+  below_known_ = layer == layer_ + 1 && !current_.empty();
+  for (Row& r : below_) spare_.push_back(std::move(r.z));
+  below_.clear();
+  std::swap(below_, current_);
+  if (!below_known_) {
+    for (Row& r : below_) spare_.push_back(std::move(r.z));
+    below_.clear();
+  }
+  std::sort(below_.begin(), below_.end(), [](const Row& a, const Row& b) { return a.path_mm < b.path_mm; });
+  layer_ = layer;
+}
+
+const float* SensorRows::Keep(double path_mm, double x0_bed_mm, double dx, std::span<const float> z, double frame_z) {
+  dx_ = dx;
+  Row row{path_mm, x0_bed_mm, {}};
+  if (!spare_.empty()) row.z = std::move(spare_.back()), spare_.pop_back();
+  row.z.resize(z.size());
+  float* out = row.z.data();
+  // In floats (the frame's offset rounded once more than bead measure's
+  // doubles do: a float's step, a micrometre's thousandth at a metre).
+  const auto f = static_cast<float>(frame_z);
+  for (std::size_t k = 0; k < z.size(); ++k) out[k] = z[k] + f;
+  current_.push_back(std::move(row));
+  return out;
+}
+
+bool SensorRows::At(double path, Pair& out, std::string* why) const {
+  if (!below_known_ || below_.empty()) {
+    if (why) *why = "layer " + std::to_string(layer_ - 1) + " is not in the scan";
+    return false;
+  }
+  // SurfaceBelow::Neighbours' choice and its refusal, on these rows.
+  const auto it =
+      std::lower_bound(below_.begin(), below_.end(), path, [](const Row& r, double v) { return r.path_mm < v; });
+  std::size_t j = static_cast<std::size_t>(it - below_.begin());
+  if (j == below_.size()) j = below_.size() - 1;
+  const std::size_t i = j > 0 && below_[j].path_mm > path ? j - 1 : j;
+  const double gap = i == j ? std::abs(path - below_[i].path_mm) : below_[j].path_mm - below_[i].path_mm;
+  if (gap > options_.max_path_gap_mm) {
+    if (why)
+      *why = "layer " + std::to_string(layer_ - 1) + "'s profiles around path " + std::to_string(path) +
+             " mm lie more than " + std::to_string(options_.max_path_gap_mm) + " mm apart";
+    return false;
+  }
+  const double span = below_[j].path_mm - below_[i].path_mm;
+  out.w = span > 0 ? std::clamp((path - below_[i].path_mm) / span, 0.0, 1.0) : 0.0;
+  out.count = i == j ? 1 : 2;
+  const std::size_t rows[2] = {i, j};
+  for (int r = 0; r < out.count; ++r) {
+    const Row& row = below_[rows[r]];
+    out.z[r] = row.z.data(), out.x0_mm[r] = row.x0_mm, out.size[r] = row.z.size();
+  }
+  return true;
+}
+
+}  // namespace bead::part
