@@ -8,7 +8,6 @@
 #include "libbead/part/added_bead.h"
 #include "libbead/part/registration.h"
 #include "libbead/profile/kernel.h"
-#include "libbead/part/sensor_rows.h"
 
 namespace bead::part {
 namespace {
@@ -202,7 +201,7 @@ bool PartProfileProcessor::Register(const SurfaceGrid& below, double noise, doub
   r.hidden_sigma = pass_hidden_;
   const RegistrationScale scale{tau, noise, bed_.spacing_mm};
   AddedBeadOptions settle;
-  settle.max_shift_sigma_mm = options_.max_shift_sigma_mm;
+  settle.max_shift_sigma_mm = std::max(options_.max_shift_sigma_mm, bed_.spacing_mm);
   SettleShift(bed_.x_mm, bed_.z_mm, below, scale, settle, grid ? &on_grid_ : nullptr, r);
   result_.shift_sigma_mm = r.sigma;
   if (!r.constrained) s = start;

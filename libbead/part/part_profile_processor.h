@@ -3,30 +3,36 @@
 // wheel is measured against the line through the bare surface either side;
 // a part's against the surface it was laid on, the layer below at the same
 // place along the path (part/surface_below.h). Both are the same
-// measurement: the profile's heights over that surface go through the
+// measurement: the profile's gains over that surface go through the
 // wheel's own kernel (profile/kernel.h) against the line z = 0, so the
-// threshold, the spikes, the gaps bridged, the feet and the sub-sample
-// edges are the wheel's. What a part adds is the surface below: kept from
-// the layer before as its profiles pass (memory: a layer or two: a sensor's
-// rows as they are where its points lie on one grid, part/sensor_rows.h;
-// otherwise the general store), blended between its two profiles nearest
-// along the path, and registered
-// laterally (the passes' shift, never assumed zero) by Gauss-Newton steps
-// on the truncated cost the offline registration uses (part/registration.h:
-// the points whose gain is under the detection threshold, where the two
-// surfaces agree), warm from the pass's last shift.
+// threshold, the gaps bridged, the feet and the sub-sample edges are the
+// wheel's (no spike is bridged in the gains, and a foot stops where the gain
+// rises again: the layer below's walls, part_profile_processor.cc). What a
+// part adds is the surface below: kept from the layer before as its
+// profiles pass (a layer or two in memory: the sensor's own rows where its
+// points lie on one grid, part/sensor_rows.h; otherwise the general store),
+// blended between its two profiles nearest along the path, and registered
+// laterally (the passes' shift, never assumed zero): on a pass's first two
+// profiles by the offline registration's wide search (part/registration.h,
+// its hidden sigma kept for the pass), then by Gauss-Newton steps on the
+// same truncated cost (the points whose gain is under the detection
+// threshold, where the two surfaces agree) from the pass's last shift,
+// settled by the same rules.
 //
 // What it leaves to the offline measurement (bead measure, part/
 // measure_part.h): the groove a bead hides under its overhangs (the
 // corrected area, a per-row fit of the bead's outline over the layer's
-// pooled shape), the registration's wide search and its hidden sigma, and
-// the checks that the two scans' frames agree. Its area is the area seen,
-// as the wheel's per-profile area is before the occlusion correction.
+// pooled shape), the bead's centre at its top's middle (here: the area's
+// centroid), the wall's wander, and the checks that the two scans' frames
+// agree. Its area is the area seen, as the wheel's per-profile area is
+// before the occlusion correction. It allocates while its first layers
+// fill its buffers and on a pass's first two profiles (the wide search),
+// not per profile after that.
 //
 //   bead::part::PartProfileProcessor processor(rig, {}, 800);
 //   for (...) {
 //     const auto& g = processor.Process(view, {layer, path_mm, frame_x_mm, frame_z_mm});
-//     if (g.bead.status == bead::ProfileStatus::kValid) ... g.bead.area_mm2 ...
+//     if (g.bead.status == bead::ProfileStatus::kValid && g.no_surface.empty()) ... g.bead.area_mm2 ...
 //   }
 #pragma once
 
@@ -52,7 +58,8 @@ struct PartProfileOptions {
   // when one moves it less than `shift_tolerance` point spacings.
   int shift_steps = 4;
   double shift_tolerance = 0.25;
-  // A shift whose sigma exceeds this is not constrained (the layer below
+  // A shift whose sigma exceeds this (or a point spacing, if larger: the
+  // sigma's floor is spacing / sqrt 12) is not constrained (the layer below
   // has no slope where the surfaces agree): the pass's last is kept, mm.
   double max_shift_sigma_mm = 0.05;
 };
@@ -117,8 +124,9 @@ class PartProfileProcessor {
   // A profile on no common grid: the rows kept so far handed to the
   // general store, which every later profile uses.
   void ToGeneralStore();
-  // The general store's path (points on any grid).
+  // Layer 0: the wheel's geometry over the bed's line.
   void OnBed(const ProfileView& view);
+  // The general store's path (points on any grid).
   void OverBelow(const SurfaceGrid& below);
   // The heights over the surface below moved by s (heights_), measured.
   void MeasureAt(const SurfaceGrid& below, double s, double noise);

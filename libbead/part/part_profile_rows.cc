@@ -139,14 +139,15 @@ void PartProfileProcessor::OverRows(const ProfileView& view, const SensorRows::P
   }
   GainsOnRows(below, z_bed, x0_bed, dx, n, s);
   // Settled as the general path settles it (part/registration.h):
-  // sigma at least a wall's sampling and the pass's hidden sigma, the
-  // layer below sloped beside the new bead in enough points.
+  // sigma at least a wall's sampling and the pass's hidden sigma, held to
+  // max_shift_sigma_mm or a spacing if larger (that floor is spacing /
+  // sqrt 12), the layer below sloped beside the new bead in enough points.
   const RegistrationScale scale{tau, noise, dx};
   const AddedBeadOptions settle;
   result_.shift_sigma_mm =
       curvature > 0.0 ? std::max({std::sqrt(2.0 / curvature), dx / std::sqrt(12.0), pass_hidden_}) : kNaN;
   result_.shift_constrained =
-      result_.shift_sigma_mm <= options_.max_shift_sigma_mm &&
+      result_.shift_sigma_mm <= std::max(options_.max_shift_sigma_mm, dx) &&
       FlankPoints(view.x_mm, {z_bed, n}, below_z_, scale, settle.min_feature_points) >= settle.min_feature_points;
   if (result_.shift_constrained) {
     pass_shift_ = s;

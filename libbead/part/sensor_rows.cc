@@ -45,7 +45,7 @@ const float* SensorRows::Keep(double path_mm, double x0_bed_mm, double dx, std::
   row.z.resize(z.size());
   float* out = row.z.data();
   // In floats (the frame's offset rounded once more than bead measure's
-  // doubles do: a float's step, a micrometre's thousandth at a metre).
+  // doubles do: a float's step, 0.06 um at a metre).
   const auto f = static_cast<float>(frame_z);
   for (std::size_t k = 0; k < z.size(); ++k) out[k] = z[k] + f;
   current_.push_back(std::move(row));
@@ -57,21 +57,10 @@ bool SensorRows::At(double path, Pair& out, std::string* why) const {
     if (why) *why = "layer " + std::to_string(layer_ - 1) + " is not in the scan";
     return false;
   }
-  // SurfaceBelow::Neighbours' choice and its refusal, on these rows.
-  const auto it =
-      std::lower_bound(below_.begin(), below_.end(), path, [](const Row& r, double v) { return r.path_mm < v; });
-  std::size_t j = static_cast<std::size_t>(it - below_.begin());
-  if (j == below_.size()) j = below_.size() - 1;
-  const std::size_t i = j > 0 && below_[j].path_mm > path ? j - 1 : j;
-  const double gap = i == j ? std::abs(path - below_[i].path_mm) : below_[j].path_mm - below_[i].path_mm;
-  if (gap > options_.max_path_gap_mm) {
-    if (why)
-      *why = "layer " + std::to_string(layer_ - 1) + "'s profiles around path " + std::to_string(path) +
-             " mm lie more than " + std::to_string(options_.max_path_gap_mm) + " mm apart";
+  std::size_t i = 0, j = 0;
+  if (!PathNeighbours(
+          below_, [](const Row& r) { return r.path_mm; }, path, options_.max_path_gap_mm, layer_ - 1, i, j, out.w, why))
     return false;
-  }
-  const double span = below_[j].path_mm - below_[i].path_mm;
-  out.w = span > 0 ? std::clamp((path - below_[i].path_mm) / span, 0.0, 1.0) : 0.0;
   out.count = i == j ? 1 : 2;
   const std::size_t rows[2] = {i, j};
   for (int r = 0; r < out.count; ++r) {

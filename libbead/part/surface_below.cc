@@ -230,26 +230,8 @@ bool SurfaceBelow::Neighbours(double path, std::size_t& i, std::size_t& j, doubl
     if (why) *why = "layer " + std::to_string(layer_ - 1) + " is not in the scan";
     return false;
   }
-  const auto it =
-      std::lower_bound(below_.begin(), below_.end(), path, [](const Below& p, double v) { return p.path_mm < v; });
-  j = static_cast<std::size_t>(it - below_.begin());
-  if (j == below_.size()) j = below_.size() - 1;
-  i = j > 0 && below_[j].path_mm > path ? j - 1 : j;
-  // Between two profiles: their distance apart (the blend spans it all,
-  // wherever the place lies in it); beyond the layer's ends: the nearest's.
-  // (The farther neighbour's distance refused a layer scanned every 6 mm
-  // where its places fell 0.5 mm before the layer below's, and measured
-  // the next, whose fell 1.8 mm after them.)
-  const double gap = i == j ? std::abs(path - below_[i].path_mm) : below_[j].path_mm - below_[i].path_mm;
-  if (gap > options_.max_path_gap_mm) {
-    if (why)
-      *why = "layer " + std::to_string(layer_ - 1) + "'s profiles around path " + std::to_string(path) +
-             " mm lie more than " + std::to_string(options_.max_path_gap_mm) + " mm apart";
-    return false;
-  }
-  const double span = below_[j].path_mm - below_[i].path_mm;
-  w = span > 0 ? std::clamp((path - below_[i].path_mm) / span, 0.0, 1.0) : 0.0;
-  return true;
+  return PathNeighbours(
+      below_, [](const Below& b) { return b.path_mm; }, path, options_.max_path_gap_mm, layer_ - 1, i, j, w, why);
 }
 
 std::optional<SurfaceGrid> SurfaceBelow::At(double path, std::string* why) const {

@@ -209,6 +209,36 @@ struct SurfaceBelowOptions {
   double max_x_gap_mm = 1.0;
 };
 
+// Of a layer's profiles (increasing path_of(rows[k]), at least one), the
+// two around `path` and the second's weight, as the layer below is blended
+// between them; false, with `why`, where they lie more than max_gap apart
+// (or, beyond the layer's ends, the nearest lies farther): `layer` names
+// the layer below in the message.
+template <class Rows, class PathOf>
+bool PathNeighbours(const Rows& rows, PathOf path_of, double path, double max_gap, int64_t layer, std::size_t& i,
+                    std::size_t& j, double& w, std::string* why) {
+  const auto it =
+      std::lower_bound(rows.begin(), rows.end(), path, [&](const auto& r, double v) { return path_of(r) < v; });
+  j = static_cast<std::size_t>(it - rows.begin());
+  if (j == rows.size()) j = rows.size() - 1;
+  i = j > 0 && path_of(rows[j]) > path ? j - 1 : j;
+  // Between two profiles: their distance apart (the blend spans it all,
+  // wherever the place lies in it); beyond the layer's ends: the nearest's.
+  // (The farther neighbour's distance refused a layer scanned every 6 mm
+  // where its places fell 0.5 mm before the layer below's, and measured
+  // the next, whose fell 1.8 mm after them.)
+  const double a = path_of(rows[i]), b = path_of(rows[j]);
+  const double gap = i == j ? std::abs(path - a) : b - a;
+  if (gap > max_gap) {
+    if (why)
+      *why = "layer " + std::to_string(layer) + "'s profiles around path " + std::to_string(path) +
+             " mm lie more than " + std::to_string(max_gap) + " mm apart";
+    return false;
+  }
+  w = b > a ? std::clamp((path - a) / (b - a), 0.0, 1.0) : 0.0;
+  return true;
+}
+
 class SurfaceBelow {
  public:
   explicit SurfaceBelow(SurfaceBelowOptions options = {}) : options_(options) {}

@@ -16,6 +16,7 @@
 #include "libbead/profile/profile_processor.h"
 #include "libbead/sim/part_twin.h"
 #include "tests/support/error_stats.h"
+#include "tests/support/scaled_twin.h"
 
 namespace bead {
 namespace {
@@ -144,6 +145,40 @@ TEST(PartProfileProcessor, PointsOnNoUniformGridMidLayerMeasureAsWell) {
     Collect(twin, e, second + 50);
   }
   ExpectTheWallsBounds(e, profiles, e.layers_above);
+}
+
+// The default wall four times larger (a large-scale printer's 24 mm bead,
+// points 0.2 mm apart, noise 0.04 mm) and a tenth its size (a glue bead 0.6
+// mm wide, points 5 um apart): the bounds scaled by k^2 (areas) and k
+// (widths, heights), as bead measure's (part_wall_test.cc).
+TEST(PartProfileProcessor, AWallFourTimesLargerOrATenthTheSizeMeasuresAsTheWall) {
+  const auto wall = [](double k) {
+    sim::PartTwinConfig config;
+    config.seed = 1;
+    config.layers = 3;
+    return sim::SimulatePartWall(test::Scaled(config, k));
+  };
+  Errors e1;
+  Collect(wall(1.0), e1);
+  for (double k : {4.0, 0.1}) {
+    const sim::PartTwin twin = wall(k);
+    Errors e;
+    Collect(twin, e);
+    std::printf(
+        "%g times the size: area %+.5f rms %.5f mm^2, width rms %.5f, height rms %.5f mm in %zu of %zu; "
+        "shift found in %d (the wall's own: %d) of %d, within 2 sigma %d\n",
+        k, Mean(e.area), Rms(e.area), Rms(e.width), Rms(e.height), e.area.size(), twin.truth.size(), e.shift_found,
+        e1.shift_found, e.layers_above, e.shift_covered);
+    EXPECT_EQ(e.area.size(), twin.truth.size()) << k << ": every profile of the wall is measured";
+    EXPECT_LT(Rms(e.area), k * k * kAreaBound) << k;
+    EXPECT_LT(Rms(e.width), k * kWidthBound) << k;
+    EXPECT_LT(Rms(e.height), 2.0 * k * kHeightNoise) << k;
+    // Found in as many profiles as on the wall itself, within a tenth (the
+    // shift's sigma's floor is a spacing / sqrt 12 at any scale; before it
+    // was held to a spacing, four times larger found none).
+    EXPECT_GE(e.shift_found, static_cast<int>(0.9 * e1.shift_found)) << k;
+    EXPECT_GE(e.shift_covered, static_cast<int>(0.9 * e.shift_found)) << k;
+  }
 }
 
 // A layer whose layer below was never scanned: nothing to measure it
