@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <type_traits>
+#include <utility>
 
 #include "libbead/core/float_bits.h"
 #include "libbead/part/part_kernel_doubles.h"
@@ -128,6 +129,67 @@ GridSums Truncated(const float* zn, const GridRows& r, std::ptrdiff_t begin, std
 
 GridSums Local(const float* zn, const GridRows& r, std::ptrdiff_t begin, std::ptrdiff_t end, const GridShared& c) {
   return r.count == 2 ? Pass<true, true>(zn, r, begin, end, c) : Pass<true, false>(zn, r, begin, end, c);
+}
+
+// Local's sums over rows whose values are measured points (each value's
+// variance one point's: a row's sample a fraction t of the way has
+// (1 - t)^2 + t^2 of it, a constant of the row; two blended, (1 - w)^2 va +
+// w^2 vb where both are known), so no variance is read and no division
+// made per point; and the surface below and the gains (at least 0, NaN
+// where either surface is) stored at every index.
+template <bool kTwo>
+GridSums GainsPass(const float* zn, const GridRows& r, std::ptrdiff_t begin, std::ptrdiff_t end, const GridShared& c,
+                   float* below, float* gain) {
+  const float va = (1 - r.t[0]) * (1 - r.t[0]) + r.t[0] * r.t[0];
+  const float vb = kTwo ? (1 - r.t[1]) * (1 - r.t[1]) + r.t[1] * r.t[1] : va;
+  const float w = r.w, w0 = 1.0f - r.w;
+  const float inv_a = 1.0f / (c.noise2 * (1.0f + va)), inv_b = 1.0f / (c.noise2 * (1.0f + vb)),
+              inv_ab = 1.0f / (c.noise2 * (1.0f + w0 * w0 * va + w * w * vb));
+  const auto row = [&](auto tag, int k, std::ptrdiff_t i) {
+    using T = decltype(tag);
+    const T a0 = At<T>(r.z[k], i), a1 = At<T>(r.z[k], i + 1);
+    return std::pair{a0 + Broadcast<T>(r.t[k]) * (a1 - a0), a1 - a0};
+  };
+  const auto one = [&](auto tag, std::ptrdiff_t i, Sums<decltype(tag)>& sums) {
+    using T = decltype(tag);
+    auto [z, rise] = row(tag, 0, i);
+    T inv = Broadcast<T>(inv_a);
+    if constexpr (kTwo) {
+      const auto [zb, rise_b] = row(tag, 1, i);
+      const auto a_known = z == z;
+      const auto b_known = zb == zb;
+      const auto both = a_known & b_known;
+      z = both ? Broadcast<T>(w0) * z + Broadcast<T>(w) * zb : (b_known ? zb : z);
+      rise = both ? Broadcast<T>(w0) * rise + Broadcast<T>(w) * rise_b : (b_known ? rise_b : rise);
+      inv = both ? Broadcast<T>(inv_ab) : (b_known ? Broadcast<T>(inv_b) : inv);
+    }
+    const T zi = At<T>(zn, i), d = zi - z, zero = Broadcast<T>(0.0f);
+    if constexpr (std::is_same_v<T, float>) {
+      below[i] = z, gain[i] = d < zero ? zero : d;
+    } else {
+      vec::Store(below + i, z), vec::Store(gain + i, d < zero ? zero : d);
+    }
+    // Add's terms (kLocal), each over the variance by its inverse.
+    const T chi = d * d * inv, cap = Broadcast<T>(c.cap);
+    const auto present = zi == zi, under = chi < cap;
+    sums.first += present ? (under ? chi : cap) : zero;
+    const T g = rise * Broadcast<T>(c.inv_dx);
+    const auto fits = present & under;
+    sums.second += fits ? Broadcast<T>(2.0f) * d * g * inv : zero;
+    sums.third += fits ? Broadcast<T>(2.0f) * g * g * inv : zero;
+  };
+  Sums<V8> wide;
+  std::ptrdiff_t i = begin;
+  for (; i + 8 <= end; i += 8) one(V8{}, i, wide);
+  Sums<float> narrow;
+  for (; i < end; ++i) one(0.0f, i, narrow);
+  return Total(wide, narrow);
+}
+
+GridSums Gains(const float* zn, const GridRows& r, std::ptrdiff_t begin, std::ptrdiff_t end, const GridShared& c,
+               float* below, float* gain) {
+  return r.count == 2 ? GainsPass<true>(zn, r, begin, end, c, below, gain)
+                      : GainsPass<false>(zn, r, begin, end, c, below, gain);
 }
 
 template <bool kTwo>
@@ -268,7 +330,8 @@ constexpr PartKernel kPartKernel{BEAD_STRINGIFY(BEAD_KERNEL),
                                  ToBed,
                                  Top,
                                  RowsAtPlaces,
-                                 Flanks};
+                                 Flanks,
+                                 Gains};
 
 }  // namespace
 

@@ -131,6 +131,12 @@ struct PartKernel {
   // times the step and again to the point after, the same way (second).
   GridSums (*flanks)(const float* x, const float* z, const float* under, std::size_t n, float tau, float steep,
                      float run);
+  // local's sums over [begin, end) for rows whose values are measured
+  // points (each one point's variance: rows.v not read), and there the
+  // surface below to below[i] and the gain zn[i] - below[i], at least 0
+  // (NaN where either is), to gain[i]: one pass.
+  GridSums (*gains)(const float* zn, const GridRows& rows, std::ptrdiff_t begin, std::ptrdiff_t end,
+                    const GridShared& c, float* below, float* gain);
 };
 
 // The build this processor runs.

@@ -112,9 +112,10 @@ class PartProfileProcessor {
   // the new points inside every row, [begin, end).
   GridRows RowsAt(const SensorRows::Pair& below, double x0_bed, double dx, std::size_t n, double s,
                   std::ptrdiff_t& begin, std::ptrdiff_t& end) const;
-  // below_z_ and heights_ at shift s (NaN outside every row).
-  void GainsOnRows(const SensorRows::Pair& below, const float* z_bed, double x0_bed, double dx, std::size_t n,
-                   double s);
+  // below_z_ and heights_ at shift s (NaN outside every row), and the
+  // registration's sums there (part_kernel.h local).
+  GridSums GainsOnRows(const SensorRows::Pair& below, const float* z_bed, double x0_bed, double dx, std::size_t n,
+                       double s, const GridShared& shared);
   // The pass's first profiles: the offline registration's wide search.
   void SearchWide(const SensorRows::Pair& below, const float* z_bed, double x0_bed, double dx, std::size_t n,
                   double noise);

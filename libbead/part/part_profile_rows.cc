@@ -27,13 +27,6 @@ double NoiseOfFinite(std::span<const float> z, std::vector<float>& scratch) {
   return ProfileNoiseMm(scratch);
 }
 
-// Ones: an at-points row's variance over one measured point's, every value.
-const float* Ones(std::size_t n) {
-  thread_local std::vector<float> ones;
-  if (ones.size() < n + 16) ones.assign(n + 16, 1.0f);
-  return ones.data();
-}
-
 }  // namespace
 
 void PartProfileProcessor::OnSensorRows(const ProfileView& view, const PartPlace& place, double x0, double dx) {
@@ -58,13 +51,11 @@ GridRows PartProfileProcessor::RowsAt(const SensorRows::Pair& below, double x0_b
   rows.count = below.count;
   rows.w = static_cast<float>(below.w);
   begin = 0, end = static_cast<std::ptrdiff_t>(n);
-  const float* ones = Ones(std::max(below.size[0], below.count == 2 ? below.size[1] : 0));
   for (int r = 0; r < below.count; ++r) {
     const double c = (x0_bed - s - below.x0_mm[r]) / dx, whole = std::floor(c);
     const auto k0 = static_cast<std::ptrdiff_t>(whole);
     rows.t[r] = static_cast<float>(c - whole);
     rows.z[r] = below.z[r] + k0;
-    rows.v[r] = ones + k0;
     begin = std::max(begin, -k0);
     end = std::min(end, static_cast<std::ptrdiff_t>(below.size[r]) - 1 - k0);
   }
@@ -72,19 +63,17 @@ GridRows PartProfileProcessor::RowsAt(const SensorRows::Pair& below, double x0_b
   return rows;
 }
 
-void PartProfileProcessor::GainsOnRows(const SensorRows::Pair& below, const float* z_bed, double x0_bed, double dx,
-                                       std::size_t n, double s) {
+GridSums PartProfileProcessor::GainsOnRows(const SensorRows::Pair& below, const float* z_bed, double x0_bed, double dx,
+                                           std::size_t n, double s, const GridShared& shared) {
   std::ptrdiff_t begin = 0, end = 0;
   const GridRows rows = RowsAt(below, x0_bed, dx, n, s, begin, end);
-  below_z_.assign(n, static_cast<float>(kNaN));
-  part_kernel_->below_at(rows, begin, end, below_z_.data());
-  heights_.resize(n);
-  // Each gain at least 0, NaN off the surface below (the general path's
-  // MeasureAt says why).
-  for (std::size_t i = 0; i < n; ++i) {
-    const float d = z_bed[i] - below_z_[i];
-    heights_[i] = d < 0.0f ? 0.0f : d;
-  }
+  below_z_.resize(n), heights_.resize(n);
+  // NaN off the surface below; within it each gain at least 0 (the
+  // general path's MeasureAt says why), and the registration's sums.
+  const auto nan = static_cast<float>(kNaN);
+  std::fill(below_z_.begin(), below_z_.begin() + begin, nan), std::fill(below_z_.begin() + end, below_z_.end(), nan);
+  std::fill(heights_.begin(), heights_.begin() + begin, nan), std::fill(heights_.begin() + end, heights_.end(), nan);
+  return part_kernel_->gains(z_bed, rows, begin, end, shared, below_z_.data(), heights_.data());
 }
 
 void PartProfileProcessor::SearchWide(const SensorRows::Pair& below, const float* z_bed, double x0_bed, double dx,
@@ -124,20 +113,22 @@ void PartProfileProcessor::OverRows(const ProfileView& view, const SensorRows::P
     SearchWide(below, z_bed, x0_bed, dx, n, noise);
   }
   const double start = std::isfinite(pass_shift_) ? pass_shift_ : pass_loose_;
-  // Gauss-Newton steps on the truncated cost (the general path's Register).
-  double s = start, curvature = 0.0;
+  // Gauss-Newton steps on the truncated cost (the general path's
+  // Register), its sums taken in the pass that makes the gains: a step
+  // under the tolerance is this profile's estimate, the gains left where
+  // they were made (within a quarter spacing of it: a wall of the layer
+  // below 1 mm higher on one side moves the area by 0.25 spacing x 1 mm).
+  double s = start, curvature = 0.0, estimate = start;
   for (int step = 0; step < options_.shift_steps; ++step) {
-    std::ptrdiff_t begin = 0, end = 0;
-    const GridRows rows = RowsAt(below, x0_bed, dx, n, s, begin, end);
-    const GridSums sums = part_kernel_->local(z_bed, rows, begin, end, shared);
+    const GridSums sums = GainsOnRows(below, z_bed, x0_bed, dx, n, s, shared);
     curvature = sums.third;
     if (!(curvature > 0.0)) break;
     const double ds = std::clamp(-sums.second / curvature, -dx, dx);
-    s += ds;
+    estimate = s + ds;
     ++result_.shift_steps;
-    if (std::abs(ds) < options_.shift_tolerance * dx) break;
+    if (std::abs(ds) < options_.shift_tolerance * dx || step + 1 == options_.shift_steps) break;
+    s = estimate;
   }
-  GainsOnRows(below, z_bed, x0_bed, dx, n, s);
   // Settled as the general path settles it (part/registration.h):
   // sigma at least a wall's sampling and the pass's hidden sigma, held to
   // max_shift_sigma_mm or a spacing if larger (that floor is spacing /
@@ -149,12 +140,12 @@ void PartProfileProcessor::OverRows(const ProfileView& view, const SensorRows::P
   result_.shift_constrained =
       result_.shift_sigma_mm <= std::max(options_.max_shift_sigma_mm, dx) &&
       FlankPoints(view.x_mm, {z_bed, n}, below_z_, scale, settle.min_feature_points) >= settle.min_feature_points;
-  if (result_.shift_constrained) {
-    pass_shift_ = s;
-  } else if (s != start) {
-    s = start;
-    GainsOnRows(below, z_bed, x0_bed, dx, n, s);
-  }
+  // The gains made again only where they lie farther from the shift kept
+  // than the tolerance (the steps ran out; or unconstrained, the pass's).
+  const double kept = result_.shift_constrained ? estimate : start;
+  if (std::abs(kept - s) >= options_.shift_tolerance * dx) GainsOnRows(below, z_bed, x0_bed, dx, n, kept, shared);
+  s = kept;
+  if (result_.shift_constrained) pass_shift_ = s;
   result_.shift_mm = s;
   // The kernel in the profiler's frame (heights do not depend on it), its
   // places then moved to the bed's.

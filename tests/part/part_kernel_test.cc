@@ -9,9 +9,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "libbead/core/float_bits.h"
@@ -165,6 +167,87 @@ TEST(PartKernel, TheSurfaceBelowAtPlacesIsTheGridsInBothBuilds) {
       }
     }
     EXPECT_GE(unknown, 2u);  // off the rows, and beside the lost point
+  }
+}
+
+// The gains over rows of measured points (every value one point's
+// variance: part/sensor_rows.h) are the surface below and local's sums as
+// the kernel gives them over such rows with their variances read (ones),
+// in both builds: one row and two blended, a point of the new profile and
+// one of a row lost, a shift of a fraction of a spacing.
+TEST(PartKernel, TheGainsOverMeasuredRowsAreLocalsSumsAndTheSurfaceBelowInBothBuilds) {
+  const std::size_t n = 203;
+  const double dx = 0.05;
+  std::vector<float> a(n + 20), b(n + 20), ones(n + 20, 1.0f), zn(n);
+  for (std::size_t k = 0; k < a.size(); ++k)
+    a[k] = static_cast<float>(std::sin(0.7 * dx * k)), b[k] = static_cast<float>(std::sin(0.3 + 0.7 * dx * k));
+  b[60] = NAN;
+  for (std::size_t i = 0; i < n; ++i) zn[i] = static_cast<float>(std::sin(0.15 + 0.7 * dx * i) + (i % 7) * 0.01);
+  zn[100] = NAN;
+  const GridShared c{1e-4f, 36.0f, static_cast<float>(1.0 / dx)};
+  for (int count : {1, 2}) {
+    GridRows rows;
+    rows.count = count, rows.w = 0.35f;
+    rows.t[0] = 0.37f, rows.t[1] = 0.81f;
+    rows.z[0] = a.data() + 3, rows.z[1] = b.data() + 5;
+    rows.v[0] = ones.data(), rows.v[1] = ones.data();
+    const std::ptrdiff_t begin = 2, end = 190;
+    for (const PartKernel* kernel : {&BaselinePartKernel(), &ActivePartKernel()}) {
+      SCOPED_TRACE(std::string(kernel->name) + (count == 2 ? ", two rows" : ", one row"));
+      std::vector<float> want_below(n, 0.0f), below(n, 0.0f), gain(n, 0.0f);
+      kernel->below_at(rows, begin, end, want_below.data());
+      const GridSums want = kernel->local(zn.data(), rows, begin, end, c);
+      const GridSums got = kernel->gains(zn.data(), rows, begin, end, c, below.data(), gain.data());
+      for (std::ptrdiff_t i = begin; i < end; ++i) {
+        const auto k = static_cast<std::size_t>(i);
+        ASSERT_EQ(std::isnan(below[k]), std::isnan(want_below[k])) << i;
+        if (!std::isnan(want_below[k])) EXPECT_EQ(below[k], want_below[k]) << i;
+        const float d = zn[k] - want_below[k];
+        if (std::isnan(d))
+          EXPECT_TRUE(std::isnan(gain[k])) << i;
+        else
+          EXPECT_EQ(gain[k], std::max(d, 0.0f)) << i;
+      }
+      // Over the variance by its inverse, not divided: a float's rounding
+      // a term, summed over eight lanes.
+      EXPECT_NEAR(got.first, want.first, 1e-5 * std::abs(want.first));
+      EXPECT_NEAR(got.second, want.second, 1e-5 * std::abs(want.third) * dx + 1e-9);
+      EXPECT_NEAR(got.third, want.third, 1e-5 * std::abs(want.third));
+      EXPECT_GT(want.third, 0.0);
+    }
+  }
+}
+
+// The flanks' counts are their rules written point by point, in both builds.
+TEST(PartKernel, TheFlanksAreTheirRulesPointByPointInBothBuilds) {
+  std::mt19937 rng(11);
+  std::normal_distribution<float> noise(0.0f, 0.01f);
+  const std::size_t n = 301;
+  std::vector<float> x(n), z(n), under(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    x[i] = -7.5f + 0.05f * static_cast<float>(i);
+    under[i] = x[i] < -2.0f ? 0.0f : 2.0f * std::cos(0.5f * x[i]);                // a bed, then a flank and a top
+    z[i] = under[i] + noise(rng) + (std::abs(x[i] - 1.0f) < 1.0f ? 0.5f : 0.0f);  // and a bead
+  }
+  under[150] = NAN;
+  const float tau = 0.06f, steep = 0.9f, run = 0.6f;
+  double single = 0.0, runs = 0.0;
+  for (std::size_t i = 0; i + 2 < n; ++i) {
+    const float d = z[i] - under[i], first = under[i + 1] - under[i], second = under[i + 2] - under[i + 1];
+    const float step = x[i + 1] - x[i], next = x[i + 2] - x[i + 1];
+    if (!(std::abs(d) <= tau)) continue;
+    if (std::abs(first) > steep * step)
+      ++single;
+    else if (std::abs(first) > run * step && first * second > 0.0f && std::abs(second) > run * next)
+      ++runs;
+  }
+  EXPECT_GT(single, 0.0);
+  EXPECT_GT(runs, 0.0);
+  for (const PartKernel* kernel : {&BaselinePartKernel(), &ActivePartKernel()}) {
+    SCOPED_TRACE(kernel->name);
+    const GridSums got = kernel->flanks(x.data(), z.data(), under.data(), n, tau, steep, run);
+    EXPECT_EQ(got.first, single);
+    EXPECT_EQ(got.second, runs);
   }
 }
 
