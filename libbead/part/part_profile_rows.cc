@@ -1,9 +1,9 @@
 // PartProfileProcessor on a sensor's rows (part/sensor_rows.h): the new
 // profile's points and the layer below's lie on the same uniform grid, so
 // at a shift every point falls the same fraction of the way between two
-// values of each row below (part/part_kernel.h GridRows), the gains, the
-// registration's sums and the surface below are a pass each, eight points
-// a register, and no row is made or blended first. The rules are the
+// values of each row below (part/part_kernel.h GridRows): the surface
+// below, the gains and the registration's sums are one pass, eight points a
+// register, and no row is made or blended first. The rules are the
 // general path's (part_profile_processor.cc), to a float's rounding.
 #include <algorithm>
 #include <cmath>
@@ -59,6 +59,8 @@ GridRows PartProfileProcessor::RowsAt(const SensorRows::Pair& below, double x0_b
     begin = std::max(begin, -k0);
     end = std::min(end, static_cast<std::ptrdiff_t>(below.size[r]) - 1 - k0);
   }
+  // (A row far beside the new points, a frame's jump: none inside.)
+  begin = std::min(begin, static_cast<std::ptrdiff_t>(n));
   end = std::max(end, begin);
   return rows;
 }
@@ -102,7 +104,16 @@ void PartProfileProcessor::SearchWide(const SensorRows::Pair& below, const float
 void PartProfileProcessor::OverRows(const ProfileView& view, const SensorRows::Pair& below, const float* z_bed,
                                     double x0_bed, double dx) {
   const std::size_t n = view.z_mm.size();
-  if (!std::isfinite(pass_noise_)) pass_noise_ = NoiseOfFinite({z_bed, n}, below_z_);
+  if (!std::isfinite(pass_noise_)) {
+    // Not from a profile of too few points (the sensor saw nothing: its
+    // noise would be the floor's, for the whole pass).
+    const double noise = NoiseOfFinite({z_bed, n}, below_z_);
+    if (below_z_.size() < static_cast<std::size_t>(std::max(options_.profile.bead.min_profile_points, 3))) {
+      result_.bead.status = ProfileStatus::kTooFewPoints;
+      return;
+    }
+    pass_noise_ = noise;
+  }
   const double noise = pass_noise_;
   const BeadOptions& b = options_.profile.bead;
   const double tau = std::max(b.min_threshold_mm, b.threshold_sigmas * noise);

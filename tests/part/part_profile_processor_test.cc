@@ -205,7 +205,9 @@ TEST(PartProfileProcessor, ALayerWithNoLayerBelowSaysSo) {
 }
 
 // A profile with no finite point over the layer below (the sensor saw
-// nothing): too few points, said, not a crash and not a number.
+// nothing), the first of its layer among them: too few points, said, not a
+// crash and not a number; the pass's noise is not set on it, and the
+// layer's other profiles are measured.
 TEST(PartProfileProcessor, AnEmptyProfileHasTooFewPoints) {
   sim::PartTwinConfig config;
   config.layers = 2;
@@ -215,18 +217,48 @@ TEST(PartProfileProcessor, AnEmptyProfileHasTooFewPoints) {
   const PartPlaces& places = *twin.scan.part;
   part::PartProfileProcessor processor(twin.rig, {}, b.points);
   const std::vector<float> nan(b.points, NAN);
-  int checked = 0;
+  int checked = 0, others = 0, others_valid = 0;
+  bool first = true;
   for (std::size_t k = 0; k < b.size(); ++k) {
     const part::PartPlace place{places.layer[k], places.path_mm[k], places.frame_x_mm[k], places.frame_z_mm[k]};
-    const bool blank = place.layer == 1 && k % 3 == 0;
+    const bool blank = place.layer == 1 && (first || k % 3 == 0);
+    first = first && place.layer != 1;
     const ProfileView view = blank ? ProfileView{b.view(k).x_mm, nan} : b.view(k);
     const part::PartProfileGeometry& g = processor.Process(view, place);
+    if (place.layer == 1 && !blank) ++others, others_valid += g.bead.status == ProfileStatus::kValid;
     if (!blank) continue;
     ++checked;
     EXPECT_EQ(g.bead.status, ProfileStatus::kTooFewPoints) << k;
     EXPECT_TRUE(std::isnan(g.bead.area_mm2)) << k;
   }
-  EXPECT_GT(checked, 0);
+  EXPECT_GT(checked, 1);
+  EXPECT_EQ(others_valid, others);
+}
+
+// A layer whose frame jumps farther sideways than the field is wide (the
+// layer below lies nowhere under its points): no bead, said per profile as
+// too few points over a surface below, and nothing read beyond the rows.
+TEST(PartProfileProcessor, ALayerWhoseFrameJumpsOffTheLayerBelowHasNothingUnderIt) {
+  sim::PartTwinConfig config;
+  config.layers = 2;
+  config.length_mm = 10.0;
+  const sim::PartTwin twin = sim::SimulatePartWall(config);
+  const ProfileBlock& b = twin.scan.profiles;
+  const PartPlaces& places = *twin.scan.part;
+  for (double jump : {-100.0, 100.0}) {
+    part::PartProfileProcessor processor(twin.rig, {}, b.points);
+    int layer1 = 0, measured = 0;
+    for (std::size_t k = 0; k < b.size(); ++k) {
+      const double frame_x = places.frame_x_mm[k] + (places.layer[k] == 1 ? jump : 0.0);
+      const part::PartProfileGeometry& g =
+          processor.Process(b.view(k), {places.layer[k], places.path_mm[k], frame_x, places.frame_z_mm[k]});
+      if (places.layer[k] != 1) continue;
+      ++layer1;
+      measured += g.bead.status == ProfileStatus::kValid;
+    }
+    EXPECT_GT(layer1, 0) << jump;
+    EXPECT_EQ(measured, 0) << jump;
+  }
 }
 
 // The feet over a layer below: beyond a bead's foot, a gain that rises
