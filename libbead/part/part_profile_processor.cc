@@ -33,6 +33,11 @@ ReferenceLine FlatLine(double noise_mm, int points) {
 
 }  // namespace
 
+double PartProfileProcessor::Tau(double noise) const {
+  const BeadOptions& b = options_.profile.bead;
+  return std::max(b.min_threshold_mm, b.threshold_sigmas * noise);
+}
+
 void PartProfileProcessor::MoveByFrame(BeadGeometry& g, double frame_x) {
   g.center_x_mm += frame_x, g.left_edge_x_mm += frame_x, g.right_edge_x_mm += frame_x;
 }
@@ -146,8 +151,7 @@ void PartProfileProcessor::OverBelow(const SurfaceGrid& below) {
   double s = std::isfinite(pass_shift_) ? pass_shift_ : pass_loose_;
   if (!std::isfinite(pass_shift_) && wide_searches_ > 0) {
     --wide_searches_;
-    const BeadOptions& b = options_.profile.bead;
-    const RegistrationScale scale{std::max(b.min_threshold_mm, b.threshold_sigmas * noise), noise, bed_.spacing_mm};
+    const RegistrationScale scale{Tau(noise), noise, bed_.spacing_mm};
     const Registration r = part::Register(bed_.x_mm, bed_.z_mm, below, scale, AddedBeadOptions{}, nullptr,
                                           on_grid ? &on_grid_ : nullptr, 0.0, true);
     s = pass_loose_ = r.shift;
@@ -162,25 +166,13 @@ void PartProfileProcessor::OverBelow(const SurfaceGrid& below) {
 }
 
 bool PartProfileProcessor::Register(const SurfaceGrid& below, double noise, double& s) {
-  const BeadOptions& b = options_.profile.bead;
-  const double tau = std::max(b.min_threshold_mm, b.threshold_sigmas * noise);
-  const double noise2 = noise * noise, cap = tau * tau / noise2;
+  const double tau = Tau(noise);
+  const RegistrationScale scale{tau, noise, bed_.spacing_mm};
+  const PointsOnGrid* grid = on_grid_.Ready() ? &on_grid_ : nullptr;
   const double start = s;
   double curvature = 0.0;
-  const bool grid = on_grid_.Ready();
   for (int step = 0; step < options_.shift_steps; ++step) {
-    PointsOnGrid::Local l;
-    if (grid) {
-      l = on_grid_.LocalCost(s, noise2, cap);
-    } else {
-      const SurfaceGrid::Shifted at(below, s);
-      for (std::size_t i = 0; i < bed_.x_mm.size(); ++i) {
-        const SurfaceGrid::Sample u = at.At(bed_.x_mm[i]);
-        const double d = bed_.z_mm[i] - u.z, v = noise2 * (1.0 + u.variance);
-        if (!(d * d / v < cap)) continue;
-        l.gradient += 2.0 * d * u.slope / v, l.curvature += 2.0 * u.slope * u.slope / v;
-      }
-    }
+    const PointsOnGrid::Local l = LocalCost(bed_.x_mm, bed_.z_mm, below, s, scale, grid);
     curvature = l.curvature;
     if (!(curvature > 0.0)) break;
     // Gauss-Newton (gain d = z - below(x - s), dd/ds = below's slope): no
@@ -199,10 +191,9 @@ bool PartProfileProcessor::Register(const SurfaceGrid& below, double noise, doub
   r.shift = s;
   r.sigma = curvature > 0.0 ? std::max(std::sqrt(2.0 / curvature), bed_.spacing_mm / std::sqrt(12.0)) : kNaN;
   r.hidden_sigma = pass_hidden_;
-  const RegistrationScale scale{tau, noise, bed_.spacing_mm};
   AddedBeadOptions settle;
   settle.max_shift_sigma_mm = std::max(options_.max_shift_sigma_mm, bed_.spacing_mm);
-  SettleShift(bed_.x_mm, bed_.z_mm, below, scale, settle, grid ? &on_grid_ : nullptr, r);
+  SettleShift(bed_.x_mm, bed_.z_mm, below, scale, settle, grid, r);
   result_.shift_sigma_mm = r.sigma;
   if (!r.constrained) s = start;
   return r.constrained;

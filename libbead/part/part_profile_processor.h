@@ -137,6 +137,9 @@ class PartProfileProcessor {
   // heights_ at the points x (z: the new surface there) through the
   // wheel's kernel, the gains' noise `noise`.
   void MeasureHeights(std::span<const float> x, std::span<const float> z, double noise);
+  // The gains' detection threshold for one point's noise (as the offline
+  // registration sets it: the wheel's rule, BeadOptions).
+  double Tau(double noise) const;
   // The bead's places moved from the profiler's frame to the bed's.
   static void MoveByFrame(BeadGeometry& g, double frame_x);
   // The gain at the new surface's crest (the highest median of three of

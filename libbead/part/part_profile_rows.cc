@@ -94,8 +94,7 @@ void PartProfileProcessor::SearchWide(const SensorRows::Pair& below, const float
     row[r]->variance.assign(below.size[r], 1.0f);
   }
   const SurfaceGrid grid = below.count == 2 ? SurfaceGrid(row[0], row[1], below.w) : SurfaceGrid(row[0], nullptr, 0.0);
-  const BeadOptions& b = options_.profile.bead;
-  const RegistrationScale scale{std::max(b.min_threshold_mm, b.threshold_sigmas * noise), noise, dx};
+  const RegistrationScale scale{Tau(noise), noise, dx};
   const Registration r = part::Register(x, z, grid, scale, AddedBeadOptions{}, nullptr, nullptr, 0.0, true);
   pass_loose_ = r.shift;
   pass_hidden_ = r.hidden_sigma;
@@ -115,8 +114,7 @@ void PartProfileProcessor::OverRows(const ProfileView& view, const SensorRows::P
     pass_noise_ = noise;
   }
   const double noise = pass_noise_;
-  const BeadOptions& b = options_.profile.bead;
-  const double tau = std::max(b.min_threshold_mm, b.threshold_sigmas * noise);
+  const double tau = Tau(noise);
   const GridShared shared{static_cast<float>(noise * noise), static_cast<float>(tau * tau / (noise * noise)),
                           static_cast<float>(1.0 / dx)};
   if (!std::isfinite(pass_shift_) && wide_searches_ > 0) {
@@ -129,11 +127,17 @@ void PartProfileProcessor::OverRows(const ProfileView& view, const SensorRows::P
   // under the tolerance is this profile's estimate, the gains left where
   // they were made (within a quarter spacing of it: a wall of the layer
   // below 1 mm higher on one side moves the area by 0.25 spacing x 1 mm).
+  // No step where the pass's hidden sigma, a floor under every sigma in
+  // it, is over the limit: no profile of the pass can be constrained, its
+  // shift is the pass's (one pass makes the gains there; stepping away and
+  // back made a third of the twin wall's profiles on such a layer three).
+  const double limit = std::max(options_.max_shift_sigma_mm, dx);
+  const bool may_move = !(pass_hidden_ > limit);
   double s = start, curvature = 0.0, estimate = start;
-  for (int step = 0; step < options_.shift_steps; ++step) {
+  for (int step = 0;; ++step) {
     const GridSums sums = GainsOnRows(below, z_bed, x0_bed, dx, n, s, shared);
     curvature = sums.third;
-    if (!(curvature > 0.0)) break;
+    if (!may_move || step >= options_.shift_steps || !(curvature > 0.0)) break;
     const double ds = std::clamp(-sums.second / curvature, -dx, dx);
     estimate = s + ds;
     ++result_.shift_steps;
@@ -149,7 +153,7 @@ void PartProfileProcessor::OverRows(const ProfileView& view, const SensorRows::P
   result_.shift_sigma_mm =
       curvature > 0.0 ? std::max({std::sqrt(2.0 / curvature), dx / std::sqrt(12.0), pass_hidden_}) : kNaN;
   result_.shift_constrained =
-      result_.shift_sigma_mm <= std::max(options_.max_shift_sigma_mm, dx) &&
+      result_.shift_sigma_mm <= limit &&
       FlankPoints(view.x_mm, {z_bed, n}, below_z_, scale, settle.min_feature_points) >= settle.min_feature_points;
   // The gains made again only where they lie farther from the shift kept
   // than the tolerance (the steps ran out; or unconstrained, the pass's).

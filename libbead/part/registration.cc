@@ -169,35 +169,7 @@ Registration FromCurve(const CostCurve& curve, const RegistrationScale& k) {
   return r;
 }
 
-// The truncated cost at s with its gradient and Gauss-Newton curvature in
-// s over the points whose gain is under the cap (d(gain)/ds is the slope
-// of the surface below there).
 using Local = PointsOnGrid::Local;
-
-Local LocalCost(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, double s,
-                const RegistrationScale& k, const PointsOnGrid* grid) {
-  const double noise2 = k.noise * k.noise, cap = k.Cap();
-  if (grid) return grid->LocalCost(s, noise2, cap);
-  Local l;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    const SurfaceGrid::Sample b = below.SampleAt(x[i] - s);
-    const double d = z[i] - b.z;
-    if (std::isnan(d)) {
-      l.cost += cap;
-      continue;
-    }
-    const double v = noise2 * (1.0 + b.variance), chi2 = d * d / v;
-    if (chi2 >= cap) {
-      l.cost += cap;
-      continue;
-    }
-    const double g = b.slope;
-    l.cost += chi2;
-    l.gradient += 2.0 * d * g / v;
-    l.curvature += 2.0 * g * g / v;
-  }
-  return l;
-}
 
 // Gauss-Newton from `start`, each step halved until the cost falls (at
 // most kHalvings times: where none falls the least is within that of s, a
@@ -309,6 +281,31 @@ AddedBeadOptions AtSampling(const AddedBeadOptions& o, double spacing, const Sur
 }
 
 }  // namespace
+
+PointsOnGrid::Local LocalCost(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, double s,
+                              const RegistrationScale& k, const PointsOnGrid* grid) {
+  const double noise2 = k.noise * k.noise, cap = k.Cap();
+  if (grid) return grid->LocalCost(s, noise2, cap);
+  PointsOnGrid::Local l;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const SurfaceGrid::Sample b = below.SampleAt(x[i] - s);
+    const double d = z[i] - b.z;
+    if (std::isnan(d)) {
+      l.cost += cap;
+      continue;
+    }
+    const double v = noise2 * (1.0 + b.variance), chi2 = d * d / v;
+    if (chi2 >= cap) {
+      l.cost += cap;
+      continue;
+    }
+    const double g = b.slope;
+    l.cost += chi2;
+    l.gradient += 2.0 * d * g / v;
+    l.curvature += 2.0 * g * g / v;
+  }
+  return l;
+}
 
 Registration Register(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
                       const RegistrationScale& k, const AddedBeadOptions& options, const double* start,

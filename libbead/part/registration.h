@@ -24,6 +24,7 @@
 #include <span>
 
 #include "libbead/part/added_bead.h"
+#include "libbead/part/grid_costs.h"
 #include "libbead/part/surface_below.h"
 
 namespace bead::part {
@@ -57,8 +58,6 @@ struct RegistrationScale {
   double Cap() const { return tau * tau / (noise * noise); }
 };
 
-class PointsOnGrid;
-
 // x, z: the new profile's points (bed frame, x increasing); start: the
 // shift found for the profile before in the same pass (nullptr: none);
 // grid: the points on the surface below's grid (part/grid_costs.h), where
@@ -81,6 +80,13 @@ Registration Register(std::span<const float> x, std::span<const float> z, const 
 void SettleShift(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
                  const RegistrationScale& scale, const AddedBeadOptions& options, const PointsOnGrid* grid,
                  Registration& r);
+
+// The truncated cost at shift s (in noise variances, each point's at most
+// the scale's cap) with its gradient and Gauss-Newton curvature in s over
+// the points under the cap (d(gain)/ds is the slope of the surface below
+// there); on the grid's sums where the points lie on it (grid not null).
+PointsOnGrid::Local LocalCost(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below, double s,
+                              const RegistrationScale& scale, const PointsOnGrid* grid);
 
 // The points where the new profile (x, z) agrees with the surface below
 // at them (`under`, NaN where unknown) on a flank of it, by Settle's rule
