@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <initializer_list>
 #include <vector>
 
 #include "libbead/io/profile_stream.h"
@@ -98,54 +99,42 @@ void ExpectTheWallsBounds(const Errors& e, int profiles, int above) {
   EXPECT_GE(e.shift_covered, static_cast<int>(0.9 * e.shift_found));
 }
 
-TEST(PartProfileProcessor, EachLayerAsItArrivesIsMeasuredAgainstTheOneBelow) {
+// The twin's default wall for each seed, its profiler's frame moving
+// sideways by frame_x_wave_mm; with reversed_mid_layer, from the 50th
+// profile of layer 1 on each handed over right to left. Their errors
+// collected in one, held to the wall's bounds.
+void ExpectTheWallsBounds(std::initializer_list<uint64_t> seeds, double frame_x_wave_mm, bool reversed_mid_layer) {
   Errors e;
   int profiles = 0;
-  for (uint64_t seed : {1u, 2u, 3u, 4u}) {
+  for (uint64_t seed : seeds) {
     sim::PartTwinConfig config;
     config.seed = seed;
+    config.frame_x_wave_mm = frame_x_wave_mm;
     const sim::PartTwin twin = sim::SimulatePartWall(config);
     profiles += static_cast<int>(twin.truth.size());
-    Collect(twin, e);
+    const std::vector<int64_t>& layer = twin.scan.part->layer;
+    const auto second = static_cast<std::size_t>(std::find(layer.begin(), layer.end(), 1) - layer.begin());
+    Collect(twin, e, reversed_mid_layer ? second + 50 : SIZE_MAX);
   }
   ExpectTheWallsBounds(e, profiles, e.layers_above);
+}
+
+TEST(PartProfileProcessor, EachLayerAsItArrivesIsMeasuredAgainstTheOneBelow) {
+  ExpectTheWallsBounds({1u, 2u, 3u, 4u}, 0.0, false);
 }
 
 // The profiler's frame moving sideways along the path: each profile's
 // points lie on the sensor's grid moved by another amount in the bed frame,
 // each row of the layer below read at its own fraction of a spacing.
 TEST(PartProfileProcessor, AFrameMovingSidewaysOffTheGridMeasuresAsWell) {
-  Errors e;
-  int profiles = 0;
-  for (uint64_t seed : {1u, 2u}) {
-    sim::PartTwinConfig config;
-    config.seed = seed;
-    config.frame_x_wave_mm = 0.37;
-    const sim::PartTwin twin = sim::SimulatePartWall(config);
-    profiles += static_cast<int>(twin.truth.size());
-    Collect(twin, e);
-  }
-  ExpectTheWallsBounds(e, profiles, e.layers_above);
+  ExpectTheWallsBounds({1u, 2u}, 0.37, false);
 }
 
 // A sensor that hands its points over right to left, from the middle of
 // the second layer on: the rows kept so far go to the general store, which
 // sorts each profile and reads the layer below point by point; the same
 // bounds hold across the change.
-TEST(PartProfileProcessor, PointsOnNoUniformGridMidLayerMeasureAsWell) {
-  Errors e;
-  int profiles = 0;
-  for (uint64_t seed : {1u, 2u}) {
-    sim::PartTwinConfig config;
-    config.seed = seed;
-    const sim::PartTwin twin = sim::SimulatePartWall(config);
-    profiles += static_cast<int>(twin.truth.size());
-    const std::vector<int64_t>& layer = twin.scan.part->layer;
-    const auto second = static_cast<std::size_t>(std::find(layer.begin(), layer.end(), 1) - layer.begin());
-    Collect(twin, e, second + 50);
-  }
-  ExpectTheWallsBounds(e, profiles, e.layers_above);
-}
+TEST(PartProfileProcessor, PointsOnNoUniformGridMidLayerMeasureAsWell) { ExpectTheWallsBounds({1u, 2u}, 0.0, true); }
 
 // The default wall four times larger (a large-scale printer's 24 mm bead,
 // points 0.2 mm apart, noise 0.04 mm) and a tenth its size (a glue bead 0.6
