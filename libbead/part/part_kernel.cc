@@ -145,10 +145,14 @@ GridSums GainsPass(const float* zn, const GridRows& r, std::ptrdiff_t begin, std
   const float w = r.w, w0 = 1.0f - r.w;
   const float inv_a = 1.0f / (c.noise2 * (1.0f + va)), inv_b = 1.0f / (c.noise2 * (1.0f + vb)),
               inv_ab = 1.0f / (c.noise2 * (1.0f + w0 * w0 * va + w * w * vb));
+  // The rows and the constants held here, not read through r and c (the
+  // stores to below and gain could alias them: each read again per step).
+  const float* const rz[2] = {r.z[0], r.z[1]};
+  const float rt[2] = {r.t[0], r.t[1]}, cap_c = c.cap, inv_dx = c.inv_dx;
   const auto row = [&](auto tag, int k, std::ptrdiff_t i) {
     using T = decltype(tag);
-    const T a0 = At<T>(r.z[k], i), a1 = At<T>(r.z[k], i + 1);
-    return std::pair{a0 + Broadcast<T>(r.t[k]) * (a1 - a0), a1 - a0};
+    const T a0 = At<T>(rz[k], i), a1 = At<T>(rz[k], i + 1);
+    return std::pair{a0 + Broadcast<T>(rt[k]) * (a1 - a0), a1 - a0};
   };
   const auto one = [&](auto tag, std::ptrdiff_t i, Sums<decltype(tag)>& sums) {
     using T = decltype(tag);
@@ -169,21 +173,25 @@ GridSums GainsPass(const float* zn, const GridRows& r, std::ptrdiff_t begin, std
     } else {
       vec::Store(below + i, z), vec::Store(gain + i, d < zero ? zero : d);
     }
-    // Add's terms (kLocal), each over the variance by its inverse.
-    const T chi = d * d * inv, cap = Broadcast<T>(c.cap);
+    // Add's terms (kLocal), each over the variance by its inverse; the
+    // slope is the rise / dx, its factors (2 / dx, 2 / dx^2) taken once at
+    // the end.
+    const T p = d * inv, chi = d * p, cap = Broadcast<T>(cap_c);
     const auto present = zi == zi, under = chi < cap;
     sums.first += present ? (under ? chi : cap) : zero;
-    const T g = rise * Broadcast<T>(c.inv_dx);
     const auto fits = present & under;
-    sums.second += fits ? Broadcast<T>(2.0f) * d * g * inv : zero;
-    sums.third += fits ? Broadcast<T>(2.0f) * g * g * inv : zero;
+    const T p_fits = fits ? p : zero, inv_fits = fits ? inv : zero;
+    sums.second += p_fits * rise;
+    sums.third += (rise * inv_fits) * rise;
   };
   Sums<V8> wide;
   std::ptrdiff_t i = begin;
   for (; i + 8 <= end; i += 8) one(V8{}, i, wide);
   Sums<float> narrow;
   for (; i < end; ++i) one(0.0f, i, narrow);
-  return Total(wide, narrow);
+  GridSums total = Total(wide, narrow);
+  total.second *= 2.0 * inv_dx, total.third *= 2.0 * inv_dx * static_cast<double>(inv_dx);
+  return total;
 }
 
 GridSums Gains(const float* zn, const GridRows& r, std::ptrdiff_t begin, std::ptrdiff_t end, const GridShared& c,
@@ -316,6 +324,44 @@ GridSums Flanks(const float* x, const float* z, const float* under, std::size_t 
   return Total(wide, narrow);
 }
 
+// core/median.h's order for NaN: std::min(a, b) is b < a ? b : a.
+template <class T>
+inline T StdMin(T a, T b) {
+  return b < a ? b : a;
+}
+template <class T>
+inline T StdMax(T a, T b) {
+  return a < b ? b : a;
+}
+template <class T>
+inline T StdMedian3(T a, T b, T c) {
+  return StdMax(StdMin(a, b), StdMin(StdMax(a, b), c));
+}
+
+// Eight medians at a time, each lane keeping its greatest and where (the
+// first, as the scalar loop's strict >); the lanes' greatest then, at its
+// least index, and the rest on from there one at a time.
+std::size_t Crest(const float* z, std::size_t lo, std::size_t hi) {
+  const float none = -__builtin_inff();
+  V8 top = vec::Splat(none), where = vec::Splat(0.0f);
+  const V8 lanes{0, 1, 2, 3, 4, 5, 6, 7};
+  std::size_t k = lo;
+  for (; k + 8 <= hi; k += 8) {
+    const V8 m = StdMedian3(vec::Load(z + k - 1), vec::Load(z + k), vec::Load(z + k + 1));
+    const auto higher = m > top;
+    top = higher ? m : top;
+    where = higher ? vec::Splat(static_cast<float>(k - lo)) + lanes : where;
+  }
+  float best = none;
+  std::size_t crest = lo;
+  for (int i = 0; i < 8; ++i)
+    if (top[i] > best || (top[i] == best && best > none && lo + static_cast<std::size_t>(where[i]) < crest))
+      best = top[i], crest = lo + static_cast<std::size_t>(where[i]);
+  for (; k < hi; ++k)
+    if (const float m = StdMedian3(z[k - 1], z[k], z[k + 1]); m > best) best = m, crest = k;
+  return crest;
+}
+
 #define BEAD_STRINGIFY_(x) #x
 #define BEAD_STRINGIFY(x) BEAD_STRINGIFY_(x)
 constexpr PartKernel kPartKernel{BEAD_STRINGIFY(BEAD_KERNEL),
@@ -331,7 +377,8 @@ constexpr PartKernel kPartKernel{BEAD_STRINGIFY(BEAD_KERNEL),
                                  Top,
                                  RowsAtPlaces,
                                  Flanks,
-                                 Gains};
+                                 Gains,
+                                 Crest};
 
 }  // namespace
 

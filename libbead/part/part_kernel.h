@@ -137,6 +137,10 @@ struct PartKernel {
   // (NaN where either is), to gain[i]: one pass.
   GridSums (*gains)(const float* zn, const GridRows& rows, std::ptrdiff_t begin, std::ptrdiff_t end,
                     const GridShared& c, float* below, float* gain);
+  // The first k in [lo, hi) (lo >= 1, z holding hi + 1 values) where the
+  // median of z[k - 1], z[k], z[k + 1] (core/median.h Median3, its order
+  // for NaN) is greatest; lo where none is over -infinity.
+  std::size_t (*crest)(const float* z, std::size_t lo, std::size_t hi);
 };
 
 // The build this processor runs.

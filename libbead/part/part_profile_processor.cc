@@ -245,10 +245,7 @@ double PartProfileProcessor::GainAtCrest(std::span<const float> x, std::span<con
   const auto last =
       static_cast<std::size_t>(std::upper_bound(x.begin(), x.end(), result_.bead.right_edge_x_mm) - x.begin());
   if (last < first + 3) return result_.bead.height_mm;
-  std::size_t crest = first + 1;
-  float top = -std::numeric_limits<float>::infinity();
-  for (std::size_t k = first + 1; k + 1 < last; ++k)
-    if (const float m = Median3(z[k - 1], z[k], z[k + 1]); m > top) top = m, crest = k;
+  const std::size_t crest = part_kernel_->crest(z.data(), first + 1, last - 1);
   return Median3(heights_[crest - 1], heights_[crest], heights_[crest + 1]);
 }
 

@@ -346,13 +346,23 @@ int FlankPoints(std::span<const float> x, std::span<const float> z, std::span<co
   const double noise_slope = k.noise / k.spacing, feature_slope = kFeatureSigmas * std::sqrt(2.0) * noise_slope;
   // Both of Settle's rules in one pass (part/part_kernel.h flanks), in
   // floats, each rise to the next point against what a slope gives over
-  // that spacing; the last point by the first rule alone.
+  // that spacing; the last point by the first rule alone. Counted a stretch
+  // of kStretch points at a time, until the first rule alone has enough
+  // (what the count is for: a profile whose flanks lie left of its middle
+  // is not read to its end).
+  constexpr std::size_t kStretch = 128;
   const auto tau = static_cast<float>(k.tau), steep = static_cast<float>(feature_slope);
-  const GridSums counts = ActivePartKernel().flanks(x.data(), z.data(), under.data(), x.size(), tau, steep,
-                                                    static_cast<float>(kRunNoises * noise_slope));
-  auto single = static_cast<int>(counts.first), runs = static_cast<int>(counts.second);
-  if (x.size() >= 2) {
-    const std::size_t i = x.size() - 2;
+  const PartKernel& kernel = ActivePartKernel();
+  int single = 0, runs = 0;
+  const std::size_t n = x.size();
+  for (std::size_t lo = 0; lo + 2 < n && single < enough; lo += kStretch) {
+    const std::size_t len = std::min(kStretch + 2, n - lo);
+    const GridSums counts = kernel.flanks(x.data() + lo, z.data() + lo, under.data() + lo, len, tau, steep,
+                                          static_cast<float>(kRunNoises * noise_slope));
+    single += static_cast<int>(counts.first), runs += static_cast<int>(counts.second);
+  }
+  if (n >= 2) {
+    const std::size_t i = n - 2;
     const float d = z[i] - under[i];
     single += (d <= tau && d >= -tau) && std::abs(under[i + 1] - under[i]) > steep * (x[i + 1] - x[i]);
   }

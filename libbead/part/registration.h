@@ -92,7 +92,8 @@ PointsOnGrid::Local LocalCost(std::span<const float> x, std::span<const float> z
 // at them (`under`, NaN where unknown) on a flank of it, by Settle's rule
 // above (the rise to the next point over 4.5 noises' worth, or a run of
 // two over three), the second rule counted only where the first gives
-// fewer than `enough`.
+// fewer than `enough`: the count where it is under `enough`, else at least
+// `enough` (counting stops once the first rule has found that many).
 int FlankPoints(std::span<const float> x, std::span<const float> z, std::span<const float> under,
                 const RegistrationScale& scale, int enough);
 

@@ -5,6 +5,16 @@
 #include <cstdint>
 
 namespace bead::part {
+namespace {
+
+// A row's values asked of memory ahead of their use (for writing: 1).
+template <int kWrite>
+void Prefetch(const std::vector<float>& v) {
+  const char* p = reinterpret_cast<const char*>(v.data());
+  for (std::size_t b = 0; b < v.size() * sizeof(float); b += 64) __builtin_prefetch(p + b, kWrite, 3);
+}
+
+}  // namespace
 
 bool UniformGrid(std::span<const float> x, double& x0, double& dx) {
   const std::size_t n = x.size();
@@ -49,6 +59,9 @@ const float* SensorRows::Keep(double path_mm, double x0_bed_mm, double dx, std::
   const auto f = static_cast<float>(frame_z);
   for (std::size_t k = 0; k < z.size(); ++k) out[k] = z[k] + f;
   current_.push_back(std::move(row));
+  // The next profile's buffer, last written two layers ago, asked for now
+  // (for writing), while this profile is measured.
+  if (!spare_.empty()) Prefetch<1>(spare_.back());
   return out;
 }
 
@@ -61,6 +74,9 @@ bool SensorRows::At(double path, Pair& out, std::string* why) const {
   if (!PathNeighbours(
           below_, [](const Row& r) { return r.path_mm; }, path, options_.max_path_gap_mm, layer_ - 1, i, j, out.w, why))
     return false;
+  // The row after these along the path, which the profiles to come read
+  // next, asked for now (a row last touched a layer ago).
+  if (j + 1 < below_.size()) Prefetch<0>(below_[j + 1].z);
   out.count = i == j ? 1 : 2;
   const std::size_t rows[2] = {i, j};
   for (int r = 0; r < out.count; ++r) {

@@ -17,6 +17,8 @@
 #include <vector>
 
 #include "libbead/core/float_bits.h"
+#include "libbead/core/median.h"
+#include "libbead/part/registration.h"
 #include "libbead/part/superellipse.h"
 #include "libbead/part/surface_below.h"
 
@@ -255,6 +257,66 @@ TEST(PartKernel, TheFlanksAreTheirRulesPointByPointInBothBuilds) {
     EXPECT_EQ(got.first, single);
     EXPECT_EQ(got.second, runs);
   }
+}
+
+// The crest (the first greatest median of three, core/median.h's
+// Median3 with its order for NaN) against the scalar loop, over ranges of
+// every length up to and past a register's eight, on heights quantised to
+// a few levels (ties) with NaNs (a sensor's dropouts) among them.
+TEST(PartKernel, TheCrestIsTheFirstGreatestMedianOfThreeInBothBuilds) {
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> level(0, 6), pick(0, 9);
+  const std::size_t n = 64;
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<float> z(n);
+    for (float& v : z) v = pick(rng) == 0 ? NAN : 0.1f * static_cast<float>(level(rng));
+    if (trial % 50 == 0) std::fill(z.begin(), z.end(), NAN);  // nothing but dropouts: lo
+    for (std::size_t lo = 1; lo < 12; lo += 3) {
+      for (std::size_t hi = lo; hi + 1 < n; hi += 5) {
+        std::size_t want = lo;
+        float top = -std::numeric_limits<float>::infinity();
+        for (std::size_t k = lo; k < hi; ++k)
+          if (const float m = Median3(z[k - 1], z[k], z[k + 1]); m > top) top = m, want = k;
+        for (const PartKernel* kernel : {&BaselinePartKernel(), &ActivePartKernel()})
+          ASSERT_EQ(kernel->crest(z.data(), lo, hi), want)
+              << kernel->name << " trial " << trial << " [" << lo << ", " << hi << ")";
+      }
+    }
+  }
+}
+
+// FlankPoints counts a stretch of points at a time until the first rule
+// has enough: with more asked than there are, the whole profile's count
+// (the kernel over every point at once, and the last point's first rule);
+// with fewer, at least as many as asked, found before the end.
+TEST(FlankPoints, CountedStretchByStretchIsTheWholeCountOrEnough) {
+  std::mt19937 rng(3);
+  std::normal_distribution<float> noise(0.0f, 0.01f);
+  const std::size_t n = 801;
+  std::vector<float> x(n), z(n), under(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    x[i] = -20.0f + 0.05f * static_cast<float>(i);
+    // Steps of the layer below at -12, 3 and 15 mm (flanks in the first
+    // stretch and far past it), one between points 255 and 256 (where two
+    // stretches meet) and a ramp at 8 mm (a run: 0.9 mm a mm).
+    under[i] = (x[i] > -12.0f ? 0.4f : 0.0f) + (x[i] > 3.0f ? 0.6f : 0.0f) + (x[i] > 15.0f ? -0.8f : 0.0f) +
+               (i > 255 ? 0.3f : 0.0f) + 0.9f * std::clamp(x[i] - 8.0f, 0.0f, 1.0f);
+    z[i] = under[i] + noise(rng);
+  }
+  const RegistrationScale scale{0.06, 0.01, 0.05};
+  const double noise_slope = scale.noise / scale.spacing;
+  const GridSums all = ActivePartKernel().flanks(x.data(), z.data(), under.data(), n, 0.06f,
+                                                 static_cast<float>(4.5 * std::sqrt(2.0) * noise_slope),
+                                                 static_cast<float>(3.0 * noise_slope));
+  const float d = z[n - 2] - under[n - 2];
+  const int last =
+      std::abs(d) <= 0.06f && std::abs(under[n - 1] - under[n - 2]) >
+                                  static_cast<float>(4.5 * std::sqrt(2.0) * noise_slope) * (x[n - 1] - x[n - 2]);
+  const int single = static_cast<int>(all.first) + last, runs = static_cast<int>(all.second);
+  ASSERT_GE(single, 3);
+  EXPECT_GT(runs, 0);
+  EXPECT_EQ(FlankPoints(x, z, under, scale, 1000), single + runs);
+  for (int enough : {1, 2, 3}) EXPECT_GE(FlankPoints(x, z, under, scale, enough), enough) << enough;
 }
 
 }  // namespace
