@@ -74,9 +74,13 @@ bool SensorRows::At(double path, Pair& out, std::string* why) const {
   if (!PathNeighbours(
           below_, [](const Row& r) { return r.path_mm; }, path, options_.max_path_gap_mm, layer_ - 1, i, j, out.w, why))
     return false;
-  // The row after these along the path, which the profiles to come read
-  // next, asked for now (a row last touched a layer ago).
-  if (j + 1 < below_.size()) Prefetch<0>(below_[j + 1].z);
+  // The row after these in the direction the head moves along the path,
+  // which the profiles to come read next, asked of memory now (a row last
+  // touched a layer ago; asked again while it is the next, a few
+  // instructions where it is in the cache already).
+  const std::size_t next = path >= last_path_ ? j + 1 : i - 1;  // (i = 0: past the end)
+  if (next < below_.size()) Prefetch<0>(below_[next].z);
+  last_path_ = path;
   out.count = i == j ? 1 : 2;
   const std::size_t rows[2] = {i, j};
   for (int r = 0; r < out.count; ++r) {

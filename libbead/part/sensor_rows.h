@@ -68,6 +68,8 @@ class SensorRows {
   // The values of rows let go (the layer before the one below), refilled
   // by the next profiles: after the first layers nothing is allocated.
   std::vector<std::vector<float>> spare_;
+  // The last place read (At: the direction the head moves).
+  mutable double last_path_ = 0.0;
 };
 
 }  // namespace bead::part
