@@ -145,9 +145,10 @@ void PartProfileProcessor::OverBelow(const SurfaceGrid& below) {
   const double noise = pass_noise_;
   const bool on_grid = on_grid_.Make(bed_.x_mm, bed_.z_mm, below);
   // From the pass's last shift found; before one is, from the offline
-  // registration's wide search, on the pass's first two profiles (some 25
-  // us each: not on every profile of a layer whose shift the layer below
-  // does not constrain), then from where it last pointed.
+  // registration's wide search, on the pass's first two profiles (0.09 to
+  // 0.18 ms each on the twin's 801 points: not on every profile of a layer
+  // whose shift the layer below does not constrain), then from where it
+  // last pointed.
   double s = std::isfinite(pass_shift_) ? pass_shift_ : pass_loose_;
   if (!std::isfinite(pass_shift_) && wide_searches_ > 0) {
     --wide_searches_;

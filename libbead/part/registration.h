@@ -65,8 +65,10 @@ struct RegistrationScale {
 // start_hidden_sigma: the pass's last hidden_sigma, which a track carries;
 // search_wide: with no start, first look over the widest range (a quarter
 // of the surface below's span) for a least beyond +-max_shift_mm: the
-// pass's first searches (a coarse scan over that range, some 25 us on the
-// twin's 801 points: the caller asks twice a pass, not every profile).
+// pass's first searches (a coarse scan over that range; the whole search
+// 0.09 to 0.18 ms on the twin's 801 points, where a profile tracked from
+// the last shift takes about 1.3 us: the caller asks twice a pass, not
+// every profile).
 Registration Register(std::span<const float> x, std::span<const float> z, const SurfaceGrid& below,
                       const RegistrationScale& scale, const AddedBeadOptions& options, const double* start,
                       const PointsOnGrid* grid = nullptr, double start_hidden_sigma = 0.0, bool search_wide = false);
