@@ -31,6 +31,10 @@ bool PointsOnGrid::Make(std::span<const float> x, std::span<const float> z, cons
       (count_ == 1 || (PointsRow(rows_[1]) && std::abs(rows_[1]->dx_mm - rows_[0]->dx_mm) <= 1e-6 * rows_[0]->dx_mm));
   if (!rows_ok || x.size() < 2) return count_ = 0, false;
   dx_mm_ = rows_[0]->dx_mm;
+  unit_ = true;
+  for (int r = 0; r < count_; ++r)
+    unit_ =
+        unit_ && std::all_of(rows_[r]->variance.begin(), rows_[r]->variance.end(), [](float v) { return v == 1.0f; });
   const double last = std::round((x.back() - x.front()) / dx_mm_);
   if (!(last >= 1.0) || last + 1.0 >= static_cast<double>(kMaxGridPoints)) return count_ = 0, false;
   x0_mm_ = x.front();
@@ -49,6 +53,7 @@ PointsOnGrid::Span PointsOnGrid::Inside(double s) const {
   Span span;
   span.rows.count = count_;
   span.rows.w = static_cast<float>(grid_->weight());
+  span.rows.unit = unit_;
   // The intersection shrinks from every index, the union grows from none.
   span.begin = 0, span.end = std::ssize(z_);
   span.any_begin = std::ssize(z_), span.any_end = 0;

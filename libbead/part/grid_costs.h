@@ -71,6 +71,7 @@ class PointsOnGrid {
   const SurfaceGrid* grid_ = nullptr;
   const SurfaceRow* rows_[2] = {};
   int count_ = 0;
+  bool unit_ = false;  // every row's values measured points, each one point's variance
   double dx_mm_ = 0.0;
   double x0_mm_ = 0.0;                  // x of z_[0]
   std::vector<float> z_;                // the new points on the grid, NaN where none

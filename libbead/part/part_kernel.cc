@@ -123,7 +123,48 @@ GridSums Pass(const float* zn, const GridRows& r, std::ptrdiff_t begin, std::ptr
   return Total(wide, narrow);
 }
 
+// Pass<false>'s cost over rows of unit variance (GridRows::unit): a row's
+// sample a fraction t of the way has (1 - t)^2 + t^2 of one point's, two
+// blended (1 - w)^2 va + w^2 vb where both are known, so each point's term
+// is its squared gain times one of three inverses, no v read, no division.
+template <bool kTwo>
+GridSums UnitTruncatedPass(const float* zn, const GridRows& r, std::ptrdiff_t begin, std::ptrdiff_t end,
+                           const GridShared& c) {
+  const float va = (1 - r.t[0]) * (1 - r.t[0]) + r.t[0] * r.t[0];
+  const float vb = kTwo ? (1 - r.t[1]) * (1 - r.t[1]) + r.t[1] * r.t[1] : va;
+  const float w = r.w, w0 = 1.0f - r.w;
+  const float inv_a = 1.0f / (c.noise2 * (1.0f + va)), inv_b = 1.0f / (c.noise2 * (1.0f + vb)),
+              inv_ab = 1.0f / (c.noise2 * (1.0f + w0 * w0 * va + w * w * vb));
+  const float* const rz[2] = {r.z[0], r.z[1]};
+  const float rt[2] = {r.t[0], r.t[1]}, cap_c = c.cap;
+  const auto one = [&](auto tag, std::ptrdiff_t i, Sums<decltype(tag)>& sums) {
+    using T = decltype(tag);
+    const T a0 = At<T>(rz[0], i), a1 = At<T>(rz[0], i + 1);
+    T z = a0 + Broadcast<T>(rt[0]) * (a1 - a0), inv = Broadcast<T>(inv_a);
+    if constexpr (kTwo) {
+      const T b0 = At<T>(rz[1], i), b1 = At<T>(rz[1], i + 1), zb = b0 + Broadcast<T>(rt[1]) * (b1 - b0);
+      const auto a_known = z == z;
+      const auto b_known = zb == zb;
+      const auto both = a_known & b_known;
+      z = both ? Broadcast<T>(w0) * z + Broadcast<T>(w) * zb : (b_known ? zb : z);
+      inv = both ? Broadcast<T>(inv_ab) : (b_known ? Broadcast<T>(inv_b) : inv);
+    }
+    const T zi = At<T>(zn, i), d = zi - z, chi = d * d * inv, cap = Broadcast<T>(cap_c), zero = Broadcast<T>(0.0f);
+    const auto present = zi == zi, under = chi < cap;
+    sums.first += present ? (under ? chi : cap) : zero;
+  };
+  Sums<V8> wide;
+  std::ptrdiff_t i = begin;
+  for (; i + 8 <= end; i += 8) one(V8{}, i, wide);
+  Sums<float> narrow;
+  for (; i < end; ++i) one(0.0f, i, narrow);
+  return Total(wide, narrow);
+}
+
 GridSums Truncated(const float* zn, const GridRows& r, std::ptrdiff_t begin, std::ptrdiff_t end, const GridShared& c) {
+  if (r.unit)
+    return r.count == 2 ? UnitTruncatedPass<true>(zn, r, begin, end, c)
+                        : UnitTruncatedPass<false>(zn, r, begin, end, c);
   return r.count == 2 ? Pass<false, true>(zn, r, begin, end, c) : Pass<false, false>(zn, r, begin, end, c);
 }
 

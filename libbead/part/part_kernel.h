@@ -30,6 +30,9 @@ struct GridRows {
   float t[2] = {};
   float w = 0.0f;
   int count = 1;
+  // Every value's variance one point's (rows of measured points, none
+  // resampled): truncated reads no v, each row's variance a constant of it.
+  bool unit = false;
 };
 
 // What every point's term shares at one shift: one point's noise variance,
@@ -88,7 +91,8 @@ struct GridSums {
 
 struct PartKernel {
   const char* name;
-  // The truncated cost (first).
+  // The truncated cost (first); over rows of unit variance (rows.unit)
+  // without reading rows.v.
   GridSums (*truncated)(const float* zn, const GridRows& rows, std::ptrdiff_t begin, std::ptrdiff_t end,
                         const GridShared& c);
   // The truncated cost, its gradient and its Gauss-Newton curvature in s.

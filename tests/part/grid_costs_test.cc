@@ -19,14 +19,15 @@ constexpr double kGridDx = 0.05, kNoise = 0.01, kTau = 0.06;
 double LowerBead(double x) { return std::abs(x) < 4.0 ? 1.5 * std::sqrt(1.0 - x * x / 16.0) : 0.0; }
 
 // The layer below on its points' grid: a gap of 0.3 mm not seen, a
-// stretch bridged (variance under one point's); from x0 on n values.
-SurfaceRow BelowRow(double x0, int n, int gap) {
+// stretch bridged (variance under one point's; none with `unit`: every
+// value a measured point, the loops' unit path); from x0 on n values.
+SurfaceRow BelowRow(double x0, int n, int gap, bool unit = false) {
   SurfaceRow row;
   row.x0_mm = x0, row.dx_mm = kGridDx, row.at_points = true;
   for (int k = 0; k < n; ++k) {
     const double x = row.x0_mm + k * kGridDx;
     row.z_mm.push_back(k >= gap && k < gap + 6 ? NAN : static_cast<float>(LowerBead(x)));
-    row.variance.push_back(k >= 200 && k < 204 ? 0.5f : 1.0f);
+    row.variance.push_back(!unit && k >= 200 && k < 204 ? 0.5f : 1.0f);
   }
   return row;
 }
@@ -34,9 +35,9 @@ SurfaceRow BelowRow(double x0, int n, int gap) {
 // One row; and two, the second 0.37 of a spacing off the first's grid (a
 // profiler frame moved sideways between them), shorter, its gap elsewhere,
 // weighed 0.3: where one is not known the other stands for both.
-std::vector<SurfaceGrid> Surfaces() {
-  auto first = std::make_shared<const SurfaceRow>(BelowRow(-12.0, 481, 100));
-  auto second = std::make_shared<const SurfaceRow>(BelowRow(-11.5 + 0.37 * kGridDx, 450, 150));
+std::vector<SurfaceGrid> Surfaces(bool unit = false) {
+  auto first = std::make_shared<const SurfaceRow>(BelowRow(-12.0, 481, 100, unit));
+  auto second = std::make_shared<const SurfaceRow>(BelowRow(-11.5 + 0.37 * kGridDx, 450, 150, unit));
   return {SurfaceGrid(first, nullptr, 0.0), SurfaceGrid(first, second, 0.3)};
 }
 SurfaceGrid Below() { return Surfaces()[0]; }
@@ -117,8 +118,11 @@ constexpr double kSumRounding = 0.1, kAddedRounding = 1e-5;
 const std::vector<const PartKernel*> kKernels{&BaselinePartKernel(), &ActivePartKernel()};
 
 TEST(GridCosts, EightAtATimeTheyAreTheDefinitionsToAFloatsRounding) {
-  for (const SurfaceGrid& below : Surfaces()) {
+  std::vector<SurfaceGrid> surfaces = Surfaces(), unit = Surfaces(true);
+  surfaces.insert(surfaces.end(), unit.begin(), unit.end());
+  for (const SurfaceGrid& below : surfaces) {
     SCOPED_TRACE(below.row(1) ? "two rows" : "one row");
+    SCOPED_TRACE(below.row(0)->variance[200] == 1.0f ? "unit variance" : "a stretch bridged");
     const double truth = 0.137;
     const Points p = NewPoints(truth);
     for (const PartKernel* kernel : kKernels) {
