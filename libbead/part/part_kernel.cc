@@ -123,18 +123,31 @@ GridSums Pass(const float* zn, const GridRows& r, std::ptrdiff_t begin, std::ptr
   return Total(wide, narrow);
 }
 
-// Pass<false>'s cost over rows of unit variance (GridRows::unit): a row's
-// sample a fraction t of the way has (1 - t)^2 + t^2 of one point's, two
-// blended (1 - w)^2 va + w^2 vb where both are known, so each point's term
-// is its squared gain times one of three inverses, no v read, no division.
+// Over rows of measured points (each value's variance one point's): a
+// row's sample a fraction t of the way has (1 - t)^2 + t^2 of it, a
+// constant of the row; two blended, (1 - w)^2 va + w^2 vb where both are
+// known. A point's term over its variance is then over one point's noise
+// variance and the surface below's: by one of three inverses, row a's
+// alone, row b's alone or both blended.
+struct UnitInverses {
+  float a, b, ab;
+};
+UnitInverses Inverses(const GridRows& r, const GridShared& c, bool two) {
+  const float va = (1 - r.t[0]) * (1 - r.t[0]) + r.t[0] * r.t[0];
+  const float vb = two ? (1 - r.t[1]) * (1 - r.t[1]) + r.t[1] * r.t[1] : va;
+  const float w = r.w, w0 = 1.0f - r.w;
+  return {1.0f / (c.noise2 * (1.0f + va)), 1.0f / (c.noise2 * (1.0f + vb)),
+          1.0f / (c.noise2 * (1.0f + w0 * w0 * va + w * w * vb))};
+}
+
+// Pass<false>'s cost over rows of unit variance (GridRows::unit): each
+// point's term its squared gain times one of the three inverses, no v
+// read, no division.
 template <bool kTwo>
 GridSums UnitTruncatedPass(const float* zn, const GridRows& r, std::ptrdiff_t begin, std::ptrdiff_t end,
                            const GridShared& c) {
-  const float va = (1 - r.t[0]) * (1 - r.t[0]) + r.t[0] * r.t[0];
-  const float vb = kTwo ? (1 - r.t[1]) * (1 - r.t[1]) + r.t[1] * r.t[1] : va;
-  const float w = r.w, w0 = 1.0f - r.w;
-  const float inv_a = 1.0f / (c.noise2 * (1.0f + va)), inv_b = 1.0f / (c.noise2 * (1.0f + vb)),
-              inv_ab = 1.0f / (c.noise2 * (1.0f + w0 * w0 * va + w * w * vb));
+  const UnitInverses u = Inverses(r, c, kTwo);
+  const float w = r.w, w0 = 1.0f - r.w, inv_a = u.a, inv_b = u.b, inv_ab = u.ab;
   const float* const rz[2] = {r.z[0], r.z[1]};
   const float rt[2] = {r.t[0], r.t[1]}, cap_c = c.cap;
   const auto one = [&](auto tag, std::ptrdiff_t i, Sums<decltype(tag)>& sums) {
@@ -172,20 +185,15 @@ GridSums Local(const float* zn, const GridRows& r, std::ptrdiff_t begin, std::pt
   return r.count == 2 ? Pass<true, true>(zn, r, begin, end, c) : Pass<true, false>(zn, r, begin, end, c);
 }
 
-// Local's sums over rows whose values are measured points (each value's
-// variance one point's: a row's sample a fraction t of the way has
-// (1 - t)^2 + t^2 of it, a constant of the row; two blended, (1 - w)^2 va +
-// w^2 vb where both are known), so no variance is read and no division
-// made per point; and the surface below and the gains (at least 0, NaN
-// where either surface is) stored at every index.
+// Local's sums over rows whose values are measured points (Inverses: no
+// variance read, no division made per point); and the surface below and
+// the gains (at least 0, NaN where either surface is) stored at every
+// index.
 template <bool kTwo>
 GridSums GainsPass(const float* zn, const GridRows& r, std::ptrdiff_t begin, std::ptrdiff_t end, const GridShared& c,
                    float* below, float* gain) {
-  const float va = (1 - r.t[0]) * (1 - r.t[0]) + r.t[0] * r.t[0];
-  const float vb = kTwo ? (1 - r.t[1]) * (1 - r.t[1]) + r.t[1] * r.t[1] : va;
-  const float w = r.w, w0 = 1.0f - r.w;
-  const float inv_a = 1.0f / (c.noise2 * (1.0f + va)), inv_b = 1.0f / (c.noise2 * (1.0f + vb)),
-              inv_ab = 1.0f / (c.noise2 * (1.0f + w0 * w0 * va + w * w * vb));
+  const UnitInverses u = Inverses(r, c, kTwo);
+  const float w = r.w, w0 = 1.0f - r.w, inv_a = u.a, inv_b = u.b, inv_ab = u.ab;
   // The rows and the constants held here, not read through r and c (the
   // stores to below and gain could alias them: each read again per step).
   const float* const rz[2] = {r.z[0], r.z[1]};

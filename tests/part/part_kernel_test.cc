@@ -226,17 +226,31 @@ TEST(PartKernel, TheGainsOverMeasuredRowsAreLocalsSumsAndTheSurfaceBelowInBothBu
   }
 }
 
+// A profile of n points 0.05 mm apart from x0 over the surface below
+// under(x, i), each point its gain bead(x) over it and 0.01 mm of noise.
+struct SurfaceProfile {
+  std::vector<float> x, z, under;
+};
+template <class Under, class Bead>
+SurfaceProfile OverASurface(std::size_t n, float x0, unsigned seed, Under under, Bead bead) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<float> noise(0.0f, 0.01f);
+  SurfaceProfile p{std::vector<float>(n), std::vector<float>(n), std::vector<float>(n)};
+  for (std::size_t i = 0; i < n; ++i) {
+    p.x[i] = x0 + 0.05f * static_cast<float>(i);
+    p.under[i] = under(p.x[i], i);
+    p.z[i] = p.under[i] + noise(rng) + bead(p.x[i]);
+  }
+  return p;
+}
+
 // The flanks' counts are their rules written point by point, in both builds.
 TEST(PartKernel, TheFlanksAreTheirRulesPointByPointInBothBuilds) {
-  std::mt19937 rng(11);
-  std::normal_distribution<float> noise(0.0f, 0.01f);
   const std::size_t n = 301;
-  std::vector<float> x(n), z(n), under(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    x[i] = -7.5f + 0.05f * static_cast<float>(i);
-    under[i] = x[i] < -2.0f ? 0.0f : 2.0f * std::cos(0.5f * x[i]);                // a bed, then a flank and a top
-    z[i] = under[i] + noise(rng) + (std::abs(x[i] - 1.0f) < 1.0f ? 0.5f : 0.0f);  // and a bead
-  }
+  // A bed, then a flank and a top; and a bead.
+  auto [x, z, under] = OverASurface(
+      n, -7.5f, 11, [](float x, std::size_t) { return x < -2.0f ? 0.0f : 2.0f * std::cos(0.5f * x); },
+      [](float x) { return std::abs(x - 1.0f) < 1.0f ? 0.5f : 0.0f; });
   under[150] = NAN;
   const float tau = 0.06f, steep = 0.9f, run = 0.6f;
   double single = 0.0, runs = 0.0;
@@ -290,19 +304,17 @@ TEST(PartKernel, TheCrestIsTheFirstGreatestMedianOfThreeInBothBuilds) {
 // (the kernel over every point at once, and the last point's first rule);
 // with fewer, at least as many as asked, found before the end.
 TEST(FlankPoints, CountedStretchByStretchIsTheWholeCountOrEnough) {
-  std::mt19937 rng(3);
-  std::normal_distribution<float> noise(0.0f, 0.01f);
   const std::size_t n = 801;
-  std::vector<float> x(n), z(n), under(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    x[i] = -20.0f + 0.05f * static_cast<float>(i);
-    // Steps of the layer below at -12, 3 and 15 mm (flanks in the first
-    // stretch and far past it), one between points 255 and 256 (where two
-    // stretches meet) and a ramp at 8 mm (a run: 0.9 mm a mm).
-    under[i] = (x[i] > -12.0f ? 0.4f : 0.0f) + (x[i] > 3.0f ? 0.6f : 0.0f) + (x[i] > 15.0f ? -0.8f : 0.0f) +
-               (i > 255 ? 0.3f : 0.0f) + 0.9f * std::clamp(x[i] - 8.0f, 0.0f, 1.0f);
-    z[i] = under[i] + noise(rng);
-  }
+  // Steps of the layer below at -12, 3 and 15 mm (flanks in the first
+  // stretch and far past it), one between points 255 and 256 (where two
+  // stretches meet) and a ramp at 8 mm (a run: 0.9 mm a mm).
+  const auto [x, z, under] = OverASurface(
+      n, -20.0f, 3,
+      [](float x, std::size_t i) {
+        return (x > -12.0f ? 0.4f : 0.0f) + (x > 3.0f ? 0.6f : 0.0f) + (x > 15.0f ? -0.8f : 0.0f) +
+               (i > 255 ? 0.3f : 0.0f) + 0.9f * std::clamp(x - 8.0f, 0.0f, 1.0f);
+      },
+      [](float) { return 0.0f; });
   const RegistrationScale scale{0.06, 0.01, 0.05};
   const double noise_slope = scale.noise / scale.spacing;
   const GridSums all = ActivePartKernel().flanks(x.data(), z.data(), under.data(), n, 0.06f,
