@@ -171,11 +171,16 @@ bool PartProfileProcessor::Register(const SurfaceGrid& below, double noise, doub
   const RegistrationScale scale{tau, noise, bed_.spacing_mm};
   const PointsOnGrid* grid = on_grid_.Ready() ? &on_grid_ : nullptr;
   const double start = s;
+  // No step where the pass's hidden sigma is over the limit (the sensor's
+  // rows' path says why, part_profile_rows.cc): the cost's curvature at
+  // the pass's shift, for its sigma, alone.
+  const double limit = std::max(options_.max_shift_sigma_mm, bed_.spacing_mm);
+  const bool may_move = !(pass_hidden_ > limit);
   double curvature = 0.0;
   for (int step = 0; step < options_.shift_steps; ++step) {
     const PointsOnGrid::Local l = LocalCost(bed_.x_mm, bed_.z_mm, below, s, scale, grid);
     curvature = l.curvature;
-    if (!(curvature > 0.0)) break;
+    if (!may_move || !(curvature > 0.0)) break;
     // Gauss-Newton (gain d = z - below(x - s), dd/ds = below's slope): no
     // step beyond a point spacing, where the truncation may change.
     const double ds = std::clamp(-l.gradient / curvature, -bed_.spacing_mm, bed_.spacing_mm);
@@ -193,7 +198,7 @@ bool PartProfileProcessor::Register(const SurfaceGrid& below, double noise, doub
   r.sigma = curvature > 0.0 ? std::max(std::sqrt(2.0 / curvature), bed_.spacing_mm / std::sqrt(12.0)) : kNaN;
   r.hidden_sigma = pass_hidden_;
   AddedBeadOptions settle;
-  settle.max_shift_sigma_mm = std::max(options_.max_shift_sigma_mm, bed_.spacing_mm);
+  settle.max_shift_sigma_mm = limit;
   SettleShift(bed_.x_mm, bed_.z_mm, below, scale, settle, grid, r);
   result_.shift_sigma_mm = r.sigma;
   if (!r.constrained) s = start;

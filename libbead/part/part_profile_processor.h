@@ -17,7 +17,9 @@
 // its hidden sigma kept for the pass), then by Gauss-Newton steps on the
 // same truncated cost (the points whose gain is under the detection
 // threshold, where the two surfaces agree) from the pass's last shift,
-// settled by the same rules.
+// settled by the same rules (no steps in a pass whose search found the
+// layer below could hide a shift wider than the limit: none of its
+// profiles can be constrained).
 //
 // What it leaves to the offline measurement (bead measure, part/
 // measure_part.h): the groove a bead hides under its overhangs (the
