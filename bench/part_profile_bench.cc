@@ -85,7 +85,7 @@ void BM_PartProfileAsItArrives(benchmark::State& state) {
   bead::part::PartProfileProcessor processor(twin.rig, {}, b.points);
   for (auto _ : state) {
     for (std::size_t k = 0; k < b.size(); ++k) {
-      const bead::part::PartPlace place{places.layer[k], places.path_mm[k], places.frame_x_mm[k], places.frame_z_mm[k]};
+      const auto place = bead::part::PartPlace::At(places, k);
       valid += processor.Process(b.view(k), place).bead.status == bead::ProfileStatus::kValid;
     }
   }

@@ -33,6 +33,14 @@ ReferenceLine FlatLine(double noise_mm, int points) {
 
 }  // namespace
 
+std::size_t PartProfileProcessor::MinPoints() const {
+  return static_cast<std::size_t>(std::max(options_.profile.bead.min_profile_points, 3));
+}
+
+double PartProfileProcessor::ShiftSigmaLimit(double spacing) const {
+  return std::max(options_.max_shift_sigma_mm, spacing);
+}
+
 double PartProfileProcessor::Tau(double noise) const {
   const BeadOptions& b = options_.profile.bead;
   return std::max(b.min_threshold_mm, b.threshold_sigmas * noise);
@@ -134,7 +142,7 @@ void PartProfileProcessor::OnBed(const ProfileView& view) {
 }
 
 void PartProfileProcessor::OverBelow(const SurfaceGrid& below) {
-  if (bed_.x_mm.size() < static_cast<std::size_t>(std::max(options_.profile.bead.min_profile_points, 3))) {
+  if (bed_.x_mm.size() < MinPoints()) {
     result_.bead.status = ProfileStatus::kTooFewPoints;  // (its values NaN, as the wheel's)
     return;
   }
@@ -174,8 +182,8 @@ bool PartProfileProcessor::Register(const SurfaceGrid& below, double noise, doub
   // No step where the pass's hidden sigma is over the limit (the sensor's
   // rows' path says why, part_profile_rows.cc): the cost's curvature at
   // the pass's shift, for its sigma, alone.
-  const double limit = std::max(options_.max_shift_sigma_mm, bed_.spacing_mm);
-  const bool may_move = !(pass_hidden_ > limit);
+  const double limit = ShiftSigmaLimit(bed_.spacing_mm);
+  const bool may_move = PassMayMove(limit);
   double curvature = 0.0;
   for (int step = 0; step < options_.shift_steps; ++step) {
     const PointsOnGrid::Local l = LocalCost(bed_.x_mm, bed_.z_mm, below, s, scale, grid);

@@ -46,6 +46,7 @@
 
 #include "libbead/core/profile_view.h"
 #include "libbead/core/rig.h"
+#include "libbead/core/run_data.h"
 #include "libbead/part/grid_costs.h"
 #include "libbead/part/sensor_rows.h"
 #include "libbead/part/surface_below.h"
@@ -71,6 +72,10 @@ struct PartProfileOptions {
 struct PartPlace {
   int64_t layer = 0;
   double path_mm = 0.0, frame_x_mm = 0.0, frame_z_mm = 0.0;
+  // Profile i's place in a scan's places.
+  static PartPlace At(const PartPlaces& places, std::size_t i) {
+    return {places.layer[i], places.path_mm[i], places.frame_x_mm[i], places.frame_z_mm[i]};
+  }
 };
 
 struct PartProfileGeometry {
@@ -139,6 +144,15 @@ class PartProfileProcessor {
   // heights_ at the points x (z: the new surface there) through the
   // wheel's kernel, the gains' noise `noise`.
   void MeasureHeights(std::span<const float> x, std::span<const float> z, double noise);
+  // The fewest points a profile is measured on (the wheel's, at least 3).
+  std::size_t MinPoints() const;
+  // A shift's sigma constrains it at most this (max_shift_sigma_mm, or a
+  // point spacing if larger: the sigma's floor is spacing / sqrt 12).
+  double ShiftSigmaLimit(double spacing) const;
+  // Whether a profile of this pass can be constrained at all: not where the
+  // pass's hidden sigma, a floor under every sigma in it, is over `limit`
+  // (then no Gauss-Newton step is taken).
+  bool PassMayMove(double limit) const { return !(pass_hidden_ > limit); }
   // The gains' detection threshold for one point's noise (as the offline
   // registration sets it: the wheel's rule, BeadOptions).
   double Tau(double noise) const;

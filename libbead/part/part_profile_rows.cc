@@ -107,7 +107,7 @@ void PartProfileProcessor::OverRows(const ProfileView& view, const SensorRows::P
     // Not from a profile of too few points (the sensor saw nothing: its
     // noise would be the floor's, for the whole pass).
     const double noise = NoiseOfFinite({z_bed, n}, below_z_);
-    if (below_z_.size() < static_cast<std::size_t>(std::max(options_.profile.bead.min_profile_points, 3))) {
+    if (below_z_.size() < MinPoints()) {
       result_.bead.status = ProfileStatus::kTooFewPoints;
       return;
     }
@@ -131,8 +131,8 @@ void PartProfileProcessor::OverRows(const ProfileView& view, const SensorRows::P
   // it, is over the limit: no profile of the pass can be constrained, its
   // shift is the pass's (one pass makes the gains there; stepping away and
   // back made a third of the twin wall's profiles on such a layer three).
-  const double limit = std::max(options_.max_shift_sigma_mm, dx);
-  const bool may_move = !(pass_hidden_ > limit);
+  const double limit = ShiftSigmaLimit(dx);
+  const bool may_move = PassMayMove(limit);
   double s = start, curvature = 0.0, estimate = start;
   for (int step = 0;; ++step) {
     const GridSums sums = GainsOnRows(below, z_bed, x0_bed, dx, n, s, shared);

@@ -53,7 +53,7 @@ void Collect(const sim::PartTwin& twin, Errors& e, std::size_t reversed_from = S
     if (r.bead.valid()) offline[static_cast<std::size_t>(r.profile)] = r.bead.area_mm2;
   });
   for (std::size_t k = 0; k < b.size(); ++k) {
-    const part::PartPlace place{places.layer[k], places.path_mm[k], places.frame_x_mm[k], places.frame_z_mm[k]};
+    const part::PartPlace place = part::PartPlace::At(places, k);
     ProfileView view = b.view(k);
     std::vector<float> rx, rz;
     if (k >= reversed_from) {
@@ -170,21 +170,25 @@ TEST(PartProfileProcessor, AWallFourTimesLargerOrATenthTheSizeMeasuresAsTheWall)
   }
 }
 
+// The twin's default wall, `layers` of `length_mm` each.
+sim::PartTwin ShortWall(int layers, double length_mm) {
+  sim::PartTwinConfig config;
+  config.layers = layers;
+  config.length_mm = length_mm;
+  return sim::SimulatePartWall(config);
+}
+
 // A layer whose layer below was never scanned: nothing to measure it
 // against, said in words, and no bead.
 TEST(PartProfileProcessor, ALayerWithNoLayerBelowSaysSo) {
-  sim::PartTwinConfig config;
-  config.layers = 3;
-  config.length_mm = 20.0;
-  const sim::PartTwin twin = sim::SimulatePartWall(config);
+  const sim::PartTwin twin = ShortWall(3, 20.0);
   const ProfileBlock& b = twin.scan.profiles;
   const PartPlaces& places = *twin.scan.part;
   part::PartProfileProcessor processor(twin.rig, {}, b.points);
   int told = 0, layer2 = 0;
   for (std::size_t k = 0; k < b.size(); ++k) {
     if (places.layer[k] == 1) continue;  // layer 1 not scanned
-    const part::PartProfileGeometry& g =
-        processor.Process(b.view(k), {places.layer[k], places.path_mm[k], places.frame_x_mm[k], places.frame_z_mm[k]});
+    const part::PartProfileGeometry& g = processor.Process(b.view(k), part::PartPlace::At(places, k));
     if (places.layer[k] != 2) continue;
     ++layer2;
     told += !g.no_surface.empty();
@@ -198,10 +202,7 @@ TEST(PartProfileProcessor, ALayerWithNoLayerBelowSaysSo) {
 // crash and not a number; the pass's noise is not set on it, and the
 // layer's other profiles are measured.
 TEST(PartProfileProcessor, AnEmptyProfileHasTooFewPoints) {
-  sim::PartTwinConfig config;
-  config.layers = 2;
-  config.length_mm = 10.0;
-  const sim::PartTwin twin = sim::SimulatePartWall(config);
+  const sim::PartTwin twin = ShortWall(2, 10.0);
   const ProfileBlock& b = twin.scan.profiles;
   const PartPlaces& places = *twin.scan.part;
   part::PartProfileProcessor processor(twin.rig, {}, b.points);
@@ -209,7 +210,7 @@ TEST(PartProfileProcessor, AnEmptyProfileHasTooFewPoints) {
   int checked = 0, others = 0, others_valid = 0;
   bool first = true;
   for (std::size_t k = 0; k < b.size(); ++k) {
-    const part::PartPlace place{places.layer[k], places.path_mm[k], places.frame_x_mm[k], places.frame_z_mm[k]};
+    const part::PartPlace place = part::PartPlace::At(places, k);
     const bool blank = place.layer == 1 && (first || k % 3 == 0);
     first = first && place.layer != 1;
     const ProfileView view = blank ? ProfileView{b.view(k).x_mm, nan} : b.view(k);
@@ -228,19 +229,16 @@ TEST(PartProfileProcessor, AnEmptyProfileHasTooFewPoints) {
 // layer below lies nowhere under its points): no bead, said per profile as
 // too few points over a surface below, and nothing read beyond the rows.
 TEST(PartProfileProcessor, ALayerWhoseFrameJumpsOffTheLayerBelowHasNothingUnderIt) {
-  sim::PartTwinConfig config;
-  config.layers = 2;
-  config.length_mm = 10.0;
-  const sim::PartTwin twin = sim::SimulatePartWall(config);
+  const sim::PartTwin twin = ShortWall(2, 10.0);
   const ProfileBlock& b = twin.scan.profiles;
   const PartPlaces& places = *twin.scan.part;
   for (double jump : {-100.0, 100.0}) {
     part::PartProfileProcessor processor(twin.rig, {}, b.points);
     int layer1 = 0, measured = 0;
     for (std::size_t k = 0; k < b.size(); ++k) {
-      const double frame_x = places.frame_x_mm[k] + (places.layer[k] == 1 ? jump : 0.0);
-      const part::PartProfileGeometry& g =
-          processor.Process(b.view(k), {places.layer[k], places.path_mm[k], frame_x, places.frame_z_mm[k]});
+      part::PartPlace place = part::PartPlace::At(places, k);
+      if (place.layer == 1) place.frame_x_mm += jump;
+      const part::PartProfileGeometry& g = processor.Process(b.view(k), place);
       if (places.layer[k] != 1) continue;
       ++layer1;
       measured += g.bead.status == ProfileStatus::kValid;

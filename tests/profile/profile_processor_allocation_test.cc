@@ -131,8 +131,7 @@ TEST(PartProfileProcessor, AllocatesNothingOnceItsBuffersAreFilledButOnAPassesFi
       in_layer = places.layer[k] == layer ? in_layer + 1 : 0;
       layer = places.layer[k];
       const long before = g_allocations.load();
-      const part::PartProfileGeometry& g = processor.Process(
-          b.view(k), {places.layer[k], places.path_mm[k], places.frame_x_mm[k], places.frame_z_mm[k]});
+      const part::PartProfileGeometry& g = processor.Process(b.view(k), part::PartPlace::At(places, k));
       const long allocations = g_allocations.load() - before;
       if (round < 2) continue;
       valid += g.bead.valid() && g.no_surface.empty();
